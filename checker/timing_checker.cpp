@@ -1,0 +1,187 @@
+#include "checker/timing_checker.hpp"
+
+#include <algorithm>
+
+namespace endatsim::checker {
+namespace {
+
+using sim::format_frequency;
+using sim::format_time;
+
+constexpr Time kPulseMinWithoutCompensation = sim::ns(200);  // 2.3.2 t_HI, t_LO minimum
+constexpr Time kPulseHighMax = sim::us(10);                  // 2.3.2 t_HI maximum
+constexpr sim::Hertz kMinFc = sim::kHz(100);
+constexpr sim::Hertz kMaxFcWithout = sim::MHz(2);
+constexpr sim::Hertz kMaxFcWith = sim::MHz(8);
+constexpr sim::Hertz kMaxFcSpecial = sim::MHz(16);  // 2.1.2: "8 to 16 MHz is intended for special applications"
+
+}  // namespace
+
+std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
+
+TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave::EncoderParams& encoder,
+                             const master::MasterParams& master, const CheckerParams& params)
+    : kernel_(kernel), line_(line), encoder_(encoder), master_(master), params_(params) {
+  line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
+  line.pins(ObservationPoint::EncoderPins).clock.on_change(sim::bind<&TimingChecker::on_encoder_clock>(this));
+}
+
+void TimingChecker::on_frame_start(const master::FrameResult& frame) {
+  PinFrame f;
+  f.index = frame.index;
+  f.measurement = frame.measurement;
+  f.compensated = frame.compensated;
+  f.command_type = protocol::info(frame.command).version;
+  f.f_c = frame.f_c;
+  pending_.emplace_back(master_falling_edges_ + 1, std::move(f));
+  master_rising_.clear();
+  sampling_reported_ = false;
+}
+
+void TimingChecker::on_master_clock(std::uint64_t level) {
+  if (level == 0) ++master_falling_edges_;
+  else master_rising_.push_back(kernel_.now());
+}
+
+void TimingChecker::on_encoder_clock(std::uint64_t level) {
+  const Time now = kernel_.now();
+  if (level != 0) {
+    if (current_) current_->rising.push_back(now);
+    return;
+  }
+  ++encoder_falling_edges_;
+  if (!pending_.empty() && pending_.front().first == encoder_falling_edges_) {
+    if (current_) evaluate(*current_);
+    current_ = std::move(pending_.front().second);
+    pending_.pop_front();
+    current_->fe1 = now;
+    if (previous_) check_recovery(*previous_, *current_);
+  }
+  if (current_) current_->falling.push_back(now);
+}
+
+void TimingChecker::evaluate(const PinFrame& f) {
+  check_pulse_widths(f);
+  check_frequency(f);
+  previous_ = f;
+}
+
+void TimingChecker::check_pulse_widths(const PinFrame& f) {
+  // With compensation the on-off ratio row applies: each phase within 50 % +/- 10 % of T.
+  const Time period = sim::period_of(f.f_c);
+  const Time min = f.compensated ? period * 4 / 10 : kPulseMinWithoutCompensation;
+  const std::string spec = f.compensated ? "2.3.2 on-off ratio error (+/-10 % with delay compensation)"
+                                         : "2.3.2 t_HI / t_LO minimum 0.2 us";
+  struct Worst {
+    Time width = Time::max();
+    unsigned clock = 0;
+    Time at{0};
+    unsigned count = 0;
+  } low, high, long_high;
+  for (std::size_t k = 0; k < f.rising.size() && k < f.falling.size(); ++k) {
+    const Time w = f.rising[k] - f.falling[k];
+    if (w < min && ++low.count && w < low.width) low = {w, static_cast<unsigned>(k + 1), f.falling[k], low.count};
+  }
+  for (std::size_t k = 0; k + 1 < f.falling.size() && k < f.rising.size(); ++k) {
+    const Time w = f.falling[k + 1] - f.rising[k];
+    if (w < min && ++high.count && w < high.width) high = {w, static_cast<unsigned>(k + 1), f.rising[k], high.count};
+    if (w > kPulseHighMax && ++long_high.count) long_high = {w, static_cast<unsigned>(k + 1), f.rising[k], long_high.count};
+  }
+  const auto emit = [&](const Worst& w, std::string_view name, const std::string& limit, const std::string& s,
+                        const char* what) {
+    if (w.count == 0) return;
+    report({std::string(name), s, ObservationPoint::EncoderPins, w.at, f.index, w.clock, format_time(w.width), limit,
+            Severity::Error,
+            std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)"});
+  };
+  emit(low, check::kPulseLow, ">= " + format_time(min), spec, "CLOCK LOW phase too short");
+  emit(high, check::kPulseHigh, ">= " + format_time(min), spec, "CLOCK HIGH phase too short");
+  emit(long_high, check::kPulseHigh, "<= " + format_time(kPulseHighMax), "2.3.2 t_HI maximum 10 us",
+       "CLOCK HIGH phase inside a frame too long: the encoder may end the transfer (t_m)");
+}
+
+void TimingChecker::check_frequency(const PinFrame& f) {
+  if (f.rising.size() < 3) return;
+  // The mean period from RE2 on: the first period contains t_ST.
+  const Time mean = (f.rising.back() - f.rising[1]) / static_cast<std::int64_t>(f.rising.size() - 2);
+  const sim::Hertz fc = sim::frequency_of(mean);
+  const Time at = f.rising[1];
+  if (f.measurement) {
+    if (fc < sim::kHz(100) || fc > sim::kHz(200))
+      report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
+              ObservationPoint::EncoderPins, at, f.index, std::nullopt, format_frequency(fc), "100 kHz .. 200 kHz",
+              Severity::Error, "delay measured with a clock outside the prescribed range"});
+    return;
+  }
+  const sim::Hertz max = f.compensated ? kMaxFcWith : kMaxFcWithout;
+  const std::string range = format_frequency(kMinFc) + " .. " + format_frequency(max);
+  const std::string spec = f.compensated ? "2.3.2 f_c (with delay compensation)" : "2.3.2 f_c (without delay compensation)";
+  if (fc < kMinFc || (fc > max && (!f.compensated || fc > kMaxFcSpecial))) {
+    report({std::string(check::kClockFrequency), spec, ObservationPoint::EncoderPins, at, f.index, std::nullopt,
+            format_frequency(fc), range, Severity::Error, "clock frequency outside the table's range"});
+  } else if (fc > max) {
+    report({std::string(check::kClockFrequency), "2.1.2 (8 .. 16 MHz for special applications)",
+            ObservationPoint::EncoderPins, at, f.index, std::nullopt, format_frequency(fc), range, Severity::Warning,
+            "clock above 8 MHz: only for special applications with short cables (t_ST 1 us at 16 MHz)"});
+  }
+}
+
+void TimingChecker::check_recovery(const PinFrame& previous, const PinFrame& next) {
+  if (previous.rising.empty()) return;
+  const bool short_tm = previous.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected;
+  const Time t_m = short_tm ? *encoder_.t_m_short : encoder_.t_m;
+  const Time gap = next.fe1 - previous.rising.back();
+  if (gap >= t_m + encoder_.t_r) return;
+  report({std::string(check::kRecovery), "2.3.2 recovery time I (t_m) and II (t_R)", ObservationPoint::EncoderPins,
+          next.fe1, next.index, 1U, format_time(gap), ">= " + format_time(t_m + encoder_.t_r),
+          Severity::Error,
+          "next frame began " + format_time(gap) + " after the last rising edge, before t_m (" + format_time(t_m) +
+              ") + t_R (" + format_time(encoder_.t_r) + ") had elapsed"});
+}
+
+void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, bool, bool in_data) {
+  if (!in_data || sampling_reported_ || clock == 0) return;
+  // Bit slot k leaves the encoder after RE_k and reaches the master logic one round trip later.
+  const Time rt = line_.round_trip(encoder_.output_delay);
+  const Time now = kernel_.now();
+  const auto arrival = [&](std::size_t k) { return master_rising_[k - 1] + rt; };
+  std::size_t latest = 0;
+  for (std::size_t k = master_rising_.size(); k >= 1; --k) {
+    if (arrival(k) + params_.sample_setup <= now) {
+      latest = k;
+      break;
+    }
+  }
+  const bool next_ok = clock >= master_rising_.size() || arrival(clock + 1) - now >= params_.sample_hold;
+  if (latest == clock && next_ok) return;
+  sampling_reported_ = true;
+  const Time slot = clock < master_rising_.size() ? arrival(clock + 1) - arrival(clock) : sim::period_of(frame.f_c);
+  const Time offset = clock <= master_rising_.size() ? now - arrival(clock) : Time::zero();
+  report({std::string(check::kSamplingWindow), "2.3 (data taken at the falling edge + t_D) and 2.1.2",
+          ObservationPoint::MasterPins, now, frame.index, clock, format_time(offset),
+          format_time(params_.sample_setup) + " .. " + format_time(slot - params_.sample_hold),
+          Severity::Error,
+          "master sampled bit slot " + std::to_string(clock) + " outside its data-valid window (" +
+              (latest == 0 ? std::string("no bit had arrived yet")
+                           : "the line carried slot " + std::to_string(latest)) +
+              "; true round trip " + format_time(rt) + ", t_D used " + format_time(frame.t_d_used) + ")"});
+}
+
+void TimingChecker::on_frame_end(const master::FrameResult&) {}
+
+void TimingChecker::finish() {
+  if (current_) {
+    evaluate(*current_);
+    current_.reset();
+  }
+  for (const line::Contention& c : line_.contentions()) {
+    const Time end = c.end == Time::max() ? kernel_.now() : c.end;
+    report({std::string(check::kContention), "2.3 (collision between the data drivers)", c.where, c.start,
+            std::nullopt, std::nullopt, format_time(end - c.start), "0 ps (one driver at a time)", Severity::Error,
+            "master and encoder drove DATA at the same time"});
+  }
+  std::stable_sort(violations_.begin(), violations_.end(),
+                   [](const Violation& a, const Violation& b) { return a.time < b.time; });
+}
+
+}  // namespace endatsim::checker

@@ -1,0 +1,106 @@
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "line/line.hpp"
+#include "master/master.hpp"
+#include "slave/encoder.hpp"
+
+namespace endatsim::checker {
+
+using line::ObservationPoint;
+using sim::Time;
+
+enum class Severity : std::uint8_t { Error, Warning };
+std::string_view to_string(Severity s);
+
+// Names of the checks, as used in scenarios' expectations and in reports.
+namespace check {
+inline constexpr std::string_view kClockFrequency = "f_c";
+inline constexpr std::string_view kMeasurementClock = "delay_measurement_f_c";
+inline constexpr std::string_view kPulseHigh = "t_hi";
+inline constexpr std::string_view kPulseLow = "t_lo";
+inline constexpr std::string_view kSamplingWindow = "sampling_window";
+inline constexpr std::string_view kRecovery = "t_m_t_r";
+inline constexpr std::string_view kContention = "bus_contention";
+}  // namespace check
+
+struct Violation {
+  std::string check;
+  std::string spec;  // section / table row
+  ObservationPoint where = ObservationPoint::EncoderPins;
+  Time time{0};
+  std::optional<std::uint64_t> frame;
+  std::optional<unsigned> clock;  // bit slot (RE index) inside the frame
+  std::string measured;
+  std::string limit;
+  Severity severity = Severity::Error;
+  std::string message;
+};
+
+struct CheckerParams {
+  // The master's sampling flip-flop: DATA must be stable this long before and after the instant.
+  Time sample_setup = sim::ps(1);
+  Time sample_hold = sim::ps(1);
+};
+
+// Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
+// ratio row (HIGH and LOW each within 50 % +/- 10 % of the period); without it, the 0.2 us rows
+// apply (2.3.2). The alternative reading (0.2 us in both cases) would forbid every f_c above
+// 2.5 MHz, which the same table allows.
+class TimingChecker final : public master::MasterObserver {
+ public:
+  TimingChecker(sim::Kernel& kernel, line::Line& line, const slave::EncoderParams& encoder,
+                const master::MasterParams& master, const CheckerParams& params = {});
+  TimingChecker(const TimingChecker&) = delete;
+  TimingChecker& operator=(const TimingChecker&) = delete;
+
+  void on_frame_start(const master::FrameResult& frame) override;
+  void on_sample(const master::FrameResult& frame, unsigned clock, bool value, bool in_data) override;
+  void on_frame_end(const master::FrameResult& frame) override;
+
+  // Evaluates what is still open (last frame, running contention). Call once after the run.
+  void finish();
+  const std::vector<Violation>& violations() const { return violations_; }
+
+ private:
+  struct PinFrame {
+    std::uint64_t index = 0;
+    bool measurement = false;
+    bool compensated = false;
+    protocol::EndatVersion command_type = protocol::EndatVersion::V2_1;
+    sim::Hertz f_c = 0;
+    Time fe1{0};
+    std::vector<Time> rising;
+    std::vector<Time> falling;
+  };
+
+  void on_encoder_clock(std::uint64_t level);
+  void on_master_clock(std::uint64_t level);
+  void evaluate(const PinFrame& f);
+  void check_pulse_widths(const PinFrame& f);
+  void check_frequency(const PinFrame& f);
+  void check_recovery(const PinFrame& previous, const PinFrame& next);
+  void report(Violation v) { violations_.push_back(std::move(v)); }
+
+  sim::Kernel& kernel_;
+  line::Line& line_;
+  slave::EncoderParams encoder_;
+  master::MasterParams master_;
+  CheckerParams params_;
+
+  std::uint64_t master_falling_edges_ = 0;
+  std::uint64_t encoder_falling_edges_ = 0;
+  std::deque<std::pair<std::uint64_t, PinFrame>> pending_;  // frames whose FE1 has not reached the encoder
+  std::optional<PinFrame> current_;
+  std::optional<PinFrame> previous_;
+  std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
+  bool sampling_reported_ = false;   // one sampling-window violation per frame, the first bit
+  std::vector<Violation> violations_;
+};
+
+}  // namespace endatsim::checker

@@ -1,0 +1,171 @@
+#include "line/line.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace endatsim::line {
+
+using sim::Signal;
+using sim::TransportDelay;
+
+Time LineParams::cable_delay() const {
+  return Time{std::llround(cable_length_m * static_cast<double>(cable_delay_per_m.count()))};
+}
+
+void LineParams::validate() const {
+  if (!std::isfinite(cable_length_m) || cable_length_m < 0.0 || cable_length_m > kMaxCableLengthM)
+    throw std::invalid_argument("cable length must be 0 .. " + std::to_string(static_cast<int>(kMaxCableLengthM)) +
+                                " m (spec 2.1.2: up to 300 m on request), got " + std::to_string(cable_length_m) + " m");
+  if (cable_delay_per_m < Time::zero() || cable_delay_per_m > sim::ns(20))
+    throw std::invalid_argument("cable delay per metre must be 0 .. 20 ns/m, got " +
+                                sim::format_time(cable_delay_per_m));
+  for (const auto* t : {&master, &encoder}) {
+    for (Time d : {t->driver_delay, t->enable_delay, t->disable_delay, t->receiver_delay}) {
+      if (d < Time::zero() || d > kMaxTransceiverDelay)
+        throw std::invalid_argument("transceiver delays must be 0 .. 1 us, got " + sim::format_time(d));
+    }
+  }
+}
+
+std::string_view to_string(ObservationPoint p) {
+  return p == ObservationPoint::MasterPins ? "master pins" : "encoder pins";
+}
+
+// One end of the DATA pair: the local driver is seen at once, the remote one after the cable.
+class PinResolver {
+ public:
+  PinResolver(ObservationPoint where, Signal& local_en, Signal& local_level, Signal& remote_en,
+              Signal& remote_level, Signal& pin, std::vector<Contention>& log, sim::Kernel& kernel, bool& failsafe)
+      : where_(where), local_en_(local_en), local_level_(local_level), remote_en_(remote_en),
+        remote_level_(remote_level), pin_(pin), log_(log), kernel_(kernel), failsafe_(failsafe) {
+    for (Signal* s : {&local_en, &local_level, &remote_en, &remote_level})
+      s->on_change(sim::bind<&PinResolver::resolve>(this));
+  }
+
+  void resolve() {
+    const bool local = local_en_.read();
+    const bool remote = remote_en_.read();
+    const bool both = local && remote;
+    if (both && !open_) {
+      log_.push_back(Contention{where_, kernel_.now(), Time::max()});
+      open_index_ = log_.size() - 1;
+      open_ = true;
+    } else if (!both && open_) {
+      log_[open_index_].end = kernel_.now();
+      open_ = false;
+    }
+    // During contention the near driver dominates its own end of the pair.
+    if (local) pin_.write(local_level_.read());
+    else if (remote) pin_.write(remote_level_.read());
+    else pin_.write(failsafe_);
+  }
+
+ private:
+  ObservationPoint where_;
+  Signal& local_en_;
+  Signal& local_level_;
+  Signal& remote_en_;
+  Signal& remote_level_;
+  Signal& pin_;
+  std::vector<Contention>& log_;
+  bool open_ = false;
+  std::size_t open_index_ = 0;
+  sim::Kernel& kernel_;
+  bool& failsafe_;
+};
+
+struct Line::Impl {
+  Impl(sim::Kernel& k, const LineParams& p, std::vector<Contention>& log)
+      : failsafe(p.failsafe_level),
+        // Idle: CLOCK driven HIGH by the master, DATA driven LOW by the encoder (timing-model §8).
+        m_clock_out(k, "m_clock_out", true), m_data_out(k, "m_data_out", false),
+        m_data_enable(k, "m_data_enable", false), m_data_in(k, "m_data_in", false),
+        e_clock_in(k, "e_clock_in", true), e_data_out(k, "e_data_out", false),
+        e_data_enable(k, "e_data_enable", true), e_data_in(k, "e_data_in", false),
+        m_clock(k, "m_clock", true), e_clock(k, "e_clock", true),
+        m_drive_level(k, "m_drive_level", false), m_drive_en(k, "m_drive_en", false),
+        e_drive_level(k, "e_drive_level", false), e_drive_en(k, "e_drive_en", true),
+        m_level_at_e(k, "m_level_at_e", false), m_en_at_e(k, "m_en_at_e", false),
+        e_level_at_m(k, "e_level_at_m", false), e_en_at_m(k, "e_en_at_m", true),
+        m_data(k, "m_data", false), e_data(k, "e_data", false),
+        clock_driver(k, m_clock_out, m_clock, p.master.driver_delay),
+        clock_cable(k, m_clock, e_clock, p.cable_delay()),
+        clock_receiver(k, e_clock, e_clock_in, p.encoder.receiver_delay),
+        m_level_driver(k, m_data_out, m_drive_level, p.master.driver_delay),
+        m_en_driver(k, m_data_enable, m_drive_en, p.master.enable_delay, p.master.disable_delay),
+        e_level_driver(k, e_data_out, e_drive_level, p.encoder.driver_delay),
+        e_en_driver(k, e_data_enable, e_drive_en, p.encoder.enable_delay, p.encoder.disable_delay),
+        m_level_cable(k, m_drive_level, m_level_at_e, p.cable_delay()),
+        m_en_cable(k, m_drive_en, m_en_at_e, p.cable_delay()),
+        e_level_cable(k, e_drive_level, e_level_at_m, p.cable_delay()),
+        e_en_cable(k, e_drive_en, e_en_at_m, p.cable_delay()),
+        master_pin(ObservationPoint::MasterPins, m_drive_en, m_drive_level, e_en_at_m, e_level_at_m, m_data,
+                   log, k, failsafe),
+        encoder_pin(ObservationPoint::EncoderPins, e_drive_en, e_drive_level, m_en_at_e, m_level_at_e,
+                    e_data, log, k, failsafe),
+        m_receiver(k, m_data, m_data_in, p.master.receiver_delay),
+        e_receiver(k, e_data, e_data_in, p.encoder.receiver_delay) {}
+
+  bool failsafe;
+  Signal m_clock_out, m_data_out, m_data_enable, m_data_in;
+  Signal e_clock_in, e_data_out, e_data_enable, e_data_in;
+  Signal m_clock, e_clock;
+  Signal m_drive_level, m_drive_en, e_drive_level, e_drive_en;
+  Signal m_level_at_e, m_en_at_e, e_level_at_m, e_en_at_m;
+  Signal m_data, e_data;
+  TransportDelay clock_driver, clock_cable, clock_receiver;
+  TransportDelay m_level_driver, m_en_driver, e_level_driver, e_en_driver;
+  TransportDelay m_level_cable, m_en_cable, e_level_cable, e_en_cable;
+  PinResolver master_pin, encoder_pin;
+  TransportDelay m_receiver, e_receiver;
+};
+
+Line::Line(sim::Kernel& kernel, const LineParams& params) : kernel_(kernel), params_(params) {
+  params_.validate();
+  impl_ = std::make_unique<Impl>(kernel_, params_, contentions_);
+}
+
+Line::~Line() = default;
+
+Line::MasterSide Line::master() {
+  return {impl_->m_clock_out, impl_->m_data_out, impl_->m_data_enable, impl_->m_data_in};
+}
+
+Line::EncoderSide Line::encoder() {
+  return {impl_->e_clock_in, impl_->e_data_out, impl_->e_data_enable, impl_->e_data_in};
+}
+
+Line::Pins Line::pins(ObservationPoint where) {
+  if (where == ObservationPoint::MasterPins) return {impl_->m_clock, impl_->m_data, impl_->m_drive_en};
+  return {impl_->e_clock, impl_->e_data, impl_->e_drive_en};
+}
+
+Time Line::pin_round_trip(Time encoder_output_delay) const {
+  return 2 * params_.cable_delay() + params_.encoder.receiver_delay + encoder_output_delay +
+         params_.encoder.driver_delay;
+}
+
+Time Line::round_trip(Time encoder_output_delay) const {
+  return params_.master.driver_delay + pin_round_trip(encoder_output_delay) + params_.master.receiver_delay;
+}
+
+void Line::set_cable(double length_m, Time delay_per_m) {
+  LineParams next = params_;
+  next.cable_length_m = length_m;
+  next.cable_delay_per_m = delay_per_m;
+  next.validate();
+  params_ = next;
+  const Time d = params_.cable_delay();
+  for (TransportDelay* t : {&impl_->clock_cable, &impl_->m_level_cable, &impl_->m_en_cable, &impl_->e_level_cable,
+                            &impl_->e_en_cable})
+    t->set_delays(d, d);
+}
+
+void Line::set_failsafe_level(bool level) {
+  params_.failsafe_level = level;
+  impl_->failsafe = level;
+  impl_->master_pin.resolve();
+  impl_->encoder_pin.resolve();
+}
+
+}  // namespace endatsim::line

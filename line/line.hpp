@@ -1,0 +1,112 @@
+// line/ — the RS-485 link between master (subsequent electronics) and encoder, spec 2.1:
+// CLOCK from master to encoder, DATA both ways (half duplex). Each end has a transceiver
+// with driver, driver-enable/disable and receiver delays; the cable adds a delay per metre.
+//
+//   master logic --driver--> [master pins] --cable--> [encoder pins] --receiver--> encoder logic
+//
+// Defaults make the round trip seen by the master (clock edge out -> data edge back)
+// equal the spec's bound t_D = 0.2 us + 0.01 us/m x L (2.3.2) together with the encoder's
+// own clock-to-data delay (slave::EncoderParams::output_delay, 60 ns):
+// 20 (master driver) + 40 (encoder receiver) + 60 (encoder logic) + 30 (encoder driver)
+// + 50 (master receiver) = 200 ns, plus 2 x 5 ns/m of cable.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/sim.hpp"
+
+namespace endatsim::line {
+
+using sim::Time;
+
+struct TransceiverParams {
+  Time driver_delay;    // logic input -> level on the pins
+  Time enable_delay;    // driver enable -> pins driven
+  Time disable_delay;   // driver disable -> pins released (high impedance)
+  Time receiver_delay;  // level on the pins -> logic output
+};
+
+struct LineParams {
+  // Cable length in metres and one-way propagation delay per metre (timing-model §8:
+  // 0.01 us/m in the t_D formula is the round trip, so ~5 ns/m one way).
+  double cable_length_m = 1.0;
+  Time cable_delay_per_m = sim::ns(5);
+  TransceiverParams master{sim::ns(20), sim::ns(30), sim::ns(30), sim::ns(50)};
+  TransceiverParams encoder{sim::ns(30), sim::ns(30), sim::ns(30), sim::ns(40)};
+  // Level a true fail-safe receiver reads on undriven DATA (timing-model §8: HIGH).
+  bool failsafe_level = true;
+
+  static constexpr double kMaxCableLengthM = 300.0;  // 2.1.2: "up to 300 m on request"
+  static constexpr Time kMaxTransceiverDelay = sim::us(1);
+
+  Time cable_delay() const;
+  // Throws std::invalid_argument naming the parameter and its limit.
+  void validate() const;
+};
+
+enum class ObservationPoint : std::uint8_t { MasterPins, EncoderPins };
+std::string_view to_string(ObservationPoint p);
+
+// Both ends driving DATA at once, as seen at one end's pins.
+struct Contention {
+  ObservationPoint where;
+  Time start;
+  Time end;  // Time::max() while still going on
+};
+
+class Line {
+ public:
+  Line(sim::Kernel& kernel, const LineParams& params);
+  ~Line();
+  Line(const Line&) = delete;
+  Line& operator=(const Line&) = delete;
+
+  // What the master logic drives and sees.
+  struct MasterSide {
+    sim::Signal& clock_out;
+    sim::Signal& data_out;
+    sim::Signal& data_enable;
+    sim::Signal& data_in;
+  };
+  // What the encoder logic drives and sees.
+  struct EncoderSide {
+    sim::Signal& clock_in;
+    sim::Signal& data_out;
+    sim::Signal& data_enable;
+    sim::Signal& data_in;
+  };
+  // Levels on the connector pins at each end: the spec's timing is "with respect to the encoder".
+  struct Pins {
+    sim::Signal& clock;
+    sim::Signal& data;
+    sim::Signal& driver_enable;  // this end's DATA driver active on its pins
+  };
+
+  MasterSide master();
+  EncoderSide encoder();
+  Pins pins(ObservationPoint where);
+
+  const LineParams& params() const { return params_; }
+  // Clock edge at the master logic -> data edge back at the master logic, for an encoder
+  // whose logic needs `encoder_output_delay` from its clock input to its data output.
+  Time round_trip(Time encoder_output_delay) const;
+  // The same between the master's pins (what the master's connector sees).
+  Time pin_round_trip(Time encoder_output_delay) const;
+
+  // Changes the cable while running (connector swap, temperature). Edges in flight keep their delay.
+  void set_cable(double length_m, Time delay_per_m);
+  void set_failsafe_level(bool level);
+
+  const std::vector<Contention>& contentions() const { return contentions_; }
+
+ private:
+  struct Impl;
+  sim::Kernel& kernel_;
+  LineParams params_;
+  std::unique_ptr<Impl> impl_;
+  std::vector<Contention> contentions_;
+};
+
+}  // namespace endatsim::line

@@ -1,0 +1,357 @@
+#include "master/master.hpp"
+
+#include <algorithm>
+#include <boost/random/uniform_int_distribution.hpp>
+#include <stdexcept>
+
+namespace endatsim::master {
+namespace {
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw std::invalid_argument(message);
+}
+
+constexpr unsigned kFirstPolledClock = 9;       // the encoder drives DATA from the turnaround (timing-model §1.2)
+constexpr unsigned kFirstCounterClock = 11;     // 2.1.2: counter started at each RE after 10 periods
+
+}  // namespace
+
+std::string_view to_string(FrameOutcome o) {
+  switch (o) {
+    case FrameOutcome::Ok: return "ok";
+    case FrameOutcome::CrcError: return "crc_error";
+    case FrameOutcome::NoStartBit: return "no_start_bit";
+    case FrameOutcome::Type1Error: return "type1_error";
+  }
+  return "?";
+}
+
+void MasterParams::validate() const {
+  const auto hz = [](Hertz f) { return sim::format_frequency(f); };
+  require(f_c >= kMinFc && f_c <= kMaxFc,
+          "master f_c must be 100 kHz .. 16 MHz (2.3.2; 16 MHz is the model's limit), got " + hz(f_c));
+  require(high_permille >= 100 && high_permille <= 900,
+          "master duty cycle must be 0.1 .. 0.9, got " + std::to_string(high_permille / 1000.0));
+  require(t_st >= Time::zero() && t_st <= sim::ms(1), "master t_ST must be 0 .. 1 ms, got " + sim::format_time(t_st));
+  const Time period = sim::period_of(f_c);
+  const Time shorter = std::min(period * high_permille / 1000, period - period * high_permille / 1000);
+  require(jitter >= Time::zero() && jitter * 2 < shorter,
+          "master clock jitter must be below half the shorter clock phase (" + sim::format_time(shorter / 2) +
+              "), got " + sim::format_time(jitter));
+  require(measurement.f_c >= sim::kHz(10) && measurement.f_c <= kMaxFc,
+          "delay measurement f_c must be 10 kHz .. 16 MHz, got " + hz(measurement.f_c));
+  require(measurement.f_e == 0 || (measurement.f_e >= sim::MHz(1) && measurement.f_e <= sim::MHz(2000)),
+          "delay measurement counter clock f_e must be 1 MHz .. 2 GHz, got " + hz(measurement.f_e));
+  require(measurement.count >= 1 && measurement.count <= 100,
+          "delay measurement count must be 1 .. 100, got " + std::to_string(measurement.count));
+  require(measurement.max_rounds >= 1 && measurement.max_rounds <= 100,
+          "delay measurement max_rounds must be 1 .. 100, got " + std::to_string(measurement.max_rounds));
+  require(position_bits >= 1 && position_bits <= 48,
+          "master position_bits must be 1 .. 48, got " + std::to_string(position_bits));
+  for (auto [name, t] : {std::pair{"t_m_wait", t_m_wait}, {"t_r_wait", t_r_wait}, {"error_wait", error_wait}})
+    require(t >= Time::zero() && t <= sim::ms(100),
+            std::string("master ") + name + " must be 0 .. 100 ms, got " + sim::format_time(t));
+  require(start_bit_timeout > Time::zero() && start_bit_timeout <= sim::ms(100),
+          "master start_bit_timeout must be > 0 and <= 100 ms, got " + sim::format_time(start_bit_timeout));
+  require(type1_detect_samples >= 1 && type1_detect_samples <= 64,
+          "master type1_detect_samples must be 1 .. 64, got " + std::to_string(type1_detect_samples));
+}
+
+Master::Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params)
+    : kernel_(kernel), pins_(line.master()), params_(params), rng_(params.seed),
+      sample_strobe_(kernel, "master_sample", false), frame_active_(kernel, "master_frame", false),
+      edge_timer_(kernel, sim::bind<&Master::clock_edge>(this)),
+      operation_timer_(kernel, sim::bind<&Master::next_operation>(this)),
+      layout_(protocol::position_frame_layout(protocol::EndatVersion::V2_1, params.position_bits)) {
+  params_.validate();
+  pins_.data_in.on_change(sim::bind<&Master::on_data_in>(this));
+}
+
+void Master::start() {
+  finished_ = false;
+  next_operation();
+}
+
+// ---- operations -------------------------------------------------------------------------
+
+void Master::next_operation() {
+  if (operations_.empty()) {
+    current_.reset();
+    finished_ = true;
+    return;
+  }
+  current_ = operations_.front();
+  operations_.pop_front();
+  const Time begin = std::max(current_->at.value_or(kernel_.now()), kernel_.now());
+  switch (current_->kind) {
+    case Operation::Kind::Wait:
+      operation_timer_.start(begin + current_->duration - kernel_.now());
+      return;
+    case Operation::Kind::MeasureDelay:
+      measuring_ = true;
+      rounds_ = 1;
+      counts_.clear();
+      frames_left_ = params_.measurement.count;
+      break;
+    case Operation::Kind::ReadPosition:
+      frames_left_ = current_->count;
+      break;
+  }
+  next_due_ = begin;
+  const Time at = std::max(next_due_, ready_at_);
+  kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
+}
+
+void Master::operation_frame_done() {
+  if (--frames_left_ > 0) {
+    next_due_ += current_->kind == Operation::Kind::ReadPosition ? current_->cycle : Time::zero();
+    if (ready_at_ > next_due_ && current_->cycle > Time::zero()) ++cycle_overruns_;
+    const Time at = std::max(next_due_, ready_at_);
+    kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
+    return;
+  }
+  if (measuring_) {
+    finish_measurement_round();
+    return;
+  }
+  next_operation();
+}
+
+// ---- one frame ----------------------------------------------------------------------------
+
+void Master::start_frame(std::uint64_t) {
+  const bool measurement = measuring_;
+  frame_ = FrameResult{};
+  frame_.index = frames_.size();
+  frame_.start = kernel_.now();
+  frame_.measurement = measurement;
+  frame_.command = measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
+  frame_.mode_bits = measurement || !current_->mode_bits ? protocol::info(frame_.command).bits : *current_->mode_bits;
+  frame_.f_c = measurement ? params_.measurement.f_c : params_.f_c;
+  frame_.compensated = !measurement && params_.delay_compensation && t_d_.has_value();
+  frame_.t_d_used = frame_.compensated ? *t_d_ : Time::zero();
+
+  f_ = frame_.f_c;
+  const Time period = sim::period_of(f_);
+  high_ = period * params_.high_permille / 1000;
+  low_ = period - high_;
+  mode_bits_ = frame_.mode_bits;
+  layout_ = protocol::position_frame_layout(protocol::info(frame_.command).version, params_.position_bits);
+  clock_ = 0;
+  last_clock_ = 0;
+  clocking_done_ = false;
+  rx_ = Rx::Polling;
+  seen_low_ = false;
+  high_samples_ = 0;
+  rx_bits_.clear();
+  ++epoch_;
+  counter_running_ = false;
+  captured_count_.reset();
+  frame_running_ = true;
+
+  frame_active_.write(true);
+  for (auto* o : observers_) o->on_frame_start(frame_);
+  nominal_ = kernel_.now();
+  falling_edge();
+}
+
+Time Master::jittered(Time nominal) {
+  if (params_.jitter == Time::zero()) return nominal;
+  boost::random::uniform_int_distribution<std::int64_t> d(-params_.jitter.count(), params_.jitter.count());
+  return std::max(kernel_.now(), nominal + Time{d(rng_)});
+}
+
+void Master::falling_edge() {
+  ++clock_;
+  clock_low_ = true;
+  pins_.clock_out.write(false);
+  // 2.3: the master enables its driver with the second falling edge, sends a dummy 0 and the
+  // six mode bits M2 first on falling edges 3 .. 8, and releases DATA after the mode word.
+  if (clock_ == 2) {
+    pins_.data_enable.write(true);
+    pins_.data_out.write(false);
+  } else if (clock_ >= 3 && clock_ <= 8) {
+    pins_.data_out.write(((mode_bits_ >> (8 - clock_)) & 1U) != 0);
+  } else if (clock_ == 9) {
+    pins_.data_enable.write(false);
+    pins_.data_out.write(false);
+  }
+  // Without compensation DATA is taken at the falling edge; with it at FE + t_D (2.3).
+  if (clock_ > kFirstPolledClock && rx_ != Rx::Done) {
+    const unsigned slot = clock_ - 1;
+    if (frame_.compensated) kernel_.schedule(frame_.t_d_used, sim::bind<&Master::sample>(this, epoch_ << 16 | slot));
+    else sample_now(slot);
+  }
+  // 2.3.2 note 8: the first LOW phase is stretched to t_ST.
+  nominal_ += clock_ == 1 ? std::max(low_, params_.t_st) : low_;
+  edge_timer_.start(jittered(nominal_) - kernel_.now());
+}
+
+void Master::clock_edge() {
+  if (clock_low_) rising_edge();
+  else falling_edge();
+}
+
+void Master::rising_edge() {
+  clock_low_ = false;
+  pins_.clock_out.write(true);
+  frame_.end = kernel_.now();
+  frame_.clocks = clock_;
+  if (measuring_ && clock_ >= kFirstCounterClock && !captured_count_) {
+    counter_start_ = kernel_.now();
+    counter_running_ = true;
+  }
+  if (rx_ == Rx::Polling && kernel_.now() - frame_.start > params_.start_bit_timeout) {
+    end_reception(FrameOutcome::NoStartBit);
+  }
+  if (rx_ == Rx::Done || (last_clock_ != 0 && clock_ >= last_clock_)) {
+    clocking_done_ = true;
+    if (!params_.extra_clock_after_last_bit && rx_ == Rx::Receiving) {
+      // No further pulse: the last bit is taken where the next falling edge would be.
+      const Time at = high_ + frame_.t_d_used;
+      kernel_.schedule(at, sim::bind<&Master::sample>(this, epoch_ << 16 | clock_));
+    }
+    maybe_complete_frame();
+    return;
+  }
+  nominal_ += high_;
+  edge_timer_.start(jittered(nominal_) - kernel_.now());
+}
+
+void Master::sample(std::uint64_t tag) {
+  if ((tag >> 16) != epoch_ || rx_ == Rx::Done) return;  // a frame that has ended
+  sample_now(static_cast<unsigned>(tag & 0xFFFF));
+}
+
+void Master::sample_now(unsigned clock) {
+  const bool value = pins_.data_in.read();
+  sample_strobe_.write(!sample_strobe_.read());
+  bool in_data = rx_ == Rx::Receiving;
+  switch (rx_) {
+    case Rx::Polling:
+      // Fail-safe receivers read HIGH on the undriven line: wait for LOW, then the start bit.
+      if (!seen_low_ && params_.start_bit_detection == StartBitDetection::WaitLowThenHigh) {
+        seen_low_ = !value;
+        if (value && ++high_samples_ >= params_.type1_detect_samples) {
+          for (auto* o : observers_) o->on_sample(frame_, clock, value, false);
+          end_reception(FrameOutcome::Type1Error);
+          return;
+        }
+      } else if (value) {
+        in_data = true;
+        rx_ = Rx::Receiving;
+        rx_bits_.assign(1, 1);
+        frame_.start_bit_clock = clock;
+        const unsigned last_bit_clock = clock + layout_.width() - 1;
+        last_clock_ = last_bit_clock + (params_.extra_clock_after_last_bit ? 1 : 0);
+      }
+      break;
+    case Rx::Receiving:
+      rx_bits_.push_back(value ? 1 : 0);
+      break;
+    case Rx::Off:
+    case Rx::Done:
+      return;
+  }
+  for (auto* o : observers_) o->on_sample(frame_, clock, value, in_data);
+  if (rx_ == Rx::Receiving && rx_bits_.size() == layout_.width()) {
+    const auto values = layout_.decode(rx_bits_);
+    using protocol::Field;
+    frame_.error1 = values[static_cast<std::size_t>(Field::Error1)] != 0;
+    frame_.error2 = protocol::info(frame_.command).version == protocol::EndatVersion::V2_2
+                        ? values[static_cast<std::size_t>(Field::Error2)] != 0
+                        : true;
+    frame_.position = values[static_cast<std::size_t>(Field::Position)];
+    frame_.crc_received = static_cast<std::uint8_t>(values[static_cast<std::size_t>(Field::Crc)]);
+    frame_.crc_expected =
+        protocol::make_crc_pos(params_.position_bits, frame_.error1, frame_.error2,
+                               protocol::info(frame_.command).version == protocol::EndatVersion::V2_2, frame_.position);
+    end_reception(frame_.crc_received == frame_.crc_expected ? FrameOutcome::Ok : FrameOutcome::CrcError);
+  }
+}
+
+void Master::end_reception(FrameOutcome outcome) {
+  rx_ = Rx::Done;
+  frame_.outcome = outcome;
+  counter_running_ = false;
+  if (last_clock_ == 0 || last_clock_ > clock_) {
+    // Aborted: finish the current clock period and leave CLOCK HIGH (A2: wait t_m).
+    last_clock_ = clock_;
+    if (!clock_low_) {
+      edge_timer_.cancel();
+      clocking_done_ = true;
+    }
+  }
+  maybe_complete_frame();
+}
+
+void Master::maybe_complete_frame() {
+  if (!frame_running_ || !clocking_done_ || rx_ != Rx::Done) return;
+  frame_running_ = false;
+  frame_active_.write(false);
+  const bool error_handling = frame_.outcome == FrameOutcome::NoStartBit || frame_.outcome == FrameOutcome::Type1Error;
+  ready_at_ = frame_.end + (error_handling ? params_.error_wait : params_.t_m_wait) + params_.t_r_wait;
+  if (frame_.measurement && frame_.outcome == FrameOutcome::Ok && captured_count_) {
+    const Time tick = sim::period_of(params_.measurement.f_e != 0 ? params_.measurement.f_e : 8 * params_.f_c);
+    frame_.delay_count_time = tick * *captured_count_;
+    counts_.push_back(*captured_count_);
+  }
+  frames_.push_back(frame_);
+  for (auto* o : observers_) o->on_frame_end(frame_);
+  operation_frame_done();
+}
+
+// ---- propagation-delay measurement (2.1.2) -----------------------------------------------
+
+void Master::on_data_in(std::uint64_t level) {
+  // 2.1.2: "The value of the counter must be saved with every rising clock pulse edge of the start bit."
+  if (!measuring_ || !counter_running_ || captured_count_ || level == 0) return;
+  const Time tick = sim::period_of(params_.measurement.f_e != 0 ? params_.measurement.f_e : 8 * params_.f_c);
+  captured_count_ = (kernel_.now() - counter_start_) / tick;
+  counter_running_ = false;
+}
+
+void Master::finish_measurement_round() {
+  const auto& m = params_.measurement;
+  const Time tick = sim::period_of(m.f_e != 0 ? m.f_e : 8 * params_.f_c);
+  DelayMeasurementResult r;
+  r.start = frames_.size() >= m.count ? frames_[frames_.size() - m.count].start : kernel_.now();
+  r.rounds = rounds_;
+  r.counts = counts_;
+  r.counter_period = tick;
+  const auto n = static_cast<std::int64_t>(counts_.size());
+  std::int64_t sum = 0;
+  for (auto c : counts_) sum += c;
+  if (counts_.size() < m.count) {
+    r.reason = "only " + std::to_string(counts_.size()) + " of " + std::to_string(m.count) +
+               " measurement frames gave a start bit with a valid CRC";
+  } else {
+    // 2.1.2: each measured value within 1/8 of the clock period (at the intended f_c) of the mean.
+    const Time eighth = sim::period_of(params_.f_c) / 8;
+    for (std::size_t i = 0; i < counts_.size() && r.reason.empty(); ++i) {
+      const Time deviation = tick * std::abs(n * counts_[i] - sum) / n;
+      if (deviation > eighth)
+        r.reason = "measurement " + std::to_string(i + 1) + " deviates " + sim::format_time(deviation) +
+                   " from the mean (limit T/8 = " + sim::format_time(eighth) + ", 2.1.2)";
+    }
+  }
+  r.accepted = r.reason.empty();
+  if (r.accepted) {
+    const std::int64_t half = m.add_half_count ? tick.count() * n / 2 : 0;
+    r.t_d = Time{(sum * tick.count() + half + n / 2) / n};
+    t_d_ = r.t_d;
+  }
+  measurements_.push_back(r);
+  if (!r.accepted && rounds_ < m.max_rounds) {
+    ++rounds_;
+    counts_.clear();
+    frames_left_ = m.count;
+    next_due_ = kernel_.now();
+    kernel_.schedule(std::max(ready_at_, kernel_.now()) - kernel_.now(), sim::bind<&Master::start_frame>(this));
+    return;
+  }
+  measuring_ = false;
+  next_operation();
+}
+
+}  // namespace endatsim::master

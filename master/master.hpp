@@ -1,0 +1,205 @@
+// master/ — the subsequent electronics (spec 2.1–2.3): clock generation (f_c, duty cycle,
+// t_ST, seeded jitter; CLOCK idles HIGH), mode commands on falling edges, start-bit polling,
+// CRC checks, recovery waits, and propagation-delay measurement and compensation (2.1.2).
+// It only talks through the line's master-side signals.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include <boost/random/mersenne_twister.hpp>
+
+#include "line/line.hpp"
+#include "protocol/protocol.hpp"
+
+namespace endatsim::master {
+
+using protocol::ModeCommand;
+using sim::Hertz;
+using sim::Time;
+
+struct DelayMeasurementParams {
+  Hertz f_c = sim::kHz(200);  // 2.1.2: reduced clock 100 .. 200 kHz
+  Hertz f_e = 0;              // counter clock; 0 = 8 x the intended f_c (2.1.2: "at least eight times")
+  unsigned count = 3;         // 2.1.2: at least three measurements, averaged
+  unsigned max_rounds = 3;    // further rounds when a value strays more than T/8 from the mean
+  // The counter truncates; adding half a count centres the estimate in its quantization bin.
+  bool add_half_count = true;
+};
+
+// How the master finds the start bit while it polls (2.3: "observe the data line to detect the
+// start bit"). Fail-safe receivers read HIGH on the undriven line during the turnaround
+// (timing-model §8), so a careful master first waits for the encoder's LOW (HPM-SEI: "wait 0,
+// then wait 1"); a simple one takes the first HIGH sample after the mode bits.
+enum class StartBitDetection : std::uint8_t { WaitLowThenHigh, FirstHigh };
+
+struct MasterParams {
+  Hertz f_c = sim::MHz(1);
+  unsigned high_permille = 500;  // duty cycle: HIGH share of the period
+  Time t_st{0};                  // first LOW phase stretched to t_ST (2.3.2 note 8); 0 = not stretched
+  Time jitter{0};                // peak edge jitter, uniform in [-jitter, +jitter], seeded
+  std::uint64_t seed = 1;
+  bool delay_compensation = false;
+  DelayMeasurementParams measurement;
+  unsigned position_bits = 25;   // word 13 as the master has it configured
+  // Timing-model §1.7: one more clock pulse after the last bit (its falling edge samples the
+  // last bit) — or none, sampling the last bit half a period after the last rising edge.
+  bool extra_clock_after_last_bit = true;
+  Time t_m_wait = sim::us(30);   // CLOCK held HIGH after a frame: at least t_m of the encoder
+  Time t_r_wait = sim::ns(500);  // then t_R before the next FE1 (2.3.2)
+  Time error_wait = sim::us(30); // A2: "after an error handling, the maximum t_m of 30 us must be waited"
+  Time start_bit_timeout = sim::ms(1);  // t_cal max (2.3.2); polling gives up after this
+  unsigned type1_detect_samples = 8;    // HIGH samples after the turnaround, no LOW: type I (A2, hypothesis A)
+  StartBitDetection start_bit_detection = StartBitDetection::WaitLowThenHigh;
+
+  static constexpr Hertz kMinFc = sim::kHz(100);
+  static constexpr Hertz kMaxFc = sim::MHz(16);
+  // Throws std::invalid_argument naming the parameter and its limit.
+  void validate() const;
+};
+
+enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error };
+std::string_view to_string(FrameOutcome o);
+
+struct FrameResult {
+  std::uint64_t index = 0;
+  Time start{0};            // FE1 at the master logic
+  Time end{0};              // last rising edge
+  ModeCommand command = ModeCommand::EncoderSendPositionValues;
+  std::uint8_t mode_bits = 0;  // as sent
+  Hertz f_c = 0;
+  bool measurement = false;     // part of a propagation-delay measurement
+  bool compensated = false;
+  Time t_d_used{0};
+  FrameOutcome outcome = FrameOutcome::NoStartBit;
+  bool error1 = false;
+  bool error2 = true;
+  std::uint64_t position = 0;
+  std::uint8_t crc_received = 0;
+  std::uint8_t crc_expected = 0;
+  unsigned start_bit_clock = 0;  // as the master counted it
+  unsigned clocks = 0;
+  std::optional<Time> delay_count_time;  // measurement frames: counter value x 1/f_e
+};
+
+struct DelayMeasurementResult {
+  Time start{0};
+  bool accepted = false;
+  unsigned rounds = 0;
+  std::vector<std::int64_t> counts;  // of the accepted (or last) round
+  Time counter_period{0};
+  Time t_d{0};                       // mean, as used for compensation
+  std::string reason;                // why it was rejected
+};
+
+// What monitors and reports can observe of the master's intentions.
+class MasterObserver {
+ public:
+  virtual ~MasterObserver() = default;
+  virtual void on_frame_start(const FrameResult& frame) = 0;
+  // The master samples DATA for bit slot `clock` (the bit the encoder sent after RE_clock).
+  virtual void on_sample(const FrameResult& frame, unsigned clock, bool value, bool in_data) = 0;
+  virtual void on_frame_end(const FrameResult& frame) = 0;
+};
+
+struct Operation {
+  enum class Kind : std::uint8_t { MeasureDelay, ReadPosition, Wait };
+  Kind kind = Kind::ReadPosition;
+  std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
+  ModeCommand command = ModeCommand::EncoderSendPositionValues;
+  std::optional<std::uint8_t> mode_bits;  // send these six bits instead (a disturbed mode command)
+  unsigned count = 1;
+  Time cycle{0};
+  Time duration{0};
+};
+
+class Master {
+ public:
+  Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params);
+  Master(const Master&) = delete;
+  Master& operator=(const Master&) = delete;
+
+  void add_observer(MasterObserver* o) { observers_.push_back(o); }
+  void enqueue(const Operation& op) { operations_.push_back(op); }
+  void start();  // begins the queued operations at the current time
+  bool finished() const { return finished_; }
+
+  const MasterParams& params() const { return params_; }
+  const std::vector<FrameResult>& frames() const { return frames_; }
+  const std::vector<DelayMeasurementResult>& measurements() const { return measurements_; }
+  std::optional<Time> t_d() const { return t_d_; }
+  std::uint64_t cycle_overruns() const { return cycle_overruns_; }
+
+  sim::Signal& sample_strobe() { return sample_strobe_; }  // toggles at each sampling instant
+  sim::Signal& frame_active() { return frame_active_; }
+
+ private:
+  enum class Rx : std::uint8_t { Off, Polling, Receiving, Done };
+
+  void next_operation();
+  void operation_frame_done();
+  void start_frame(std::uint64_t);
+  void clock_edge();
+  void falling_edge();
+  void rising_edge();
+  void sample(std::uint64_t tag);
+  void sample_now(unsigned clock);
+  void end_reception(FrameOutcome outcome);
+  void maybe_complete_frame();
+  void on_data_in(std::uint64_t level);
+  void finish_measurement_round();
+  Time jittered(Time nominal);
+
+  sim::Kernel& kernel_;
+  line::Line::MasterSide pins_;
+  MasterParams params_;
+  std::vector<MasterObserver*> observers_;
+  boost::random::mt19937_64 rng_;
+  sim::Signal sample_strobe_;
+  sim::Signal frame_active_;
+  sim::Timer edge_timer_;
+  sim::Timer operation_timer_;
+
+  // Operations.
+  std::deque<Operation> operations_;
+  std::optional<Operation> current_;
+  unsigned frames_left_ = 0;
+  Time next_due_{0};
+  Time ready_at_{0};
+  bool finished_ = false;
+  std::uint64_t cycle_overruns_ = 0;
+
+  // The frame on the wire.
+  FrameResult frame_;
+  bool frame_running_ = false;
+  Hertz f_ = 0;
+  Time high_{0}, low_{0};
+  Time nominal_{0};
+  bool clock_low_ = false;
+  unsigned clock_ = 0;
+  unsigned last_clock_ = 0;  // 0 while unknown (start bit not found yet)
+  bool clocking_done_ = false;
+  std::uint8_t mode_bits_ = 0;
+  protocol::Layout layout_;
+  Rx rx_ = Rx::Off;
+  bool seen_low_ = false;
+  unsigned high_samples_ = 0;
+  std::vector<std::uint8_t> rx_bits_;
+  std::uint64_t epoch_ = 0;
+
+  // Propagation-delay measurement (2.1.2).
+  bool measuring_ = false;
+  Time counter_start_{0};
+  bool counter_running_ = false;
+  std::optional<std::int64_t> captured_count_;
+  std::vector<std::int64_t> counts_;
+  unsigned rounds_ = 0;
+  std::optional<Time> t_d_;
+
+  std::vector<FrameResult> frames_;
+  std::vector<DelayMeasurementResult> measurements_;
+};
+
+}  // namespace endatsim::master

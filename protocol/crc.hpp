@@ -1,0 +1,19 @@
+// The EnDat 5-bit CRC, spec appendix A4: generator x^5 + x^3 + x + 1, flip-flops preset to 1,
+// output inverted, transmitted MSB first.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+namespace endatsim::protocol {
+
+// CRC over a bit sequence in wire order (each element 0 or 1).
+std::uint8_t crc5(std::span<const std::uint8_t> bits);
+
+// MakeCrcNorm (A4.4.2): 8-bit value (address, MRS code, ...) then 16-bit value, both MSB first.
+std::uint8_t make_crc_norm(std::uint8_t param8, std::uint16_t param16);
+
+// MakeCrcPos (A4.4.2): F1, [F2 with EnDat 2.2], then `clocks` position bits LSB first.
+std::uint8_t make_crc_pos(unsigned clocks, bool error1, bool error2, bool endat22, std::uint64_t position);
+
+}  // namespace endatsim::protocol

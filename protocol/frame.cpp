@@ -1,0 +1,85 @@
+#include "protocol/frame.hpp"
+
+#include <stdexcept>
+
+#include "protocol/crc.hpp"
+
+namespace endatsim::protocol {
+
+std::string_view field_name(Field f) {
+  switch (f) {
+    case Field::StartBit: return "start bit";
+    case Field::Error1: return "F1";
+    case Field::Error2: return "F2";
+    case Field::Position: return "position";
+    case Field::Crc: return "CRC";
+    case Field::Count: break;
+  }
+  return "?";
+}
+
+Layout::Layout(std::vector<FieldSpec> fields) : fields_(std::move(fields)) {
+  for (const FieldSpec& f : fields_) {
+    if (f.width == 0 || f.width > 64) throw std::invalid_argument("field width must be 1..64");
+    width_ += f.width;
+  }
+}
+
+Field Layout::field_at(unsigned index) const {
+  for (const FieldSpec& f : fields_) {
+    if (index < f.width) return f.field;
+    index -= f.width;
+  }
+  throw std::out_of_range("bit index beyond the layout");
+}
+
+void Layout::encode(const FieldValues& values, std::vector<std::uint8_t>& bits) const {
+  for (const FieldSpec& f : fields_) {
+    const std::uint64_t v = values[static_cast<std::size_t>(f.field)];
+    for (unsigned i = 0; i < f.width; ++i) {
+      const unsigned bit = f.order == BitOrder::LsbFirst ? i : f.width - 1 - i;
+      bits.push_back(static_cast<std::uint8_t>((v >> bit) & 1U));
+    }
+  }
+}
+
+FieldValues Layout::decode(std::span<const std::uint8_t> bits) const {
+  if (bits.size() < width_) throw std::invalid_argument("too few bits for the layout");
+  FieldValues values{};
+  std::size_t at = 0;
+  for (const FieldSpec& f : fields_) {
+    std::uint64_t v = 0;
+    for (unsigned i = 0; i < f.width; ++i, ++at) {
+      const unsigned bit = f.order == BitOrder::LsbFirst ? i : f.width - 1 - i;
+      v |= static_cast<std::uint64_t>(bits[at] & 1U) << bit;
+    }
+    values[static_cast<std::size_t>(f.field)] = v;
+  }
+  return values;
+}
+
+Layout position_frame_layout(EndatVersion command_type, unsigned position_bits) {
+  std::vector<FieldSpec> fields{{Field::StartBit, 1, BitOrder::MsbFirst}, {Field::Error1, 1, BitOrder::MsbFirst}};
+  if (command_type == EndatVersion::V2_2) fields.push_back({Field::Error2, 1, BitOrder::MsbFirst});
+  fields.push_back({Field::Position, position_bits, BitOrder::LsbFirst});  // 2.3.1: LSB first
+  fields.push_back({Field::Crc, 5, BitOrder::MsbFirst});
+  return Layout(std::move(fields));
+}
+
+std::vector<std::uint8_t> encode_position_frame(EndatVersion command_type, unsigned position_bits,
+                                                const PositionWord& word) {
+  const bool v22 = command_type == EndatVersion::V2_2;
+  FieldValues values{};
+  values[static_cast<std::size_t>(Field::StartBit)] = 1;
+  values[static_cast<std::size_t>(Field::Error1)] = word.error1;
+  values[static_cast<std::size_t>(Field::Error2)] = word.error2;
+  values[static_cast<std::size_t>(Field::Position)] = word.position;
+  values[static_cast<std::size_t>(Field::Crc)] =
+      make_crc_pos(position_bits, word.error1, word.error2, v22, word.position);
+  std::vector<std::uint8_t> bits;
+  bits.reserve(position_bits + 8);
+  position_frame_layout(command_type, position_bits).encode(values, bits);
+  return bits;
+}
+
+}  // namespace endatsim::protocol

@@ -1,0 +1,63 @@
+#include "protocol/mode_command.hpp"
+
+#include <array>
+
+namespace endatsim::protocol {
+namespace {
+
+using enum ModeCommand;
+using enum EndatVersion;
+
+// Spec 2.3, mode command table.
+constexpr std::array kModeCommands{
+    ModeCommandInfo{EncoderSendPositionValues, 0b000111, V2_1, "Encoder send position values",
+                    "encoder_send_position_values"},
+    ModeCommandInfo{SelectionOfMemoryArea, 0b001110, V2_1, "Selection of memory area", "selection_of_memory_area"},
+    ModeCommandInfo{EncoderReceiveParameters, 0b011100, V2_1, "Encoder receive parameters",
+                    "encoder_receive_parameters"},
+    ModeCommandInfo{EncoderSendParameters, 0b100011, V2_1, "Encoder send parameters", "encoder_send_parameters"},
+    ModeCommandInfo{EncoderReceiveReset, 0b101010, V2_1, "Encoder receive reset", "encoder_receive_reset"},
+    ModeCommandInfo{EncoderSendTestValues, 0b010101, V2_1, "Encoder send test values", "encoder_send_test_values"},
+    ModeCommandInfo{EncoderReceiveTestCommand, 0b110001, V2_1, "Encoder receive test command",
+                    "encoder_receive_test_command"},
+    ModeCommandInfo{EncoderSendPositionValuesWithAdditionalData, 0b111000, V2_2,
+                    "Encoder send position values with additional data",
+                    "encoder_send_position_values_with_additional_data"},
+    ModeCommandInfo{EncoderSendPositionValuesAndSelectionOfMemoryArea, 0b001001, V2_2,
+                    "Encoder send position values and selection of memory area or of the additional data",
+                    "encoder_send_position_values_and_selection_of_memory_area"},
+    ModeCommandInfo{EncoderSendPositionValuesAndReceiveParameter, 0b011011, V2_2,
+                    "Encoder send position values and receive parameter",
+                    "encoder_send_position_values_and_receive_parameter"},
+    ModeCommandInfo{EncoderSendPositionValuesAndSendParameter, 0b100100, V2_2,
+                    "Encoder send position values and send parameter",
+                    "encoder_send_position_values_and_send_parameter"},
+    ModeCommandInfo{EncoderSendPositionValuesAndReceiveErrorReset, 0b101101, V2_2,
+                    "Encoder send position values and receive error reset",
+                    "encoder_send_position_values_and_receive_error_reset"},
+    ModeCommandInfo{EncoderSendPositionValuesAndReceiveTestCommand, 0b110110, V2_2,
+                    "Encoder send position values and receive test command",
+                    "encoder_send_position_values_and_receive_test_command"},
+    ModeCommandInfo{EncoderReceiveCommunicationCommand, 0b010010, V2_2, "Encoder receive communication command",
+                    "encoder_receive_communication_command"},
+};
+
+}  // namespace
+
+std::span<const ModeCommandInfo> mode_commands() { return kModeCommands; }
+
+const ModeCommandInfo& info(ModeCommand command) { return kModeCommands[static_cast<std::size_t>(command)]; }
+
+std::optional<ModeCommand> decode_mode_bits(std::uint8_t bits) {
+  for (const auto& m : kModeCommands)
+    if (m.bits == bits) return m.command;
+  return std::nullopt;
+}
+
+std::optional<ModeCommand> mode_command_from_key(std::string_view key) {
+  for (const auto& m : kModeCommands)
+    if (m.key == key) return m.command;
+  return std::nullopt;
+}
+
+}  // namespace endatsim::protocol

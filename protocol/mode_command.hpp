@@ -1,0 +1,45 @@
+// The 14 mode commands of spec 2.3 with their six mode bits M2 M1 M0 (M2) (M1) (M0).
+// 2.1 commands repeat the first three bits inverted, most 2.2 commands repeat them as they are.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace endatsim::protocol {
+
+enum class EndatVersion : std::uint8_t { V2_1, V2_2 };
+
+enum class ModeCommand : std::uint8_t {
+  EncoderSendPositionValues,
+  SelectionOfMemoryArea,
+  EncoderReceiveParameters,
+  EncoderSendParameters,
+  EncoderReceiveReset,
+  EncoderSendTestValues,
+  EncoderReceiveTestCommand,
+  EncoderSendPositionValuesWithAdditionalData,
+  EncoderSendPositionValuesAndSelectionOfMemoryArea,
+  EncoderSendPositionValuesAndReceiveParameter,
+  EncoderSendPositionValuesAndSendParameter,
+  EncoderSendPositionValuesAndReceiveErrorReset,
+  EncoderSendPositionValuesAndReceiveTestCommand,
+  EncoderReceiveCommunicationCommand,
+};
+
+struct ModeCommandInfo {
+  ModeCommand command;
+  std::uint8_t bits;        // M2 is bit 5, (M0) is bit 0; sent M2 first
+  EndatVersion version;     // the "type" of the mode command (2.1 or 2.2)
+  std::string_view name;    // spec wording
+  std::string_view key;     // snake_case name used in scenarios and reports
+};
+
+std::span<const ModeCommandInfo> mode_commands();
+const ModeCommandInfo& info(ModeCommand command);
+// The command whose six mode bits are exactly `bits`; none when the redundancy is broken.
+std::optional<ModeCommand> decode_mode_bits(std::uint8_t bits);
+std::optional<ModeCommand> mode_command_from_key(std::string_view key);
+
+}  // namespace endatsim::protocol

@@ -1,0 +1,429 @@
+#include "scenarios/loader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+namespace endatsim::scenarios {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::size_t kMaxDepth = 32;
+constexpr std::uintmax_t kMaxFileBytes = 4 << 20;
+
+std::string describe(const json& j) {
+  std::string dump = j.dump(-1, ' ', true, json::error_handler_t::replace);
+  if (dump.size() > 40) dump = dump.substr(0, 37) + "...";
+  return std::string(j.type_name()) + " " + dump;
+}
+
+class Node {
+ public:
+  Node(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {}
+
+  [[noreturn]] void fail(const std::string& expected) const { fail_raw("expected " + expected + ", got " + describe(j_)); }
+  [[noreturn]] void fail_raw(const std::string& message) const {
+    throw ScenarioError(file_ + ": at " + (path_.empty() ? "/" : path_) + ": " + message);
+  }
+  const json& raw() const { return j_; }
+  const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
+
+  std::string as_string() const {
+    if (!j_.is_string()) fail("a string");
+    return j_.get<std::string>();
+  }
+  bool as_bool() const {
+    if (!j_.is_boolean()) fail("true or false");
+    return j_.get<bool>();
+  }
+  std::uint64_t as_uint(std::uint64_t min, std::uint64_t max) const {
+    const std::string range = "an integer " + std::to_string(min) + " .. " + std::to_string(max);
+    if (!j_.is_number_integer() && !j_.is_number_unsigned()) fail(range);
+    if (j_.is_number_integer() && !j_.is_number_unsigned() && j_.get<std::int64_t>() < 0) fail(range);
+    const auto v = j_.get<std::uint64_t>();
+    if (v < min || v > max) fail(range);
+    return v;
+  }
+  std::int64_t as_int(std::int64_t min, std::int64_t max) const {
+    const std::string range = "an integer " + std::to_string(min) + " .. " + std::to_string(max);
+    if (j_.is_number_unsigned() && j_.get<std::uint64_t>() > static_cast<std::uint64_t>(max)) fail(range);
+    if (!j_.is_number_integer()) fail(range);
+    const auto v = j_.get<std::int64_t>();
+    if (v < min || v > max) fail(range);
+    return v;
+  }
+  double as_number(double min, double max, const std::string& unit) const {
+    std::ostringstream range;
+    range << "a number " << min << " .. " << max << unit;
+    if (!j_.is_number()) fail(range.str());
+    const double v = j_.get<double>();
+    if (!std::isfinite(v) || v < min || v > max) fail(range.str());
+    return v;
+  }
+  Time as_duration(Time min, Time max) const {
+    const std::string range = "a duration string " + sim::format_time(min) + " .. " + sim::format_time(max) +
+                              " such as \"2.5 us\"";
+    if (!j_.is_string()) fail(range);
+    Time t;
+    try {
+      t = sim::parse_duration(j_.get<std::string>());
+    } catch (const std::invalid_argument& e) {
+      fail_raw(e.what());
+    }
+    if (t < min || t > max) fail(range);
+    return t;
+  }
+  sim::Hertz as_frequency(sim::Hertz min, sim::Hertz max) const {
+    const std::string range = "a frequency string " + sim::format_frequency(min) + " .. " +
+                              sim::format_frequency(max) + " such as \"2 MHz\"";
+    if (!j_.is_string()) fail(range);
+    sim::Hertz f = 0;
+    try {
+      f = sim::parse_frequency(j_.get<std::string>());
+    } catch (const std::invalid_argument& e) {
+      fail_raw(e.what());
+    }
+    if (f < min || f > max) fail(range);
+    return f;
+  }
+  template <class E>
+  E as_enum(std::initializer_list<std::pair<std::string_view, E>> choices) const {
+    std::string names;
+    for (const auto& c : choices) names += (names.empty() ? "" : ", ") + ("\"" + std::string(c.first) + "\"");
+    if (j_.is_string())
+      for (const auto& c : choices)
+        if (c.first == j_.get<std::string>()) return c.second;
+    fail("one of " + names);
+  }
+  CountMatcher as_count() const {
+    const std::string what = "a count: an integer, or a string \">=N\", \"<=N\" or \"N..M\"";
+    CountMatcher m;
+    if (j_.is_number_unsigned() || (j_.is_number_integer() && j_.get<std::int64_t>() >= 0)) {
+      m.min = m.max = j_.get<std::uint64_t>();
+      m.text = std::to_string(m.min);
+      return m;
+    }
+    if (!j_.is_string()) fail(what);
+    const std::string s = j_.get<std::string>();
+    const auto number = [&](const std::string& t) {
+      if (t.empty() || t.size() > 18 || t.find_first_not_of("0123456789") != std::string::npos) fail(what);
+      return std::stoull(t);
+    };
+    if (s.rfind(">=", 0) == 0) m.min = number(s.substr(2));
+    else if (s.rfind("<=", 0) == 0) m.max = number(s.substr(2));
+    else if (const auto dots = s.find(".."); dots != std::string::npos) {
+      m.min = number(s.substr(0, dots));
+      m.max = number(s.substr(dots + 2));
+      if (m.min > m.max) fail(what + " with N <= M");
+    } else {
+      m.min = m.max = number(s);
+    }
+    m.text = s;
+    return m;
+  }
+
+ private:
+  const json& j_;
+  std::string path_;
+  const std::string& file_;
+};
+
+// An object whose keys must all be known: unknown keys are errors, not silently ignored.
+class Object {
+ public:
+  explicit Object(const Node& n) : n_(n) {
+    if (!n.raw().is_object()) n.fail("an object");
+  }
+  std::optional<Node> opt(const std::string& key) {
+    known_.insert(key);
+    const auto it = n_.raw().find(key);
+    if (it == n_.raw().end()) return std::nullopt;
+    return Node(*it, n_.path() + "/" + key, n_.file());
+  }
+  Node req(const std::string& key) {
+    auto n = opt(key);
+    if (!n) n_.fail_raw("missing required key \"" + key + "\"");
+    return *n;
+  }
+  void done() const {
+    for (const auto& [key, value] : n_.raw().items()) {
+      if (known_.count(key) != 0) continue;
+      std::string names;
+      for (const auto& k : known_) names += (names.empty() ? "" : ", ") + k;
+      n_.fail_raw("unknown key \"" + key + "\" (expected one of: " + names + ")");
+    }
+  }
+  const Node& node() const { return n_; }
+
+ private:
+  const Node& n_;
+  std::set<std::string> known_;
+};
+
+template <class F>
+void validated(const Node& n, F&& validate) {
+  try {
+    validate();
+  } catch (const std::invalid_argument& e) {
+    n.fail_raw(e.what());
+  }
+}
+
+void read_transceiver(const Node& n, line::TransceiverParams& t) {
+  Object o(n);
+  const Time max = line::LineParams::kMaxTransceiverDelay;
+  if (auto v = o.opt("driver_delay")) t.driver_delay = v->as_duration(Time::zero(), max);
+  if (auto v = o.opt("enable_delay")) t.enable_delay = v->as_duration(Time::zero(), max);
+  if (auto v = o.opt("disable_delay")) t.disable_delay = v->as_duration(Time::zero(), max);
+  if (auto v = o.opt("receiver_delay")) t.receiver_delay = v->as_duration(Time::zero(), max);
+  o.done();
+}
+
+void read_line(const Node& n, line::LineParams& p) {
+  Object o(n);
+  p.cable_length_m = o.req("cable_length_m").as_number(0.0, line::LineParams::kMaxCableLengthM, " m");
+  if (auto v = o.opt("cable_delay_per_m")) p.cable_delay_per_m = v->as_duration(Time::zero(), sim::ns(20));
+  if (auto v = o.opt("failsafe_level"))
+    p.failsafe_level = v->as_enum<bool>({{"high", true}, {"low", false}});
+  if (auto v = o.opt("master_transceiver")) read_transceiver(*v, p.master);
+  if (auto v = o.opt("encoder_transceiver")) read_transceiver(*v, p.encoder);
+  o.done();
+  validated(n, [&] { p.validate(); });
+}
+
+void read_encoder(const Node& n, slave::EncoderParams& p) {
+  Object o(n);
+  using slave::EncoderKind;
+  if (auto v = o.opt("kind"))
+    p.kind = v->as_enum<EncoderKind>(
+        {{"singleturn", EncoderKind::Singleturn}, {"multiturn", EncoderKind::Multiturn}, {"linear", EncoderKind::Linear}});
+  if (auto v = o.opt("version"))
+    p.version = v->as_enum<protocol::EndatVersion>({{"2.1", protocol::EndatVersion::V2_1}, {"2.2", protocol::EndatVersion::V2_2}});
+  if (auto v = o.opt("position_bits")) p.position_bits = static_cast<unsigned>(v->as_uint(1, 48));
+  if (auto v = o.opt("multiturn_bits")) p.multiturn_bits = static_cast<unsigned>(v->as_uint(0, 47));
+  if (auto v = o.opt("t_cal")) p.t_cal = v->as_duration(Time::zero(), sim::ms(1));
+  if (auto v = o.opt("t_m")) p.t_m = v->as_duration(sim::us(10), sim::us(30));
+  if (auto v = o.opt("t_m_short")) p.t_m_short = v->as_duration(sim::ns(1250), sim::ns(3750));
+  if (auto v = o.opt("short_t_m_selected")) p.short_t_m_selected = v->as_bool();
+  if (auto v = o.opt("t_r")) p.t_r = v->as_duration(Time::zero(), sim::us(100));
+  if (auto v = o.opt("output_delay")) p.output_delay = v->as_duration(Time::zero(), sim::us(1));
+  if (auto v = o.opt("continuous_low_bits")) p.continuous_low_bits = static_cast<unsigned>(v->as_uint(1, 7));
+  if (auto v = o.opt("driver_enable_edge")) p.driver_enable_edge = static_cast<unsigned>(v->as_uint(9, 10));
+  if (auto v = o.opt("type1_handling"))
+    p.type1 = v->as_enum<slave::Type1Handling>(
+        {{"abort_high", slave::Type1Handling::AbortHigh}, {"no_start_bit", slave::Type1Handling::NoStartBit}});
+  if (auto v = o.opt("error1")) p.error1 = v->as_bool();
+  if (auto v = o.opt("motion")) {
+    Object m(*v);
+    if (auto s = m.opt("start")) p.motion.start = s->as_uint(0, (std::uint64_t{1} << 48) - 1);
+    if (auto s = m.opt("counts_per_s")) p.motion.counts_per_s = s->as_int(-(std::int64_t{1} << 48), std::int64_t{1} << 48);
+    m.done();
+  }
+  o.done();
+  validated(n, [&] { p.validate(); });
+}
+
+void read_master(const Node& n, master::MasterParams& p) {
+  Object o(n);
+  p.f_c = o.req("f_c").as_frequency(master::MasterParams::kMinFc, master::MasterParams::kMaxFc);
+  if (auto v = o.opt("duty_cycle"))
+    p.high_permille = static_cast<unsigned>(std::lround(v->as_number(0.1, 0.9, "") * 1000.0));
+  if (auto v = o.opt("t_st")) p.t_st = v->as_duration(Time::zero(), sim::ms(1));
+  if (auto v = o.opt("jitter")) p.jitter = v->as_duration(Time::zero(), sim::us(100));
+  if (auto v = o.opt("delay_compensation")) p.delay_compensation = v->as_bool();
+  if (auto v = o.opt("position_bits")) p.position_bits = static_cast<unsigned>(v->as_uint(1, 48));
+  if (auto v = o.opt("extra_clock_after_last_bit")) p.extra_clock_after_last_bit = v->as_bool();
+  if (auto v = o.opt("t_m_wait")) p.t_m_wait = v->as_duration(Time::zero(), sim::ms(100));
+  if (auto v = o.opt("t_r_wait")) p.t_r_wait = v->as_duration(Time::zero(), sim::ms(100));
+  if (auto v = o.opt("error_wait")) p.error_wait = v->as_duration(Time::zero(), sim::ms(100));
+  if (auto v = o.opt("start_bit_timeout")) p.start_bit_timeout = v->as_duration(sim::ps(1), sim::ms(100));
+  if (auto v = o.opt("type1_detect_samples")) p.type1_detect_samples = static_cast<unsigned>(v->as_uint(1, 64));
+  if (auto v = o.opt("start_bit_detection"))
+    p.start_bit_detection = v->as_enum<master::StartBitDetection>(
+        {{"wait_low_then_high", master::StartBitDetection::WaitLowThenHigh},
+         {"first_high", master::StartBitDetection::FirstHigh}});
+  if (auto v = o.opt("delay_measurement")) {
+    Object m(*v);
+    if (auto s = m.opt("f_c")) p.measurement.f_c = s->as_frequency(sim::kHz(10), master::MasterParams::kMaxFc);
+    if (auto s = m.opt("f_e")) p.measurement.f_e = s->as_frequency(sim::MHz(1), sim::MHz(2000));
+    if (auto s = m.opt("count")) p.measurement.count = static_cast<unsigned>(s->as_uint(1, 100));
+    if (auto s = m.opt("max_rounds")) p.measurement.max_rounds = static_cast<unsigned>(s->as_uint(1, 100));
+    if (auto s = m.opt("add_half_count")) p.measurement.add_half_count = s->as_bool();
+    m.done();
+  }
+  o.done();
+  validated(n, [&] { p.validate(); });
+}
+
+void read_checker(const Node& n, checker::CheckerParams& p) {
+  Object o(n);
+  if (auto v = o.opt("sample_setup")) p.sample_setup = v->as_duration(Time::zero(), sim::us(1));
+  if (auto v = o.opt("sample_hold")) p.sample_hold = v->as_duration(Time::zero(), sim::us(1));
+  o.done();
+}
+
+protocol::ModeCommand read_command(const Node& n) {
+  const std::string key = n.as_string();
+  const auto c = protocol::mode_command_from_key(key);
+  if (!c) {
+    std::string names;
+    for (const auto& m : protocol::mode_commands()) names += (names.empty() ? "" : ", ") + std::string(m.key);
+    n.fail("a mode command name (" + names + ")");
+  }
+  return *c;
+}
+
+std::uint8_t read_mode_bits(const Node& n) {
+  const std::string s = n.as_string();
+  if (s.size() != 6 || s.find_first_not_of("01") != std::string::npos) n.fail("six mode bits such as \"000111\"");
+  return static_cast<std::uint8_t>(std::stoul(s, nullptr, 2));
+}
+
+master::Operation read_operation(const Node& n) {
+  Object o(n);
+  master::Operation op;
+  using Kind = master::Operation::Kind;
+  op.kind = o.req("op").as_enum<Kind>(
+      {{"measure_delay", Kind::MeasureDelay}, {"read_position", Kind::ReadPosition}, {"wait", Kind::Wait}});
+  if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), sim::ms(60'000));
+  switch (op.kind) {
+    case Kind::MeasureDelay:
+      break;
+    case Kind::Wait:
+      op.duration = o.req("duration").as_duration(Time::zero(), sim::ms(60'000));
+      break;
+    case Kind::ReadPosition:
+      if (auto v = o.opt("command")) op.command = read_command(*v);
+      if (op.command != protocol::ModeCommand::EncoderSendPositionValues &&
+          op.command != protocol::ModeCommand::EncoderSendPositionValuesWithAdditionalData)
+        o.req("command").fail("a position command (encoder_send_position_values or "
+                              "encoder_send_position_values_with_additional_data)");
+      if (auto v = o.opt("mode_bits")) op.mode_bits = read_mode_bits(*v);
+      if (auto v = o.opt("count")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
+      if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
+      break;
+  }
+  o.done();
+  return op;
+}
+
+void read_script(const Node& n, std::vector<master::Operation>& script) {
+  if (!n.raw().is_array() || n.raw().empty()) n.fail("a non-empty array of operations");
+  std::optional<Time> last_at;
+  for (std::size_t i = 0; i < n.raw().size(); ++i) {
+    const Node item(n.raw()[i], n.path() + "/" + std::to_string(i), n.file());
+    script.push_back(read_operation(item));
+    if (const auto at = script.back().at) {
+      if (last_at && *at < *last_at)
+        Node(item.raw()["at"], item.path() + "/at", n.file())
+            .fail("a time not before the previous operation's \"at\" (" + sim::format_time(*last_at) + ")");
+      last_at = at;
+    }
+  }
+}
+
+void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out,
+                    std::initializer_list<std::string_view> allowed) {
+  if (!n.raw().is_object()) n.fail("an object of counts");
+  for (const auto& [key, value] : n.raw().items()) {
+    const Node item(value, n.path() + "/" + key, n.file());
+    bool ok = false;
+    std::string names;
+    for (auto a : allowed) {
+      ok = ok || a == key;
+      names += (names.empty() ? "" : ", ") + std::string(a);
+    }
+    if (!ok) item.fail_raw("unknown name \"" + key + "\" (expected one of: " + names + ")");
+    out[key] = item.as_count();
+  }
+}
+
+void read_expect(const Node& n, Expectations& e) {
+  Object o(n);
+  if (auto v = o.opt("outcomes")) read_count_map(*v, e.outcomes, {"ok", "crc_error", "no_start_bit", "type1_error"});
+  if (auto v = o.opt("positions_match_encoder")) e.positions_match_encoder = v->as_bool();
+  if (auto v = o.opt("positions")) {
+    if (!v->raw().is_array()) v->fail("an array of positions");
+    std::vector<std::uint64_t> p;
+    for (std::size_t i = 0; i < v->raw().size(); ++i)
+      p.push_back(Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file()).as_uint(0, (std::uint64_t{1} << 48) - 1));
+    e.positions = p;
+  }
+  if (auto v = o.opt("delay_measurement")) {
+    Object d(*v);
+    DelayExpectation de;
+    if (auto s = d.opt("accepted")) de.accepted = s->as_bool();
+    if (auto s = d.opt("max_error")) {
+      if (s->raw().is_string() && s->raw().get<std::string>() == "T/8") de.max_error_is_eighth = true;
+      else de.max_error = s->as_duration(Time::zero(), sim::us(10));
+    }
+    d.done();
+    e.delay_measurement = de;
+  }
+  if (auto v = o.opt("violations"))
+    read_count_map(*v, e.violations,
+                   {checker::check::kClockFrequency, checker::check::kMeasurementClock, checker::check::kPulseHigh,
+                    checker::check::kPulseLow, checker::check::kSamplingWindow, checker::check::kRecovery,
+                    checker::check::kContention});
+  if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);
+  o.done();
+}
+
+Scenario read_scenario(const json& root, const std::string& file) {
+  const Node top(root, "", file);
+  Object o(top);
+  Scenario s;
+  s.file = file;
+  s.name = o.req("name").as_string();
+  if (s.name.empty() || s.name.find_first_of("/\\ \t\n") != std::string::npos)
+    o.req("name").fail("a non-empty name without spaces or slashes");
+  if (auto v = o.opt("description")) s.description = v->as_string();
+  if (auto v = o.opt("seed")) s.seed = v->as_uint(0, UINT64_MAX);
+  if (auto v = o.opt("max_time")) s.max_time = v->as_duration(sim::us(1), sim::ms(60'000));
+  read_line(o.req("line"), s.line);
+  if (auto v = o.opt("encoder")) read_encoder(*v, s.encoder);
+  read_master(o.req("master"), s.master);
+  s.master.seed = s.seed;
+  if (auto v = o.opt("checker")) read_checker(*v, s.checker);
+  read_script(o.req("script"), s.script);
+  if (auto v = o.opt("expect")) read_expect(*v, s.expect);
+  o.done();
+  return s;
+}
+
+}  // namespace
+
+Scenario load_scenario_text(const std::string& text, const std::string& file_name) {
+  json root;
+  try {
+    root = json::parse(text, [&](int depth, json::parse_event_t, json&) {
+      if (static_cast<std::size_t>(depth) > kMaxDepth)
+        throw ScenarioError(file_name + ": nested deeper than " + std::to_string(kMaxDepth) + " levels");
+      return true;
+    });
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    const auto colon = what.find("parse error");
+    throw ScenarioError(file_name + ": not valid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+  }
+  return read_scenario(root, file_name);
+}
+
+Scenario load_scenario_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ScenarioError(path + ": cannot open the file");
+  std::string text;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxFileBytes) throw ScenarioError(path + ": larger than 4 MiB, not a scenario");
+  }
+  if (text.empty()) throw ScenarioError(path + ": empty file, expected a JSON scenario object");
+  return load_scenario_text(text, path);
+}
+
+}  // namespace endatsim::scenarios

@@ -1,0 +1,140 @@
+#include "scenarios/report.hpp"
+
+#include <map>
+
+namespace endatsim::scenarios {
+namespace {
+
+using sim::format_time;
+
+std::string frame_line(const master::FrameResult& f) {
+  std::string s = "  #" + std::to_string(f.index) + " " + format_time(f.start) + " " +
+                  std::string(protocol::info(f.command).key) + " @ " + sim::format_frequency(f.f_c) + ": " +
+                  std::string(master::to_string(f.outcome));
+  if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
+    s += ", position " + std::to_string(f.position) + ", F1 " + std::to_string(f.error1);
+    if (f.outcome == master::FrameOutcome::CrcError)
+      s += ", CRC " + std::to_string(f.crc_received) + " != " + std::to_string(f.crc_expected);
+  }
+  if (f.measurement && f.delay_count_time) s += ", counter " + format_time(*f.delay_count_time);
+  return s;
+}
+
+}  // namespace
+
+void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
+  out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
+  if (!r.description.empty()) out << "  " << r.description << "\n";
+  std::map<std::string, unsigned> outcomes;
+  unsigned measurement_frames = 0;
+  for (const auto& f : r.frames) {
+    if (f.measurement) ++measurement_frames;
+    else ++outcomes[std::string(master::to_string(f.outcome))];
+  }
+  out << "  simulated " << format_time(r.simulated) << ", " << r.events << " events; frames: "
+      << (r.frames.size() - measurement_frames) << " (";
+  bool first = true;
+  for (const auto& [name, n] : outcomes) {
+    out << (first ? "" : ", ") << name << " " << n;
+    first = false;
+  }
+  out << "), delay-measurement frames: " << measurement_frames << "\n";
+  for (const auto& m : r.measurements) {
+    out << "  t_D measurement (round " << m.rounds << "): ";
+    if (m.accepted) out << "accepted, t_D = " << format_time(m.t_d);
+    else out << "rejected: " << m.reason;
+    out << "; counts";
+    for (auto c : m.counts) out << " " << c;
+    out << " x " << format_time(m.counter_period) << "; true round trip " << format_time(r.true_round_trip) << "\n";
+  }
+  std::size_t shown = 0;
+  for (const auto& f : r.frames) {
+    if (!verbose && (f.measurement || f.outcome == master::FrameOutcome::Ok)) continue;
+    if (!verbose && ++shown > 5) break;
+    out << frame_line(f) << "\n";
+  }
+  if (!verbose) {
+    for (const auto& f : r.frames) {
+      if (f.measurement || f.outcome != master::FrameOutcome::Ok) continue;
+      out << "  first position read: " << f.position << " (frame #" << f.index << ")\n";
+      break;
+    }
+  }
+  std::map<std::string, std::vector<const checker::Violation*>> by_check;
+  for (const auto& v : r.violations) by_check[v.check].push_back(&v);
+  for (const auto& [check, list] : by_check) {
+    out << "  violation " << check << " x" << list.size() << " [" << list.front()->spec << "]\n";
+    const std::size_t limit = verbose ? list.size() : 3;
+    for (std::size_t i = 0; i < list.size() && i < limit; ++i) {
+      const auto& v = *list[i];
+      out << "    " << checker::to_string(v.severity) << " at " << format_time(v.time) << " ("
+          << line::to_string(v.where);
+      if (v.frame) out << ", frame #" << *v.frame;
+      if (v.clock) out << ", clock " << *v.clock;
+      out << "): measured " << v.measured << ", limit " << v.limit << " - " << v.message << "\n";
+    }
+  }
+  for (const auto& e : r.expectations)
+    if (verbose || !e.passed) out << "  " << (e.passed ? "ok   " : "FAIL ") << e.name << ": " << e.detail << "\n";
+}
+
+nlohmann::json to_json(const ScenarioResult& r) {
+  using nlohmann::json;
+  json j;
+  j["name"] = r.name;
+  j["file"] = r.file;
+  j["seed"] = r.seed;
+  j["passed"] = r.passed();
+  j["simulated_ps"] = r.simulated.count();
+  j["events"] = r.events;
+  j["true_round_trip_ps"] = r.true_round_trip.count();
+  json frames = json::array();
+  for (const auto& f : r.frames) {
+    json jf{{"index", f.index},
+            {"start_ps", f.start.count()},
+            {"end_ps", f.end.count()},
+            {"command", protocol::info(f.command).key},
+            {"mode_bits", f.mode_bits},
+            {"f_c_hz", f.f_c},
+            {"measurement", f.measurement},
+            {"compensated", f.compensated},
+            {"t_d_used_ps", f.t_d_used.count()},
+            {"outcome", master::to_string(f.outcome)},
+            {"clocks", f.clocks},
+            {"start_bit_clock", f.start_bit_clock}};
+    if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
+      jf["position"] = f.position;
+      jf["error1"] = f.error1;
+      jf["error2"] = f.error2;
+      jf["crc_received"] = f.crc_received;
+      jf["crc_expected"] = f.crc_expected;
+    }
+    frames.push_back(jf);
+  }
+  j["frames"] = frames;
+  json ms = json::array();
+  for (const auto& m : r.measurements) {
+    json jm{{"accepted", m.accepted}, {"rounds", m.rounds}, {"counts", m.counts},
+            {"counter_period_ps", m.counter_period.count()}};
+    if (m.accepted) jm["t_d_ps"] = m.t_d.count();
+    else jm["reason"] = m.reason;
+    ms.push_back(jm);
+  }
+  j["delay_measurements"] = ms;
+  json vs = json::array();
+  for (const auto& v : r.violations) {
+    json jv{{"check", v.check},     {"spec", v.spec},       {"where", line::to_string(v.where)},
+            {"time_ps", v.time.count()}, {"measured", v.measured}, {"limit", v.limit},
+            {"severity", checker::to_string(v.severity)}, {"message", v.message}};
+    if (v.frame) jv["frame"] = *v.frame;
+    if (v.clock) jv["clock"] = *v.clock;
+    vs.push_back(jv);
+  }
+  j["violations"] = vs;
+  json es = json::array();
+  for (const auto& e : r.expectations) es.push_back({{"name", e.name}, {"passed", e.passed}, {"detail", e.detail}});
+  j["expectations"] = es;
+  return j;
+}
+
+}  // namespace endatsim::scenarios

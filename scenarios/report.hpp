@@ -1,0 +1,17 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "scenarios/runner.hpp"
+
+namespace endatsim::scenarios {
+
+// A readable summary: frames, positions, CRC errors, measured t_D, violations with time,
+// value, limit and spec section, and each expectation's verdict.
+void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose);
+
+// The stable result format (documented in the README).
+nlohmann::json to_json(const ScenarioResult& r);
+
+}  // namespace endatsim::scenarios

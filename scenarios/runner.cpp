@@ -1,0 +1,164 @@
+#include "scenarios/runner.hpp"
+
+#include <algorithm>
+#include <memory>
+
+#include "sim/vcd.hpp"
+
+namespace endatsim::scenarios {
+namespace {
+
+std::uint64_t count_outcome(const ScenarioResult& r, std::string_view name) {
+  return static_cast<std::uint64_t>(std::count_if(r.frames.begin(), r.frames.end(), [&](const master::FrameResult& f) {
+    return !f.measurement && master::to_string(f.outcome) == name;
+  }));
+}
+
+// The encoder frame that began with the master's FE1: FE1 reaches the encoder logic after
+// the master's clock driver, the cable and the encoder's receiver.
+const slave::EncoderFrame* encoder_frame_for(const ScenarioResult& r, const master::FrameResult& f, Time clock_path) {
+  for (const auto& e : r.encoder_frames)
+    if (e.start == f.start + clock_path) return &e;
+  return nullptr;
+}
+
+void judge_positions(const Scenario& s, ScenarioResult& r, Time clock_path) {
+  const auto& e = s.expect;
+  if (e.positions_match_encoder.value_or(false)) {
+    std::string detail;
+    std::uint64_t compared = 0;
+    for (const auto& f : r.frames) {
+      if (f.measurement || f.outcome != master::FrameOutcome::Ok) continue;
+      const auto* ef = encoder_frame_for(r, f, clock_path);
+      ++compared;
+      if (ef == nullptr) detail = "frame " + std::to_string(f.index) + ": the encoder saw no frame start then";
+      else if (ef->position != f.position)
+        detail = "frame " + std::to_string(f.index) + ": read " + std::to_string(f.position) + ", encoder latched " +
+                 std::to_string(ef->position);
+      if (!detail.empty()) break;
+    }
+    if (detail.empty() && compared == 0) detail = "no frame was read without error";
+    r.expectations.push_back({"positions_match_encoder", detail.empty(),
+                              detail.empty() ? std::to_string(compared) + " positions equal the latched ones" : detail});
+  }
+  if (e.positions) {
+    std::vector<std::uint64_t> read;
+    for (const auto& f : r.frames)
+      if (!f.measurement && f.outcome == master::FrameOutcome::Ok) read.push_back(f.position);
+    const bool ok = read == *e.positions;
+    std::string detail = ok ? "all " + std::to_string(read.size()) + " as expected" : "read";
+    if (!ok)
+      for (std::size_t i = 0; i < read.size() && i < 8; ++i) detail += " " + std::to_string(read[i]);
+    r.expectations.push_back({"positions", ok, detail});
+  }
+}
+
+void judge_delay(const Scenario& s, ScenarioResult& r) {
+  if (!s.expect.delay_measurement) return;
+  const auto& d = *s.expect.delay_measurement;
+  const master::DelayMeasurementResult* last = r.measurements.empty() ? nullptr : &r.measurements.back();
+  if (d.accepted) {
+    const bool got = last != nullptr && last->accepted;
+    r.expectations.push_back({"delay_measurement.accepted", got == *d.accepted,
+                              last == nullptr ? "no measurement ran"
+                                              : (last->accepted ? "accepted" : "rejected: " + last->reason)});
+  }
+  if (d.max_error || d.max_error_is_eighth) {
+    const Time limit = d.max_error_is_eighth ? sim::period_of(s.master.f_c) / 8 : *d.max_error;
+    if (last == nullptr || !last->accepted) {
+      r.expectations.push_back({"delay_measurement.max_error", false, "no accepted measurement"});
+      return;
+    }
+    const Time error = last->t_d > r.true_round_trip ? last->t_d - r.true_round_trip : r.true_round_trip - last->t_d;
+    r.expectations.push_back({"delay_measurement.max_error", error <= limit,
+                              "measured " + sim::format_time(last->t_d) + ", true round trip " +
+                                  sim::format_time(r.true_round_trip) + ", error " + sim::format_time(error) +
+                                  " (limit " + sim::format_time(limit) + ")"});
+  }
+}
+
+void judge(const Scenario& s, ScenarioResult& r, Time clock_path) {
+  r.expectations.push_back({"script finished", r.finished,
+                            r.finished ? "at " + sim::format_time(r.simulated)
+                                       : "still running at max_time " + sim::format_time(s.max_time)});
+  for (const auto& [name, m] : s.expect.outcomes) {
+    const auto n = count_outcome(r, name);
+    r.expectations.push_back({"outcomes." + name, m.matches(n), std::to_string(n) + " (expected " + m.text + ")"});
+  }
+  judge_positions(s, r, clock_path);
+  judge_delay(s, r);
+  std::map<std::string, std::uint64_t> counts;
+  for (const auto& v : r.violations) ++counts[v.check];
+  for (const auto& [name, m] : s.expect.violations) {
+    const auto n = counts[name];
+    r.expectations.push_back({"violations." + name, m.matches(n), std::to_string(n) + " (expected " + m.text + ")"});
+  }
+  for (const auto& [name, n] : counts) {
+    if (s.expect.violations.count(name) != 0 || n == 0) continue;
+    r.expectations.push_back({"violations." + name, false, std::to_string(n) + " (expected none: not listed)"});
+  }
+  if (s.expect.max_cycle_overruns) {
+    r.expectations.push_back({"max_cycle_overruns", r.cycle_overruns <= *s.expect.max_cycle_overruns,
+                              std::to_string(r.cycle_overruns)});
+  }
+}
+
+}  // namespace
+
+bool ScenarioResult::passed() const {
+  return std::all_of(expectations.begin(), expectations.end(), [](const auto& e) { return e.passed; });
+}
+
+ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options) {
+  master::MasterParams master_params = scenario.master;
+  master_params.seed = options.seed.value_or(scenario.seed);
+
+  sim::Kernel kernel;
+  line::Line line(kernel, scenario.line);
+  slave::Encoder encoder(kernel, line, scenario.encoder);
+  master::Master master(kernel, line, master_params);
+  checker::TimingChecker checker(kernel, line, scenario.encoder, master_params, scenario.checker);
+  master.add_observer(&checker);
+
+  std::unique_ptr<sim::VcdWriter> vcd;
+  if (options.vcd_path) {
+    vcd = std::make_unique<sim::VcdWriter>(kernel, *options.vcd_path);
+    for (auto where : {line::ObservationPoint::MasterPins, line::ObservationPoint::EncoderPins}) {
+      const std::string scope = where == line::ObservationPoint::MasterPins ? "master" : "encoder";
+      auto pins = line.pins(where);
+      vcd->add(pins.clock, scope, "clock");
+      vcd->add(pins.data, scope, "data");
+      vcd->add(pins.driver_enable, scope, "data_driver_enable");
+    }
+    vcd->add(master.sample_strobe(), "master", "sample");
+    vcd->add(master.frame_active(), "master", "frame");
+    vcd->start();
+  }
+
+  for (const auto& op : scenario.script) master.enqueue(op);
+  master.start();
+  kernel.run(scenario.max_time);
+  checker.finish();
+  if (vcd) vcd->finish();
+
+  ScenarioResult r;
+  r.file = scenario.file;
+  r.name = scenario.name;
+  r.description = scenario.description;
+  r.seed = master_params.seed;
+  r.simulated = kernel.now();
+  r.events = kernel.events_processed();
+  r.finished = master.finished();
+  r.true_round_trip = line.round_trip(scenario.encoder.output_delay);
+  r.f_c = master_params.f_c;
+  r.frames = master.frames();
+  r.measurements = master.measurements();
+  r.encoder_frames = encoder.frames();
+  r.violations = checker.violations();
+  r.cycle_overruns = master.cycle_overruns();
+  const auto& lp = line.params();
+  judge(scenario, r, lp.master.driver_delay + lp.cable_delay() + lp.encoder.receiver_delay);
+  return r;
+}
+
+}  // namespace endatsim::scenarios

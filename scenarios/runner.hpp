@@ -1,0 +1,44 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenarios/scenario.hpp"
+
+namespace endatsim::scenarios {
+
+struct RunOptions {
+  std::optional<std::string> vcd_path;
+  std::optional<std::uint64_t> seed;  // overrides the scenario's seed
+};
+
+struct ExpectationResult {
+  std::string name;
+  bool passed = false;
+  std::string detail;
+};
+
+struct ScenarioResult {
+  std::string file;
+  std::string name;
+  std::string description;
+  std::uint64_t seed = 0;
+  Time simulated{0};
+  std::uint64_t events = 0;
+  bool finished = false;  // the script ran to its end within max_time
+  Time true_round_trip{0};
+  sim::Hertz f_c = 0;
+  std::vector<master::FrameResult> frames;
+  std::vector<master::DelayMeasurementResult> measurements;
+  std::vector<slave::EncoderFrame> encoder_frames;
+  std::vector<checker::Violation> violations;
+  std::uint64_t cycle_overruns = 0;
+  std::vector<ExpectationResult> expectations;
+  bool passed() const;
+};
+
+// Runs the scenario to the end of its script and judges its expectations.
+ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options = {});
+
+}  // namespace endatsim::scenarios

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "checker/timing_checker.hpp"
+#include "line/line.hpp"
+#include "master/master.hpp"
+#include "slave/encoder.hpp"
+
+namespace endatsim::scenarios {
+
+using sim::Time;
+
+// "3", ">=1", "<=2", "2..5": how many times something must happen.
+struct CountMatcher {
+  std::uint64_t min = 0;
+  std::uint64_t max = UINT64_MAX;
+  std::string text;
+  bool matches(std::uint64_t n) const { return n >= min && n <= max; }
+};
+
+struct DelayExpectation {
+  std::optional<bool> accepted;
+  std::optional<Time> max_error;   // |measured t_D - true round trip|
+  bool max_error_is_eighth = false;  // "T/8": an eighth of the period at the master's f_c
+};
+
+struct Expectations {
+  std::map<std::string, CountMatcher> outcomes;    // non-measurement frames by master::FrameOutcome
+  std::optional<bool> positions_match_encoder;
+  std::optional<std::vector<std::uint64_t>> positions;
+  std::optional<DelayExpectation> delay_measurement;
+  std::map<std::string, CountMatcher> violations;  // checks not listed must not occur
+  std::optional<std::uint64_t> max_cycle_overruns;
+};
+
+struct Scenario {
+  std::string file;
+  std::string name;
+  std::string description;
+  std::uint64_t seed = 1;
+  Time max_time = sim::ms(1000);
+  line::LineParams line;
+  slave::EncoderParams encoder;
+  master::MasterParams master;
+  checker::CheckerParams checker;
+  std::vector<master::Operation> script;
+  Expectations expect;
+};
+
+}  // namespace endatsim::scenarios

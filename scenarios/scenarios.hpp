@@ -1,0 +1,10 @@
+// scenarios/ — JSON scenarios that set up a line, an encoder and a master, script operations
+// over time and state expectations (scenario.hpp); the loader with path-precise errors
+// (loader.hpp); running one and judging its expectations (runner.hpp); text and JSON
+// reports (report.hpp).
+#pragma once
+
+#include "scenarios/loader.hpp"
+#include "scenarios/report.hpp"
+#include "scenarios/runner.hpp"
+#include "scenarios/scenario.hpp"

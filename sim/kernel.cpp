@@ -1,0 +1,103 @@
+#include "sim/kernel.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "sim/signal.hpp"
+
+namespace endatsim::sim {
+
+Kernel::Kernel() {
+  heap_.reserve(1024);
+  fifo_.resize(256);
+  updates_.reserve(64);
+  committing_.reserve(64);
+}
+
+void Kernel::schedule(Time delay, Action action) {
+  if (delay < Time::zero()) throw std::logic_error("Kernel::schedule: negative delay");
+  if (delay == Time::zero()) {
+    push_fifo(action);
+    return;
+  }
+  heap_.push_back(Entry{now_ + delay, seq_++, action});
+  std::push_heap(heap_.begin(), heap_.end(), later);
+}
+
+void Kernel::schedule_at(Time when, Action action) {
+  if (when < now_) throw std::logic_error("Kernel::schedule_at: time in the past");
+  schedule(when - now_, action);
+}
+
+void Kernel::push_fifo(Action a) {
+  if (fifo_size_ == fifo_.size()) {
+    std::vector<Action> bigger(fifo_.size() * 2);
+    for (std::size_t i = 0; i < fifo_size_; ++i) bigger[i] = fifo_[(fifo_head_ + i) % fifo_.size()];
+    fifo_.swap(bigger);
+    fifo_head_ = 0;
+  }
+  fifo_[(fifo_head_ + fifo_size_) % fifo_.size()] = a;
+  ++fifo_size_;
+}
+
+void Kernel::run_fifo_snapshot() {
+  // Wake-ups added while running belong to the next delta cycle.
+  for (std::size_t n = fifo_size_; n > 0 && !stopped_; --n) {
+    const Action a = fifo_[fifo_head_];
+    fifo_head_ = (fifo_head_ + 1) % fifo_.size();
+    --fifo_size_;
+    ++events_processed_;
+    a();
+  }
+}
+
+void Kernel::commit_updates() {
+  committing_.swap(updates_);
+  for (SignalBase* s : committing_) s->commit();
+  committing_.clear();
+}
+
+void Kernel::settle() {
+  while ((!updates_.empty() || fifo_size_ != 0) && !stopped_) {
+    commit_updates();
+    run_fifo_snapshot();
+  }
+}
+
+void Kernel::run(Time until) {
+  stopped_ = false;
+  settle();
+  while (!stopped_ && !heap_.empty()) {
+    const Time t = heap_.front().when;
+    if (t > until) {
+      now_ = until;
+      break;
+    }
+    now_ = t;
+    do {
+      std::pop_heap(heap_.begin(), heap_.end(), later);
+      const Action a = heap_.back().action;
+      heap_.pop_back();
+      ++events_processed_;
+      a();
+    } while (!heap_.empty() && heap_.front().when == t && !stopped_);
+    settle();
+    for (const Action& a : step_end_) a();
+  }
+}
+
+void Timer::start(Time delay) {
+  ++generation_;
+  pending_ = true;
+  expiry_ = kernel_.now() + delay;
+  kernel_.schedule(delay, Action{&Timer::fire, this, generation_});
+}
+
+void Timer::fire(void* self, std::uint64_t generation) {
+  auto* t = static_cast<Timer*>(self);
+  if (!t->pending_ || generation != t->generation_) return;
+  t->pending_ = false;
+  t->action_();
+}
+
+}  // namespace endatsim::sim

@@ -1,0 +1,112 @@
+// Discrete-event kernel: integer picosecond time, (time, insertion sequence) order,
+// zero-delay wake-ups through a FIFO, SystemC-like evaluate/update delta cycles.
+// Events are plain function pointers with a context and a 64-bit argument: no heap
+// allocation and no std::function per event.
+#pragma once
+
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+#include "sim/time.hpp"
+
+namespace endatsim::sim {
+
+struct Action {
+  void (*fn)(void* ctx, std::uint64_t arg) = nullptr;
+  void* ctx = nullptr;
+  std::uint64_t arg = 0;
+  void operator()() const { fn(ctx, arg); }
+};
+
+// bind<&T::method>(obj, arg): an Action calling obj->method(arg) or obj->method().
+template <auto Method, class T>
+Action bind(T* obj, std::uint64_t arg = 0) {
+  return Action{[](void* ctx, std::uint64_t a) {
+                  auto* self = static_cast<T*>(ctx);
+                  if constexpr (std::is_invocable_v<decltype(Method), T*, std::uint64_t>) {
+                    (self->*Method)(a);
+                  } else {
+                    (void)a;
+                    (self->*Method)();
+                  }
+                },
+                obj, arg};
+}
+
+class SignalBase;
+
+class Kernel {
+ public:
+  Kernel();
+  Kernel(const Kernel&) = delete;
+  Kernel& operator=(const Kernel&) = delete;
+
+  Time now() const { return now_; }
+
+  // delay == 0 wakes up in the next delta cycle (FIFO); delay > 0 goes to the time heap.
+  void schedule(Time delay, Action action);
+  void schedule_at(Time when, Action action);
+
+  // Runs until no event is left, stop() is called, or the next event lies after `until`.
+  void run(Time until = Time::max());
+  void stop() { stopped_ = true; }
+
+  // Called once at the end of every time step in which something ran (e.g. the VCD writer).
+  void on_time_step_end(Action action) { step_end_.push_back(action); }
+
+  std::uint64_t events_processed() const { return events_processed_; }
+
+  // Used by signals: commit this signal in the next update phase.
+  void request_update(SignalBase* signal) { updates_.push_back(signal); }
+
+ private:
+  struct Entry {
+    Time when;
+    std::uint64_t seq;
+    Action action;
+  };
+  static bool later(const Entry& a, const Entry& b) {
+    return a.when != b.when ? a.when > b.when : a.seq > b.seq;
+  }
+  void settle();
+  void commit_updates();
+  void run_fifo_snapshot();
+  void push_fifo(Action a);
+
+  Time now_{0};
+  std::uint64_t seq_ = 0;
+  std::uint64_t events_processed_ = 0;
+  bool stopped_ = false;
+  std::vector<Entry> heap_;
+  std::vector<Action> fifo_;  // ring buffer
+  std::size_t fifo_head_ = 0;
+  std::size_t fifo_size_ = 0;
+  std::vector<SignalBase*> updates_;
+  std::vector<SignalBase*> committing_;
+  std::vector<Action> step_end_;
+};
+
+// A cancellable, restartable timer owned by a model. Cancelled expiries stay in the heap
+// and are discarded when they come up (generation check), so cancel() is O(1).
+class Timer {
+ public:
+  Timer(Kernel& kernel, Action action) : kernel_(kernel), action_(action) {}
+  Timer(const Timer&) = delete;
+  Timer& operator=(const Timer&) = delete;
+
+  void start(Time delay);
+  void cancel() { pending_ = false; ++generation_; }
+  bool pending() const { return pending_; }
+  Time expiry() const { return expiry_; }
+
+ private:
+  static void fire(void* self, std::uint64_t generation);
+  Kernel& kernel_;
+  Action action_;
+  std::uint64_t generation_ = 0;
+  bool pending_ = false;
+  Time expiry_{0};
+};
+
+}  // namespace endatsim::sim

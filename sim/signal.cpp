@@ -1,0 +1,22 @@
+#include "sim/signal.hpp"
+
+namespace endatsim::sim {
+
+void Signal::write(bool v) {
+  next_ = v;
+  if (!pending_) {
+    pending_ = true;
+    kernel_.request_update(this);
+  }
+}
+
+void Signal::commit() {
+  pending_ = false;
+  if (next_ == value_) return;
+  value_ = next_;
+  last_change_ = kernel_.now();
+  ++changes_;
+  for (const Action& l : listeners_) l.fn(l.ctx, value_ ? 1 : 0);
+}
+
+}  // namespace endatsim::sim

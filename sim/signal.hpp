@@ -1,0 +1,47 @@
+// A 1-bit signal with SystemC semantics: write() takes effect in the next update phase,
+// listeners run when the committed value changes (never on delta glitches inside one write phase).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sim/kernel.hpp"
+
+namespace endatsim::sim {
+
+class SignalBase {
+ public:
+  virtual ~SignalBase() = default;
+  virtual void commit() = 0;
+};
+
+class Signal final : public SignalBase {
+ public:
+  Signal(Kernel& kernel, std::string name, bool initial)
+      : kernel_(kernel), name_(std::move(name)), value_(initial), next_(initial) {}
+  Signal(const Signal&) = delete;
+  Signal& operator=(const Signal&) = delete;
+
+  bool read() const { return value_; }
+  void write(bool v);
+  // Listener actions receive the new value in their argument (0 or 1).
+  void on_change(Action listener) { listeners_.push_back(listener); }
+
+  const std::string& name() const { return name_; }
+  Time last_change() const { return last_change_; }
+  std::uint64_t changes() const { return changes_; }
+
+  void commit() override;
+
+ private:
+  Kernel& kernel_;
+  std::string name_;
+  bool value_;
+  bool next_;
+  bool pending_ = false;
+  Time last_change_{0};
+  std::uint64_t changes_ = 0;
+  std::vector<Action> listeners_;
+};
+
+}  // namespace endatsim::sim

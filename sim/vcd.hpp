@@ -1,0 +1,50 @@
+// Event-driven VCD writer: records signals as they change and writes the committed values
+// once at the end of each time step. 1-bit wires, short identifiers, no $comment after
+// $enddefinitions (sigrok reads nothing otherwise), buffered output, no wall-clock date
+// so that the same run gives the same bytes.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "sim/signal.hpp"
+
+namespace endatsim::sim {
+
+class VcdWriter {
+ public:
+  VcdWriter(Kernel& kernel, const std::string& path);
+  ~VcdWriter();
+  VcdWriter(const VcdWriter&) = delete;
+  VcdWriter& operator=(const VcdWriter&) = delete;
+
+  // Register before start(); `scope` groups wires in viewers (e.g. "master", "encoder").
+  void add(Signal& signal, const std::string& scope, const std::string& name);
+  void start();
+  void finish();
+
+ private:
+  struct Probe {
+    Signal* signal;
+    std::string scope;
+    std::string name;
+    std::string id;
+    bool written;
+    bool dirty;
+  };
+  static void on_change(void* self, std::uint64_t index);
+  static void on_step_end(void* self, std::uint64_t);
+  void flush_if_full();
+
+  Kernel& kernel_;
+  std::FILE* file_;
+  std::string path_;
+  std::vector<Probe> probes_;
+  std::vector<std::size_t> dirty_;
+  std::string buffer_;
+  bool started_ = false;
+  bool finished_ = false;
+};
+
+}  // namespace endatsim::sim
