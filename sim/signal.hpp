@@ -24,7 +24,7 @@ class Signal final : public SignalBase {
 
   bool read() const { return value_; }
   void write(bool v);
-  // Listener actions receive the new value in their argument (0 or 1).
+  // Listener actions receive the new value (0 or 1) as their argument, in place of Action::arg.
   void on_change(Action listener) { listeners_.push_back(listener); }
 
   const std::string& name() const { return name_; }

@@ -31,8 +31,9 @@ VcdWriter::~VcdWriter() {
 
 void VcdWriter::add(Signal& signal, const std::string& scope, const std::string& name) {
   if (started_) throw std::logic_error("VcdWriter::add after start");
-  probes_.push_back(Probe{&signal, scope, name, short_id(probes_.size()), signal.read(), false});
-  signal.on_change(Action{&VcdWriter::on_change, this, probes_.size() - 1});
+  const std::size_t index = probes_.size();
+  probes_.push_back(Probe{this, index, &signal, scope, name, short_id(index), signal.read(), false});
+  signal.on_change(Action{&VcdWriter::on_change, &probes_.back(), 0});
 }
 
 void VcdWriter::start() {
@@ -54,12 +55,12 @@ void VcdWriter::start() {
   started_ = true;
 }
 
-void VcdWriter::on_change(void* self, std::uint64_t index) {
-  auto* w = static_cast<VcdWriter*>(self);
-  Probe& p = w->probes_[index];
+void VcdWriter::on_change(void* probe, std::uint64_t) {
+  auto& p = *static_cast<Probe*>(probe);
+  VcdWriter* w = p.owner;
   if (!p.dirty && w->started_ && !w->finished_) {
     p.dirty = true;
-    w->dirty_.push_back(index);
+    w->dirty_.push_back(p.index);
   }
 }
 

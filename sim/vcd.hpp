@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdio>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ class VcdWriter {
 
  private:
   struct Probe {
+    VcdWriter* owner;
+    std::size_t index;
     Signal* signal;
     std::string scope;
     std::string name;
@@ -33,14 +36,14 @@ class VcdWriter {
     bool written;
     bool dirty;
   };
-  static void on_change(void* self, std::uint64_t index);
+  static void on_change(void* probe, std::uint64_t value);
   static void on_step_end(void* self, std::uint64_t);
   void flush_if_full();
 
   Kernel& kernel_;
   std::FILE* file_;
   std::string path_;
-  std::vector<Probe> probes_;
+  std::deque<Probe> probes_;  // stable addresses: each is its signal's listener context
   std::vector<std::size_t> dirty_;
   std::string buffer_;
   bool started_ = false;

@@ -1,0 +1,98 @@
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+struct Run {
+  int status;
+  std::string err;
+  std::string out;
+};
+
+Run run(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path();
+  // ctest runs the tests of this file in parallel processes: every call gets its own files.
+  static int calls = 0;
+  const std::string tag = std::to_string(getpid()) + "_" + std::to_string(++calls);
+  const std::string out = (dir / ("endatsim_cli_out_" + tag)).string(), err = (dir / ("endatsim_cli_err_" + tag)).string();
+  const std::string cmd = std::string(ENDATSIM_EXE) + " " + args + " >" + out + " 2>" + err;
+  const int raw = std::system(cmd.c_str());
+  const auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  Run r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(err), slurp(out)};
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / (std::to_string(getpid()) + name)).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+const std::string kBundled = std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/";
+
+}  // namespace
+
+TEST(Cli, PassingScenarioExitsZero) {
+  const auto r = run("run " + kBundled + "endat21_1mhz_10m.json");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("PASS endat21_1mhz_10m"), std::string::npos);
+}
+
+TEST(Cli, UnmetExpectationExitsOne) {
+  const auto path = write_temp("endatsim_cli_fail.json", R"({"name": "wrong", "line": {"cable_length_m": 1},
+    "master": {"f_c": "1 MHz"}, "script": [{"op": "read_position"}], "expect": {"outcomes": {"ok": 2}}})");
+  const auto r = run("run " + path);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("FAIL outcomes.ok: 1 (expected 2)"), std::string::npos) << r.out;
+}
+
+TEST(Cli, MalformedScenarioExitsTwoNamingFileAndPath) {
+  const auto path = write_temp("endatsim_cli_bad.json", R"({"name": "bad", "line": {"cable_length_m": -5},
+    "master": {"f_c": "1 MHz"}, "script": [{"op": "read_position"}]})");
+  const auto r = run("run " + path);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find(path + ": at /line/cable_length_m"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run("").status, 2);
+  EXPECT_EQ(run("frobnicate x.json").status, 2);
+  EXPECT_EQ(run("run").status, 2);
+  EXPECT_EQ(run("run --no-such-option x.json").status, 2);
+}
+
+TEST(Cli, HelpAndVersionExitZero) {
+  const auto help = run("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("--vcd"), std::string::npos);
+  EXPECT_NE(help.out.find("Exit status"), std::string::npos);
+  const auto version = run("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_EQ(version.out.rfind("endatsim ", 0), 0U);
+}
+
+TEST(Cli, WritesJsonResultsAndVcd) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string pid = std::to_string(getpid());
+  const std::string json = (dir / (pid + "endatsim_cli.json")).string(), vcd = (dir / (pid + "endatsim_cli.vcd")).string();
+  const auto r = run("run " + kBundled + "endat21_1mhz_10m.json --json " + json + " --vcd " + vcd + " --quiet");
+  EXPECT_EQ(r.status, 0);
+  std::ifstream j(json);
+  std::stringstream ss;
+  ss << j.rdbuf();
+  EXPECT_NE(ss.str().find("\"passed\": true"), std::string::npos);
+  EXPECT_GT(std::filesystem::file_size(vcd), 1000U);
+}

@@ -1,0 +1,33 @@
+#include <gtest/gtest.h>
+
+#include "protocol/crc.hpp"
+
+using namespace endatsim::protocol;
+
+// Appendix A4.4.2, MakeCrcNorm example: param8 = 13, param16 = 32793 -> 14.
+TEST(Crc, MakeCrcNormMatchesTheSpecExample) { EXPECT_EQ(make_crc_norm(13, 32793), 14); }
+
+// Appendix A4.4.2, MakeCrcPos example: 25 clocks, F1 = 0, F2 = 1, EnDat 2.2, 104462 -> 3.
+TEST(Crc, MakeCrcPosMatchesTheSpecExample) { EXPECT_EQ(make_crc_pos(25, false, true, true, 104462), 3); }
+
+TEST(Crc, BitSequenceFormEqualsThePositionForm) {
+  // F1, F2, then position LSB first: the order on the wire (2.3.1).
+  std::vector<std::uint8_t> bits{0, 1};
+  for (int i = 0; i < 25; ++i) bits.push_back((104462 >> i) & 1);
+  EXPECT_EQ(crc5(bits), 3);
+}
+
+TEST(Crc, EnDat21LeavesF2Out) {
+  // Worked by hand with the A4 generator: F1 = 0, position 0xA5 in 8 bits -> 11101b.
+  EXPECT_EQ(make_crc_pos(8, false, true, false, 0xA5), 0b11101);
+  EXPECT_EQ(make_crc_pos(8, false, false, false, 0xA5), 0b11101);  // F2 is "any" with 2.1
+}
+
+TEST(Crc, EverySingleBitErrorChangesTheCrc) {
+  // A4: "All single errors with data transmission can be detected via the CRC".
+  const auto good = make_crc_pos(25, false, true, true, 104462);
+  for (int i = 0; i < 25; ++i)
+    EXPECT_NE(make_crc_pos(25, false, true, true, 104462 ^ (1 << i)), good) << "bit " << i;
+  EXPECT_NE(make_crc_pos(25, true, true, true, 104462), good);
+  EXPECT_NE(make_crc_pos(25, false, false, true, 104462), good);
+}

@@ -1,0 +1,185 @@
+#include <gtest/gtest.h>
+
+#include "slave/encoder.hpp"
+#include "test_support.hpp"
+
+using namespace endatsim;
+using namespace endatsim::sim;
+using endatsim::test_support::PinSampler;
+using endatsim::test_support::ScriptedClock;
+
+namespace {
+
+struct Bench {
+  explicit Bench(slave::EncoderParams ep, double cable_m = 0) : line(k, lp(cable_m)), encoder(k, line, ep), sampler(k, line) {}
+  static line::LineParams lp(double m) {
+    line::LineParams p;
+    p.cable_length_m = m;
+    return p;
+  }
+  Kernel k;
+  line::Line line;
+  slave::Encoder encoder;
+  PinSampler sampler;
+};
+
+slave::EncoderParams encoder_params(protocol::EndatVersion v, unsigned bits, std::uint64_t position) {
+  slave::EncoderParams p;
+  p.version = v;
+  p.position_bits = bits;
+  p.t_cal = Time::zero();
+  p.motion.start = position;
+  return p;
+}
+
+}  // namespace
+
+// Hand-derived from spec 2.3 and timing-model §1.2/1.3: slots 9 and 10 LOW (turnaround),
+// start bit at RE11, F1, position LSB first, CRC, then DATA HIGH (end of data).
+TEST(EncoderPositionFrame, EnDat21FrameIsBitExact) {
+  Bench b(encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5));
+  ScriptedClock clock(b.k, b.line, us(1), 27, 0b000111);
+  b.k.run();
+  EXPECT_EQ(b.sampler.slots(9, 26), "00" "1" "0" "10100101" "11101" "1");
+  ASSERT_EQ(b.encoder.frames().size(), 1U);
+  EXPECT_EQ(b.encoder.frames()[0].start_bit_clock, 11U);
+  EXPECT_EQ(b.encoder.frames()[0].command, protocol::ModeCommand::EncoderSendPositionValues);
+}
+
+TEST(EncoderPositionFrame, EnDat22FrameCarriesLowActiveF2) {
+  Bench b(encoder_params(protocol::EndatVersion::V2_2, 8, 0xA5));
+  ScriptedClock clock(b.k, b.line, us(1), 28, 0b111000);
+  b.k.run();
+  EXPECT_EQ(b.sampler.slots(9, 27), "00" "1" "0" "1" "10100101" "01011" "1");
+}
+
+TEST(EncoderPositionFrame, SpecCrcExampleAppearsOnTheWire) {
+  // A4: 25 bits, F1 = 0, F2 = 1, position 104462 -> CRC 3 = 00011.
+  Bench b(encoder_params(protocol::EndatVersion::V2_2, 25, 104462));
+  ScriptedClock clock(b.k, b.line, us(1), 44, 0b111000);
+  b.k.run();
+  std::string pos;
+  for (int i = 0; i < 25; ++i) pos += ((104462 >> i) & 1) ? '1' : '0';
+  EXPECT_EQ(b.sampler.slots(11, 43), "1" "0" "1" + pos + "00011");
+}
+
+TEST(EncoderPositionFrame, StartBitWaitsForTcal) {
+  auto p = encoder_params(protocol::EndatVersion::V2_2, 8, 1);
+  p.t_cal = us(15);  // at 1 MHz RE_k is at (k - 0.5) us after FE1: first k >= 11 with >= 15 us is 16
+  Bench b(p);
+  ScriptedClock clock(b.k, b.line, us(1), 40, 0b111000);
+  b.k.run();
+  EXPECT_EQ(b.encoder.frames()[0].start_bit_clock, 16U);
+  EXPECT_EQ(b.sampler.slots(9, 16), "00000001");
+}
+
+TEST(EncoderPositionFrame, DataFallsLowExactlyTmAfterTheLastRisingEdge) {
+  auto p = encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5);
+  p.t_m = us(12);
+  Bench b(p, 10);
+  struct Fall {
+    Kernel* k;
+    std::vector<Time> t;
+    void on(std::uint64_t v) {
+      if (v == 0) t.push_back(k->now());
+    }
+  } fall{&b.k, {}};
+  b.line.pins(line::ObservationPoint::EncoderPins).data.on_change(bind<&Fall::on>(&fall));
+  ScriptedClock clock(b.k, b.line, us(1), 26, 0b000111);
+  b.k.run();
+  ASSERT_FALSE(fall.t.empty());
+  // Last RE at the master logic + driver 20 ns + cable 50 ns + encoder receiver 40 ns, then t_m,
+  // then the encoder's output delay 60 ns and driver 30 ns.
+  const Time last_re_at_encoder_logic = clock.rising().back() + ns(20) + ns(50) + ns(40);
+  EXPECT_EQ(fall.t.back(), last_re_at_encoder_logic + us(12) + ns(60) + ns(30));
+  EXPECT_TRUE(b.encoder.idle());
+}
+
+TEST(EncoderContinuousClock, EnDat21SendsTheNextWordAfterOneHighAndOneLowBit) {
+  // 2.3.1 / HH-CAT: HIGH for one clock after the CRC, then LOW; the new position is saved with
+  // the next falling edge and follows S and F1 (no new mode command).
+  auto p = encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5);
+  Bench b(p);
+  ScriptedClock clock(b.k, b.line, us(1), 44, 0b000111);
+  b.k.run();
+  EXPECT_EQ(b.sampler.slots(26, 43), "1" "0" "1" "0" "10100101" "11101" "1");
+  // FE44, after the second word's HIGH bit, saves the position for a third word.
+  EXPECT_EQ(b.encoder.frames()[0].continuous_words, 2U);
+}
+
+TEST(EncoderContinuousClock, EnDat22CommandDoesNotContinue) {
+  auto p = encoder_params(protocol::EndatVersion::V2_2, 8, 0xA5);
+  Bench b(p);
+  ScriptedClock clock(b.k, b.line, us(1), 40, 0b111000);
+  b.k.run();
+  EXPECT_EQ(b.sampler.slots(27, 39), "1111111111111");
+  EXPECT_EQ(b.encoder.frames()[0].continuous_words, 0U);
+}
+
+TEST(EncoderType1, BrokenRedundancyAbortsWithDataHighByDefault) {
+  Bench b(encoder_params(protocol::EndatVersion::V2_2, 8, 0xA5));
+  ScriptedClock clock(b.k, b.line, us(1), 21, 0b000101);
+  b.k.run();
+  EXPECT_TRUE(b.encoder.frames()[0].type1_error);
+  EXPECT_EQ(b.sampler.slots(9, 20), "111111111111");
+  EXPECT_TRUE(b.encoder.idle());
+  EXPECT_FALSE(b.line.pins(line::ObservationPoint::EncoderPins).data.read());  // LOW again after t_m
+}
+
+TEST(EncoderType1, HypothesisBKeepsDataLowWithoutStartBit) {
+  auto p = encoder_params(protocol::EndatVersion::V2_2, 8, 0xA5);
+  p.type1 = slave::Type1Handling::NoStartBit;
+  Bench b(p);
+  ScriptedClock clock(b.k, b.line, us(1), 21, 0b000101);
+  b.k.run();
+  EXPECT_EQ(b.sampler.slots(9, 20), "000000000000");
+}
+
+TEST(EncoderType1, EnDat21EncoderDoesNotSupport22Commands) {
+  Bench b(encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5));
+  ScriptedClock clock(b.k, b.line, us(1), 20, 0b111000);
+  b.k.run();
+  EXPECT_TRUE(b.encoder.frames()[0].type1_error);
+  EXPECT_EQ(b.encoder.frames()[0].command, protocol::ModeCommand::EncoderSendPositionValuesWithAdditionalData);
+}
+
+TEST(EncoderRecovery, ClockEdgesWithinTrAreIgnored) {
+  auto p = encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5);
+  p.t_m = us(10);
+  p.t_r = us(5);
+  Bench b(p);
+  ScriptedClock first(b.k, b.line, us(1), 26, 0b000111);
+  // The second frame starts 12 us after the first one's last RE: t_m has passed, t_R has not.
+  ScriptedClock second(b.k, b.line, us(1), 26, 0b000111, us(25) + us(12) + ns(500));
+  b.k.run();
+  EXPECT_GT(b.encoder.ignored_clock_edges(), 0U);
+}
+
+TEST(EncoderMotion, ConstantVelocityWrapsAtTheResolution) {
+  slave::EncoderParams p;
+  p.position_bits = 12;
+  p.motion.start = 4000;
+  p.motion.counts_per_s = 1'000'000;
+  EXPECT_EQ(p.position_at(us(50)), 4050U);
+  EXPECT_EQ(p.position_at(us(100)), 4U);  // 4100 mod 4096
+  p.motion.counts_per_s = -1'000'000;
+  EXPECT_EQ(p.position_at(ms(4)), 0U);
+  EXPECT_EQ(p.position_at(ms(5)), 3096U);  // -1000 mod 4096
+}
+
+TEST(EncoderParams, RejectsOutOfRangeTimesNamingTheLimit) {
+  slave::EncoderParams p;
+  p.t_m = us(5);
+  try {
+    p.validate();
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("10 .. 30 us"), std::string::npos) << e.what();
+  }
+  p = {};
+  p.kind = slave::EncoderKind::Multiturn;
+  EXPECT_THROW(p.validate(), std::invalid_argument);  // needs multiturn bits
+  p.multiturn_bits = 12;
+  p.position_bits = 25;
+  EXPECT_NO_THROW(p.validate());
+}

@@ -1,0 +1,163 @@
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "sim/sim.hpp"
+
+using namespace endatsim::sim;
+
+namespace {
+
+struct Log {
+  Kernel* k = nullptr;
+  std::vector<std::pair<std::int64_t, std::uint64_t>> entries;
+  void record(std::uint64_t tag) { entries.emplace_back(k->now().count(), tag); }
+};
+
+}  // namespace
+
+TEST(KernelOrder, RunsEventsByTimeThenInsertionOrder) {
+  Kernel k;
+  Log log{&k, {}};
+  k.schedule(ns(20), bind<&Log::record>(&log, 1));
+  k.schedule(ns(10), bind<&Log::record>(&log, 2));
+  k.schedule(ns(20), bind<&Log::record>(&log, 3));
+  k.schedule(ns(10), bind<&Log::record>(&log, 4));
+  k.run();
+  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{
+      {10'000, 2}, {10'000, 4}, {20'000, 1}, {20'000, 3}};
+  EXPECT_EQ(log.entries, expected);
+  EXPECT_EQ(k.events_processed(), 4U);
+}
+
+namespace {
+struct ZeroDelay {
+  Kernel* k;
+  Log* log;
+  void first() {
+    log->record(1);
+    k->schedule(Time::zero(), bind<&Log::record>(log, 3));
+  }
+};
+}  // namespace
+
+TEST(KernelOrder, ZeroDelayWakeUpsRunInTheNextDeltaAfterTheTimeStep) {
+  Kernel k;
+  Log log{&k, {}};
+  ZeroDelay z{&k, &log};
+  k.schedule(ns(5), bind<&ZeroDelay::first>(&z));
+  k.schedule(ns(5), bind<&Log::record>(&log, 2));
+  k.run();
+  ASSERT_EQ(log.entries.size(), 3U);
+  EXPECT_EQ(log.entries[0].second, 1U);
+  EXPECT_EQ(log.entries[1].second, 2U);
+  EXPECT_EQ(log.entries[2].second, 3U);
+  EXPECT_EQ(log.entries[2].first, 5'000);
+}
+
+TEST(KernelRun, StopsAtTheGivenTimeAndResumes) {
+  Kernel k;
+  Log log{&k, {}};
+  k.schedule(us(1), bind<&Log::record>(&log, 1));
+  k.schedule(us(3), bind<&Log::record>(&log, 2));
+  k.run(us(2));
+  EXPECT_EQ(log.entries.size(), 1U);
+  EXPECT_EQ(k.now(), us(2));
+  k.run();
+  EXPECT_EQ(log.entries.size(), 2U);
+  EXPECT_EQ(k.now(), us(3));
+}
+
+TEST(KernelRun, RejectsNegativeDelays) {
+  Kernel k;
+  Log log{&k, {}};
+  EXPECT_THROW(k.schedule(ps(-1), bind<&Log::record>(&log, 0)), std::logic_error);
+}
+
+TEST(KernelTimer, CancelledTimerDoesNotFire) {
+  Kernel k;
+  Log log{&k, {}};
+  Timer t(k, bind<&Log::record>(&log, 7));
+  t.start(ns(10));
+  EXPECT_TRUE(t.pending());
+  t.cancel();
+  k.run();
+  EXPECT_TRUE(log.entries.empty());
+  EXPECT_FALSE(t.pending());
+}
+
+TEST(KernelTimer, RestartReplacesThePendingExpiry) {
+  Kernel k;
+  Log log{&k, {}};
+  Timer t(k, bind<&Log::record>(&log, 7));
+  t.start(ns(10));
+  t.start(ns(30));
+  EXPECT_EQ(t.expiry(), ns(30));
+  k.run();
+  ASSERT_EQ(log.entries.size(), 1U);
+  EXPECT_EQ(log.entries[0].first, 30'000);
+}
+
+namespace {
+struct Writer {
+  Signal* s;
+  void high() { s->write(true); }
+  void pulse() {
+    s->write(true);
+    s->write(false);
+  }
+};
+struct Listener {
+  Kernel* k;
+  std::vector<std::pair<std::int64_t, std::uint64_t>> seen;
+  void on(std::uint64_t v) { seen.emplace_back(k->now().count(), v); }
+};
+}  // namespace
+
+TEST(KernelSignal, WriteTakesEffectInTheUpdatePhase) {
+  Kernel k;
+  Signal s(k, "s", false);
+  Listener l{&k, {}};
+  s.on_change(bind<&Listener::on>(&l));
+  Writer w{&s};
+  k.schedule(ns(1), bind<&Writer::high>(&w));
+  k.run();
+  EXPECT_TRUE(s.read());
+  EXPECT_EQ(s.last_change(), ns(1));
+  ASSERT_EQ(l.seen.size(), 1U);
+  EXPECT_EQ(l.seen[0], (std::pair<std::int64_t, std::uint64_t>{1'000, 1}));
+}
+
+TEST(KernelSignal, WritesThatCancelInOnePhaseAreNoChange) {
+  Kernel k;
+  Signal s(k, "s", false);
+  Listener l{&k, {}};
+  s.on_change(bind<&Listener::on>(&l));
+  Writer w{&s};
+  k.schedule(ns(1), bind<&Writer::pulse>(&w));
+  k.run();
+  EXPECT_FALSE(s.read());
+  EXPECT_TRUE(l.seen.empty());
+  EXPECT_EQ(s.changes(), 0U);
+}
+
+TEST(KernelDelay, TransportDelayKeepsEveryEdgeExactToThePicosecond) {
+  Kernel k;
+  Signal in(k, "in", false);
+  Signal out(k, "out", false);
+  TransportDelay d(k, in, out, ps(1234), ps(987));
+  Listener l{&k, {}};
+  out.on_change(bind<&Listener::on>(&l));
+  Writer w{&in};
+  struct Low {
+    Signal* s;
+    void low() { s->write(false); }
+  } low{&in};
+  k.schedule(ns(10), bind<&Writer::high>(&w));
+  k.schedule(ns(11), bind<&Low::low>(&low));
+  k.run();
+  ASSERT_EQ(l.seen.size(), 2U);
+  EXPECT_EQ(l.seen[0], (std::pair<std::int64_t, std::uint64_t>{11'234, 1}));
+  EXPECT_EQ(l.seen[1], (std::pair<std::int64_t, std::uint64_t>{11'987, 0}));
+}

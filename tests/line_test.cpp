@@ -1,0 +1,126 @@
+#include <gtest/gtest.h>
+
+#include "line/line.hpp"
+
+using namespace endatsim;
+using namespace endatsim::sim;
+using line::ObservationPoint;
+
+namespace {
+
+struct EdgeTimes {
+  Kernel* k;
+  std::vector<Time> times;
+  void on(std::uint64_t) { times.push_back(k->now()); }
+};
+
+struct Poke {
+  Signal* s;
+  bool v;
+  void go() { s->write(v); }
+};
+
+}  // namespace
+
+TEST(LineDelays, ClockReachesEachPointAfterItsDelaysExactly) {
+  Kernel k;
+  line::LineParams p;
+  p.cable_length_m = 37.5;
+  line::Line l(k, p);
+  EdgeTimes master_pin{&k, {}}, encoder_pin{&k, {}}, encoder_logic{&k, {}};
+  l.pins(ObservationPoint::MasterPins).clock.on_change(bind<&EdgeTimes::on>(&master_pin));
+  l.pins(ObservationPoint::EncoderPins).clock.on_change(bind<&EdgeTimes::on>(&encoder_pin));
+  l.encoder().clock_in.on_change(bind<&EdgeTimes::on>(&encoder_logic));
+  Poke fall{&l.master().clock_out, false};
+  k.schedule(us(1), bind<&Poke::go>(&fall));
+  k.run();
+  ASSERT_EQ(master_pin.times.size(), 1U);
+  EXPECT_EQ(master_pin.times[0], us(1) + ns(20));
+  EXPECT_EQ(encoder_pin.times[0], us(1) + ns(20) + ps(187'500));  // 37.5 m x 5 ns/m
+  EXPECT_EQ(encoder_logic.times[0], us(1) + ns(20) + ps(187'500) + ns(40));
+}
+
+TEST(LineDelays, DefaultRoundTripEqualsTheSpecBoundForTD) {
+  // 2.3.2: t_D max = (0.2 + 0.01 x L) us, with the encoder's 60 ns clock-to-data delay.
+  for (double length : {0.0, 1.0, 10.0, 20.0, 50.0, 100.0, 150.0}) {
+    Kernel k;
+    line::LineParams p;
+    p.cable_length_m = length;
+    line::Line l(k, p);
+    EXPECT_EQ(l.round_trip(ns(60)), ns(200) + ns(10) * static_cast<std::int64_t>(length)) << length << " m";
+  }
+}
+
+TEST(LineDelays, EncoderDataReachesTheMasterAfterDriverCableAndReceiver) {
+  Kernel k;
+  line::LineParams p;
+  p.cable_length_m = 10;
+  line::Line l(k, p);
+  EdgeTimes seen{&k, {}};
+  l.master().data_in.on_change(bind<&EdgeTimes::on>(&seen));
+  Poke high{&l.encoder().data_out, true};
+  k.schedule(us(2), bind<&Poke::go>(&high));
+  k.run();
+  ASSERT_EQ(seen.times.size(), 1U);
+  EXPECT_EQ(seen.times[0], us(2) + ns(30) + ns(50) + ns(50));
+  EXPECT_TRUE(l.master().data_in.read());
+}
+
+TEST(LineFailsafe, UndrivenDataReadsTheFailsafeLevel) {
+  Kernel k;
+  line::Line l(k, line::LineParams{});
+  Poke release{&l.encoder().data_enable, false};
+  k.schedule(us(1), bind<&Poke::go>(&release));
+  k.run();
+  EXPECT_TRUE(l.pins(ObservationPoint::MasterPins).data.read());
+  EXPECT_TRUE(l.pins(ObservationPoint::EncoderPins).data.read());
+  EXPECT_TRUE(l.master().data_in.read());
+  l.set_failsafe_level(false);
+  k.run();
+  EXPECT_FALSE(l.master().data_in.read());
+  EXPECT_FALSE(l.encoder().data_in.read());
+}
+
+TEST(LineContention, BothDriversOnIsRecordedAtEachEndWithItsTimes) {
+  Kernel k;
+  line::LineParams p;
+  p.cable_length_m = 20;  // 100 ns one way
+  line::Line l(k, p);     // the encoder drives DATA LOW at idle
+  Poke on{&l.master().data_enable, true};
+  Poke off{&l.master().data_enable, false};
+  k.schedule(us(1), bind<&Poke::go>(&on));
+  k.schedule(us(3), bind<&Poke::go>(&off));
+  k.run();
+  const auto& c = l.contentions();
+  ASSERT_EQ(c.size(), 2U);
+  EXPECT_EQ(c[0].where, ObservationPoint::MasterPins);
+  EXPECT_EQ(c[0].start, us(1) + ns(30));  // master enable delay
+  EXPECT_EQ(c[0].end, us(3) + ns(30));    // master disable delay
+  EXPECT_EQ(c[1].where, ObservationPoint::EncoderPins);
+  EXPECT_EQ(c[1].start, us(1) + ns(30) + ns(100));
+  EXPECT_EQ(c[1].end, us(3) + ns(30) + ns(100));
+}
+
+TEST(LineParams, RejectsOutOfRangeValuesNamingTheLimit) {
+  line::LineParams p;
+  p.cable_length_m = -1;
+  try {
+    p.validate();
+    FAIL() << "negative cable length accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("0 .. 300 m"), std::string::npos) << e.what();
+  }
+  p.cable_length_m = 10;
+  p.master.receiver_delay = us(2);
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+}
+
+TEST(LineCable, ChangingTheCableChangesLaterEdgesOnly) {
+  Kernel k;
+  line::LineParams p;
+  p.cable_length_m = 0;
+  line::Line l(k, p);
+  l.set_cable(100, ns(5));
+  EXPECT_EQ(l.round_trip(ns(60)), us(1) + ns(200));
+  EXPECT_THROW(l.set_cable(301, ns(5)), std::invalid_argument);
+}

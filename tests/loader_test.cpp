@@ -1,0 +1,109 @@
+#include <gtest/gtest.h>
+
+#include "scenarios/loader.hpp"
+
+using namespace endatsim;
+using scenarios::load_scenario_text;
+using scenarios::ScenarioError;
+
+namespace {
+
+const char* const kValid = R"({
+  "name": "ok",
+  "line": {"cable_length_m": 10},
+  "master": {"f_c": "1 MHz"},
+  "script": [{"op": "read_position"}]
+})";
+
+// Replaces the first occurrence of `from` in the valid scenario.
+std::string valid_with(const std::string& from, const std::string& to) {
+  std::string s = kValid;
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    load_scenario_text(text, "bad.json");
+  } catch (const ScenarioError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST(ScenarioLoader, AcceptsAMinimalScenarioWithDocumentedDefaults) {
+  const auto s = load_scenario_text(kValid, "ok.json");
+  EXPECT_EQ(s.name, "ok");
+  EXPECT_EQ(s.master.f_c, sim::MHz(1));
+  EXPECT_EQ(s.encoder.position_bits, 25U);
+  EXPECT_EQ(s.line.cable_delay_per_m, sim::ns(5));
+  ASSERT_EQ(s.script.size(), 1U);
+  EXPECT_EQ(s.script[0].command, protocol::ModeCommand::EncoderSendPositionValues);
+}
+
+struct BadCase {
+  const char* label;
+  std::string text;
+  std::vector<std::string> must_contain;
+  friend void PrintTo(const BadCase& c, std::ostream* os) { *os << c.label; }
+};
+
+class ScenarioLoaderRejects : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(ScenarioLoaderRejects, NamingFilePathAndExpectation) {
+  const std::string message = error_of(GetParam().text);
+  EXPECT_EQ(message.rfind("bad.json: ", 0), 0U) << message;
+  for (const auto& part : GetParam().must_contain) EXPECT_NE(message.find(part), std::string::npos) << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, ScenarioLoaderRejects,
+    ::testing::Values(
+        BadCase{"empty", "", {"not valid JSON"}},
+        BadCase{"garbage", "\x01\x02\xff", {"not valid JSON"}},
+        BadCase{"array", "[]", {"at /", "expected an object"}},
+        BadCase{"missing_name", valid_with("\"name\": \"ok\",", ""), {"missing required key \"name\""}},
+        BadCase{"fc_number", valid_with("\"1 MHz\"", "1000000"), {"/master/f_c", "frequency string", "got number"}},
+        BadCase{"fc_too_high", valid_with("\"1 MHz\"", "\"20 MHz\""), {"/master/f_c", "16 MHz"}},
+        BadCase{"fc_too_low", valid_with("\"1 MHz\"", "\"50 kHz\""), {"/master/f_c", "100 kHz"}},
+        BadCase{"negative_cable", valid_with("10}", "-1}"), {"/line/cable_length_m", "0 .. 300 m"}},
+        BadCase{"huge_cable", valid_with("10}", "1e300}"), {"/line/cable_length_m"}},
+        BadCase{"unknown_key", valid_with("\"cable_length_m\"", "\"cable_lenght_m\": 1, \"cable_length_m\""),
+                {"/line", "unknown key \"cable_lenght_m\""}},
+        BadCase{"bad_unit", valid_with("\"1 MHz\"", "\"1 MHZ\""), {"/master/f_c", "unit"}},
+        BadCase{"bad_op", valid_with("read_position", "read_positions"), {"/script/0/op", "one of"}},
+        BadCase{"bad_mode_bits", valid_with("{\"op\": \"read_position\"}", "{\"op\": \"read_position\", \"mode_bits\": \"0001\"}"),
+                {"/script/0/mode_bits", "six mode bits"}},
+        BadCase{"times_backwards",
+                valid_with("[{\"op\": \"read_position\"}]",
+                           "[{\"op\": \"read_position\", \"at\": \"2 ms\"}, {\"op\": \"wait\", \"at\": \"1 ms\", \"duration\": \"1 us\"}]"),
+                {"/script/1/at", "not before"}},
+        BadCase{"empty_script", valid_with("[{\"op\": \"read_position\"}]", "[]"), {"/script", "non-empty array"}},
+        BadCase{"t_m_out_of_range", valid_with("\"master\"", "\"encoder\": {\"t_m\": \"5 us\"}, \"master\""),
+                {"/encoder/t_m", "10 us .. 30 us"}},
+        BadCase{"multiturn_without_bits", valid_with("\"master\"", "\"encoder\": {\"kind\": \"multiturn\"}, \"master\""),
+                {"/encoder", "multiturn_bits"}},
+        BadCase{"deep_nesting", valid_with("\"ok\",", "\"ok\", \"description\": " + std::string(100, '[') + std::string(100, ']') + ","),
+                {"nested deeper"}},
+        BadCase{"invalid_utf8", valid_with("\"ok\"", "\"o\xc3\x28k\""), {"not valid JSON"}},
+        BadCase{"negative_count", valid_with("{\"op\": \"read_position\"}", "{\"op\": \"read_position\", \"count\": -3}"),
+                {"/script/0/count", "integer 1 .. 1000000"}},
+        BadCase{"bad_violation_name",
+                valid_with("\"script\"", "\"expect\": {\"violations\": {\"t_foo\": 1}}, \"script\""),
+                {"/expect/violations/t_foo", "unknown name"}},
+        BadCase{"bad_count_text",
+                valid_with("\"script\"", "\"expect\": {\"outcomes\": {\"ok\": \">= x\"}}, \"script\""),
+                {"/expect/outcomes/ok", "a count"}}),
+    [](const auto& param_info) { return std::string(param_info.param.label); });
+
+TEST(ScenarioLoader, MissingFileIsNamed) {
+  try {
+    scenarios::load_scenario_file("/nonexistent/x.json");
+    FAIL();
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.json: cannot open"), std::string::npos);
+  }
+}

@@ -1,0 +1,124 @@
+#include <gtest/gtest.h>
+
+#include "scenario_support.hpp"
+
+using namespace endatsim;
+using namespace endatsim::sim;
+using endatsim::test_support::count_ok;
+using endatsim::test_support::count_violations;
+using endatsim::test_support::make_scenario;
+
+struct DelayCase {
+  double cable_m;
+  Hertz f_c;
+  friend void PrintTo(const DelayCase& c, std::ostream* os) { *os << c.cable_m << " m, " << format_frequency(c.f_c); }
+};
+
+class DelayMeasurement : public ::testing::TestWithParam<DelayCase> {};
+
+// 2.1.2: measured at 200 kHz, mean of three, within T/8 of the true round trip; reads then succeed.
+TEST_P(DelayMeasurement, MeasuresTheRoundTripWithinAnEighthPeriodAndReadsCorrectly) {
+  const auto [cable, f_c] = GetParam();
+  const auto r = scenarios::run_scenario(make_scenario(cable, f_c, true));
+  ASSERT_EQ(r.measurements.size(), 1U);
+  const auto& m = r.measurements[0];
+  ASSERT_TRUE(m.accepted) << m.reason;
+  EXPECT_EQ(m.counts.size(), 3U);
+  const Time error = m.t_d > r.true_round_trip ? m.t_d - r.true_round_trip : r.true_round_trip - m.t_d;
+  EXPECT_LE(error, period_of(f_c) / 8) << "measured " << format_time(m.t_d) << ", true " << format_time(r.true_round_trip);
+  EXPECT_EQ(count_ok(r), 3U);
+  for (const auto& f : r.frames) {
+    if (f.measurement) EXPECT_EQ(f.f_c, kHz(200));
+    else EXPECT_EQ(f.position, 104462U);
+  }
+  EXPECT_EQ(count_violations(r, checker::check::kSamplingWindow), 0U);
+  EXPECT_EQ(count_violations(r, checker::check::kContention), 0U);
+}
+
+INSTANTIATE_TEST_SUITE_P(CableAndClock, DelayMeasurement,
+                         ::testing::Values(DelayCase{0, MHz(1)}, DelayCase{0, MHz(16)}, DelayCase{10, MHz(2)},
+                                           DelayCase{20, MHz(16)}, DelayCase{25, MHz(4)}, DelayCase{50, MHz(8)},
+                                           DelayCase{75, MHz(1)}, DelayCase{100, MHz(8)}, DelayCase{100, MHz(2)},
+                                           DelayCase{100, MHz(16)}),
+                         [](const auto& param_info) {
+                           return std::to_string(static_cast<int>(param_info.param.cable_m)) + "m_" +
+                                  std::to_string(param_info.param.f_c / 1'000'000) + "MHz";
+                         });
+
+TEST(MasterFrame, ClockCountIsOneMoreThanTheLastBitByDefault) {
+  // Timing-model §1.7: 2.2, n = 25, s = 11 -> last bit at RE43, 44 pulses; 43 without the extra one.
+  auto s = make_scenario(1, MHz(1), false, 1);
+  auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_ok(r), 1U);
+  EXPECT_EQ(r.frames[0].clocks, 44U);
+  EXPECT_EQ(r.frames[0].start_bit_clock, 11U);
+  s.master.extra_clock_after_last_bit = false;
+  r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_ok(r), 1U);
+  EXPECT_EQ(r.frames[0].clocks, 43U);
+  EXPECT_EQ(r.frames[0].position, 104462U);
+}
+
+TEST(MasterFrame, EnDat21FrameHas43Pulses) {
+  auto s = make_scenario(1, MHz(1), false, 1);
+  s.script.back().command = protocol::ModeCommand::EncoderSendPositionValues;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_ok(r), 1U);
+  EXPECT_EQ(r.frames[0].clocks, 43U);
+}
+
+TEST(MasterFrame, WithoutCompensationShortCablesReadCleanly) {
+  const auto r = scenarios::run_scenario(make_scenario(10, MHz(1), false, 5));
+  EXPECT_EQ(count_ok(r), 5U);
+  EXPECT_TRUE(r.violations.empty());
+}
+
+TEST(MasterFrame, NoStartBitTimesOutAndTheNextReadWorks) {
+  auto s = make_scenario(1, MHz(1), false, 1);
+  s.encoder.type1 = slave::Type1Handling::NoStartBit;
+  s.master.start_bit_timeout = us(200);
+  master::Operation bad = s.script.back();
+  bad.mode_bits = 0b000101;
+  s.script.insert(s.script.begin(), bad);
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(r.frames.size(), 2U);
+  EXPECT_EQ(r.frames[0].outcome, master::FrameOutcome::NoStartBit);
+  EXPECT_GE(r.frames[0].end - r.frames[0].start, us(200));
+  EXPECT_EQ(r.frames[1].outcome, master::FrameOutcome::Ok);
+  // A2: after an error handling the master waits the maximum t_m (30 us) before the next command.
+  EXPECT_GE(r.frames[1].start - r.frames[0].end, us(30));
+}
+
+TEST(MasterFrame, MovingAxisPositionsAreTheOnesLatchedAtFE1) {
+  auto s = make_scenario(30, MHz(4), true, 20);
+  s.encoder.motion.counts_per_s = 1'234'567;
+  s.expect.positions_match_encoder = true;
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_TRUE(r.passed());
+  EXPECT_EQ(count_ok(r), 20U);
+  EXPECT_NE(r.frames.back().position, r.frames[3].position);
+}
+
+TEST(MasterJitter, SeededJitterMovesEdgesButReadsStayCorrect) {
+  auto s = make_scenario(10, MHz(1), false, 10);
+  s.master.jitter = ns(20);
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_ok(r), 10U);
+  EXPECT_NE((r.frames[1].end - r.frames[1].start), (r.frames[2].end - r.frames[2].start));
+}
+
+TEST(MasterParams, RejectsClockOutsideTheModelNamingTheLimit) {
+  master::MasterParams p;
+  p.f_c = MHz(20);
+  try {
+    p.validate();
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("16 MHz"), std::string::npos) << e.what();
+  }
+  p.f_c = kHz(50);
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+  p.f_c = MHz(1);
+  p.jitter = us(1);
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+}

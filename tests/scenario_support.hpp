@@ -1,0 +1,39 @@
+#pragma once
+
+#include "scenarios/runner.hpp"
+
+namespace endatsim::test_support {
+
+// A scenario built in code: an EnDat 2.2 encoder at position 104462 on `cable_m` of cable,
+// a master at f_c, optional delay compensation (measured first), `reads` position reads.
+inline scenarios::Scenario make_scenario(double cable_m, sim::Hertz f_c, bool compensated, unsigned reads = 3) {
+  scenarios::Scenario s;
+  s.name = "in-code";
+  s.line.cable_length_m = cable_m;
+  s.encoder.motion.start = 104462;
+  s.master.f_c = f_c;
+  s.master.delay_compensation = compensated;
+  s.master.t_st = compensated ? sim::us(2) : sim::Time::zero();
+  s.master.measurement.f_e = 8 * f_c;
+  if (compensated) s.script.push_back({master::Operation::Kind::MeasureDelay, {}, {}, {}, 1, {}, {}});
+  master::Operation read;
+  read.command = protocol::ModeCommand::EncoderSendPositionValuesWithAdditionalData;
+  read.count = reads;
+  read.cycle = sim::us(100);
+  s.script.push_back(read);
+  return s;
+}
+
+inline std::size_t count_ok(const scenarios::ScenarioResult& r) {
+  std::size_t n = 0;
+  for (const auto& f : r.frames) n += !f.measurement && f.outcome == master::FrameOutcome::Ok;
+  return n;
+}
+
+inline std::size_t count_violations(const scenarios::ScenarioResult& r, std::string_view check) {
+  std::size_t n = 0;
+  for (const auto& v : r.violations) n += v.check == check;
+  return n;
+}
+
+}  // namespace endatsim::test_support

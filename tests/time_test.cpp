@@ -1,0 +1,42 @@
+#include <gtest/gtest.h>
+
+#include "sim/time.hpp"
+
+using namespace endatsim::sim;
+
+TEST(TimeParse, ReadsDecimalDurationsExactly) {
+  EXPECT_EQ(parse_duration("2 us"), us(2));
+  EXPECT_EQ(parse_duration("1.25us"), ns(1250));
+  EXPECT_EQ(parse_duration("62.5 ns"), ps(62500));
+  EXPECT_EQ(parse_duration("0.000001 s"), us(1));
+  EXPECT_EQ(parse_duration(" 7 ps "), ps(7));
+}
+
+TEST(TimeParse, RejectsWhatIsNotAWholeNumberOfPicoseconds) {
+  EXPECT_THROW(parse_duration("0.5 ps"), std::invalid_argument);
+  EXPECT_THROW(parse_duration("2"), std::invalid_argument);
+  EXPECT_THROW(parse_duration("-2 us"), std::invalid_argument);
+  EXPECT_THROW(parse_duration("2 parsecs"), std::invalid_argument);
+  EXPECT_THROW(parse_duration("99999999999999999999999999999999 s"), std::invalid_argument);
+}
+
+TEST(TimeParse, ReadsFrequencies) {
+  EXPECT_EQ(parse_frequency("2 MHz"), MHz(2));
+  EXPECT_EQ(parse_frequency("200kHz"), kHz(200));
+  EXPECT_EQ(parse_frequency("16000000 Hz"), MHz(16));
+  EXPECT_THROW(parse_frequency("2 mhz"), std::invalid_argument);
+}
+
+TEST(TimeFormat, IsExactAndReadable) {
+  EXPECT_EQ(format_time(ns(1250)), "1.25 us");
+  EXPECT_EQ(format_time(ps(62500)), "62.5 ns");
+  EXPECT_EQ(format_time(ps(7)), "7 ps");
+  EXPECT_EQ(format_time(ps(-1500)), "-1.5 ns");
+  EXPECT_EQ(format_frequency(kHz(200)), "200 kHz");
+}
+
+TEST(TimePeriod, RoundsToThePicosecond) {
+  EXPECT_EQ(period_of(MHz(16)), ps(62500));
+  EXPECT_EQ(period_of(MHz(128)), ps(7813));  // 7812.5 rounds up
+  EXPECT_EQ(frequency_of(ps(62500)), MHz(16));
+}

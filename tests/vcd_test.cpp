@@ -1,0 +1,68 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sim/sim.hpp"
+
+using namespace endatsim::sim;
+
+namespace {
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Driver {
+  Signal* a;
+  Signal* b;
+  void step1() { a->write(true); }
+  void glitch() {  // b goes up and, one delta later, down again: not a committed change of the step
+    b->write(true);
+  }
+  void glitch_back() { b->write(false); }
+};
+
+}  // namespace
+
+TEST(VcdWriter, WritesOnlyCommittedChangesAtTheEndOfEachTimeStep) {
+  const std::string path = (std::filesystem::temp_directory_path() / "endatsim_vcd_test.vcd").string();
+  {
+    Kernel k;
+    Signal a(k, "a", false);
+    Signal b(k, "b", false);
+    VcdWriter vcd(k, path);
+    vcd.add(a, "top", "a");
+    vcd.add(b, "top", "b");
+    vcd.start();
+    Driver d{&a, &b};
+    k.schedule(ns(1), bind<&Driver::step1>(&d));
+    k.schedule(ns(2), bind<&Driver::glitch>(&d));
+    struct Later {
+      Kernel* k;
+      Driver* d;
+      void go() { k->schedule(Time::zero(), bind<&Driver::glitch_back>(d)); }
+    } later{&k, &d};
+    k.schedule(ns(2), bind<&Later::go>(&later));
+    k.run();
+    vcd.finish();
+  }
+  const std::string text = read_file(path);
+  const auto defs = text.find("$enddefinitions $end");
+  ASSERT_NE(defs, std::string::npos);
+  EXPECT_EQ(text.find("$comment", defs), std::string::npos);
+  EXPECT_NE(text.find("$var wire 1 ! a $end"), std::string::npos);
+  // b rose and fell inside the step at 2 ns: nothing is written for it; finish() closes at 2 ns.
+  const auto body = text.substr(text.find("$end\n", text.find("$dumpvars")) + 5);
+  EXPECT_EQ(body, "#1000\n1!\n#2000\n");
+  std::filesystem::remove(path);
+}
+
+TEST(VcdWriter, ReportsAnUnwritablePath) {
+  Kernel k;
+  EXPECT_THROW(VcdWriter(k, "/nonexistent-dir/x.vcd"), std::runtime_error);
+}
