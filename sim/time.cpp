@@ -76,7 +76,8 @@ std::string format_scaled(std::int64_t value, std::int64_t scale, std::string_vi
   const bool negative = value < 0;
   const std::uint64_t v = negative ? 0 - static_cast<std::uint64_t>(value) : static_cast<std::uint64_t>(value);
   const auto s = static_cast<std::uint64_t>(scale);
-  std::string out = (negative ? "-" : "") + std::to_string(v / s);
+  std::string out = negative ? "-" : "";
+  out += std::to_string(v / s);
   std::uint64_t rest = v % s;
   if (rest != 0) {
     std::string frac;

@@ -98,7 +98,9 @@ void VcdWriter::flush_if_full() {
 void VcdWriter::finish() {
   if (finished_) return;
   finished_ = true;
-  buffer_ += "#" + std::to_string(kernel_.now().count()) + "\n";
+  buffer_ += '#';
+  buffer_ += std::to_string(kernel_.now().count());
+  buffer_ += '\n';
   const bool ok = std::fwrite(buffer_.data(), 1, buffer_.size(), file_) == buffer_.size();
   buffer_.clear();
   if (std::fflush(file_) != 0 || !ok) throw std::runtime_error("write error on VCD file '" + path_ + "'");
