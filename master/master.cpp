@@ -142,8 +142,11 @@ void Master::start_frame(std::uint64_t) {
   clocking_done_ = false;
   rx_ = Rx::Polling;
   seen_low_ = false;
+  require_low_ = params_.start_bit_detection == StartBitDetection::WaitLowThenHigh;
   high_samples_ = 0;
   rx_bits_.clear();
+  words_left_ = measurement ? 0 : current_->continuous_words;
+  poll_start_ = kernel_.now();
   ++epoch_;
   counter_running_ = false;
   captured_count_.reset();
@@ -201,7 +204,7 @@ void Master::rising_edge() {
     counter_start_ = kernel_.now();
     counter_running_ = true;
   }
-  if (rx_ == Rx::Polling && kernel_.now() - frame_.start > params_.start_bit_timeout) {
+  if (rx_ == Rx::Polling && kernel_.now() - poll_start_ > params_.start_bit_timeout) {
     end_reception(FrameOutcome::NoStartBit);
   }
   if (rx_ == Rx::Done || (last_clock_ != 0 && clock_ >= last_clock_)) {
@@ -230,7 +233,7 @@ void Master::sample_now(unsigned clock) {
   switch (rx_) {
     case Rx::Polling:
       // Fail-safe receivers read HIGH on the undriven line: wait for LOW, then the start bit.
-      if (!seen_low_ && params_.start_bit_detection == StartBitDetection::WaitLowThenHigh) {
+      if (!seen_low_ && require_low_) {
         seen_low_ = !value;
         if (value && ++high_samples_ >= params_.type1_detect_samples) {
           for (auto* o : observers_) o->on_sample(frame_, clock, value, false);
@@ -266,8 +269,30 @@ void Master::sample_now(unsigned clock) {
     frame_.crc_expected =
         protocol::make_crc_pos(params_.position_bits, frame_.error1, frame_.error2,
                                protocol::info(frame_.command).version == protocol::EndatVersion::V2_2, frame_.position);
-    end_reception(frame_.crc_received == frame_.crc_expected ? FrameOutcome::Ok : FrameOutcome::CrcError);
+    word_received(frame_.crc_received == frame_.crc_expected ? FrameOutcome::Ok : FrameOutcome::CrcError);
   }
+}
+
+void Master::word_received(FrameOutcome outcome) {
+  if (words_left_ == 0) {
+    end_reception(outcome);
+    return;
+  }
+  // Continuous clock (2.3.1): keep clocking; after the HIGH bit and the LOW bits the next word
+  // starts with its start bit, without a new mode command.
+  frame_.outcome = outcome;
+  frame_.end = kernel_.now();
+  frames_.push_back(frame_);
+  --words_left_;
+  ++frame_.word;
+  frame_.index = frames_.size();
+  rx_ = Rx::Polling;
+  seen_low_ = false;
+  require_low_ = true;  // the HIGH bit after the CRC is not a start bit
+  high_samples_ = 0;
+  rx_bits_.clear();
+  last_clock_ = 0;
+  poll_start_ = kernel_.now();
 }
 
 void Master::end_reception(FrameOutcome outcome) {

@@ -65,6 +65,7 @@ std::string_view to_string(FrameOutcome o);
 
 struct FrameResult {
   std::uint64_t index = 0;
+  unsigned word = 0;        // 0: the word after the mode command; k: the k-th continuous-clock word
   Time start{0};            // FE1 at the master logic
   Time end{0};              // last rising edge
   ModeCommand command = ModeCommand::EncoderSendPositionValues;
@@ -113,6 +114,9 @@ struct Operation {
   unsigned count = 1;
   Time cycle{0};
   Time duration{0};
+  // 2.3.1: with "Encoder send position values" the clock may run on through further words
+  // (continuous clock); this many words follow the first one in each frame.
+  unsigned continuous_words = 0;
 };
 
 class Master {
@@ -146,6 +150,7 @@ class Master {
   void rising_edge();
   void sample(std::uint64_t tag);
   void sample_now(unsigned clock);
+  void word_received(FrameOutcome outcome);
   void end_reception(FrameOutcome outcome);
   void maybe_complete_frame();
   void on_data_in(std::uint64_t level);
@@ -185,6 +190,9 @@ class Master {
   protocol::Layout layout_;
   Rx rx_ = Rx::Off;
   bool seen_low_ = false;
+  bool require_low_ = true;
+  unsigned words_left_ = 0;
+  Time poll_start_{0};
   unsigned high_samples_ = 0;
   std::vector<std::uint8_t> rx_bits_;
   std::uint64_t epoch_ = 0;

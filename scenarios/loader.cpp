@@ -305,6 +305,11 @@ master::Operation read_operation(const Node& n) {
       if (auto v = o.opt("mode_bits")) op.mode_bits = read_mode_bits(*v);
       if (auto v = o.opt("count")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
       if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
+      if (auto v = o.opt("continuous_words")) {
+        op.continuous_words = static_cast<unsigned>(v->as_uint(0, 100'000));
+        if (op.continuous_words > 0 && op.command != protocol::ModeCommand::EncoderSendPositionValues)
+          v->fail_raw("a continuous clock is only possible with encoder_send_position_values (spec 2.3.1)");
+      }
       break;
   }
   o.done();

@@ -8,7 +8,8 @@ namespace {
 using sim::format_time;
 
 std::string frame_line(const master::FrameResult& f) {
-  std::string s = "  #" + std::to_string(f.index) + " " + format_time(f.start) + " " +
+  std::string s = "  #" + std::to_string(f.index) + (f.word > 0 ? " word " + std::to_string(f.word) : "") + " " +
+                  format_time(f.start) + " " +
                   std::string(protocol::info(f.command).key) + " @ " + sim::format_frequency(f.f_c) + ": " +
                   std::string(master::to_string(f.outcome));
   if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
@@ -91,6 +92,7 @@ nlohmann::json to_json(const ScenarioResult& r) {
   json frames = json::array();
   for (const auto& f : r.frames) {
     json jf{{"index", f.index},
+            {"word", f.word},
             {"start_ps", f.start.count()},
             {"end_ps", f.end.count()},
             {"command", protocol::info(f.command).key},

@@ -31,10 +31,13 @@ void judge_positions(const Scenario& s, ScenarioResult& r, Time clock_path) {
       if (f.measurement || f.outcome != master::FrameOutcome::Ok) continue;
       const auto* ef = encoder_frame_for(r, f, clock_path);
       ++compared;
-      if (ef == nullptr) detail = "frame " + std::to_string(f.index) + ": the encoder saw no frame start then";
-      else if (ef->position != f.position)
+      // Word k > 0 of a continuous clock was latched at the falling edge after the HIGH bit.
+      const bool latched = ef != nullptr && (f.word == 0 || f.word <= ef->continuous_positions.size());
+      const std::uint64_t truth = !latched ? 0 : f.word == 0 ? ef->position : ef->continuous_positions[f.word - 1];
+      if (!latched) detail = "frame " + std::to_string(f.index) + ": the encoder latched no such word";
+      else if (truth != f.position)
         detail = "frame " + std::to_string(f.index) + ": read " + std::to_string(f.position) + ", encoder latched " +
-                 std::to_string(ef->position);
+                 std::to_string(truth);
       if (!detail.empty()) break;
     }
     if (detail.empty() && compared == 0) detail = "no frame was read without error";

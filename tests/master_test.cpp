@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include "scenario_support.hpp"
+#include "master/master.hpp"
+#include "slave/encoder.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;
@@ -121,4 +123,85 @@ TEST(MasterParams, RejectsClockOutsideTheModelNamingTheLimit) {
   p.f_c = MHz(1);
   p.jitter = us(1);
   EXPECT_THROW(p.validate(), std::invalid_argument);
+}
+
+namespace {
+
+struct CableSwap {
+  line::Line* line;
+  void go() { line->set_cable(60, ns(5)); }
+};
+
+struct MeasurementBench {
+  explicit MeasurementBench(unsigned max_rounds) : line(k, line_params()), encoder(k, line, {}), master(k, line, params(max_rounds)) {}
+  static line::LineParams line_params() {
+    line::LineParams p;
+    p.cable_length_m = 10;
+    return p;
+  }
+  static master::MasterParams params(unsigned max_rounds) {
+    master::MasterParams p;
+    p.f_c = MHz(8);
+    p.delay_compensation = true;
+    p.t_st = us(2);
+    p.measurement.f_e = MHz(64);
+    p.measurement.max_rounds = max_rounds;
+    return p;
+  }
+  void run_with_swap_after_first_frame() {
+    master.enqueue({master::Operation::Kind::MeasureDelay, {}, {}, {}, 1, {}, {}, 0});
+    master.start();
+    // The first 200 kHz frame ends after ~215 us; the next begins ~30.5 us later.
+    CableSwap swap{&line};
+    k.schedule(us(235), sim::bind<&CableSwap::go>(&swap));
+    k.run();
+  }
+  Kernel k;
+  line::Line line;
+  slave::Encoder encoder;
+  master::Master master;
+};
+
+}  // namespace
+
+TEST(MasterDelayMeasurement, AValueFartherThanAnEighthPeriodFromTheMeanIsRejectedAndRemeasured) {
+  MeasurementBench b(3);
+  b.run_with_swap_after_first_frame();
+  const auto& m = b.master.measurements();
+  ASSERT_EQ(m.size(), 2U);
+  EXPECT_FALSE(m[0].accepted);
+  EXPECT_NE(m[0].reason.find("deviates"), std::string::npos) << m[0].reason;
+  EXPECT_NE(m[0].reason.find("T/8 = 15.625 ns"), std::string::npos) << m[0].reason;
+  EXPECT_TRUE(m[1].accepted);
+  ASSERT_TRUE(b.master.t_d().has_value());
+  const Time truth = b.line.round_trip(b.encoder.params().output_delay);
+  EXPECT_EQ(truth, ns(800));
+  EXPECT_LE(*b.master.t_d() > truth ? *b.master.t_d() - truth : truth - *b.master.t_d(), period_of(MHz(8)) / 8);
+}
+
+TEST(MasterDelayMeasurement, WithoutFurtherRoundsTheMasterStaysUncompensated) {
+  MeasurementBench b(1);
+  b.run_with_swap_after_first_frame();
+  ASSERT_EQ(b.master.measurements().size(), 1U);
+  EXPECT_FALSE(b.master.measurements()[0].accepted);
+  EXPECT_FALSE(b.master.t_d().has_value());
+}
+
+TEST(MasterContinuousClock, ReadsEveryWordOfAContinuousClock) {
+  auto s = make_scenario(10, MHz(1), false, 1);
+  s.encoder.version = protocol::EndatVersion::V2_1;
+  s.encoder.motion.counts_per_s = 1'000'000;
+  s.script.back().command = protocol::ModeCommand::EncoderSendPositionValues;
+  s.script.back().continuous_words = 3;
+  s.expect.positions_match_encoder = true;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(r.frames.size(), 4U);
+  EXPECT_TRUE(r.passed());
+  for (unsigned w = 0; w < 4; ++w) {
+    EXPECT_EQ(r.frames[w].word, w);
+    EXPECT_EQ(r.frames[w].outcome, master::FrameOutcome::Ok);
+  }
+  // 1 HIGH + 1 LOW + S + F1 + 25 + 5 = 34 clocks per word at 1 MHz: 34 counts apart.
+  EXPECT_EQ(r.frames[2].position - r.frames[1].position, 34U);
+  EXPECT_EQ(r.encoder_frames.at(0).continuous_words, 3U);
 }
