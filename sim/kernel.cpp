@@ -21,7 +21,7 @@ void Kernel::schedule(Time delay, Action action) {
     return;
   }
   heap_.push_back(Entry{now_ + delay, seq_++, action});
-  std::push_heap(heap_.begin(), heap_.end(), later);
+  std::push_heap(heap_.begin(), heap_.end(), Later{});
 }
 
 void Kernel::schedule_at(Time when, Action action) {
@@ -75,7 +75,7 @@ void Kernel::run(Time until) {
     }
     now_ = t;
     do {
-      std::pop_heap(heap_.begin(), heap_.end(), later);
+      std::pop_heap(heap_.begin(), heap_.end(), Later{});
       const Action a = heap_.back().action;
       heap_.pop_back();
       ++events_processed_;

@@ -66,9 +66,12 @@ class Kernel {
     std::uint64_t seq;
     Action action;
   };
-  static bool later(const Entry& a, const Entry& b) {
-    return a.when != b.when ? a.when > b.when : a.seq > b.seq;
-  }
+  // A function object, not a function pointer, so that the heap operations inline it.
+  struct Later {
+    bool operator()(const Entry& a, const Entry& b) const {
+      return a.when != b.when ? a.when > b.when : a.seq > b.seq;
+    }
+  };
   void settle();
   void commit_updates();
   void run_fifo_snapshot();
