@@ -27,13 +27,9 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave:
 }
 
 void TimingChecker::on_frame_start(const master::FrameResult& frame) {
-  PinFrame f;
-  f.index = frame.index;
-  f.measurement = frame.measurement;
-  f.compensated = frame.compensated;
-  f.command_type = protocol::info(frame.command).version;
-  f.f_c = frame.f_c;
-  pending_.emplace_back(master_falling_edges_ + 1, std::move(f));
+  const FrameHeader h{frame.index, frame.measurement, frame.compensated, protocol::info(frame.command).version,
+                      frame.f_c};
+  pending_.emplace_back(master_falling_edges_ + 1, h);
   master_rising_.clear();
   sampling_reported_ = false;
 }
@@ -46,31 +42,34 @@ void TimingChecker::on_master_clock(std::uint64_t level) {
 void TimingChecker::on_encoder_clock(std::uint64_t level) {
   const Time now = kernel_.now();
   if (level != 0) {
-    if (current_) current_->rising.push_back(now);
+    if (in_frame_) current_.rising.push_back(now);
     return;
   }
   ++encoder_falling_edges_;
   if (!pending_.empty() && pending_.front().first == encoder_falling_edges_) {
-    if (current_) evaluate(*current_);
-    current_ = std::move(pending_.front().second);
+    if (in_frame_) evaluate(current_);
+    current_.header = pending_.front().second;
+    current_.fe1 = now;
+    current_.rising.clear();
+    current_.falling.clear();
     pending_.pop_front();
-    current_->fe1 = now;
-    if (previous_) check_recovery(*previous_, *current_);
+    in_frame_ = true;
+    check_recovery(current_);
   }
-  if (current_) current_->falling.push_back(now);
+  if (in_frame_) current_.falling.push_back(now);
 }
 
 void TimingChecker::evaluate(const PinFrame& f) {
   check_pulse_widths(f);
   check_frequency(f);
-  previous_ = f;
+  if (!f.rising.empty()) previous_end_.emplace(f.rising.back(), f.header.command_type);
 }
 
 void TimingChecker::check_pulse_widths(const PinFrame& f) {
   // With compensation the on-off ratio row applies: each phase within 50 % +/- 10 % of T.
-  const Time period = sim::period_of(f.f_c);
-  const Time min = f.compensated ? period * 4 / 10 : kPulseMinWithoutCompensation;
-  const std::string spec = f.compensated ? "2.3.2 on-off ratio error (+/-10 % with delay compensation)"
+  const Time period = sim::period_of(f.header.f_c);
+  const Time min = f.header.compensated ? period * 4 / 10 : kPulseMinWithoutCompensation;
+  const std::string spec = f.header.compensated ? "2.3.2 on-off ratio error (+/-10 % with delay compensation)"
                                          : "2.3.2 t_HI / t_LO minimum 0.2 us";
   struct Worst {
     Time width = Time::max();
@@ -90,7 +89,7 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
   const auto emit = [&](const Worst& w, std::string_view name, const std::string& limit, const std::string& s,
                         const char* what) {
     if (w.count == 0) return;
-    report({std::string(name), s, ObservationPoint::EncoderPins, w.at, f.index, w.clock, format_time(w.width), limit,
+    report({std::string(name), s, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock, format_time(w.width), limit,
             Severity::Error,
             std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)"});
   };
@@ -106,34 +105,35 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   const Time mean = (f.rising.back() - f.rising[1]) / static_cast<std::int64_t>(f.rising.size() - 2);
   const sim::Hertz fc = sim::frequency_of(mean);
   const Time at = f.rising[1];
-  if (f.measurement) {
+  if (f.header.measurement) {
     if (fc < sim::kHz(100) || fc > sim::kHz(200))
       report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
-              ObservationPoint::EncoderPins, at, f.index, std::nullopt, format_frequency(fc), "100 kHz .. 200 kHz",
+              ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), "100 kHz .. 200 kHz",
               Severity::Error, "delay measured with a clock outside the prescribed range"});
     return;
   }
-  const sim::Hertz max = f.compensated ? kMaxFcWith : kMaxFcWithout;
+  const sim::Hertz max = f.header.compensated ? kMaxFcWith : kMaxFcWithout;
   const std::string range = format_frequency(kMinFc) + " .. " + format_frequency(max);
-  const std::string spec = f.compensated ? "2.3.2 f_c (with delay compensation)" : "2.3.2 f_c (without delay compensation)";
-  if (fc < kMinFc || (fc > max && (!f.compensated || fc > kMaxFcSpecial))) {
-    report({std::string(check::kClockFrequency), spec, ObservationPoint::EncoderPins, at, f.index, std::nullopt,
+  const std::string spec = f.header.compensated ? "2.3.2 f_c (with delay compensation)" : "2.3.2 f_c (without delay compensation)";
+  if (fc < kMinFc || (fc > max && (!f.header.compensated || fc > kMaxFcSpecial))) {
+    report({std::string(check::kClockFrequency), spec, ObservationPoint::EncoderPins, at, f.header.index, std::nullopt,
             format_frequency(fc), range, Severity::Error, "clock frequency outside the table's range"});
   } else if (fc > max) {
     report({std::string(check::kClockFrequency), "2.1.2 (8 .. 16 MHz for special applications)",
-            ObservationPoint::EncoderPins, at, f.index, std::nullopt, format_frequency(fc), range, Severity::Warning,
+            ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), range, Severity::Warning,
             "clock above 8 MHz: only for special applications with short cables (t_ST 1 us at 16 MHz)"});
   }
 }
 
-void TimingChecker::check_recovery(const PinFrame& previous, const PinFrame& next) {
-  if (previous.rising.empty()) return;
-  const bool short_tm = previous.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected;
+void TimingChecker::check_recovery(const PinFrame& next) {
+  if (!previous_end_) return;
+  const auto [last_rise, type] = *previous_end_;
+  const bool short_tm = type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected;
   const Time t_m = short_tm ? *encoder_.t_m_short : encoder_.t_m;
-  const Time gap = next.fe1 - previous.rising.back();
+  const Time gap = next.fe1 - last_rise;
   if (gap >= t_m + encoder_.t_r) return;
   report({std::string(check::kRecovery), "2.3.2 recovery time I (t_m) and II (t_R)", ObservationPoint::EncoderPins,
-          next.fe1, next.index, 1U, format_time(gap), ">= " + format_time(t_m + encoder_.t_r),
+          next.fe1, next.header.index, 1U, format_time(gap), ">= " + format_time(t_m + encoder_.t_r),
           Severity::Error,
           "next frame began " + format_time(gap) + " after the last rising edge, before t_m (" + format_time(t_m) +
               ") + t_R (" + format_time(encoder_.t_r) + ") had elapsed"});
@@ -170,9 +170,9 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
 void TimingChecker::on_frame_end(const master::FrameResult&) {}
 
 void TimingChecker::finish() {
-  if (current_) {
-    evaluate(*current_);
-    current_.reset();
+  if (in_frame_) {
+    evaluate(current_);
+    in_frame_ = false;
   }
   for (const line::Contention& c : line_.contentions()) {
     const Time end = c.end == Time::max() ? kernel_.now() : c.end;

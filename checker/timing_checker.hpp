@@ -68,12 +68,16 @@ class TimingChecker final : public master::MasterObserver {
   const std::vector<Violation>& violations() const { return violations_; }
 
  private:
-  struct PinFrame {
+  struct FrameHeader {
     std::uint64_t index = 0;
     bool measurement = false;
     bool compensated = false;
     protocol::EndatVersion command_type = protocol::EndatVersion::V2_1;
     sim::Hertz f_c = 0;
+  };
+  // The clock edges of one frame at the encoder pins; the buffers are reused frame after frame.
+  struct PinFrame {
+    FrameHeader header;
     Time fe1{0};
     std::vector<Time> rising;
     std::vector<Time> falling;
@@ -84,7 +88,7 @@ class TimingChecker final : public master::MasterObserver {
   void evaluate(const PinFrame& f);
   void check_pulse_widths(const PinFrame& f);
   void check_frequency(const PinFrame& f);
-  void check_recovery(const PinFrame& previous, const PinFrame& next);
+  void check_recovery(const PinFrame& next);
   void report(Violation v) { violations_.push_back(std::move(v)); }
 
   sim::Kernel& kernel_;
@@ -95,9 +99,10 @@ class TimingChecker final : public master::MasterObserver {
 
   std::uint64_t master_falling_edges_ = 0;
   std::uint64_t encoder_falling_edges_ = 0;
-  std::deque<std::pair<std::uint64_t, PinFrame>> pending_;  // frames whose FE1 has not reached the encoder
-  std::optional<PinFrame> current_;
-  std::optional<PinFrame> previous_;
+  std::deque<std::pair<std::uint64_t, FrameHeader>> pending_;  // frames whose FE1 has not reached the encoder
+  PinFrame current_;
+  bool in_frame_ = false;
+  std::optional<std::pair<Time, protocol::EndatVersion>> previous_end_;  // last RE and command type
   std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
   bool sampling_reported_ = false;   // one sampling-window violation per frame, the first bit
   std::vector<Violation> violations_;
