@@ -14,6 +14,15 @@ void require(bool ok, const std::string& message) {
 constexpr unsigned kFirstPolledClock = 9;       // the encoder drives DATA from the turnaround (timing-model §1.2)
 constexpr unsigned kFirstCounterClock = 11;     // 2.1.2: counter started at each RE after 10 periods
 
+// Sample tags carry the frame's epoch in the upper and the clock slot in the lower 32 bits.
+std::uint64_t sample_tag(std::uint64_t epoch, unsigned clock) { return epoch << 32 | clock; }
+
+// Ticks of a clock with period `tick` and phase `phase` up to time t: floor((t - phase) / tick).
+std::int64_t ticks(Time t, Time phase, Time tick) {
+  const std::int64_t d = (t - phase).count();
+  return d >= 0 ? d / tick.count() : -((-d + tick.count() - 1) / tick.count());
+}
+
 }  // namespace
 
 std::string_view to_string(FrameOutcome o) {
@@ -150,6 +159,10 @@ void Master::start_frame(std::uint64_t) {
   ++epoch_;
   counter_running_ = false;
   captured_count_.reset();
+  if (measurement && params_.measurement.counter_phase == CounterPhase::FreeRunning) {
+    boost::random::uniform_int_distribution<std::int64_t> phase(0, counter_tick().count() - 1);
+    counter_phase_ = Time{phase(rng_)};
+  }
   frame_running_ = true;
 
   frame_active_.write(true);
@@ -182,7 +195,7 @@ void Master::falling_edge() {
   // Without compensation DATA is taken at the falling edge; with it at FE + t_D (2.3).
   if (clock_ > kFirstPolledClock && rx_ != Rx::Done) {
     const unsigned slot = clock_ - 1;
-    if (frame_.compensated) kernel_.schedule(frame_.t_d_used, sim::bind<&Master::sample>(this, epoch_ << 16 | slot));
+    if (frame_.compensated) kernel_.schedule(frame_.t_d_used, sim::bind<&Master::sample>(this, sample_tag(epoch_, slot)));
     else sample_now(slot);
   }
   // 2.3.2 note 8: the first LOW phase is stretched to t_ST.
@@ -207,12 +220,12 @@ void Master::rising_edge() {
   if (rx_ == Rx::Polling && kernel_.now() - poll_start_ > params_.start_bit_timeout) {
     end_reception(FrameOutcome::NoStartBit);
   }
-  if (rx_ == Rx::Done || (last_clock_ != 0 && clock_ >= last_clock_)) {
+  if (rx_ == Rx::Done || (last_clock_ != 0 && clock_ >= last_clock_ && words_left_ == 0)) {
     clocking_done_ = true;
     if (!params_.extra_clock_after_last_bit && rx_ == Rx::Receiving) {
       // No further pulse: the last bit is taken where the next falling edge would be.
       const Time at = high_ + frame_.t_d_used;
-      kernel_.schedule(at, sim::bind<&Master::sample>(this, epoch_ << 16 | clock_));
+      kernel_.schedule(at, sim::bind<&Master::sample>(this, sample_tag(epoch_, clock_)));
     }
     maybe_complete_frame();
     return;
@@ -222,8 +235,8 @@ void Master::rising_edge() {
 }
 
 void Master::sample(std::uint64_t tag) {
-  if ((tag >> 16) != epoch_ || rx_ == Rx::Done) return;  // a frame that has ended
-  sample_now(static_cast<unsigned>(tag & 0xFFFF));
+  if ((tag >> 32) != epoch_ || rx_ == Rx::Done) return;  // a frame that has ended
+  sample_now(static_cast<unsigned>(tag & 0xFFFF'FFFF));
 }
 
 void Master::sample_now(unsigned clock) {
@@ -317,8 +330,7 @@ void Master::maybe_complete_frame() {
   const bool error_handling = frame_.outcome == FrameOutcome::NoStartBit || frame_.outcome == FrameOutcome::Type1Error;
   ready_at_ = frame_.end + (error_handling ? params_.error_wait : params_.t_m_wait) + params_.t_r_wait;
   if (frame_.measurement && frame_.outcome == FrameOutcome::Ok && captured_count_) {
-    const Time tick = sim::period_of(params_.measurement.f_e != 0 ? params_.measurement.f_e : 8 * params_.f_c);
-    frame_.delay_count_time = tick * *captured_count_;
+    frame_.delay_count_time = counter_tick() * *captured_count_;
     counts_.push_back(*captured_count_);
   }
   frames_.push_back(frame_);
@@ -328,17 +340,23 @@ void Master::maybe_complete_frame() {
 
 // ---- propagation-delay measurement (2.1.2) -----------------------------------------------
 
+Time Master::counter_tick() const {
+  return sim::period_of(params_.measurement.f_e != 0 ? params_.measurement.f_e : 8 * params_.f_c);
+}
+
 void Master::on_data_in(std::uint64_t level) {
   // 2.1.2: "The value of the counter must be saved with every rising clock pulse edge of the start bit."
   if (!measuring_ || !counter_running_ || captured_count_ || level == 0) return;
-  const Time tick = sim::period_of(params_.measurement.f_e != 0 ? params_.measurement.f_e : 8 * params_.f_c);
-  captured_count_ = (kernel_.now() - counter_start_) / tick;
+  const Time tick = counter_tick();
+  captured_count_ = params_.measurement.counter_phase == CounterPhase::FreeRunning
+                        ? ticks(kernel_.now(), counter_phase_, tick) - ticks(counter_start_, counter_phase_, tick)
+                        : (kernel_.now() - counter_start_) / tick;
   counter_running_ = false;
 }
 
 void Master::finish_measurement_round() {
   const auto& m = params_.measurement;
-  const Time tick = sim::period_of(m.f_e != 0 ? m.f_e : 8 * params_.f_c);
+  const Time tick = counter_tick();
   DelayMeasurementResult r;
   r.start = frames_.size() >= m.count ? frames_[frames_.size() - m.count].start : kernel_.now();
   r.rounds = rounds_;
@@ -362,7 +380,7 @@ void Master::finish_measurement_round() {
   }
   r.accepted = r.reason.empty();
   if (r.accepted) {
-    const std::int64_t half = m.add_half_count ? tick.count() * n / 2 : 0;
+    const std::int64_t half = m.counter_phase == CounterPhase::EdgeAligned ? tick.count() * n / 2 : 0;
     r.t_d = Time{(sum * tick.count() + half + n / 2) / n};
     t_d_ = r.t_d;
   }

@@ -20,13 +20,18 @@ using protocol::ModeCommand;
 using sim::Hertz;
 using sim::Time;
 
+// How the f_e counter relates to the clock edges that restart it. A counter on its own
+// oscillator runs at an arbitrary phase (a seeded random phase per frame here): its counts
+// scatter by one and their mean is unbiased. A counter restarted in phase with the edge
+// truncates: every count is floor(t_D x f_e), and the master adds half a count to centre it.
+enum class CounterPhase : std::uint8_t { FreeRunning, EdgeAligned };
+
 struct DelayMeasurementParams {
   Hertz f_c = sim::kHz(200);  // 2.1.2: reduced clock 100 .. 200 kHz
   Hertz f_e = 0;              // counter clock; 0 = 8 x the intended f_c (2.1.2: "at least eight times")
   unsigned count = 3;         // 2.1.2: at least three measurements, averaged
   unsigned max_rounds = 3;    // further rounds when a value strays more than T/8 from the mean
-  // The counter truncates; adding half a count centres the estimate in its quantization bin.
-  bool add_half_count = true;
+  CounterPhase counter_phase = CounterPhase::FreeRunning;
 };
 
 // How the master finds the start bit while it polls (2.3: "observe the data line to detect the
@@ -154,6 +159,7 @@ class Master {
   void end_reception(FrameOutcome outcome);
   void maybe_complete_frame();
   void on_data_in(std::uint64_t level);
+  Time counter_tick() const;
   void finish_measurement_round();
   Time jittered(Time nominal);
 
@@ -200,6 +206,7 @@ class Master {
   // Propagation-delay measurement (2.1.2).
   bool measuring_ = false;
   Time counter_start_{0};
+  Time counter_phase_{0};
   bool counter_running_ = false;
   std::optional<std::int64_t> captured_count_;
   std::vector<std::int64_t> counts_;

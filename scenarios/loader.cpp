@@ -252,7 +252,9 @@ void read_master(const Node& n, master::MasterParams& p) {
     if (auto s = m.opt("f_e")) p.measurement.f_e = s->as_frequency(sim::MHz(1), sim::MHz(2000));
     if (auto s = m.opt("count")) p.measurement.count = static_cast<unsigned>(s->as_uint(1, 100));
     if (auto s = m.opt("max_rounds")) p.measurement.max_rounds = static_cast<unsigned>(s->as_uint(1, 100));
-    if (auto s = m.opt("add_half_count")) p.measurement.add_half_count = s->as_bool();
+    if (auto s = m.opt("counter_phase"))
+      p.measurement.counter_phase = s->as_enum<master::CounterPhase>(
+          {{"free_running", master::CounterPhase::FreeRunning}, {"edge_aligned", master::CounterPhase::EdgeAligned}});
     m.done();
   }
   o.done();

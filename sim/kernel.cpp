@@ -12,6 +12,7 @@ Kernel::Kernel() {
   fifo_.resize(256);
   updates_.reserve(64);
   committing_.reserve(64);
+  changed_.reserve(64);
 }
 
 void Kernel::schedule(Time delay, Action action) {
@@ -53,8 +54,11 @@ void Kernel::run_fifo_snapshot() {
 
 void Kernel::commit_updates() {
   committing_.swap(updates_);
-  for (SignalBase* s : committing_) s->commit();
+  for (SignalBase* s : committing_)
+    if (s->commit()) changed_.push_back(s);
   committing_.clear();
+  for (SignalBase* s : changed_) s->notify();
+  changed_.clear();
 }
 
 void Kernel::settle() {
@@ -64,9 +68,16 @@ void Kernel::settle() {
   }
 }
 
+void Kernel::end_time_step() {
+  for (const Action& a : step_end_) a();
+}
+
 void Kernel::run(Time until) {
   stopped_ = false;
-  settle();
+  if (!updates_.empty() || fifo_size_ != 0) {  // work left at the current time
+    settle();
+    end_time_step();
+  }
   while (!stopped_ && !heap_.empty()) {
     const Time t = heap_.front().when;
     if (t > until) {
@@ -82,7 +93,7 @@ void Kernel::run(Time until) {
       a();
     } while (!heap_.empty() && heap_.front().when == t && !stopped_);
     settle();
-    for (const Action& a : step_end_) a();
+    end_time_step();
   }
 }
 

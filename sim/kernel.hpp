@@ -73,6 +73,7 @@ class Kernel {
     }
   };
   void settle();
+  void end_time_step();
   void commit_updates();
   void run_fifo_snapshot();
   void push_fifo(Action a);
@@ -87,6 +88,7 @@ class Kernel {
   std::size_t fifo_size_ = 0;
   std::vector<SignalBase*> updates_;
   std::vector<SignalBase*> committing_;
+  std::vector<SignalBase*> changed_;
   std::vector<Action> step_end_;
 };
 

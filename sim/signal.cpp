@@ -10,12 +10,16 @@ void Signal::write(bool v) {
   }
 }
 
-void Signal::commit() {
+bool Signal::commit() {
   pending_ = false;
-  if (next_ == value_) return;
+  if (next_ == value_) return false;
   value_ = next_;
   last_change_ = kernel_.now();
   ++changes_;
+  return true;
+}
+
+void Signal::notify() {
   for (const Action& l : listeners_) l.fn(l.ctx, value_ ? 1 : 0);
 }
 

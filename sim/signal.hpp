@@ -1,5 +1,6 @@
-// A 1-bit signal with SystemC semantics: write() takes effect in the next update phase,
-// listeners run when the committed value changes (never on delta glitches inside one write phase).
+// A 1-bit signal with SystemC semantics: write() takes effect in the next update phase;
+// listeners run after the update phase when the committed value changed (writes that cancel
+// within one evaluate phase are no change). What listeners write lands in the next delta.
 #pragma once
 
 #include <string>
@@ -12,7 +13,10 @@ namespace endatsim::sim {
 class SignalBase {
  public:
   virtual ~SignalBase() = default;
-  virtual void commit() = 0;
+  // Update phase, in two passes: every pending value is committed first, then the listeners
+  // of the signals that changed run, so no listener sees a half-updated set of signals.
+  virtual bool commit() = 0;
+  virtual void notify() = 0;
 };
 
 class Signal final : public SignalBase {
@@ -31,7 +35,8 @@ class Signal final : public SignalBase {
   Time last_change() const { return last_change_; }
   std::uint64_t changes() const { return changes_; }
 
-  void commit() override;
+  bool commit() override;
+  void notify() override;
 
  private:
   Kernel& kernel_;

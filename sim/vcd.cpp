@@ -46,6 +46,7 @@ void VcdWriter::start() {
     buffer_ += "$upscope $end\n";
   }
   buffer_ += "$enddefinitions $end\n#" + std::to_string(kernel_.now().count()) + "\n$dumpvars\n";
+  stamped_ = kernel_.now();
   for (Probe& p : probes_) {
     p.written = p.signal->read();
     buffer_ += (p.written ? '1' : '0') + p.id + "\n";
@@ -67,7 +68,7 @@ void VcdWriter::on_change(void* probe, std::uint64_t) {
 void VcdWriter::on_step_end(void* self, std::uint64_t) {
   auto* w = static_cast<VcdWriter*>(self);
   if (w->dirty_.empty()) return;
-  bool stamped = false;
+  bool stamped = w->stamped_ == w->kernel_.now();
   for (std::size_t index : w->dirty_) {
     Probe& p = w->probes_[index];
     p.dirty = false;
@@ -78,6 +79,7 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
       w->buffer_ += std::to_string(w->kernel_.now().count());
       w->buffer_ += '\n';
       stamped = true;
+      w->stamped_ = w->kernel_.now();
     }
     p.written = v;
     w->buffer_ += v ? '1' : '0';
@@ -98,9 +100,11 @@ void VcdWriter::flush_if_full() {
 void VcdWriter::finish() {
   if (finished_) return;
   finished_ = true;
-  buffer_ += '#';
-  buffer_ += std::to_string(kernel_.now().count());
-  buffer_ += '\n';
+  if (stamped_ != kernel_.now()) {
+    buffer_ += '#';
+    buffer_ += std::to_string(kernel_.now().count());
+    buffer_ += '\n';
+  }
   const bool ok = std::fwrite(buffer_.data(), 1, buffer_.size(), file_) == buffer_.size();
   buffer_.clear();
   if (std::fflush(file_) != 0 || !ok) throw std::runtime_error("write error on VCD file '" + path_ + "'");

@@ -46,6 +46,7 @@ class VcdWriter {
   std::deque<Probe> probes_;  // stable addresses: each is its signal's listener context
   std::vector<std::size_t> dirty_;
   std::string buffer_;
+  Time stamped_{-1};  // the last "#time" written
   bool started_ = false;
   bool finished_ = false;
 };

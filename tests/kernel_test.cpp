@@ -161,3 +161,31 @@ TEST(KernelDelay, TransportDelayKeepsEveryEdgeExactToThePicosecond) {
   EXPECT_EQ(l.seen[0], (std::pair<std::int64_t, std::uint64_t>{11'234, 1}));
   EXPECT_EQ(l.seen[1], (std::pair<std::int64_t, std::uint64_t>{11'987, 0}));
 }
+
+namespace {
+struct BothHigh {
+  Signal* a;
+  Signal* b;
+  void go() {
+    a->write(true);
+    b->write(true);
+  }
+};
+struct ReadsOther {
+  Signal* other;
+  bool seen = false;
+  void on(std::uint64_t) { seen = other->read(); }
+};
+}  // namespace
+
+TEST(KernelSignal, ListenersSeeEverySignalOfTheUpdatePhaseCommitted) {
+  Kernel k;
+  Signal a(k, "a", false);
+  Signal b(k, "b", false);
+  ReadsOther l{&b};
+  a.on_change(bind<&ReadsOther::on>(&l));  // a is committed before b, yet the listener sees b's new value
+  BothHigh w{&a, &b};
+  k.schedule(ns(1), bind<&BothHigh::go>(&w));
+  k.run();
+  EXPECT_TRUE(l.seen);
+}

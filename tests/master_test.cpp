@@ -205,3 +205,27 @@ TEST(MasterContinuousClock, ReadsEveryWordOfAContinuousClock) {
   EXPECT_EQ(r.frames[2].position - r.frames[1].position, 34U);
   EXPECT_EQ(r.encoder_frames.at(0).continuous_words, 3U);
 }
+
+class ContinuousClockVariants : public ::testing::TestWithParam<std::pair<bool, bool>> {};
+
+// Regression: with compensation (t_D > T/2) or without the extra pulse, the last bit of a word
+// is taken after the word's last rising edge; the clock must still run on to the next word.
+TEST_P(ContinuousClockVariants, EveryWordArrivesWithCompensationAndWithoutTheExtraPulse) {
+  const auto [compensated, extra_clock] = GetParam();
+  auto s = make_scenario(100, MHz(2), compensated, 2);
+  if (!compensated) s.line.cable_length_m = 10, s.master.f_c = MHz(1);
+  s.encoder.version = protocol::EndatVersion::V2_1;
+  s.encoder.motion.counts_per_s = 100'000;
+  s.master.extra_clock_after_last_bit = extra_clock;
+  s.script.back().command = protocol::ModeCommand::EncoderSendPositionValues;
+  s.script.back().continuous_words = 3;
+  s.script.back().cycle = ms(1);
+  s.expect.positions_match_encoder = true;
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_TRUE(r.finished);
+  EXPECT_EQ(count_ok(r), 8U);
+  EXPECT_TRUE(r.passed());
+}
+
+INSTANTIATE_TEST_SUITE_P(CompensationAndExtraClock, ContinuousClockVariants,
+                         ::testing::Values(std::pair{true, true}, std::pair{true, false}, std::pair{false, false}));

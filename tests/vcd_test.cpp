@@ -66,3 +66,26 @@ TEST(VcdWriter, ReportsAnUnwritablePath) {
   Kernel k;
   EXPECT_THROW(VcdWriter(k, "/nonexistent-dir/x.vcd"), std::runtime_error);
 }
+
+TEST(VcdWriter, ChangesAtTimeZeroAreStampedZero) {
+  const std::string path = (std::filesystem::temp_directory_path() / "endatsim_vcd_zero.vcd").string();
+  {
+    Kernel k;
+    Signal a(k, "a", false);
+    VcdWriter vcd(k, path);
+    vcd.add(a, "top", "a");
+    vcd.start();
+    a.write(true);  // before run(): committed in the first step, at 0 ps
+    struct Low {
+      Signal* s;
+      void go() { s->write(false); }
+    } low{&a};
+    k.schedule(ns(3), bind<&Low::go>(&low));
+    k.run();
+    vcd.finish();
+  }
+  const std::string text = read_file(path);
+  const auto body = text.substr(text.find("$end\n", text.find("$dumpvars")) + 5);
+  EXPECT_EQ(body, "1!\n#3000\n0!\n");
+  std::filesystem::remove(path);
+}
