@@ -15,6 +15,34 @@ constexpr sim::Hertz kMaxFcWithout = sim::MHz(2);
 constexpr sim::Hertz kMaxFcWith = sim::MHz(8);
 constexpr sim::Hertz kMaxFcSpecial = sim::MHz(16);  // 2.1.2: "8 to 16 MHz is intended for special applications"
 
+// The frame's clock frequency from a least-squares fit over its rising edges from RE2 on (the
+// first period contains t_ST): jitter on single edges does not move it, a steady clock is exact.
+struct FittedFrequency {
+  __int128 num = 0;  // f = 1e12 * den / num  [Hz]
+  __int128 den = 0;
+  sim::Hertz hertz() const { return static_cast<sim::Hertz>((__int128{1'000'000'000'000} * den + num / 2) / num); }
+  // f above (or below) limit by more than `ppm` parts per million.
+  bool above(sim::Hertz limit, std::int64_t ppm) const {
+    return __int128{1'000'000'000'000} * den * 1'000'000 > __int128{limit} * (1'000'000 + ppm) * num;
+  }
+  bool below(sim::Hertz limit, std::int64_t ppm) const {
+    return __int128{1'000'000'000'000} * den * 1'000'000 < __int128{limit} * (1'000'000 - ppm) * num;
+  }
+};
+
+FittedFrequency fit_frequency(const std::vector<Time>& rising) {
+  __int128 sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const auto m = static_cast<std::int64_t>(rising.size() - 1);
+  for (std::int64_t i = 0; i < m; ++i) {
+    const __int128 y = rising[static_cast<std::size_t>(i + 1)].count();
+    sx += i;
+    sy += y;
+    sxx += __int128{i} * i;
+    sxy += i * y;
+  }
+  return {m * sxy - sx * sy, m * sxx - sx * sx};
+}
+
 }  // namespace
 
 std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
@@ -26,7 +54,25 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave:
   line.pins(ObservationPoint::EncoderPins).clock.on_change(sim::bind<&TimingChecker::on_encoder_clock>(this));
 }
 
+void TimingChecker::check_measurement_procedure(const master::FrameResult& frame) {
+  // 2.1.2: a counter at least eight times the intended f_c (f_e tolerance +/-10 %), and at
+  // least three measurements averaged.
+  const auto& m = master_.measurement;
+  const sim::Hertz f_e = m.f_e != 0 ? m.f_e : 8 * master_.f_c;
+  const std::string spec = "2.1.2 propagation-delay measurement";
+  if (f_e * 10 < 72 * master_.f_c)
+    report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
+            std::nullopt, format_frequency(f_e), ">= " + format_frequency(8 * master_.f_c) + " - 10 %",
+            Severity::Error, "counter clock f_e below eight times the intended f_c"});
+  if (m.count < 3)
+    report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
+            std::nullopt, std::to_string(m.count) + " measurement(s)", ">= 3", Severity::Error,
+            "fewer than three measurements averaged"});
+}
+
 void TimingChecker::on_frame_start(const master::FrameResult& frame) {
+  if (frame.measurement && !last_frame_was_measurement_) check_measurement_procedure(frame);
+  last_frame_was_measurement_ = frame.measurement;
   const FrameHeader h{frame.index, frame.measurement, frame.compensated, protocol::info(frame.command).version,
                       frame.f_c};
   pending_.emplace_back(master_falling_edges_ + 1, h);
@@ -101,27 +147,29 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
 
 void TimingChecker::check_frequency(const PinFrame& f) {
   if (f.rising.size() < 3) return;
-  // The mean period from RE2 on: the first period contains t_ST.
-  const Time mean = (f.rising.back() - f.rising[1]) / static_cast<std::int64_t>(f.rising.size() - 2);
-  const sim::Hertz fc = sim::frequency_of(mean);
+  const FittedFrequency fit = fit_frequency(f.rising);
+  if (fit.num <= 0) return;
+  const sim::Hertz fc = fit.hertz();
+  const std::int64_t tol = params_.f_c_tolerance_ppm;
   const Time at = f.rising[1];
   if (f.header.measurement) {
-    if (fc < sim::kHz(100) || fc > sim::kHz(200))
+    if (fit.below(sim::kHz(100), tol) || fit.above(sim::kHz(200), tol))
       report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
-              ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), "100 kHz .. 200 kHz",
-              Severity::Error, "delay measured with a clock outside the prescribed range"});
+              ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc),
+              "100 kHz .. 200 kHz", Severity::Error, "delay measured with a clock outside the prescribed range"});
     return;
   }
-  const sim::Hertz max = f.header.compensated ? kMaxFcWith : kMaxFcWithout;
+  const bool compensated = f.header.compensated;
+  const sim::Hertz max = compensated ? kMaxFcWith : kMaxFcWithout;
   const std::string range = format_frequency(kMinFc) + " .. " + format_frequency(max);
-  const std::string spec = f.header.compensated ? "2.3.2 f_c (with delay compensation)" : "2.3.2 f_c (without delay compensation)";
-  if (fc < kMinFc || (fc > max && (!f.header.compensated || fc > kMaxFcSpecial))) {
+  const std::string spec = compensated ? "2.3.2 f_c (with delay compensation)" : "2.3.2 f_c (without delay compensation)";
+  if (fit.below(kMinFc, tol) || (fit.above(max, tol) && (!compensated || fit.above(kMaxFcSpecial, tol)))) {
     report({std::string(check::kClockFrequency), spec, ObservationPoint::EncoderPins, at, f.header.index, std::nullopt,
             format_frequency(fc), range, Severity::Error, "clock frequency outside the table's range"});
-  } else if (fc > max) {
+  } else if (fit.above(max, tol)) {
     report({std::string(check::kClockFrequency), "2.1.2 (8 .. 16 MHz for special applications)",
-            ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), range, Severity::Warning,
-            "clock above 8 MHz: only for special applications with short cables (t_ST 1 us at 16 MHz)"});
+            ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), range,
+            Severity::Warning, "clock above 8 MHz: only for special applications with short cables (t_ST 1 us at 16 MHz)"});
   }
 }
 
@@ -139,9 +187,12 @@ void TimingChecker::check_recovery(const PinFrame& next) {
               ") + t_R (" + format_time(encoder_.t_r) + ") had elapsed"});
 }
 
-void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, bool, bool in_data) {
-  if (!in_data || sampling_reported_ || clock == 0) return;
+void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, bool, bool) {
+  // Measurement frames are for the counter (2.1.2), taken without compensation by design.
+  if (frame.measurement || sampling_reported_ || clock == 0) return;
   // Bit slot k leaves the encoder after RE_k and reaches the master logic one round trip later.
+  // Both sides of the comparison are at the master logic; removing the master's driver and
+  // receiver delays from both gives the same inequality at the master's pins.
   const Time rt = line_.round_trip(encoder_.output_delay);
   const Time now = kernel_.now();
   const auto arrival = [&](std::size_t k) { return master_rising_[k - 1] + rt; };

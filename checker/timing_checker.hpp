@@ -22,6 +22,7 @@ std::string_view to_string(Severity s);
 namespace check {
 inline constexpr std::string_view kClockFrequency = "f_c";
 inline constexpr std::string_view kMeasurementClock = "delay_measurement_f_c";
+inline constexpr std::string_view kMeasurementProcedure = "delay_measurement";
 inline constexpr std::string_view kPulseHigh = "t_hi";
 inline constexpr std::string_view kPulseLow = "t_lo";
 inline constexpr std::string_view kSamplingWindow = "sampling_window";
@@ -46,6 +47,8 @@ struct CheckerParams {
   // The master's sampling flip-flop: DATA must be stable this long before and after the instant.
   Time sample_setup = sim::ps(1);
   Time sample_hold = sim::ps(1);
+  // f_c limits are applied with this allowance (oscillator tolerance); 0 checks them exactly.
+  std::int64_t f_c_tolerance_ppm = 1000;
 };
 
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
@@ -89,6 +92,7 @@ class TimingChecker final : public master::MasterObserver {
   void check_pulse_widths(const PinFrame& f);
   void check_frequency(const PinFrame& f);
   void check_recovery(const PinFrame& next);
+  void check_measurement_procedure(const master::FrameResult& frame);
   void report(Violation v) { violations_.push_back(std::move(v)); }
 
   sim::Kernel& kernel_;
@@ -104,7 +108,8 @@ class TimingChecker final : public master::MasterObserver {
   bool in_frame_ = false;
   std::optional<std::pair<Time, protocol::EndatVersion>> previous_end_;  // last RE and command type
   std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
-  bool sampling_reported_ = false;   // one sampling-window violation per frame, the first bit
+  bool sampling_reported_ = false;
+  bool last_frame_was_measurement_ = false;   // one sampling-window violation per frame, the first bit
   std::vector<Violation> violations_;
 };
 

@@ -265,6 +265,7 @@ void read_checker(const Node& n, checker::CheckerParams& p) {
   Object o(n);
   if (auto v = o.opt("sample_setup")) p.sample_setup = v->as_duration(Time::zero(), sim::us(1));
   if (auto v = o.opt("sample_hold")) p.sample_hold = v->as_duration(Time::zero(), sim::us(1));
+  if (auto v = o.opt("f_c_tolerance_ppm")) p.f_c_tolerance_ppm = static_cast<std::int64_t>(v->as_uint(0, 100'000));
   o.done();
 }
 
@@ -373,7 +374,8 @@ void read_expect(const Node& n, Expectations& e) {
   }
   if (auto v = o.opt("violations"))
     read_count_map(*v, e.violations,
-                   {checker::check::kClockFrequency, checker::check::kMeasurementClock, checker::check::kPulseHigh,
+                   {checker::check::kClockFrequency, checker::check::kMeasurementClock,
+                    checker::check::kMeasurementProcedure, checker::check::kPulseHigh,
                     checker::check::kPulseLow, checker::check::kSamplingWindow, checker::check::kRecovery,
                     checker::check::kContention});
   if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);

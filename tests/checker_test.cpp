@@ -76,3 +76,31 @@ TEST(CheckerMeasurementClock, DelayMeasuredAt1MHzIsReported) {
   const auto r = scenarios::run_scenario(s);
   EXPECT_EQ(count_violations(r, checker::check::kMeasurementClock), 3U);
 }
+
+TEST(CheckerClockFrequency, EdgeJitterAtTheLimitIsNotAViolation) {
+  auto s = make_scenario(1, MHz(2), false, 20);
+  s.master.jitter = ns(5);
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kClockFrequency), 0U);
+}
+
+TEST(CheckerClockFrequency, AClockHalfAPercentFastIsCaughtAndAnExactOneIsNot) {
+  auto s = make_scenario(1, Hertz{2'010'000}, false, 1);  // 0.5 % fast
+  auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kClockFrequency), 1U);
+  s.master.f_c = MHz(2);
+  s.checker.f_c_tolerance_ppm = 0;
+  r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kClockFrequency), 0U);
+}
+
+TEST(CheckerMeasurementProcedure, SlowCounterAndTooFewMeasurementsAreReported) {
+  auto s = make_scenario(10, MHz(8), true, 1);
+  s.master.measurement.f_e = MHz(32);  // needs >= 64 MHz (8 x 8 MHz, -10 %)
+  s.master.measurement.count = 2;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_violations(r, checker::check::kMeasurementProcedure), 2U);
+  s.master.measurement.f_e = MHz(58);  // 8 x 8 MHz - 10 % = 57.6 MHz: allowed
+  s.master.measurement.count = 3;
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kMeasurementProcedure), 0U);
+}
