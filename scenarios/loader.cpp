@@ -1,6 +1,7 @@
 #include "scenarios/loader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -406,23 +407,80 @@ Scenario read_scenario(const json& root, const std::string& file) {
 
 }  // namespace
 
+// Tracks where the parser is, to reject what nlohmann::json would accept silently: nesting
+// deeper than kMaxDepth and a key given twice in one object (the last would win).
+class ParseGuard {
+ public:
+  explicit ParseGuard(const std::string& file) : file_(file) {}
+
+  bool operator()(int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    if (static_cast<std::size_t>(depth) > kMaxDepth)
+      throw ScenarioError(file_ + ": nested deeper than " + std::to_string(kMaxDepth) + " levels");
+    switch (event) {
+      case E::object_start:
+      case E::array_start:
+        next_element();
+        stack_.push_back({event == E::array_start, -1, {}, {}});
+        break;
+      case E::object_end:
+      case E::array_end:
+        stack_.pop_back();
+        break;
+      case E::key: {
+        Level& top = stack_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second)
+          throw ScenarioError(file_ + ": at " + path() + ": duplicate key \"" + top.key +
+                              "\" (each key may appear once per object)");
+        break;
+      }
+      case E::value:
+        next_element();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Level {
+    bool array;
+    long index;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  void next_element() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+  }
+  std::string path() const {
+    std::string p;
+    for (const Level& l : stack_) p += "/" + (l.array ? std::to_string(l.index) : l.key);
+    return p;
+  }
+  const std::string& file_;
+  std::vector<Level> stack_;
+};
+
 Scenario load_scenario_text(const std::string& text, const std::string& file_name) {
   json root;
   try {
-    root = json::parse(text, [&](int depth, json::parse_event_t, json&) {
-      if (static_cast<std::size_t>(depth) > kMaxDepth)
-        throw ScenarioError(file_name + ": nested deeper than " + std::to_string(kMaxDepth) + " levels");
-      return true;
-    });
-  } catch (const json::parse_error& e) {
+    root = json::parse(text, ParseGuard(file_name));
+  } catch (const json::exception& e) {  // syntax, invalid UTF-8, number overflow
     std::string what = e.what();
-    const auto colon = what.find("parse error");
-    throw ScenarioError(file_name + ": not valid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+    const auto bracket = what.find("] ");
+    throw ScenarioError(file_name + ": not valid JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
   }
-  return read_scenario(root, file_name);
+  try {
+    return read_scenario(root, file_name);
+  } catch (const json::exception& e) {
+    throw ScenarioError(file_name + ": " + e.what());
+  }
 }
 
 Scenario load_scenario_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw ScenarioError(path + ": not a regular file, expected a JSON scenario");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ScenarioError(path + ": cannot open the file");
   std::string text;

@@ -17,8 +17,9 @@ void EncoderParams::validate() const {
   require(multiturn_bits < position_bits, "encoder multiturn_bits must be less than position_bits (" +
                                               std::to_string(position_bits) + "), got " +
                                               std::to_string(multiturn_bits));
-  require(kind == EncoderKind::Multiturn || multiturn_bits == 0, "multiturn_bits needs kind \"multiturn\"");
-  require(kind != EncoderKind::Multiturn || multiturn_bits > 0, "a multiturn encoder needs multiturn_bits > 0");
+  require(kind == EncoderKind::Multiturn || multiturn_bits == 0,
+          "multiturn_bits (" + std::to_string(multiturn_bits) + ") needs kind \"multiturn\"");
+  require(kind != EncoderKind::Multiturn || multiturn_bits > 0, "kind \"multiturn\" needs multiturn_bits > 0");
   require(t_cal >= Time::zero() && t_cal <= sim::ms(1),
           "t_cal must be 0 .. 1 ms (2.3.2), got " + sim::format_time(t_cal));
   require(t_m >= sim::us(10) && t_m <= sim::us(30),
@@ -35,8 +36,9 @@ void EncoderParams::validate() const {
               std::to_string(continuous_low_bits));
   require(driver_enable_edge == 9 || driver_enable_edge == 10,
           "driver_enable_edge must be 9 or 10 (the turnaround clocks), got " + std::to_string(driver_enable_edge));
-  require(position_bits == 64 || motion.start < (std::uint64_t{1} << position_bits),
-          "motion start position does not fit in " + std::to_string(position_bits) + " bits");
+  require(motion.start < (std::uint64_t{1} << position_bits),
+          "motion.start must be below 2^position_bits = " + std::to_string(std::uint64_t{1} << position_bits) +
+              ", got " + std::to_string(motion.start));
 }
 
 std::uint64_t EncoderParams::position_at(Time t) const {

@@ -96,3 +96,9 @@ TEST(Cli, WritesJsonResultsAndVcd) {
   EXPECT_NE(ss.str().find("\"passed\": true"), std::string::npos);
   EXPECT_GT(std::filesystem::file_size(vcd), 1000U);
 }
+
+TEST(Cli, SeedMustBeANonNegativeInteger) {
+  EXPECT_EQ(run("run " + kBundled + "endat21_1mhz_10m.json --seed=-1").status, 2);
+  EXPECT_EQ(run("run " + kBundled + "endat21_1mhz_10m.json --seed=12x").status, 2);
+  EXPECT_EQ(run("run " + kBundled + "endat21_1mhz_10m.json --seed=12 --quiet").status, 0);
+}

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "slave/encoder.hpp"
 #include "test_support.hpp"
 
@@ -152,7 +154,36 @@ TEST(EncoderRecovery, ClockEdgesWithinTrAreIgnored) {
   // The second frame starts 12 us after the first one's last RE: t_m has passed, t_R has not.
   ScriptedClock second(b.k, b.line, us(1), 26, 0b000111, us(25) + us(12) + ns(500));
   b.k.run();
-  EXPECT_GT(b.encoder.ignored_clock_edges(), 0U);
+  // The encoder ends the first frame at its RE26 + t_m = 35.56 us and is ready 5 us later, at
+  // 40.56 us. The second frame's edges reach its logic 60 ns after the master sends them:
+  // FE1 37.56, RE1 38.06, FE2 38.56, RE2 39.06, FE3 39.56, RE3 40.06 are ignored, and FE4 at
+  // 40.56 us is taken as the first falling edge of a frame - misaligned by three clocks.
+  EXPECT_EQ(b.encoder.ignored_clock_edges(), 6U);
+  ASSERT_EQ(b.encoder.frames().size(), 2U);
+  EXPECT_EQ(b.encoder.frames()[1].start, us(40) + ns(560));
+}
+
+// The round trip the line promises (2.3.2 t_D bound) is what a start bit really takes: from the
+// master's RE11 to the start bit's rising edge at the master's receiver output.
+TEST(EncoderRoundTrip, StartBitEdgeArrivesOneRoundTripAfterTheRisingEdge) {
+  for (double cable : {0.0, 10.0, 100.0}) {
+    Bench b(encoder_params(protocol::EndatVersion::V2_2, 8, 0), cable);
+    struct Rise {
+      Kernel* k;
+      std::vector<Time> t;
+      void on(std::uint64_t v) {
+        if (v != 0) t.push_back(k->now());
+      }
+    } rise{&b.k, {}};
+    b.line.master().data_in.on_change(bind<&Rise::on>(&rise));
+    ScriptedClock clock(b.k, b.line, us(5), 12, 0b111000);
+    b.k.run();
+    ASSERT_FALSE(rise.t.empty());
+    // The first rising edge after the turnaround is the start bit at RE11.
+    const auto s = std::find_if(rise.t.begin(), rise.t.end(), [&](Time t) { return t > clock.rising()[9]; });
+    ASSERT_NE(s, rise.t.end());
+    EXPECT_EQ(*s - clock.rising()[10], ns(200) + ns(10) * static_cast<std::int64_t>(cable)) << cable << " m";
+  }
 }
 
 TEST(EncoderMotion, ConstantVelocityWrapsAtTheResolution) {

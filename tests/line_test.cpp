@@ -118,9 +118,23 @@ TEST(LineParams, RejectsOutOfRangeValuesNamingTheLimit) {
 TEST(LineCable, ChangingTheCableChangesLaterEdgesOnly) {
   Kernel k;
   line::LineParams p;
-  p.cable_length_m = 0;
+  p.cable_length_m = 100;  // 500 ns one way
   line::Line l(k, p);
-  l.set_cable(100, ns(5));
-  EXPECT_EQ(l.round_trip(ns(60)), us(1) + ns(200));
+  EdgeTimes at_encoder{&k, {}};
+  l.pins(ObservationPoint::EncoderPins).clock.on_change(bind<&EdgeTimes::on>(&at_encoder));
+  Poke fall{&l.master().clock_out, false};
+  Poke rise{&l.master().clock_out, true};
+  struct Swap {
+    line::Line* l;
+    void go() { l->set_cable(10, ns(5)); }
+  } swap{&l};
+  k.schedule(us(1), bind<&Poke::go>(&fall));   // in flight when the cable changes
+  k.schedule(us(1) + ns(100), bind<&Swap::go>(&swap));
+  k.schedule(us(2), bind<&Poke::go>(&rise));   // sent after the change
+  k.run();
+  ASSERT_EQ(at_encoder.times.size(), 2U);
+  EXPECT_EQ(at_encoder.times[0], us(1) + ns(20) + ns(500));
+  EXPECT_EQ(at_encoder.times[1], us(2) + ns(20) + ns(50));
+  EXPECT_EQ(l.round_trip(ns(60)), ns(300));
   EXPECT_THROW(l.set_cable(301, ns(5)), std::invalid_argument);
 }

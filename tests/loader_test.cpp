@@ -107,3 +107,26 @@ TEST(ScenarioLoader, MissingFileIsNamed) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/x.json: cannot open"), std::string::npos);
   }
 }
+
+TEST(ScenarioLoader, DuplicateKeysAreRejectedWithTheirPath) {
+  const std::string text = valid_with("\"cable_length_m\": 10", "\"cable_length_m\": 10, \"cable_length_m\": 20");
+  const std::string message = error_of(text);
+  EXPECT_NE(message.find("bad.json: at /line/cable_length_m: duplicate key"), std::string::npos) << message;
+  const std::string in_array =
+      error_of(valid_with("{\"op\": \"read_position\"}", "{\"op\": \"wait\"}, {\"op\": \"read_position\", \"op\": \"wait\"}"));
+  EXPECT_NE(in_array.find("at /script/1/op: duplicate key"), std::string::npos) << in_array;
+}
+
+TEST(ScenarioLoader, NumberOverflowIsReportedAsBadJson) {
+  const std::string message = error_of(valid_with("10}", "1e400}"));
+  EXPECT_EQ(message.rfind("bad.json: not valid JSON", 0), 0U) << message;
+}
+
+TEST(ScenarioLoader, ADirectoryIsNotAScenario) {
+  try {
+    scenarios::load_scenario_file(ENDATSIM_SOURCE_DIR);
+    FAIL();
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+}

@@ -61,6 +61,41 @@ TEST(MasterFrame, ClockCountIsOneMoreThanTheLastBitByDefault) {
   EXPECT_EQ(r.frames[0].position, 104462U);
 }
 
+// 2.3: the master drives DATA from FE2 with a dummy 0, then M2 M1 M0 (M2) (M1) (M0) on FE3..FE8;
+// the encoder takes each bit at the following rising edge, at its own pins.
+TEST(MasterFrame, SendsDummyZeroAndModeBitsBeforeTheRisingEdges) {
+  for (auto command : {protocol::ModeCommand::EncoderSendPositionValues,
+                       protocol::ModeCommand::EncoderSendPositionValuesWithAdditionalData}) {
+    Kernel k;
+    line::LineParams lp;
+    lp.cable_length_m = 50;
+    line::Line l(k, lp);
+    slave::Encoder e(k, l, {});
+    master::MasterParams mp;
+    mp.f_c = MHz(1);
+    master::Master m(k, l, mp);
+    struct Rec {
+      line::Line::Pins pins;
+      std::string bits;
+      void on(std::uint64_t v) {
+        if (v != 0 && bits.size() < 8) bits += pins.data.read() ? '1' : '0';
+      }
+    } rec{l.pins(line::ObservationPoint::EncoderPins), {}};
+    rec.pins.clock.on_change(bind<&Rec::on>(&rec));
+    master::Operation op;
+    op.command = command;
+    m.enqueue(op);
+    m.start();
+    k.run();
+    std::string mode;
+    for (int i = 5; i >= 0; --i) mode += ((protocol::info(command).bits >> i) & 1U) ? '1' : '0';
+    // RE1 sees the undriven line (fail-safe HIGH) after the encoder released it at FE1.
+    EXPECT_EQ(rec.bits, "10" + mode) << protocol::info(command).name;
+    ASSERT_EQ(m.frames().size(), 1U);
+    EXPECT_EQ(m.frames()[0].outcome, master::FrameOutcome::Ok);
+  }
+}
+
 TEST(MasterFrame, EnDat21FrameHas43Pulses) {
   auto s = make_scenario(1, MHz(1), false, 1);
   s.script.back().command = protocol::ModeCommand::EncoderSendPositionValues;

@@ -1,6 +1,8 @@
 // endatsim — command-line front end: runs scenarios and writes summaries, VCD and JSON results.
 // Exit codes: 0 every expectation holds, 1 one does not, 2 bad input or usage.
 #include <boost/program_options.hpp>
+#include <charconv>
+#include <set>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -48,7 +50,13 @@ std::string output_path(const std::string& base, const std::string& name, const 
 
 int run(const Options& o) {
   std::vector<scenarios::Scenario> loaded;
-  for (const auto& file : o.files) loaded.push_back(scenarios::load_scenario_file(file));
+  std::set<std::string> names;
+  for (const auto& file : o.files) {
+    loaded.push_back(scenarios::load_scenario_file(file));
+    if (!names.insert(loaded.back().name).second && o.vcd)
+      throw scenarios::ScenarioError(file + ": at /name: another scenario is also named \"" + loaded.back().name +
+                                     "\"; their waveforms would overwrite each other in " + *o.vcd);
+  }
   const bool many = loaded.size() > 1;
   nlohmann::json all = nlohmann::json::array();
   bool passed = true;
@@ -77,7 +85,7 @@ int main(int argc, char** argv) {
   visible.add_options()("help,h", "show this help")("version", "print the version")(
       "vcd", po::value<std::string>(), "write waveforms (VCD; a directory when several files are given)")(
       "json", po::value<std::string>(), "write results as JSON to this file")(
-      "seed", po::value<std::uint64_t>(), "override every scenario's seed")("verbose,v", "list every frame and expectation")(
+      "seed", po::value<std::string>(), "override every scenario's seed (0 .. 2^64-1)")("verbose,v", "list every frame and expectation")(
       "quiet,q", "print only failing scenarios");
   po::options_description hidden;
   hidden.add_options()("command", po::value<std::string>())("files", po::value<std::vector<std::string>>());
@@ -116,7 +124,16 @@ int main(int argc, char** argv) {
   }
   if (vm.count("vcd") != 0) o.vcd = vm["vcd"].as<std::string>();
   if (vm.count("json") != 0) o.json = vm["json"].as<std::string>();
-  if (vm.count("seed") != 0) o.seed = vm["seed"].as<std::uint64_t>();
+  if (vm.count("seed") != 0) {
+    const std::string text = vm["seed"].as<std::string>();
+    std::uint64_t seed = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), seed);
+    if (ec != std::errc{} || end != text.data() + text.size()) {
+      std::cerr << "endatsim run: --seed expects an integer 0 .. 18446744073709551615, got '" << text << "'\n";
+      return kBadInput;
+    }
+    o.seed = seed;
+  }
   o.verbose = vm.count("verbose") != 0;
   o.quiet = vm.count("quiet") != 0;
   try {
