@@ -7,13 +7,24 @@ namespace {
 
 using sim::format_time;
 
-std::string frame_line(const master::FrameResult& f) {
+// A multiturn position: the upper multiturn_bits count revolutions (2.3.1 / word 13).
+std::pair<std::uint64_t, std::uint64_t> revolution_and_singleturn(const ScenarioResult& r, std::uint64_t position) {
+  const unsigned singleturn_bits = r.position_bits - r.multiturn_bits;
+  return {position >> singleturn_bits, position & ((std::uint64_t{1} << singleturn_bits) - 1)};
+}
+
+std::string frame_line(const ScenarioResult& r, const master::FrameResult& f) {
   std::string s = "  #" + std::to_string(f.index) + (f.word > 0 ? " word " + std::to_string(f.word) : "") + " " +
                   format_time(f.start) + " " +
                   std::string(protocol::info(f.command).key) + " @ " + sim::format_frequency(f.f_c) + ": " +
                   std::string(master::to_string(f.outcome));
   if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
-    s += ", position " + std::to_string(f.position) + ", F1 " + std::to_string(f.error1);
+    s += ", position " + std::to_string(f.position);
+    if (r.multiturn_bits > 0) {
+      const auto [rev, st] = revolution_and_singleturn(r, f.position);
+      s += " (revolution " + std::to_string(rev) + ", singleturn " + std::to_string(st) + ")";
+    }
+    s += ", F1 " + std::to_string(f.error1);
     if (f.outcome == master::FrameOutcome::CrcError)
       s += ", CRC " + std::to_string(f.crc_received) + " != " + std::to_string(f.crc_expected);
   }
@@ -52,7 +63,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   for (const auto& f : r.frames) {
     if (!verbose && (f.measurement || f.outcome == master::FrameOutcome::Ok)) continue;
     if (!verbose && ++shown > 5) break;
-    out << frame_line(f) << "\n";
+    out << frame_line(r, f) << "\n";
   }
   if (!verbose) {
     for (const auto& f : r.frames) {
@@ -106,6 +117,11 @@ nlohmann::json to_json(const ScenarioResult& r) {
             {"start_bit_clock", f.start_bit_clock}};
     if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
       jf["position"] = f.position;
+      if (r.multiturn_bits > 0) {
+        const auto [rev, st] = revolution_and_singleturn(r, f.position);
+        jf["revolution"] = rev;
+        jf["singleturn"] = st;
+      }
       jf["error1"] = f.error1;
       jf["error2"] = f.error2;
       jf["crc_received"] = f.crc_received;

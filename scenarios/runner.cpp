@@ -154,6 +154,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.finished = master.finished();
   r.true_round_trip = line.round_trip(scenario.encoder.output_delay);
   r.f_c = master_params.f_c;
+  r.position_bits = scenario.encoder.position_bits;
+  r.multiturn_bits = scenario.encoder.multiturn_bits;
   r.frames = master.frames();
   r.measurements = master.measurements();
   r.encoder_frames = encoder.frames();

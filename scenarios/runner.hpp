@@ -29,6 +29,8 @@ struct ScenarioResult {
   bool finished = false;  // the script ran to its end within max_time
   Time true_round_trip{0};
   sim::Hertz f_c = 0;
+  unsigned position_bits = 0;
+  unsigned multiturn_bits = 0;  // > 0: positions split into revolutions (upper bits) and singleturn
   std::vector<master::FrameResult> frames;
   std::vector<master::DelayMeasurementResult> measurements;
   std::vector<slave::EncoderFrame> encoder_frames;
