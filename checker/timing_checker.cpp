@@ -1,6 +1,7 @@
 #include "checker/timing_checker.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace endatsim::checker {
 namespace {
@@ -44,6 +45,12 @@ FittedFrequency fit_frequency(const std::vector<Time>& rising) {
 }
 
 }  // namespace
+
+std::span<const std::string_view> check::all() {
+  static constexpr std::array names{kClockFrequency, kMeasurementClock, kMeasurementProcedure, kPulseHigh,
+                                    kPulseLow,       kSamplingWindow,   kRecovery,             kContention};
+  return names;
+}
 
 std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ inline constexpr std::string_view kPulseLow = "t_lo";
 inline constexpr std::string_view kSamplingWindow = "sampling_window";
 inline constexpr std::string_view kRecovery = "t_m_t_r";
 inline constexpr std::string_view kContention = "bus_contention";
+// Every check name above, for loaders and reports.
+std::span<const std::string_view> all();
 }  // namespace check
 
 struct Violation {

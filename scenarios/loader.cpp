@@ -1,5 +1,6 @@
 #include "scenarios/loader.hpp"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -335,8 +336,7 @@ void read_script(const Node& n, std::vector<master::Operation>& script) {
   }
 }
 
-void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out,
-                    std::initializer_list<std::string_view> allowed) {
+void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std::span<const std::string_view> allowed) {
   if (!n.raw().is_object()) n.fail("an object of counts");
   for (const auto& [key, value] : n.raw().items()) {
     const Node item(value, n.path() + "/" + key, n.file());
@@ -353,7 +353,8 @@ void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out,
 
 void read_expect(const Node& n, Expectations& e) {
   Object o(n);
-  if (auto v = o.opt("outcomes")) read_count_map(*v, e.outcomes, {"ok", "crc_error", "no_start_bit", "type1_error"});
+  static constexpr std::array<std::string_view, 4> kOutcomes{"ok", "crc_error", "no_start_bit", "type1_error"};
+  if (auto v = o.opt("outcomes")) read_count_map(*v, e.outcomes, kOutcomes);
   if (auto v = o.opt("positions_match_encoder")) e.positions_match_encoder = v->as_bool();
   if (auto v = o.opt("positions")) {
     if (!v->raw().is_array()) v->fail("an array of positions");
@@ -373,12 +374,7 @@ void read_expect(const Node& n, Expectations& e) {
     d.done();
     e.delay_measurement = de;
   }
-  if (auto v = o.opt("violations"))
-    read_count_map(*v, e.violations,
-                   {checker::check::kClockFrequency, checker::check::kMeasurementClock,
-                    checker::check::kMeasurementProcedure, checker::check::kPulseHigh,
-                    checker::check::kPulseLow, checker::check::kSamplingWindow, checker::check::kRecovery,
-                    checker::check::kContention});
+  if (auto v = o.opt("violations")) read_count_map(*v, e.violations, checker::check::all());
   if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);
   o.done();
 }
