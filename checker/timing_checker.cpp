@@ -48,7 +48,9 @@ FittedFrequency fit_frequency(const std::vector<Time>& rising) {
 
 std::span<const std::string_view> check::all() {
   static constexpr std::array names{kClockFrequency, kMeasurementClock, kMeasurementProcedure, kPulseHigh,
-                                    kPulseLow,       kSamplingWindow,   kRecovery,             kContention};
+                                    kPulseLow,       kSamplingWindow,   kRecovery,             kContention,
+                                    kDriverOff,      kDriverOn,         kCalculationTime,      kDataDelay,
+                                    kShortRecoveryClock};
   return names;
 }
 
@@ -58,7 +60,11 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave:
                              const master::MasterParams& master, const CheckerParams& params)
     : kernel_(kernel), line_(line), encoder_(encoder), master_(master), params_(params) {
   line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
-  line.pins(ObservationPoint::EncoderPins).clock.on_change(sim::bind<&TimingChecker::on_encoder_clock>(this));
+  auto encoder_pins = line.pins(ObservationPoint::EncoderPins);
+  encoder_pins.clock.on_change(sim::bind<&TimingChecker::on_encoder_clock>(this));
+  encoder_pins.driver_enable.on_change(sim::bind<&TimingChecker::on_encoder_driver>(this));
+  encoder_pins.data.on_change(sim::bind<&TimingChecker::on_encoder_data>(this));
+  line.master().data_in.on_change(sim::bind<&TimingChecker::on_master_data>(this));
 }
 
 void TimingChecker::check_measurement_procedure(const master::FrameResult& frame) {
@@ -107,6 +113,7 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
     current_.falling.clear();
     pending_.pop_front();
     in_frame_ = true;
+    start_data_line_checks();
     check_recovery(current_);
   }
   if (in_frame_) current_.falling.push_back(now);
@@ -166,6 +173,11 @@ void TimingChecker::check_frequency(const PinFrame& f) {
               "100 kHz .. 200 kHz", Severity::Error, "delay measured with a clock outside the prescribed range"});
     return;
   }
+  if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected &&
+      fit.below(sim::MHz(1), tol))
+    report({std::string(check::kShortRecoveryClock), "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
+            ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), ">= 1 MHz",
+            Severity::Error, "the short recovery time is selected but the clock is slower than 1 MHz"});
   const bool compensated = f.header.compensated;
   const sim::Hertz max = compensated ? kMaxFcWith : kMaxFcWithout;
   const std::string range = format_frequency(kMinFc) + " .. " + format_frequency(max);

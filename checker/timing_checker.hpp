@@ -29,6 +29,11 @@ inline constexpr std::string_view kPulseLow = "t_lo";
 inline constexpr std::string_view kSamplingWindow = "sampling_window";
 inline constexpr std::string_view kRecovery = "t_m_t_r";
 inline constexpr std::string_view kContention = "bus_contention";
+inline constexpr std::string_view kDriverOff = "t_z";
+inline constexpr std::string_view kDriverOn = "t_oe";
+inline constexpr std::string_view kCalculationTime = "t_cal";
+inline constexpr std::string_view kDataDelay = "t_d";
+inline constexpr std::string_view kShortRecoveryClock = "t_m_short_f_c";
 // Every check name above, for loaders and reports.
 std::span<const std::string_view> all();
 }  // namespace check
@@ -52,6 +57,10 @@ struct CheckerParams {
   Time sample_hold = sim::ps(1);
   // f_c limits are applied with this allowance (oscillator tolerance); 0 checks them exactly.
   std::int64_t f_c_tolerance_ppm = 1000;
+  // t_z and t_OE "max T = 1/f_c min" (2.3.2 note 6): read literally as the period at the lowest
+  // f_c, 10 us (default), or as one period of the frame's own clock (the reference notes'
+  // guess, which no encoder with ~100 ns of internal delay could meet at 8 or 16 MHz).
+  bool t_z_per_frame_period = false;
 };
 
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
@@ -90,6 +99,11 @@ class TimingChecker final : public master::MasterObserver {
   };
 
   void on_encoder_clock(std::uint64_t level);
+  // Encoder-side rows of 2.3.2, at the encoder pins (data_line_checks.cpp).
+  void on_encoder_driver(std::uint64_t enabled);
+  void on_encoder_data(std::uint64_t level);
+  void on_master_data(std::uint64_t level);
+  void start_data_line_checks();
   void on_master_clock(std::uint64_t level);
   void evaluate(const PinFrame& f);
   void check_pulse_widths(const PinFrame& f);
@@ -112,7 +126,13 @@ class TimingChecker final : public master::MasterObserver {
   std::optional<std::pair<Time, protocol::EndatVersion>> previous_end_;  // last RE and command type
   std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
   bool sampling_reported_ = false;
-  bool last_frame_was_measurement_ = false;   // one sampling-window violation per frame, the first bit
+  bool last_frame_was_measurement_ = false;
+  // Per frame, at the encoder pins: driver released (t_z), driver on again (t_OE), start bit seen
+  // on rising edge `start_clock_` (t_cal); t_D once the start bit reached the master logic.
+  bool released_ = false;
+  bool driving_ = false;
+  unsigned start_clock_ = 0;
+  bool t_d_measured_ = false;   // one sampling-window violation per frame, the first bit
   std::vector<Violation> violations_;
 };
 

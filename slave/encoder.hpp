@@ -33,7 +33,7 @@ struct EncoderParams {
   EndatVersion version = EndatVersion::V2_2;  // a 2.1 encoder answers 2.2 commands as not supported
   unsigned position_bits = 25;                 // word 13: clock pulses for the position value
   unsigned multiturn_bits = 0;                 // upper bits of the position that count revolutions
-  Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit
+  Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
   Time t_m = sim::us(20);                      // 2.3.2: recovery time I, 10 .. 30 us
   std::optional<Time> t_m_short;               // 1.25 .. 3.75 us, 2.2 commands only (word 3, 3.4.4)
   bool short_t_m_selected = false;

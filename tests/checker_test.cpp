@@ -104,3 +104,58 @@ TEST(CheckerMeasurementProcedure, SlowCounterAndTooFewMeasurementsAreReported) {
   s.master.measurement.count = 3;
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kMeasurementProcedure), 0U);
 }
+
+// ---- boundary tests: just inside (no violation) and just outside (violation), by 1 ps ----
+
+TEST(CheckerDataDelay, RoundTripAtTheSpecBoundPassesOnePicosecondMoreFails) {
+  auto s = make_scenario(37, MHz(1), false, 1);  // default line: t_D = 0.2 us + 0.01 us/m x L exactly
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kDataDelay), 0U);
+  s.encoder.output_delay += ps(1);
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_violations(r, checker::check::kDataDelay), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kDataDelay) {
+      EXPECT_EQ(v.measured, "570.001 ns");
+      EXPECT_EQ(v.limit, "<= 570 ns");
+      EXPECT_EQ(v.clock, 11U);
+    }
+}
+
+TEST(CheckerDriverTimes, TzAndToeAgainstOneFramePeriodReading) {
+  // Encoder release after FE1 and drive after FE9 both take receiver 40 + logic + driver 30 ns.
+  auto s = make_scenario(1, MHz(8), true, 1);
+  s.checker.t_z_per_frame_period = true;
+  s.encoder.output_delay = ns(55);  // 125 ns = T at 8 MHz: just inside
+  auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kDriverOff), 0U);
+  EXPECT_EQ(count_violations(r, checker::check::kDriverOn), 0U);
+  s.encoder.output_delay = ns(55) + ps(1);
+  r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kDriverOff), 1U);  // the 200 kHz measurement frames have T = 5 us
+  EXPECT_EQ(count_violations(r, checker::check::kDriverOn), 1U);
+  s.checker.t_z_per_frame_period = false;  // the literal reading: T = 1/f_c,min = 10 us
+  r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kDriverOff) + count_violations(r, checker::check::kDriverOn), 0U);
+}
+
+TEST(CheckerCalculationTime, StartBitWithinOneMillisecondAndOnePeriod) {
+  // At 1 MHz the rising edges lie at (k - 0.5) us after FE1; the limit is 1 ms + T = 1001 us.
+  auto s = make_scenario(1, MHz(1), false, 1);
+  s.master.start_bit_timeout = ms(2);
+  s.encoder.t_cal = us(1001);  // start bit on RE1002 at 1001.5 us
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kCalculationTime), 1U);
+  s.encoder.t_cal = ns(1'000'500);  // RE1001 at 1000.5 us
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kCalculationTime), 0U);
+  s.encoder.t_cal = ns(1'000'500) + ps(1);  // one picosecond more: the next edge, 1001.5 us
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kCalculationTime), 1U);
+}
+
+TEST(CheckerShortRecoveryTime, NeedsAClockOfAtLeastOneMegahertz) {
+  auto s = make_scenario(1, MHz(1), false, 1);
+  s.encoder.t_m_short = us(2);
+  s.encoder.short_t_m_selected = true;
+  s.checker.f_c_tolerance_ppm = 0;
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 0U);
+  s.master.f_c = Hertz{999'000};
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 1U);
+}

@@ -1,0 +1,86 @@
+// Rows of table 2.3.2 seen on the DATA line: the encoder's driver turning off after FE1 (t_z)
+// and on again at the turnaround (t_OE), the start bit no later than t_cal allows, and the data
+// delay t_D of the whole round trip.
+#include <algorithm>
+
+#include "checker/timing_checker.hpp"
+
+namespace endatsim::checker {
+namespace {
+
+using sim::format_time;
+
+constexpr unsigned kTurnaroundEdge = 9;       // FE9: the master has sent its mode bits (timing-model §1.2)
+constexpr Time kCalculationTimeMax = sim::ms(1);  // 2.3.2 t_cal maximum
+constexpr Time kPeriodAtMinimumFc = sim::us(10);  // 2.3.2 note 6: T = 1/f_c min (100 kHz)
+
+}  // namespace
+
+void TimingChecker::start_data_line_checks() {
+  released_ = false;
+  driving_ = false;
+  start_clock_ = 0;
+  t_d_measured_ = false;
+}
+
+void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
+  if (!in_frame_) return;
+  const Time now = kernel_.now();
+  const Time period = params_.t_z_per_frame_period ? sim::period_of(current_.header.f_c) : kPeriodAtMinimumFc;
+  const auto clock = static_cast<unsigned>(current_.falling.size());
+  if (enabled == 0 && !released_) {
+    released_ = true;
+    const Time t_z = now - current_.fe1;
+    if (t_z > period)
+      report({std::string(check::kDriverOff), "2.3.2 t_z (clock low to data inactive)", ObservationPoint::EncoderPins,
+              now, current_.header.index, clock, format_time(t_z), "<= T = " + format_time(period), Severity::Error,
+              "the encoder released DATA too late after FE1: the master drives from FE2"});
+  } else if (enabled != 0 && released_ && !driving_) {
+    driving_ = true;
+    if (current_.falling.size() < kTurnaroundEdge) {
+      report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
+              now, current_.header.index, clock, "before FE9", "after FE9", Severity::Error,
+              "the encoder drove DATA while the master still sends the mode command"});
+      return;
+    }
+    // Read from FE9, after which the master has released DATA; the alternative reading starts
+    // at FE10 and would allow one more period.
+    const Time t_oe = now - current_.falling[kTurnaroundEdge - 1];
+    if (t_oe > period)
+      report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
+              now, current_.header.index, clock, format_time(t_oe), "<= T = " + format_time(period), Severity::Error,
+              "the encoder took longer than one clock period after FE9 to drive DATA"});
+  }
+}
+
+void TimingChecker::on_encoder_data(std::uint64_t level) {
+  if (!in_frame_ || !driving_ || level == 0 || start_clock_ != 0) return;
+  // The start bit: the first rising DATA edge the encoder drives after the turnaround. It left on
+  // the latest rising edge; t_cal ends no later than that edge (the encoder answers on the first
+  // rising edge after its calculation), so that edge must come within t_cal max of FE1.
+  start_clock_ = static_cast<unsigned>(current_.rising.size());
+  if (start_clock_ == 0) return;
+  const Time carried_by = current_.rising.back();
+  const Time t_cal = carried_by - current_.fe1;
+  const Time limit = kCalculationTimeMax + sim::period_of(current_.header.f_c);
+  if (t_cal > limit)
+    report({std::string(check::kCalculationTime), "2.3.2 t_cal maximum 1 ms", ObservationPoint::EncoderPins,
+            kernel_.now(), current_.header.index, start_clock_, format_time(t_cal),
+            "<= 1 ms + T = " + format_time(limit), Severity::Error,
+            "the start bit came later than the longest calculation time allows"});
+}
+
+void TimingChecker::on_master_data(std::uint64_t level) {
+  // t_D (2.3.2, 2.1.2): from the rising clock edge that carried the start bit to the start
+  // bit's edge, both at the master logic; at most 0.2 us + 0.01 us/m x cable length.
+  if (level == 0 || start_clock_ == 0 || t_d_measured_ || start_clock_ > master_rising_.size()) return;
+  t_d_measured_ = true;
+  const Time t_d = kernel_.now() - master_rising_[start_clock_ - 1];
+  const Time limit = sim::ns(200) + Time{static_cast<std::int64_t>(line_.params().cable_length_m * 10'000.0 + 0.5)};
+  if (t_d > limit)
+    report({std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,
+            kernel_.now(), current_.header.index, start_clock_, format_time(t_d), "<= " + format_time(limit),
+            Severity::Error, "the round trip of the line and the encoder is longer than the spec allows"});
+}
+
+}  // namespace endatsim::checker
