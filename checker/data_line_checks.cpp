@@ -84,3 +84,61 @@ void TimingChecker::on_master_data(std::uint64_t level) {
 }
 
 }  // namespace endatsim::checker
+
+namespace endatsim::checker {
+
+namespace {
+
+// 2.3.2 note 8: t_ST = 2 us for f_c 2 .. 8 MHz, 1 us at 16 MHz, linear in between; "the 2 us
+// relate to a cable length of 100 m and can be reduced with a shorter cable". Read here as
+// shrinking with the spec's t_D bound, (0.2 + 0.01 L) / 1.2; the alternative reading keeps the
+// table's 2 us minimum for every length. Only with delay compensation (table column).
+Time required_start_delay(sim::Hertz f_c, double cable_m) {
+  const sim::Hertz over = std::clamp<sim::Hertz>(f_c - sim::MHz(8), 0, sim::MHz(8));
+  const Time at_100m = sim::us(2) - Time{over * 1'000'000 / sim::MHz(8)};
+  const double share = std::min(1.0, (0.2 + 0.01 * cable_m) / 1.2);
+  return Time{static_cast<std::int64_t>(static_cast<double>(at_100m.count()) * share + 0.5)};
+}
+
+}  // namespace
+
+void TimingChecker::check_start_delay(const PinFrame& f) {
+  if (!f.header.compensated || f.rising.empty()) return;
+  const Time t_st = f.rising.front() - f.fe1;
+  const Time required = required_start_delay(f.header.f_c, line_.params().cable_length_m);
+  if (t_st < required)
+    report({std::string(check::kStartDelay), "2.3.2 t_ST and note 8", ObservationPoint::EncoderPins, f.fe1,
+            f.header.index, 1U, format_time(t_st), ">= " + format_time(required), Severity::Error,
+            "first LOW phase shorter than t_ST for this clock and cable: the encoder's driver may still be on "
+            "when the master drives DATA"});
+}
+
+void TimingChecker::on_master_driven(std::uint64_t driven) {
+  master_driven_.emplace_back(kernel_.now(), driven != 0);
+}
+
+// The encoder takes the mode bits on RE3..RE8 (2.3); DATA must be driven at its pins then.
+void TimingChecker::check_encoder_sample(unsigned clock) {
+  if (clock < 3 || clock > 8 || floating_reported_) return;
+  if (line_.pins(ObservationPoint::EncoderPins).data_driven.read()) return;
+  floating_reported_ = true;
+  report({std::string(check::kFloatingData), "2.3 (mode bits taken on rising edges)", ObservationPoint::EncoderPins,
+          kernel_.now(), current_.header.index, clock, "undriven", "driven by the master", Severity::Error,
+          "the encoder took a mode bit from an undriven line (fail-safe level)"});
+}
+
+// The master's receiver output at its sampling instant shows its pins one receiver delay earlier.
+void TimingChecker::check_master_sample(const master::FrameResult& frame, unsigned clock) {
+  if (floating_reported_) return;
+  const Time at_pins = kernel_.now() - line_.params().master.receiver_delay;
+  bool driven = master_driven_.empty() || master_driven_.front().second;
+  for (const auto& [when, value] : master_driven_)
+    if (when <= at_pins) driven = value;
+  if (driven) return;
+  floating_reported_ = true;
+  report({std::string(check::kFloatingData), "2.3 (observe the data line for the start bit)",
+          ObservationPoint::MasterPins, kernel_.now(), frame.index, clock, "undriven", "driven by the encoder",
+          Severity::Error, "the master sampled DATA while no driver was on (fail-safe level)"});
+}
+
+}  // namespace endatsim::checker

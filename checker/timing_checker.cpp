@@ -50,7 +50,7 @@ std::span<const std::string_view> check::all() {
   static constexpr std::array names{kClockFrequency, kMeasurementClock, kMeasurementProcedure, kPulseHigh,
                                     kPulseLow,       kSamplingWindow,   kRecovery,             kContention,
                                     kDriverOff,      kDriverOn,         kCalculationTime,      kDataDelay,
-                                    kShortRecoveryClock};
+                                    kShortRecoveryClock, kStartDelay,   kFloatingData,         kErrorRecovery};
   return names;
 }
 
@@ -65,6 +65,7 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave:
   encoder_pins.driver_enable.on_change(sim::bind<&TimingChecker::on_encoder_driver>(this));
   encoder_pins.data.on_change(sim::bind<&TimingChecker::on_encoder_data>(this));
   line.master().data_in.on_change(sim::bind<&TimingChecker::on_master_data>(this));
+  line.pins(ObservationPoint::MasterPins).data_driven.on_change(sim::bind<&TimingChecker::on_master_driven>(this));
 }
 
 void TimingChecker::check_measurement_procedure(const master::FrameResult& frame) {
@@ -101,11 +102,15 @@ void TimingChecker::on_master_clock(std::uint64_t level) {
 void TimingChecker::on_encoder_clock(std::uint64_t level) {
   const Time now = kernel_.now();
   if (level != 0) {
-    if (in_frame_) current_.rising.push_back(now);
+    if (!in_frame_) return;
+    current_.rising.push_back(now);
+    check_encoder_sample(static_cast<unsigned>(current_.rising.size()));
     return;
   }
   ++encoder_falling_edges_;
   if (!pending_.empty() && pending_.front().first == encoder_falling_edges_) {
+    master_driven_.assign(1, {now, line_.pins(ObservationPoint::MasterPins).data_driven.read()});
+    floating_reported_ = false;
     if (in_frame_) evaluate(current_);
     current_.header = pending_.front().second;
     current_.fe1 = now;
@@ -122,7 +127,8 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
 void TimingChecker::evaluate(const PinFrame& f) {
   check_pulse_widths(f);
   check_frequency(f);
-  if (!f.rising.empty()) previous_end_.emplace(f.rising.back(), f.header.command_type);
+  check_start_delay(f);
+  if (!f.rising.empty()) previous_end_ = FrameEnd{f.rising.back(), f.header.command_type, f.header.index};
 }
 
 void TimingChecker::check_pulse_widths(const PinFrame& f) {
@@ -194,7 +200,13 @@ void TimingChecker::check_frequency(const PinFrame& f) {
 
 void TimingChecker::check_recovery(const PinFrame& next) {
   if (!previous_end_) return;
-  const auto [last_rise, type] = *previous_end_;
+  const auto [last_rise, type, index] = *previous_end_;
+  // A2: "After an error handling, the maximum t_m of 30 us must at least be waited".
+  constexpr Time kMaxRecoveryTime = sim::us(30);
+  if (error_handling_frame_ == index && next.fe1 - last_rise < kMaxRecoveryTime)
+    report({std::string(check::kErrorRecovery), "A2 (wait the maximum t_m after an error handling)",
+            ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(next.fe1 - last_rise),
+            ">= 30 us", Severity::Error, "the next frame followed an error handling too soon"});
   const bool short_tm = type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected;
   const Time t_m = short_tm ? *encoder_.t_m_short : encoder_.t_m;
   const Time gap = next.fe1 - last_rise;
@@ -207,6 +219,7 @@ void TimingChecker::check_recovery(const PinFrame& next) {
 }
 
 void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, bool, bool) {
+  check_master_sample(frame, clock);
   // Measurement frames are for the counter (2.1.2), taken without compensation by design.
   if (frame.measurement || sampling_reported_ || clock == 0) return;
   // Bit slot k leaves the encoder after RE_k and reaches the master logic one round trip later.
@@ -237,7 +250,10 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
               "; true round trip " + format_time(rt) + ", t_D used " + format_time(frame.t_d_used) + ")"});
 }
 
-void TimingChecker::on_frame_end(const master::FrameResult&) {}
+void TimingChecker::on_frame_end(const master::FrameResult& frame) {
+  if (frame.outcome == master::FrameOutcome::Type1Error || frame.outcome == master::FrameOutcome::NoStartBit)
+    error_handling_frame_ = frame.index;
+}
 
 void TimingChecker::finish() {
   if (in_frame_) {

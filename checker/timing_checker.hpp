@@ -34,6 +34,9 @@ inline constexpr std::string_view kDriverOn = "t_oe";
 inline constexpr std::string_view kCalculationTime = "t_cal";
 inline constexpr std::string_view kDataDelay = "t_d";
 inline constexpr std::string_view kShortRecoveryClock = "t_m_short_f_c";
+inline constexpr std::string_view kStartDelay = "t_st";
+inline constexpr std::string_view kFloatingData = "floating_data";
+inline constexpr std::string_view kErrorRecovery = "error_recovery";
 // Every check name above, for loaders and reports.
 std::span<const std::string_view> all();
 }  // namespace check
@@ -104,6 +107,10 @@ class TimingChecker final : public master::MasterObserver {
   void on_encoder_data(std::uint64_t level);
   void on_master_data(std::uint64_t level);
   void start_data_line_checks();
+  void on_master_driven(std::uint64_t driven);
+  void check_start_delay(const PinFrame& f);
+  void check_encoder_sample(unsigned clock);
+  void check_master_sample(const master::FrameResult& frame, unsigned clock);
   void on_master_clock(std::uint64_t level);
   void evaluate(const PinFrame& f);
   void check_pulse_widths(const PinFrame& f);
@@ -123,7 +130,16 @@ class TimingChecker final : public master::MasterObserver {
   std::deque<std::pair<std::uint64_t, FrameHeader>> pending_;  // frames whose FE1 has not reached the encoder
   PinFrame current_;
   bool in_frame_ = false;
-  std::optional<std::pair<Time, protocol::EndatVersion>> previous_end_;  // last RE and command type
+  struct FrameEnd {
+    Time last_rise;
+    protocol::EndatVersion command_type;
+    std::uint64_t index;
+  };
+  std::optional<FrameEnd> previous_end_;
+  std::optional<std::uint64_t> error_handling_frame_;  // the last master frame that ended in an error handling
+  // Changes of "DATA driven" at the master pins during the current frame, to judge samples.
+  std::vector<std::pair<Time, bool>> master_driven_;
+  bool floating_reported_ = false;
   std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
   bool sampling_reported_ = false;
   bool last_frame_was_measurement_ = false;

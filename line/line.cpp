@@ -35,9 +35,10 @@ std::string_view to_string(ObservationPoint p) {
 class PinResolver {
  public:
   PinResolver(ObservationPoint where, Signal& local_en, Signal& local_level, Signal& remote_en,
-              Signal& remote_level, Signal& pin, std::vector<Contention>& log, sim::Kernel& kernel, bool& failsafe)
+              Signal& remote_level, Signal& pin, Signal& driven, std::vector<Contention>& log, sim::Kernel& kernel,
+              bool& failsafe)
       : where_(where), local_en_(local_en), local_level_(local_level), remote_en_(remote_en),
-        remote_level_(remote_level), pin_(pin), log_(log), kernel_(kernel), failsafe_(failsafe) {
+        remote_level_(remote_level), pin_(pin), driven_(driven), log_(log), kernel_(kernel), failsafe_(failsafe) {
     for (Signal* s : {&local_en, &local_level, &remote_en, &remote_level})
       s->on_change(sim::bind<&PinResolver::resolve>(this));
   }
@@ -54,6 +55,7 @@ class PinResolver {
       log_[open_index_].end = kernel_.now();
       open_ = false;
     }
+    driven_.write(local || remote);
     // During contention the near driver dominates its own end of the pair.
     if (local) pin_.write(local_level_.read());
     else if (remote) pin_.write(remote_level_.read());
@@ -67,6 +69,7 @@ class PinResolver {
   Signal& remote_en_;
   Signal& remote_level_;
   Signal& pin_;
+  Signal& driven_;
   std::vector<Contention>& log_;
   bool open_ = false;
   std::size_t open_index_ = 0;
@@ -88,6 +91,7 @@ struct Line::Impl {
         m_level_at_e(k, "m_level_at_e", false), m_en_at_e(k, "m_en_at_e", false),
         e_level_at_m(k, "e_level_at_m", false), e_en_at_m(k, "e_en_at_m", true),
         m_data(k, "m_data", false), e_data(k, "e_data", false),
+        m_driven(k, "m_driven", true), e_driven(k, "e_driven", true),
         clock_driver(k, m_clock_out, m_clock, p.master.driver_delay),
         clock_cable(k, m_clock, e_clock, p.cable_delay()),
         clock_receiver(k, e_clock, e_clock_in, p.encoder.receiver_delay),
@@ -100,9 +104,9 @@ struct Line::Impl {
         e_level_cable(k, e_drive_level, e_level_at_m, p.cable_delay()),
         e_en_cable(k, e_drive_en, e_en_at_m, p.cable_delay()),
         master_pin(ObservationPoint::MasterPins, m_drive_en, m_drive_level, e_en_at_m, e_level_at_m, m_data,
-                   log, k, failsafe),
+                   m_driven, log, k, failsafe),
         encoder_pin(ObservationPoint::EncoderPins, e_drive_en, e_drive_level, m_en_at_e, m_level_at_e,
-                    e_data, log, k, failsafe),
+                    e_data, e_driven, log, k, failsafe),
         m_receiver(k, m_data, m_data_in, p.master.receiver_delay),
         e_receiver(k, e_data, e_data_in, p.encoder.receiver_delay) {}
 
@@ -113,6 +117,7 @@ struct Line::Impl {
   Signal m_drive_level, m_drive_en, e_drive_level, e_drive_en;
   Signal m_level_at_e, m_en_at_e, e_level_at_m, e_en_at_m;
   Signal m_data, e_data;
+  Signal m_driven, e_driven;
   TransportDelay clock_driver, clock_cable, clock_receiver;
   TransportDelay m_level_driver, m_en_driver, e_level_driver, e_en_driver;
   TransportDelay m_level_cable, m_en_cable, e_level_cable, e_en_cable;
@@ -136,8 +141,9 @@ Line::EncoderSide Line::encoder() {
 }
 
 Line::Pins Line::pins(ObservationPoint where) {
-  if (where == ObservationPoint::MasterPins) return {impl_->m_clock, impl_->m_data, impl_->m_drive_en};
-  return {impl_->e_clock, impl_->e_data, impl_->e_drive_en};
+  if (where == ObservationPoint::MasterPins)
+    return {impl_->m_clock, impl_->m_data, impl_->m_drive_en, impl_->m_driven};
+  return {impl_->e_clock, impl_->e_data, impl_->e_drive_en, impl_->e_driven};
 }
 
 Time Line::pin_round_trip(Time encoder_output_delay) const {

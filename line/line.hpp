@@ -82,6 +82,7 @@ class Line {
     sim::Signal& clock;
     sim::Signal& data;
     sim::Signal& driver_enable;  // this end's DATA driver active on its pins
+    sim::Signal& data_driven;    // some driver (this end's or the far end's) drives DATA here
   };
 
   MasterSide master();

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "scenario_support.hpp"
+#include "test_support.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;
@@ -158,4 +159,63 @@ TEST(CheckerShortRecoveryTime, NeedsAClockOfAtLeastOneMegahertz) {
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 0U);
   s.master.f_c = Hertz{999'000};
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 1U);
+}
+
+TEST(CheckerStartDelay, FirstLowPhaseAgainstNote8) {
+  auto s = make_scenario(100, MHz(8), true, 1);  // 2 us at 100 m for 2 .. 8 MHz
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kStartDelay), 0U);
+  s.master.t_st = us(2) - ps(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kStartDelay), 1U);
+  s.master.f_c = MHz(16);  // 1 us at 16 MHz
+  s.master.measurement.f_e = MHz(128);
+  s.master.t_st = us(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kStartDelay), 0U);
+  s.master.t_st = us(1) - ps(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kStartDelay), 1U);
+  s.master.f_c = MHz(12);  // linear in between: 1.5 us
+  s.master.measurement.f_e = MHz(96);
+  s.master.t_st = ns(1500);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kStartDelay), 0U);
+  s.master.t_st = ns(1500) - ps(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kStartDelay), 1U);
+}
+
+TEST(CheckerFloatingData, AMasterPollingBeforeTheEncoderDrivesIsReported) {
+  // 2 MHz over 100 m without compensation: slots 9 and 10 are sampled before the encoder's LOW
+  // has come back, on the fail-safe level.
+  const auto r = scenarios::run_scenario(make_scenario(100, MHz(2), false, 2));
+  EXPECT_EQ(count_violations(r, checker::check::kFloatingData), 2U);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(make_scenario(100, MHz(2), true, 2)), checker::check::kFloatingData), 0U);
+}
+
+TEST(CheckerFloatingData, AnEncoderTakingModeBitsFromAnUndrivenLineIsReported) {
+  for (bool drive : {true, false}) {
+    sim::Kernel k;
+    line::Line l(k, line::LineParams{});
+    slave::EncoderParams ep;
+    slave::Encoder e(k, l, ep);
+    checker::TimingChecker c(k, l, ep, master::MasterParams{});
+    master::FrameResult f;
+    f.f_c = MHz(1);
+    c.on_frame_start(f);
+    test_support::ScriptedClock clock(k, l, us(1), 12, 0b000111, Time::zero(), drive);
+    k.run();
+    c.finish();
+    std::size_t floating = 0;
+    for (const auto& v : c.violations()) floating += v.check == checker::check::kFloatingData;
+    EXPECT_EQ(floating, drive ? 0U : 1U);
+  }
+}
+
+TEST(CheckerErrorRecovery, AfterTypeOneTheMasterWaitsThirtyMicroseconds) {
+  auto s = make_scenario(1, MHz(1), false, 1);
+  master::Operation bad = s.script.back();
+  bad.mode_bits = 0b000101;
+  s.script.insert(s.script.begin(), bad);
+  s.master.error_wait = us(30);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kErrorRecovery), 0U);
+  s.master.error_wait = us(25);  // t_m of the encoder (20 us) + t_R is met, A2's 30 us is not
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kErrorRecovery), 1U);
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery), 0U);
 }

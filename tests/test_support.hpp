@@ -14,8 +14,8 @@ namespace endatsim::test_support {
 class ScriptedClock {
  public:
   ScriptedClock(sim::Kernel& k, line::Line& line, sim::Time period, unsigned clocks, std::uint8_t mode_bits,
-                sim::Time start = sim::Time::zero())
-      : k_(k), m_(line.master()), half_(period / 2), clocks_(clocks), mode_(mode_bits),
+                sim::Time start = sim::Time::zero(), bool drive_data = true)
+      : k_(k), m_(line.master()), half_(period / 2), clocks_(clocks), mode_(mode_bits), drive_data_(drive_data),
         timer_(k, sim::bind<&ScriptedClock::edge>(this)) {
     timer_.start(start - k.now());
   }
@@ -34,7 +34,7 @@ class ScriptedClock {
     ++clock_;
     m_.clock_out.write(false);
     if (clock_ == 2) {
-      m_.data_enable.write(true);
+      m_.data_enable.write(drive_data_);
       m_.data_out.write(false);
     } else if (clock_ >= 3 && clock_ <= 8) {
       m_.data_out.write(((mode_ >> (8 - clock_)) & 1U) != 0);
@@ -49,6 +49,7 @@ class ScriptedClock {
   sim::Time half_;
   unsigned clocks_;
   std::uint8_t mode_;
+  bool drive_data_;
   sim::Timer timer_;
   unsigned clock_ = 0;
   bool low_ = false;
