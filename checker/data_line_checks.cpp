@@ -81,6 +81,21 @@ void TimingChecker::on_master_data(std::uint64_t level) {
     report({std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,
             kernel_.now(), current_.header.index, start_clock_, format_time(t_d), "<= " + format_time(limit),
             Severity::Error, "the round trip of the line and the encoder is longer than the spec allows"});
+  check_delay_tolerance(t_d);
+}
+
+// 2.3: "the set Data Delay Time with a tolerance of +/-10 % x f_c must not be exceeded": the t_D
+// a compensating master uses may differ from the real one by at most a tenth of the period.
+void TimingChecker::check_delay_tolerance(Time t_d) {
+  if (!current_.header.compensated) return;
+  const Time set = current_.header.t_d_used;
+  const Time error = set > t_d ? set - t_d : t_d - set;
+  const Time tenth = sim::period_of(current_.header.f_c) / 10;
+  if (error > tenth)
+    report({std::string(check::kDataDelayTolerance), "2.3 (data delay time within +/-10 % of the period)",
+            ObservationPoint::MasterPins, kernel_.now(), current_.header.index, start_clock_, format_time(error),
+            "<= T/10 = " + format_time(tenth), Severity::Error,
+            "the master compensates with t_D = " + format_time(set) + " but the line's is " + format_time(t_d)});
 }
 
 }  // namespace endatsim::checker

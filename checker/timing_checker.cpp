@@ -50,7 +50,8 @@ std::span<const std::string_view> check::all() {
   static constexpr std::array names{kClockFrequency, kMeasurementClock, kMeasurementProcedure, kPulseHigh,
                                     kPulseLow,       kSamplingWindow,   kRecovery,             kContention,
                                     kDriverOff,      kDriverOn,         kCalculationTime,      kDataDelay,
-                                    kShortRecoveryClock, kStartDelay,   kFloatingData,         kErrorRecovery};
+                                    kShortRecoveryClock, kStartDelay,   kFloatingData,         kErrorRecovery,
+                                    kDataDelayTolerance};
   return names;
 }
 
@@ -88,7 +89,7 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
   if (frame.measurement && !last_frame_was_measurement_) check_measurement_procedure(frame);
   last_frame_was_measurement_ = frame.measurement;
   const FrameHeader h{frame.index, frame.measurement, frame.compensated, protocol::info(frame.command).version,
-                      frame.f_c};
+                      frame.f_c, frame.t_d_used};
   pending_.emplace_back(master_falling_edges_ + 1, h);
   master_rising_.clear();
   sampling_reported_ = false;

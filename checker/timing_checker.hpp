@@ -37,6 +37,7 @@ inline constexpr std::string_view kShortRecoveryClock = "t_m_short_f_c";
 inline constexpr std::string_view kStartDelay = "t_st";
 inline constexpr std::string_view kFloatingData = "floating_data";
 inline constexpr std::string_view kErrorRecovery = "error_recovery";
+inline constexpr std::string_view kDataDelayTolerance = "t_d_tolerance";
 // Every check name above, for loaders and reports.
 std::span<const std::string_view> all();
 }  // namespace check
@@ -92,6 +93,7 @@ class TimingChecker final : public master::MasterObserver {
     bool compensated = false;
     protocol::EndatVersion command_type = protocol::EndatVersion::V2_1;
     sim::Hertz f_c = 0;
+    Time t_d_used{0};
   };
   // The clock edges of one frame at the encoder pins; the buffers are reused frame after frame.
   struct PinFrame {
@@ -109,6 +111,7 @@ class TimingChecker final : public master::MasterObserver {
   void start_data_line_checks();
   void on_master_driven(std::uint64_t driven);
   void check_start_delay(const PinFrame& f);
+  void check_delay_tolerance(Time t_d);
   void check_encoder_sample(unsigned clock);
   void check_master_sample(const master::FrameResult& frame, unsigned clock);
   void on_master_clock(std::uint64_t level);

@@ -62,6 +62,8 @@ void MasterParams::validate() const {
             std::string("master ") + name + " must be 0 .. 100 ms, got " + sim::format_time(t));
   require(start_bit_timeout > Time::zero() && start_bit_timeout <= sim::ms(100),
           "master start_bit_timeout must be > 0 and <= 100 ms, got " + sim::format_time(start_bit_timeout));
+  require(!fixed_t_d || (*fixed_t_d >= Time::zero() && *fixed_t_d <= sim::us(10)),
+          "master fixed_t_d must be 0 .. 10 us, got " + sim::format_time(fixed_t_d.value_or(Time::zero())));
   require(type1_detect_samples >= 1 && type1_detect_samples <= 64,
           "master type1_detect_samples must be 1 .. 64, got " + std::to_string(type1_detect_samples));
 }
@@ -73,6 +75,7 @@ Master::Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params
       operation_timer_(kernel, sim::bind<&Master::next_operation>(this)),
       layout_(protocol::position_frame_layout(protocol::EndatVersion::V2_1, params.position_bits)) {
   params_.validate();
+  t_d_ = params_.fixed_t_d;
   pins_.data_in.on_change(sim::bind<&Master::on_data_in>(this));
 }
 

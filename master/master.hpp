@@ -47,6 +47,8 @@ struct MasterParams {
   Time jitter{0};                // peak edge jitter, uniform in [-jitter, +jitter], seeded
   std::uint64_t seed = 1;
   bool delay_compensation = false;
+  // A delay value set by hand instead of measured (compensation uses it from the first frame).
+  std::optional<Time> fixed_t_d;
   DelayMeasurementParams measurement;
   unsigned position_bits = 25;   // word 13 as the master has it configured
   // Timing-model §1.7: one more clock pulse after the last bit (its falling edge samples the

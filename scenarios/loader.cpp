@@ -237,6 +237,7 @@ void read_master(const Node& n, master::MasterParams& p) {
   if (auto v = o.opt("t_st")) p.t_st = v->as_duration(Time::zero(), sim::ms(1));
   if (auto v = o.opt("jitter")) p.jitter = v->as_duration(Time::zero(), sim::us(100));
   if (auto v = o.opt("delay_compensation")) p.delay_compensation = v->as_bool();
+  if (auto v = o.opt("fixed_t_d")) p.fixed_t_d = v->as_duration(Time::zero(), sim::us(10));
   if (auto v = o.opt("position_bits")) p.position_bits = static_cast<unsigned>(v->as_uint(1, 48));
   if (auto v = o.opt("extra_clock_after_last_bit")) p.extra_clock_after_last_bit = v->as_bool();
   if (auto v = o.opt("t_m_wait")) p.t_m_wait = v->as_duration(Time::zero(), sim::ms(100));

@@ -219,3 +219,16 @@ TEST(CheckerErrorRecovery, AfterTypeOneTheMasterWaitsThirtyMicroseconds) {
   EXPECT_EQ(count_violations(r, checker::check::kErrorRecovery), 1U);
   EXPECT_EQ(count_violations(r, checker::check::kRecovery), 0U);
 }
+
+TEST(CheckerDataDelayTolerance, ASetDelayWithinATenthOfThePeriodPasses) {
+  auto s = make_scenario(10, MHz(8), true, 1);  // true t_D 300 ns, T/10 = 12.5 ns
+  s.script.erase(s.script.begin());             // no measurement: the master uses its fixed value
+  s.master.fixed_t_d = ps(312'500);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kDataDelayTolerance), 0U);
+  s.master.fixed_t_d = ps(312'501);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kDataDelayTolerance), 1U);
+  s.master.fixed_t_d = ps(287'500);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kDataDelayTolerance), 0U);
+  s.master.fixed_t_d = ps(287'499);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kDataDelayTolerance), 1U);
+}
