@@ -55,13 +55,17 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
 
 void TimingChecker::on_encoder_data(std::uint64_t level) {
   if (!in_frame_ || !driving_ || level == 0 || start_clock_ != 0) return;
-  // The start bit: the first rising DATA edge the encoder drives after the turnaround. It left on
-  // the latest rising edge; t_cal ends no later than that edge (the encoder answers on the first
-  // rising edge after its calculation), so that edge must come within t_cal max of FE1.
-  start_clock_ = static_cast<unsigned>(current_.rising.size());
+  // The start bit: the first rising DATA edge the encoder drives after the turnaround. It left
+  // on the rising edge that reached the encoder logic one encoder-internal delay (receiver,
+  // logic, driver) before the edge showed on the pins. t_cal ends no later than that edge (the
+  // encoder answers on the first rising edge after its calculation), so that edge must come
+  // within t_cal max of FE1.
+  const auto& lp = line_.params();
+  const Time launched = kernel_.now() - (lp.encoder.receiver_delay + encoder_.output_delay + lp.encoder.driver_delay);
+  const auto carried_by = std::upper_bound(current_.rising.begin(), current_.rising.end(), launched);
+  start_clock_ = static_cast<unsigned>(carried_by - current_.rising.begin());
   if (start_clock_ == 0) return;
-  const Time carried_by = current_.rising.back();
-  const Time t_cal = carried_by - current_.fe1;
+  const Time t_cal = current_.rising[start_clock_ - 1] - current_.fe1;
   const Time limit = kCalculationTimeMax + sim::period_of(current_.header.f_c);
   if (t_cal > limit)
     report({std::string(check::kCalculationTime), "2.3.2 t_cal maximum 1 ms", ObservationPoint::EncoderPins,

@@ -232,3 +232,20 @@ TEST(CheckerDataDelayTolerance, ASetDelayWithinATenthOfThePeriodPasses) {
   s.master.fixed_t_d = ps(287'499);
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kDataDelayTolerance), 1U);
 }
+
+TEST(CheckerDataDelay, StartBitIsAttributedToItsOwnEdgeAtSixteenMegahertz) {
+  // At 16 MHz the encoder's internal delay (130 ns) spans two clock periods: the start bit must
+  // still be measured from the edge that carried it, not from a later one.
+  auto s = make_scenario(20, MHz(16), true, 2);
+  s.master.t_st = us(1);
+  auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kDataDelay), 0U);
+  EXPECT_EQ(count_violations(r, checker::check::kDataDelayTolerance), 0U);
+  s.encoder.output_delay += ps(1);
+  r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_violations(r, checker::check::kDataDelay), 5U);  // 3 measurement frames, 2 reads
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kDataDelay) {
+      EXPECT_EQ(v.measured, "400.001 ns");
+    }
+}
