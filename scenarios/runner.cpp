@@ -22,27 +22,38 @@ const slave::EncoderFrame* encoder_frame_for(const ScenarioResult& r, const mast
   return nullptr;
 }
 
-void judge_positions(const Scenario& s, ScenarioResult& r, Time clock_path) {
+}  // namespace
+
+PositionComparison compare_positions_with_encoder(const Scenario& s, const ScenarioResult& r) {
+  const auto& lp = s.line;
+  const Time clock_path = lp.master.driver_delay + lp.cable_delay() + lp.encoder.receiver_delay;
+  std::string detail;
+  std::uint64_t compared = 0;
+  for (const auto& f : r.frames) {
+    if (f.measurement || f.outcome != master::FrameOutcome::Ok) continue;
+    const auto* ef = encoder_frame_for(r, f, clock_path);
+    ++compared;
+    // Word k > 0 of a continuous clock was latched at the falling edge after the HIGH bit.
+    const bool latched = ef != nullptr && (f.word == 0 || f.word <= ef->continuous_positions.size());
+    const std::uint64_t truth = !latched ? 0 : f.word == 0 ? ef->position : ef->continuous_positions[f.word - 1];
+    if (!latched) detail = "frame " + std::to_string(f.index) + ": the encoder latched no such word";
+    else if (truth != f.position)
+      detail = "frame " + std::to_string(f.index) + ": read " + std::to_string(f.position) + ", encoder latched " +
+               std::to_string(truth);
+    if (!detail.empty()) break;
+  }
+  if (detail.empty() && compared == 0) detail = "no frame was read without error";
+  if (!detail.empty()) return {false, detail};
+  return {true, std::to_string(compared) + " positions equal the latched ones"};
+}
+
+namespace {
+
+void judge_positions(const Scenario& s, ScenarioResult& r) {
   const auto& e = s.expect;
   if (e.positions_match_encoder.value_or(false)) {
-    std::string detail;
-    std::uint64_t compared = 0;
-    for (const auto& f : r.frames) {
-      if (f.measurement || f.outcome != master::FrameOutcome::Ok) continue;
-      const auto* ef = encoder_frame_for(r, f, clock_path);
-      ++compared;
-      // Word k > 0 of a continuous clock was latched at the falling edge after the HIGH bit.
-      const bool latched = ef != nullptr && (f.word == 0 || f.word <= ef->continuous_positions.size());
-      const std::uint64_t truth = !latched ? 0 : f.word == 0 ? ef->position : ef->continuous_positions[f.word - 1];
-      if (!latched) detail = "frame " + std::to_string(f.index) + ": the encoder latched no such word";
-      else if (truth != f.position)
-        detail = "frame " + std::to_string(f.index) + ": read " + std::to_string(f.position) + ", encoder latched " +
-                 std::to_string(truth);
-      if (!detail.empty()) break;
-    }
-    if (detail.empty() && compared == 0) detail = "no frame was read without error";
-    r.expectations.push_back({"positions_match_encoder", detail.empty(),
-                              detail.empty() ? std::to_string(compared) + " positions equal the latched ones" : detail});
+    auto c = compare_positions_with_encoder(s, r);
+    r.expectations.push_back({"positions_match_encoder", c.match, std::move(c.detail)});
   }
   if (e.positions) {
     std::vector<std::uint64_t> read;
@@ -80,7 +91,7 @@ void judge_delay(const Scenario& s, ScenarioResult& r) {
   }
 }
 
-void judge(const Scenario& s, ScenarioResult& r, Time clock_path) {
+void judge(const Scenario& s, ScenarioResult& r) {
   r.expectations.push_back({"script finished", r.finished,
                             r.finished ? "at " + sim::format_time(r.simulated)
                                        : "still running at max_time " + sim::format_time(s.max_time)});
@@ -88,7 +99,7 @@ void judge(const Scenario& s, ScenarioResult& r, Time clock_path) {
     const auto n = count_outcome(r, name);
     r.expectations.push_back({"outcomes." + name, m.matches(n), std::to_string(n) + " (expected " + m.text + ")"});
   }
-  judge_positions(s, r, clock_path);
+  judge_positions(s, r);
   judge_delay(s, r);
   std::map<std::string, std::uint64_t> counts;
   for (const auto& v : r.violations) ++counts[v.check];
@@ -161,8 +172,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.encoder_frames = encoder.frames();
   r.violations = checker.violations();
   r.cycle_overruns = master.cycle_overruns();
-  const auto& lp = line.params();
-  judge(scenario, r, lp.master.driver_delay + lp.cable_delay() + lp.encoder.receiver_delay);
+  judge(scenario, r);
   return r;
 }
 

@@ -40,6 +40,14 @@ struct ScenarioResult {
   bool passed() const;
 };
 
+// Every good read against the position the encoder latched at its first falling edge (the
+// positions_match_encoder expectation). No good read at all does not match.
+struct PositionComparison {
+  bool match = false;
+  std::string detail;
+};
+PositionComparison compare_positions_with_encoder(const Scenario& scenario, const ScenarioResult& r);
+
 // Runs the scenario to the end of its script and judges its expectations.
 ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options = {});
 

@@ -1,10 +1,11 @@
 // scenarios/ — JSON scenarios that set up a line, an encoder and a master, script operations
 // over time and state expectations (scenario.hpp); the loader with path-precise errors
 // (loader.hpp); running one and judging its expectations (runner.hpp); text and JSON
-// reports (report.hpp).
+// reports (report.hpp); running one over a grid of its parameters in parallel (sweep.hpp).
 #pragma once
 
 #include "scenarios/loader.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/runner.hpp"
 #include "scenarios/scenario.hpp"
+#include "scenarios/sweep.hpp"

@@ -1,0 +1,89 @@
+// Parameter sweeps: one scenario run over the Cartesian product of values at JSON pointers
+// (cable length x f_c x compensation, or any other key the loader knows), in parallel, with
+// results in grid order whatever the number of threads.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenarios/runner.hpp"
+
+namespace endatsim::scenarios {
+
+// One key of the grid: where it sits in the scenario JSON and the values it takes.
+struct GridAxis {
+  std::string pointer;
+  std::vector<nlohmann::json> values;
+};
+
+// "POINTER=V1,V2,...". A value is JSON when it parses as JSON (numbers, true, false), otherwise
+// a string ("2 MHz"); an item "START:STOP:STEP" of three numbers is a range that includes STOP
+// when the steps reach it. Throws ScenarioError for bad syntax.
+GridAxis parse_grid_axis(const std::string& text);
+
+// What one grid point gave.
+struct SweepPoint {
+  std::vector<nlohmann::json> values;  // one per axis, in grid order
+  // The script finished, every frame other than a delay measurement is ok and equals the
+  // position the encoder latched, and no check reported anything (errors or warnings).
+  bool clean = false;
+  bool expectations_passed = false;  // the scenario's own "expect"
+  std::uint64_t ok = 0;
+  std::uint64_t crc_error = 0;
+  std::uint64_t other = 0;       // no_start_bit, type1_error
+  std::uint64_t violations = 0;  // of any severity
+  std::vector<std::string> checks;  // distinct names of the checks violated, sorted
+};
+
+struct Sweep {
+  std::string file;
+  std::string name;  // the scenario's name
+  std::vector<GridAxis> grid;
+  std::vector<SweepPoint> points;  // the Cartesian product, the last axis varying fastest
+};
+
+struct SweepOptions {
+  unsigned jobs = 1;
+  // Called after each point with (points done, points in all); from worker threads, one call
+  // at a time.
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+// The scenario file as JSON, after it loaded as a scenario on its own.
+nlohmann::json read_scenario_json(const std::string& path);
+
+// Patches `base` at the grid's pointers for every point and loads it (so the loader validates
+// every value; its errors name the grid point), then runs all points on `options.jobs` threads.
+Sweep run_sweep(const nlohmann::json& base, const std::string& file, const std::vector<GridAxis>& grid,
+                const SweepOptions& options = {});
+
+SweepPoint summarize(const Scenario& scenario, const ScenarioResult& r);
+
+// For each combination of the other axes, the largest value at `pointer` whose point is clean.
+struct MaximumTable {
+  std::size_t axis = 0;             // the maximized axis
+  std::vector<std::size_t> others;  // the other axes, in grid order
+  struct Row {
+    std::vector<nlohmann::json> values;       // of the other axes
+    std::optional<nlohmann::json> maximum;  // none: no clean point
+  };
+  std::vector<Row> rows;
+};
+MaximumTable maximize(const Sweep& sweep, const std::string& pointer);
+
+// How grid values compare: numbers as they are, frequency strings in Hz, durations in ps.
+std::optional<double> numeric_value(const nlohmann::json& v);
+
+std::string sweep_csv(const Sweep& sweep);
+nlohmann::json sweep_json(const Sweep& sweep, const MaximumTable* maximum);
+std::string maximum_text(const Sweep& sweep, const MaximumTable& maximum);
+// A line chart of the maximum over the one other numeric axis, one line per value of an
+// optional third (boolean or enumerated) axis. Throws ScenarioError for any other grid shape.
+std::string maximum_svg(const Sweep& sweep, const MaximumTable& maximum);
+
+}  // namespace endatsim::scenarios
