@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "scenario_support.hpp"
 #include "test_support.hpp"
 
@@ -248,4 +250,38 @@ TEST(CheckerDataDelay, StartBitIsAttributedToItsOwnEdgeAtSixteenMegahertz) {
     if (v.check == checker::check::kDataDelay) {
       EXPECT_EQ(v.measured, "400.001 ns");
     }
+}
+
+// Issue 4's list of deliberately broken masters: each is caught by the row it breaks.
+TEST(CheckerBrokenMasters, EachIsCaughtWithTheRightRow) {
+  struct Case {
+    const char* what;
+    std::string_view check;
+    std::function<void(scenarios::Scenario&)> apply;
+  };
+  const std::vector<Case> cases{
+      {"t_ST too short on 100 m", checker::check::kStartDelay, [](auto& s) { s.master.t_st = us(1); }},
+      {"recovery time ignored", checker::check::kRecovery,
+       [](auto& s) {
+         s.master.t_m_wait = us(2);
+         s.script.back().cycle = Time::zero();
+       }},
+      {"duty cycle off by 15 %", checker::check::kPulseHigh, [](auto& s) { s.master.high_permille = 350; }},
+      {"2.5 MHz without compensation", checker::check::kClockFrequency,
+       [](auto& s) {
+         s.master.delay_compensation = false;
+         s.master.f_c = kHz(2500);
+       }},
+      {"delay measured at 1 MHz", checker::check::kMeasurementClock,
+       [](auto& s) { s.master.measurement.f_c = MHz(1); }},
+      {"only two measurements", checker::check::kMeasurementProcedure,
+       [](auto& s) { s.master.measurement.count = 2; }},
+  };
+  const auto clean = scenarios::run_scenario(make_scenario(100, MHz(8), true, 3));
+  EXPECT_TRUE(clean.violations.empty());
+  for (const auto& c : cases) {
+    auto s = make_scenario(100, MHz(8), true, 3);
+    c.apply(s);
+    EXPECT_GE(count_violations(scenarios::run_scenario(s), c.check), 1U) << c.what;
+  }
 }
