@@ -285,3 +285,39 @@ TEST(CheckerBrokenMasters, EachIsCaughtWithTheRightRow) {
     EXPECT_GE(count_violations(scenarios::run_scenario(s), c.check), 1U) << c.what;
   }
 }
+
+TEST(CheckerBoundaries, RecoveryTimeByOnePicosecond) {
+  auto s = make_scenario(1, MHz(1), false, 2);
+  s.script.back().cycle = Time::zero();
+  s.master.t_m_wait = us(20);  // gap = t_m_wait + t_r_wait = 20.5 us = the encoder's t_m + t_R
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kRecovery), 0U);
+  s.master.t_m_wait = us(20) - ps(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kRecovery), 1U);
+}
+
+TEST(CheckerBoundaries, WaitAfterErrorHandlingByOnePicosecond) {
+  auto s = make_scenario(1, MHz(1), false, 1);
+  master::Operation bad = s.script.back();
+  bad.mode_bits = 0b000101;
+  s.script.insert(s.script.begin(), bad);
+  s.master.error_wait = ns(29'500);  // + t_r_wait 0.5 us = 30 us
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kErrorRecovery), 0U);
+  s.master.error_wait = ns(29'500) - ps(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kErrorRecovery), 1U);
+}
+
+TEST(CheckerBoundaries, ClockFrequencyByOnePicosecondOfPeriod) {
+  auto s = make_scenario(1, MHz(2), false, 1);  // period 500000 ps
+  s.checker.f_c_tolerance_ppm = 0;
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 0U);
+  s.master.f_c = Hertz{2'000'004};  // period 499999 ps
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 1U);
+}
+
+TEST(CheckerBoundaries, PulseWidthByOnePicosecond) {
+  auto s = make_scenario(1, kHz(2500), false, 1);  // 400000 ps: HIGH and LOW 200000 ps = 0.2 us
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kPulseHigh), 0U);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kPulseLow), 0U);
+  s.master.f_c = Hertz{2'500'007};  // 399999 ps: HIGH 199999 ps
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kPulseHigh), 1U);
+}
