@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "checker/timing_checker.hpp"
+#include "protocol/frame.hpp"
 
 namespace endatsim::checker {
 namespace {
@@ -158,6 +159,27 @@ void TimingChecker::check_master_sample(const master::FrameResult& frame, unsign
   report({std::string(check::kFloatingData), "2.3 (observe the data line for the start bit)",
           ObservationPoint::MasterPins, kernel_.now(), frame.index, clock, "undriven", "driven by the encoder",
           Severity::Error, "the master sampled DATA while no driver was on (fail-safe level)"});
+}
+
+// The frame needs its last bit clocked out (RE_(s + width - 1)) and may have one more pulse,
+// which carries the HIGH end of data (timing-model §1.7). Fewer leave the encoder hanging in
+// the middle of the cycle; more are taken as a continuous clock (2.3.1), which only
+// "Encoder send position values" supports (HEIDENHAIN FAQ, timing-model §1.4).
+void TimingChecker::check_clock_count(const PinFrame& f) {
+  if (start_clock_ == 0) return;  // no start bit: nothing to count against
+  const bool v22 = f.header.command_type == protocol::EndatVersion::V2_2;
+  const unsigned width = protocol::position_frame_layout(f.header.command_type, encoder_.position_bits).width();
+  const unsigned last_bit = start_clock_ + width - 1;
+  const auto clocks = static_cast<unsigned>(f.rising.size());
+  const std::string spec = "2.3.1 and 2.4.1 (the number of clock pulses)";
+  if (clocks < last_bit)
+    report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
+            clocks, std::to_string(clocks) + " pulses", ">= " + std::to_string(last_bit), Severity::Error,
+            "the clock stopped before the encoder's last bit: the encoder hangs in the middle of the cycle"});
+  else if (v22 && clocks > last_bit + 1)
+    report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
+            clocks, std::to_string(clocks) + " pulses", "<= " + std::to_string(last_bit + 1), Severity::Warning,
+            "clock pulses beyond the end of the frame"});
 }
 
 }  // namespace endatsim::checker

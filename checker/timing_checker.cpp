@@ -51,7 +51,7 @@ std::span<const std::string_view> check::all() {
                                     kPulseLow,       kSamplingWindow,   kRecovery,             kContention,
                                     kDriverOff,      kDriverOn,         kCalculationTime,      kDataDelay,
                                     kShortRecoveryClock, kStartDelay,   kFloatingData,         kErrorRecovery,
-                                    kDataDelayTolerance};
+                                    kDataDelayTolerance, kClockCount};
   return names;
 }
 
@@ -129,6 +129,7 @@ void TimingChecker::evaluate(const PinFrame& f) {
   check_pulse_widths(f);
   check_frequency(f);
   check_start_delay(f);
+  check_clock_count(f);
   if (!f.rising.empty()) previous_end_ = FrameEnd{f.rising.back(), f.header.command_type, f.header.index};
 }
 

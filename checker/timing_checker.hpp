@@ -38,6 +38,7 @@ inline constexpr std::string_view kStartDelay = "t_st";
 inline constexpr std::string_view kFloatingData = "floating_data";
 inline constexpr std::string_view kErrorRecovery = "error_recovery";
 inline constexpr std::string_view kDataDelayTolerance = "t_d_tolerance";
+inline constexpr std::string_view kClockCount = "clock_count";
 // Every check name above, for loaders and reports.
 std::span<const std::string_view> all();
 }  // namespace check
@@ -112,6 +113,7 @@ class TimingChecker final : public master::MasterObserver {
   void on_master_driven(std::uint64_t driven);
   void check_start_delay(const PinFrame& f);
   void check_delay_tolerance(Time t_d);
+  void check_clock_count(const PinFrame& f);
   void check_encoder_sample(unsigned clock);
   void check_master_sample(const master::FrameResult& frame, unsigned clock);
   void on_master_clock(std::uint64_t level);

@@ -321,3 +321,22 @@ TEST(CheckerBoundaries, PulseWidthByOnePicosecond) {
   s.master.f_c = Hertz{2'500'007};  // 399999 ps: HIGH 199999 ps
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kPulseHigh), 1U);
 }
+
+TEST(CheckerClockCount, TooFewPulsesAndPulsesBeyondAnEnDat22Frame) {
+  // 2.2, 25 bits, start bit at RE11: last bit at RE43, one more pulse allowed.
+  auto s = make_scenario(1, MHz(1), false, 1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockCount), 0U);  // 44 pulses
+  s.master.extra_clock_after_last_bit = false;
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockCount), 0U);  // 43 pulses
+  s.master.position_bits = 24;  // the master thinks word 13 says 24: it stops one pulse early
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockCount), 1U);
+  s.master.position_bits = 27;  // two more than the encoder has
+  s.master.extra_clock_after_last_bit = true;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_violations(r, checker::check::kClockCount), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kClockCount) {
+      EXPECT_EQ(v.severity, checker::Severity::Warning);
+      EXPECT_EQ(v.measured, "46 pulses");
+    }
+}
