@@ -35,13 +35,13 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
     if (t_z > period)
       report({std::string(check::kDriverOff), "2.3.2 t_z (clock low to data inactive)", ObservationPoint::EncoderPins,
               now, current_.header.index, clock, format_time(t_z), "<= T = " + format_time(period), Severity::Error,
-              "the encoder released DATA too late after FE1: the master drives from FE2"});
+              "the encoder released DATA too late after FE1: the master drives from FE2"}, "FE1 release");
   } else if (enabled != 0 && released_ && !driving_) {
     driving_ = true;
     if (current_.falling.size() < kTurnaroundEdge) {
       report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
               now, current_.header.index, clock, "before FE9", "after FE9", Severity::Error,
-              "the encoder drove DATA while the master still sends the mode command"});
+              "the encoder drove DATA while the master still sends the mode command"}, "turnaround");
       return;
     }
     // Read from FE9, after which the master has released DATA; the alternative reading starts
@@ -50,7 +50,7 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
     if (t_oe > period)
       report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
               now, current_.header.index, clock, format_time(t_oe), "<= T = " + format_time(period), Severity::Error,
-              "the encoder took longer than one clock period after FE9 to drive DATA"});
+              "the encoder took longer than one clock period after FE9 to drive DATA"}, "turnaround");
   }
 }
 
@@ -72,7 +72,7 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
     report({std::string(check::kCalculationTime), "2.3.2 t_cal maximum 1 ms", ObservationPoint::EncoderPins,
             kernel_.now(), current_.header.index, start_clock_, format_time(t_cal),
             "<= 1 ms + T = " + format_time(limit), Severity::Error,
-            "the start bit came later than the longest calculation time allows"});
+            "the start bit came later than the longest calculation time allows"}, "start bit");
 }
 
 void TimingChecker::on_master_data(std::uint64_t level) {
@@ -85,7 +85,7 @@ void TimingChecker::on_master_data(std::uint64_t level) {
   if (t_d > limit)
     report({std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,
             kernel_.now(), current_.header.index, start_clock_, format_time(t_d), "<= " + format_time(limit),
-            Severity::Error, "the round trip of the line and the encoder is longer than the spec allows"});
+            Severity::Error, "the round trip of the line and the encoder is longer than the spec allows"}, "start bit");
   check_delay_tolerance(t_d);
 }
 
@@ -100,7 +100,7 @@ void TimingChecker::check_delay_tolerance(Time t_d) {
     report({std::string(check::kDataDelayTolerance), "2.3 (data delay time within +/-10 % of the period)",
             ObservationPoint::MasterPins, kernel_.now(), current_.header.index, start_clock_, format_time(error),
             "<= T/10 = " + format_time(tenth), Severity::Error,
-            "the master compensates with t_D = " + format_time(set) + " but the line's is " + format_time(t_d)});
+            "the master compensates with t_D = " + format_time(set) + " but the line's is " + format_time(t_d)}, "start bit");
 }
 
 }  // namespace endatsim::checker
@@ -130,7 +130,7 @@ void TimingChecker::check_start_delay(const PinFrame& f) {
     report({std::string(check::kStartDelay), "2.3.2 t_ST and note 8", ObservationPoint::EncoderPins, f.fe1,
             f.header.index, 1U, format_time(t_st), ">= " + format_time(required), Severity::Error,
             "first LOW phase shorter than t_ST for this clock and cable: the encoder's driver may still be on "
-            "when the master drives DATA"});
+            "when the master drives DATA"}, "first LOW phase");
 }
 
 void TimingChecker::on_master_driven(std::uint64_t driven) {
@@ -144,7 +144,7 @@ void TimingChecker::check_encoder_sample(unsigned clock) {
   floating_reported_ = true;
   report({std::string(check::kFloatingData), "2.3 (mode bits taken on rising edges)", ObservationPoint::EncoderPins,
           kernel_.now(), current_.header.index, clock, "undriven", "driven by the master", Severity::Error,
-          "the encoder took a mode bit from an undriven line (fail-safe level)"});
+          "the encoder took a mode bit from an undriven line (fail-safe level)"}, "mode bits");
 }
 
 // The master's receiver output at its sampling instant shows its pins one receiver delay earlier.
@@ -158,7 +158,8 @@ void TimingChecker::check_master_sample(const master::FrameResult& frame, unsign
   floating_reported_ = true;
   report({std::string(check::kFloatingData), "2.3 (observe the data line for the start bit)",
           ObservationPoint::MasterPins, kernel_.now(), frame.index, clock, "undriven", "driven by the encoder",
-          Severity::Error, "the master sampled DATA while no driver was on (fail-safe level)"});
+          Severity::Error, "the master sampled DATA while no driver was on (fail-safe level)"},
+         field_of(frame, clock));
 }
 
 // The frame needs its last bit clocked out (RE_(s + width - 1)) and may have one more pulse,
@@ -175,11 +176,11 @@ void TimingChecker::check_clock_count(const PinFrame& f) {
   if (clocks < last_bit)
     report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
             clocks, std::to_string(clocks) + " pulses", ">= " + std::to_string(last_bit), Severity::Error,
-            "the clock stopped before the encoder's last bit: the encoder hangs in the middle of the cycle"});
+            "the clock stopped before the encoder's last bit: the encoder hangs in the middle of the cycle"}, "end of frame");
   else if (v22 && clocks > last_bit + 1)
     report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
             clocks, std::to_string(clocks) + " pulses", "<= " + std::to_string(last_bit + 1), Severity::Warning,
-            "clock pulses beyond the end of the frame"});
+            "clock pulses beyond the end of the frame"}, "end of frame");
 }
 
 }  // namespace endatsim::checker

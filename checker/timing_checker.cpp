@@ -55,6 +55,14 @@ std::span<const std::string_view> check::all() {
   return names;
 }
 
+// The field of bit slot `clock` as the master counts the frame.
+std::string TimingChecker::field_of(const master::FrameResult& frame, unsigned clock) const {
+  if (frame.start_bit_clock == 0 || clock < frame.start_bit_clock) return "start-bit polling";
+  const auto layout = protocol::position_frame_layout(protocol::info(frame.command).version, master_.position_bits);
+  const unsigned bit = clock - frame.start_bit_clock;
+  return bit < layout.width() ? std::string(protocol::field_name(layout.field_at(bit))) : "after the CRC";
+}
+
 std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
 
 TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave::EncoderParams& encoder,
@@ -208,7 +216,8 @@ void TimingChecker::check_recovery(const PinFrame& next) {
   if (error_handling_frame_ == index && next.fe1 - last_rise < kMaxRecoveryTime)
     report({std::string(check::kErrorRecovery), "A2 (wait the maximum t_m after an error handling)",
             ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(next.fe1 - last_rise),
-            ">= 30 us", Severity::Error, "the next frame followed an error handling too soon"});
+            ">= 30 us", Severity::Error, "the next frame followed an error handling too soon"},
+           "between frames");
   const bool short_tm = type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected;
   const Time t_m = short_tm ? *encoder_.t_m_short : encoder_.t_m;
   const Time gap = next.fe1 - last_rise;
@@ -217,7 +226,8 @@ void TimingChecker::check_recovery(const PinFrame& next) {
           next.fe1, next.header.index, 1U, format_time(gap), ">= " + format_time(t_m + encoder_.t_r),
           Severity::Error,
           "next frame began " + format_time(gap) + " after the last rising edge, before t_m (" + format_time(t_m) +
-              ") + t_R (" + format_time(encoder_.t_r) + ") had elapsed"});
+              ") + t_R (" + format_time(encoder_.t_r) + ") had elapsed"},
+         "between frames");
 }
 
 void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, bool, bool) {
@@ -249,7 +259,7 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
           "master sampled bit slot " + std::to_string(clock) + " outside its data-valid window (" +
               (latest == 0 ? std::string("no bit had arrived yet")
                            : "the line carried slot " + std::to_string(latest)) +
-              "; true round trip " + format_time(rt) + ", t_D used " + format_time(frame.t_d_used) + ")"});
+              "; true round trip " + format_time(rt) + ", t_D used " + format_time(frame.t_d_used) + ")"}, field_of(frame, clock));
 }
 
 void TimingChecker::on_frame_end(const master::FrameResult& frame) {

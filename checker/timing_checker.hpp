@@ -43,7 +43,8 @@ inline constexpr std::string_view kClockCount = "clock_count";
 std::span<const std::string_view> all();
 }  // namespace check
 
-struct Violation {
+// What a check found; a Violation adds where in the frame it happened.
+struct Finding {
   std::string check;
   std::string spec;  // section / table row
   ObservationPoint where = ObservationPoint::EncoderPins;
@@ -54,6 +55,11 @@ struct Violation {
   std::string limit;
   Severity severity = Severity::Error;
   std::string message;
+};
+
+struct Violation : Finding {
+  // Where in the frame: "start-bit polling", "start bit", "position", "CRC", "first LOW phase"...
+  std::string field;
 };
 
 struct CheckerParams {
@@ -114,6 +120,7 @@ class TimingChecker final : public master::MasterObserver {
   void check_start_delay(const PinFrame& f);
   void check_delay_tolerance(Time t_d);
   void check_clock_count(const PinFrame& f);
+  std::string field_of(const master::FrameResult& frame, unsigned clock) const;
   void check_encoder_sample(unsigned clock);
   void check_master_sample(const master::FrameResult& frame, unsigned clock);
   void on_master_clock(std::uint64_t level);
@@ -122,7 +129,7 @@ class TimingChecker final : public master::MasterObserver {
   void check_frequency(const PinFrame& f);
   void check_recovery(const PinFrame& next);
   void check_measurement_procedure(const master::FrameResult& frame);
-  void report(Violation v) { violations_.push_back(std::move(v)); }
+  void report(Finding f, std::string_view field = {}) { violations_.push_back({std::move(f), std::string(field)}); }
 
   sim::Kernel& kernel_;
   line::Line& line_;

@@ -83,6 +83,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
           << line::to_string(v.where);
       if (v.frame) out << ", frame #" << *v.frame;
       if (v.clock) out << ", clock " << *v.clock;
+      if (!v.field.empty()) out << ", " << v.field;
       out << "): measured " << v.measured << ", limit " << v.limit << " - " << v.message << "\n";
     }
   }
@@ -146,6 +147,7 @@ nlohmann::json to_json(const ScenarioResult& r) {
             {"severity", checker::to_string(v.severity)}, {"message", v.message}};
     if (v.frame) jv["frame"] = *v.frame;
     if (v.clock) jv["clock"] = *v.clock;
+    if (!v.field.empty()) jv["field"] = v.field;
     vs.push_back(jv);
   }
   j["violations"] = vs;
