@@ -95,6 +95,13 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
 
 void TimingChecker::on_frame_start(const master::FrameResult& frame) {
   if (frame.measurement && !last_frame_was_measurement_) check_measurement_procedure(frame);
+  if (frame.measurement) t_d_stale_ = false;
+  if (frame.compensated && t_d_stale_) {
+    t_d_stale_ = false;  // one report per change
+    report({std::string(check::kMeasurementProcedure), "2.1.2 (measure again after every change of the transmission path)",
+            ObservationPoint::MasterPins, frame.start, frame.index, std::nullopt, "t_D from before the change",
+            "a new measurement", Severity::Error, "the master compensates with a delay measured on the old line"});
+  }
   last_frame_was_measurement_ = frame.measurement;
   const FrameHeader h{frame.index, frame.measurement, frame.compensated, protocol::info(frame.command).version,
                       frame.f_c, frame.t_d_used};

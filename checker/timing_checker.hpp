@@ -89,6 +89,9 @@ class TimingChecker final : public master::MasterObserver {
   void on_sample(const master::FrameResult& frame, unsigned clock, bool value, bool in_data) override;
   void on_frame_end(const master::FrameResult& frame) override;
 
+  // The transmission path changed (cable, connector): t_D must be measured again (2.1.2).
+  void on_line_change() { t_d_stale_ = true; }
+
   // Evaluates what is still open (last frame, running contention). Call once after the run.
   void finish();
   const std::vector<Violation>& violations() const { return violations_; }
@@ -155,6 +158,7 @@ class TimingChecker final : public master::MasterObserver {
   std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
   bool sampling_reported_ = false;
   bool last_frame_was_measurement_ = false;
+  bool t_d_stale_ = false;
   // Per frame, at the encoder pins: driver released (t_z), driver on again (t_OE), start bit seen
   // on rising edge `start_clock_` (t_cal); t_D once the start bit reached the master logic.
   bool released_ = false;

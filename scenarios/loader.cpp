@@ -337,6 +337,26 @@ void read_script(const Node& n, std::vector<master::Operation>& script) {
   }
 }
 
+void read_events(const Node& n, const line::LineParams& line, std::vector<LineEvent>& events) {
+  if (!n.raw().is_array()) n.fail("an array of events");
+  for (std::size_t i = 0; i < n.raw().size(); ++i) {
+    const Node item(n.raw()[i], n.path() + "/" + std::to_string(i), n.file());
+    Object o(item);
+    LineEvent e;
+    e.at = o.req("at").as_duration(Time::zero(), sim::ms(60'000));
+    if (!events.empty() && e.at < events.back().at)
+      o.req("at").fail("a time not before the previous event's (" + sim::format_time(events.back().at) + ")");
+    const Node change = o.req("set_cable");
+    Object c(change);
+    e.cable_length_m = c.req("cable_length_m").as_number(0.0, line::LineParams::kMaxCableLengthM, " m");
+    e.cable_delay_per_m = line.cable_delay_per_m;
+    if (auto v = c.opt("cable_delay_per_m")) e.cable_delay_per_m = v->as_duration(Time::zero(), sim::ns(20));
+    c.done();
+    o.done();
+    events.push_back(e);
+  }
+}
+
 void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std::span<const std::string_view> allowed) {
   if (!n.raw().is_object()) n.fail("an object of counts");
   for (const auto& [key, value] : n.raw().items()) {
@@ -397,6 +417,7 @@ Scenario read_scenario(const json& root, const std::string& file) {
   s.master.seed = s.seed;
   if (auto v = o.opt("checker")) read_checker(*v, s.checker);
   read_script(o.req("script"), s.script);
+  if (auto v = o.opt("events")) read_events(*v, s.line, s.events);
   if (auto v = o.opt("expect")) read_expect(*v, s.expect);
   o.done();
   return s;

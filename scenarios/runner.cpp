@@ -119,6 +119,19 @@ void judge(const Scenario& s, ScenarioResult& r) {
 
 }  // namespace
 
+// Applies a scripted line event at its time and tells the checker (2.1.2: a change of the
+// transmission path calls for a new delay measurement).
+struct LineEventDriver {
+  line::Line* line;
+  checker::TimingChecker* checker;
+  const std::vector<LineEvent>* events;
+  void apply(std::uint64_t i) {
+    const LineEvent& e = (*events)[i];
+    line->set_cable(e.cable_length_m, e.cable_delay_per_m);
+    checker->on_line_change();
+  }
+};
+
 bool ScenarioResult::passed() const {
   return std::all_of(expectations.begin(), expectations.end(), [](const auto& e) { return e.passed; });
 }
@@ -150,6 +163,9 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   }
 
   for (const auto& op : scenario.script) master.enqueue(op);
+  LineEventDriver events{&line, &checker, &scenario.events};
+  for (std::size_t i = 0; i < scenario.events.size(); ++i)
+    kernel.schedule_at(scenario.events[i].at, sim::bind<&LineEventDriver::apply>(&events, i));
   master.start();
   kernel.run(scenario.max_time);
   checker.finish();

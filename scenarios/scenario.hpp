@@ -38,6 +38,13 @@ struct Expectations {
   std::optional<std::uint64_t> max_cycle_overruns;
 };
 
+// Something that happens to the line while the script runs (a connector swap, a cable change).
+struct LineEvent {
+  Time at{0};
+  double cable_length_m = 0;
+  Time cable_delay_per_m{0};
+};
+
 struct Scenario {
   std::string file;
   std::string name;
@@ -49,6 +56,7 @@ struct Scenario {
   master::MasterParams master;
   checker::CheckerParams checker;
   std::vector<master::Operation> script;
+  std::vector<LineEvent> events;
   Expectations expect;
 };
 

@@ -344,3 +344,29 @@ TEST(CheckerClockCount, TooFewPulsesAndPulsesBeyondAnEnDat22Frame) {
       EXPECT_EQ(v.measured, "46 pulses");
     }
 }
+
+TEST(CheckerLineChange, CompensatingWithADelayFromTheOldLineIsReported) {
+  // Measured on 10 m (t_D 300 ns); at 2 ms the cable becomes 60 m (800 ns) while reads go on.
+  auto s = make_scenario(10, MHz(8), true, 10);
+  s.script.back().cycle = us(200);
+  s.events.push_back({ms(2), 60, ns(5)});
+  auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kMeasurementProcedure), 1U);
+  EXPECT_GE(count_violations(r, checker::check::kDataDelayTolerance), 1U);
+  // The master hunts for the start bit, so its reads stay right by a whole-bit shift, but it
+  // samples outside the data-valid windows.
+  EXPECT_GE(count_violations(r, checker::check::kSamplingWindow), 1U);
+  // Measuring again after the change keeps every read clean.
+  master::Operation again;
+  again.kind = master::Operation::Kind::MeasureDelay;
+  again.at = ms(2) + us(100);
+  master::Operation reads = s.script.back();
+  reads.count = 3;
+  s.script.push_back(again);
+  s.script.push_back(reads);
+  s.script[1].count = 4;
+  r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kMeasurementProcedure), 0U);
+  EXPECT_EQ(count_violations(r, checker::check::kDataDelayTolerance), 0U);
+  EXPECT_EQ(test_support::count_ok(r), 7U);
+}

@@ -130,3 +130,21 @@ TEST(ScenarioLoader, ADirectoryIsNotAScenario) {
     EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
   }
 }
+
+TEST(ScenarioLoader, ReadsLineEventsInTimeOrder) {
+  const auto s = load_scenario_text(
+      valid_with("\"script\"", "\"events\": [{\"at\": \"1 ms\", \"set_cable\": {\"cable_length_m\": 50}}], \"script\""),
+      "ok.json");
+  ASSERT_EQ(s.events.size(), 1U);
+  EXPECT_EQ(s.events[0].at, sim::ms(1));
+  EXPECT_EQ(s.events[0].cable_length_m, 50.0);
+  EXPECT_EQ(s.events[0].cable_delay_per_m, sim::ns(5));
+  const std::string backwards = error_of(valid_with(
+      "\"script\"",
+      "\"events\": [{\"at\": \"2 ms\", \"set_cable\": {\"cable_length_m\": 5}}, {\"at\": \"1 ms\", \"set_cable\": "
+      "{\"cable_length_m\": 5}}], \"script\""));
+  EXPECT_NE(backwards.find("at /events/1/at"), std::string::npos) << backwards;
+  const std::string too_long =
+      error_of(valid_with("\"script\"", "\"events\": [{\"at\": \"1 ms\", \"set_cable\": {\"cable_length_m\": 400}}], \"script\""));
+  EXPECT_NE(too_long.find("at /events/0/set_cable/cable_length_m"), std::string::npos) << too_long;
+}
