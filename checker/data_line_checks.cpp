@@ -20,8 +20,16 @@ constexpr Time kPeriodAtMinimumFc = sim::us(10);  // 2.3.2 note 6: T = 1/f_c min
 void TimingChecker::start_data_line_checks() {
   released_ = false;
   driving_ = false;
+  driven_low_ = false;
   start_clock_ = 0;
   t_d_measured_ = false;
+}
+
+// The encoder's LOW after the turnaround, seen as a falling edge or, when DATA was LOW already
+// (fail-safe LOW), on a rising clock edge. Only a HIGH after it is a start bit: a type I answer
+// that drives HIGH at once (A2, hypothesis A) is not.
+void TimingChecker::note_encoder_low() {
+  if (driving_ && !line_.pins(ObservationPoint::EncoderPins).data.read()) driven_low_ = true;
 }
 
 void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
@@ -55,7 +63,12 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
 }
 
 void TimingChecker::on_encoder_data(std::uint64_t level) {
-  if (!in_frame_ || !driving_ || level == 0 || start_clock_ != 0) return;
+  if (!in_frame_) return;
+  if (level == 0) {
+    note_encoder_low();
+    return;
+  }
+  if (!driving_ || !driven_low_ || start_clock_ != 0) return;
   // The start bit: the first rising DATA edge the encoder drives after the turnaround. It left
   // on the rising edge that reached the encoder logic one encoder-internal delay (receiver,
   // logic, driver) before the edge showed on the pins. t_cal ends no later than that edge (the
@@ -111,12 +124,13 @@ namespace {
 
 // 2.3.2 note 8: t_ST = 2 us for f_c 2 .. 8 MHz, 1 us at 16 MHz, linear in between; "the 2 us
 // relate to a cable length of 100 m and can be reduced with a shorter cable". Read here as
-// shrinking with the spec's t_D bound, (0.2 + 0.01 L) / 1.2; the alternative reading keeps the
-// table's 2 us minimum for every length. Only with delay compensation (table column).
+// scaling with the spec's t_D bound, (0.2 + 0.01 L) / 1.2, shorter below 100 m and longer above
+// (the encoder's release must reach the master before it drives); the alternative reading keeps
+// the table's 2 us for every length. Only with delay compensation (table column).
 Time required_start_delay(sim::Hertz f_c, double cable_m) {
   const sim::Hertz over = std::clamp<sim::Hertz>(f_c - sim::MHz(8), 0, sim::MHz(8));
   const Time at_100m = sim::us(2) - Time{over * 1'000'000 / sim::MHz(8)};
-  const double share = std::min(1.0, (0.2 + 0.01 * cable_m) / 1.2);
+  const double share = (0.2 + 0.01 * cable_m) / 1.2;
   return Time{static_cast<std::int64_t>(static_cast<double>(at_100m.count()) * share + 0.5)};
 }
 

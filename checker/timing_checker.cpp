@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace endatsim::checker {
 namespace {
@@ -17,31 +18,51 @@ constexpr sim::Hertz kMaxFcWith = sim::MHz(8);
 constexpr sim::Hertz kMaxFcSpecial = sim::MHz(16);  // 2.1.2: "8 to 16 MHz is intended for special applications"
 
 // The frame's clock frequency from a least-squares fit over its rising edges from RE2 on (the
-// first period contains t_ST): jitter on single edges does not move it, a steady clock is exact.
+// first period contains t_ST), at most kMaxFitEdges of them (a long continuous clock). A steady
+// clock is judged exactly; with jitter the limits widen by three standard errors of the fit,
+// so that a clock whose frequency is right is not flagged for the scatter of its edges.
+constexpr std::int64_t kMaxFitEdges = 4096;
+
 struct FittedFrequency {
-  __int128 num = 0;  // f = 1e12 * den / num  [Hz]
+  __int128 num = 0;  // period = num / den [ps]; f = 1e12 * den / num [Hz]
   __int128 den = 0;
+  std::int64_t uncertainty_ppm = 0;
   sim::Hertz hertz() const { return static_cast<sim::Hertz>((__int128{1'000'000'000'000} * den + num / 2) / num); }
-  // f above (or below) limit by more than `ppm` parts per million.
+  // f above (or below) limit by more than `ppm` parts per million plus the fit's uncertainty.
   bool above(sim::Hertz limit, std::int64_t ppm) const {
-    return __int128{1'000'000'000'000} * den * 1'000'000 > __int128{limit} * (1'000'000 + ppm) * num;
+    return __int128{1'000'000'000'000} * den * 1'000'000 > __int128{limit} * (1'000'000 + ppm + uncertainty_ppm) * num;
   }
   bool below(sim::Hertz limit, std::int64_t ppm) const {
-    return __int128{1'000'000'000'000} * den * 1'000'000 < __int128{limit} * (1'000'000 - ppm) * num;
+    return __int128{1'000'000'000'000} * den * 1'000'000 < __int128{limit} * (1'000'000 - ppm - uncertainty_ppm) * num;
   }
 };
 
 FittedFrequency fit_frequency(const std::vector<Time>& rising) {
+  const std::int64_t m = std::min<std::int64_t>(static_cast<std::int64_t>(rising.size()) - 1, kMaxFitEdges);
+  const Time origin = rising[1];
+  const auto y = [&](std::int64_t i) { return __int128{(rising[static_cast<std::size_t>(i + 1)] - origin).count()}; };
   __int128 sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const auto m = static_cast<std::int64_t>(rising.size() - 1);
   for (std::int64_t i = 0; i < m; ++i) {
-    const __int128 y = rising[static_cast<std::size_t>(i + 1)].count();
     sx += i;
-    sy += y;
+    sy += y(i);
     sxx += __int128{i} * i;
-    sxy += i * y;
+    sxy += i * y(i);
   }
-  return {m * sxy - sx * sy, m * sxx - sx * sx};
+  FittedFrequency fit{m * sxy - sx * sy, m * sxx - sx * sx, 0};
+  if (m < 3 || fit.num <= 0) return fit;
+  // Residuals times den, exactly: den * y_i - (sy * sxx - sx * sxy) - i * num.
+  const __int128 intercept = sy * sxx - sx * sxy;
+  long double squares = 0;
+  for (std::int64_t i = 0; i < m; ++i) {
+    const auto r = static_cast<long double>(fit.den * y(i) - intercept - i * fit.num) / static_cast<long double>(fit.den);
+    squares += r * r;
+  }
+  if (squares == 0) return fit;
+  const long double slope_sd = std::sqrt(squares / static_cast<long double>(m - 2) /
+                                         (static_cast<long double>(fit.den) / static_cast<long double>(m)));
+  const long double period = static_cast<long double>(fit.num) / static_cast<long double>(fit.den);
+  fit.uncertainty_ppm = static_cast<std::int64_t>(std::ceil(3 * slope_sd / period * 1e6L));
+  return fit;
 }
 
 }  // namespace
@@ -95,7 +116,17 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
 
 void TimingChecker::on_frame_start(const master::FrameResult& frame) {
   if (frame.measurement && !last_frame_was_measurement_) check_measurement_procedure(frame);
-  if (frame.measurement) t_d_stale_ = false;
+  if (frame.measurement) {
+    t_d_stale_ = false;
+    measured_ = true;
+  }
+  if (frame.compensated && !measured_ && !unmeasured_reported_) {
+    unmeasured_reported_ = true;
+    report({std::string(check::kMeasurementProcedure), "2.1.2 (measure the propagation delay, after each power interruption)",
+            ObservationPoint::MasterPins, frame.start, frame.index, std::nullopt, "no measurement",
+            "a measurement before compensating", Severity::Error,
+            "the master compensates with a delay it never measured on this line"});
+  }
   if (frame.compensated && t_d_stale_) {
     t_d_stale_ = false;  // one report per change
     report({std::string(check::kMeasurementProcedure), "2.1.2 (measure again after every change of the transmission path)",
@@ -103,6 +134,7 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
             "a new measurement", Severity::Error, "the master compensates with a delay measured on the old line"});
   }
   last_frame_was_measurement_ = frame.measurement;
+  frame_starts_.emplace_back(frame.start, frame.index);
   const FrameHeader h{frame.index, frame.measurement, frame.compensated, protocol::info(frame.command).version,
                       frame.f_c, frame.t_d_used};
   pending_.emplace_back(master_falling_edges_ + 1, h);
@@ -120,6 +152,7 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
   if (level != 0) {
     if (!in_frame_) return;
     current_.rising.push_back(now);
+    note_encoder_low();
     check_encoder_sample(static_cast<unsigned>(current_.rising.size()));
     return;
   }
@@ -206,8 +239,11 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   const std::string range = format_frequency(kMinFc) + " .. " + format_frequency(max);
   const std::string spec = compensated ? "2.3.2 f_c (with delay compensation)" : "2.3.2 f_c (without delay compensation)";
   if (fit.below(kMinFc, tol) || (fit.above(max, tol) && (!compensated || fit.above(kMaxFcSpecial, tol)))) {
+    const std::string applied = compensated ? format_frequency(kMinFc) + " .. " + format_frequency(kMaxFcSpecial) +
+                                                  " (above 8 MHz only for special applications)"
+                                            : range;
     report({std::string(check::kClockFrequency), spec, ObservationPoint::EncoderPins, at, f.header.index, std::nullopt,
-            format_frequency(fc), range, Severity::Error, "clock frequency outside the table's range"});
+            format_frequency(fc), applied, Severity::Error, "clock frequency outside the table's range"});
   } else if (fit.above(max, tol)) {
     report({std::string(check::kClockFrequency), "2.1.2 (8 .. 16 MHz for special applications)",
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), range,
@@ -238,6 +274,10 @@ void TimingChecker::check_recovery(const PinFrame& next) {
 }
 
 void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, bool, bool) {
+  if (frame.index != sampled_frame_) {  // a new frame or a new continuous-clock word
+    sampled_frame_ = frame.index;
+    sampling_reported_ = false;
+  }
   check_master_sample(frame, clock);
   // Measurement frames are for the counter (2.1.2), taken without compensation by design.
   if (frame.measurement || sampling_reported_ || clock == 0) return;
@@ -281,9 +321,13 @@ void TimingChecker::finish() {
   }
   for (const line::Contention& c : line_.contentions()) {
     const Time end = c.end == Time::max() ? kernel_.now() : c.end;
+    // The frame that had begun (FE1 at the master logic) when the contention began.
+    std::optional<std::uint64_t> frame;
+    for (const auto& [start, index] : frame_starts_)
+      if (start <= c.start) frame = index;
     report({std::string(check::kContention), "2.3 (collision between the data drivers)", c.where, c.start,
-            std::nullopt, std::nullopt, format_time(end - c.start), "0 ps (one driver at a time)", Severity::Error,
-            "master and encoder drove DATA at the same time"});
+            frame, std::nullopt, format_time(end - c.start), "0 ps (one driver at a time)", Severity::Error,
+            "master and encoder drove DATA at the same time"}, frame ? "inside a frame" : "between frames");
   }
   std::stable_sort(violations_.begin(), violations_.end(),
                    [](const Violation& a, const Violation& b) { return a.time < b.time; });

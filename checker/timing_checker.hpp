@@ -119,6 +119,7 @@ class TimingChecker final : public master::MasterObserver {
   void on_encoder_data(std::uint64_t level);
   void on_master_data(std::uint64_t level);
   void start_data_line_checks();
+  void note_encoder_low();
   void on_master_driven(std::uint64_t driven);
   void check_start_delay(const PinFrame& f);
   void check_delay_tolerance(Time t_d);
@@ -159,10 +160,15 @@ class TimingChecker final : public master::MasterObserver {
   bool sampling_reported_ = false;
   bool last_frame_was_measurement_ = false;
   bool t_d_stale_ = false;
+  bool measured_ = false;
+  bool unmeasured_reported_ = false;
+  std::uint64_t sampled_frame_ = UINT64_MAX;
+  std::vector<std::pair<Time, std::uint64_t>> frame_starts_;  // FE1 at the master logic, frame index
   // Per frame, at the encoder pins: driver released (t_z), driver on again (t_OE), start bit seen
   // on rising edge `start_clock_` (t_cal); t_D once the start bit reached the master logic.
   bool released_ = false;
   bool driving_ = false;
+  bool driven_low_ = false;
   unsigned start_clock_ = 0;
   bool t_d_measured_ = false;   // one sampling-window violation per frame, the first bit
   std::vector<Violation> violations_;

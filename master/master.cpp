@@ -302,6 +302,7 @@ void Master::word_received(FrameOutcome outcome) {
   --words_left_;
   ++frame_.word;
   frame_.index = frames_.size();
+  frame_.start_bit_clock = 0;
   rx_ = Rx::Polling;
   seen_low_ = false;
   require_low_ = true;  // the HIGH bit after the CRC is not a start bit

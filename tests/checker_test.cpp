@@ -84,10 +84,35 @@ TEST(CheckerMeasurementClock, DelayMeasuredAt1MHzIsReported) {
   EXPECT_EQ(count_violations(r, checker::check::kMeasurementClock), 3U);
 }
 
-TEST(CheckerClockFrequency, EdgeJitterAtTheLimitIsNotAViolation) {
-  auto s = make_scenario(1, MHz(2), false, 20);
-  s.master.jitter = ns(5);
+TEST(CheckerClockFrequency, EdgeJitterOnAClockAtTheLimitIsNotAViolation) {
+  for (auto [f_c, jitter, seed] : {std::tuple{MHz(2), ns(100), 1}, std::tuple{MHz(8), ns(30), 2},
+                                    std::tuple{MHz(16), ns(15), 4}}) {
+    auto s = make_scenario(10, f_c, f_c > MHz(2), 20);
+    if (f_c == MHz(16)) s.master.t_st = us(1);
+    s.master.jitter = jitter;
+    s.seed = static_cast<std::uint64_t>(seed);
+    const auto r = scenarios::run_scenario(s);
+    for (const auto& v : r.violations)
+      if (v.check == checker::check::kClockFrequency) {
+        EXPECT_EQ(v.severity, checker::Severity::Warning) << v.measured;  // 16 MHz: special applications
+        EXPECT_EQ(f_c, MHz(16)) << v.measured;
+      }
+  }
+}
+
+TEST(CheckerClockFrequency, AJitteredClockThatIsTooFastIsStillCaught) {
+  auto s = make_scenario(1, Hertz{2'100'000}, false, 5);
+  s.master.jitter = ns(20);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 5U);
+}
+
+TEST(CheckerClockFrequency, ALongContinuousClockIsJudgedWithoutOverflow) {
+  auto s = make_scenario(10, MHz(1), false, 1);
+  s.encoder.version = protocol::EndatVersion::V2_1;
+  s.script.back().command = protocol::ModeCommand::EncoderSendPositionValues;
+  s.script.back().continuous_words = 1500;  // 51 000 rising edges: the fit takes the first 4096
   const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(test_support::count_ok(r), 1501U);
   EXPECT_EQ(count_violations(r, checker::check::kClockFrequency), 0U);
 }
 
@@ -369,4 +394,52 @@ TEST(CheckerLineChange, CompensatingWithADelayFromTheOldLineIsReported) {
   EXPECT_EQ(count_violations(r, checker::check::kMeasurementProcedure), 0U);
   EXPECT_EQ(count_violations(r, checker::check::kDataDelayTolerance), 0U);
   EXPECT_EQ(test_support::count_ok(r), 7U);
+}
+
+TEST(CheckerTypeOne, AnAnswerThatDrivesHighAtOnceIsNoStartBit) {
+  // Fail-safe LOW and an encoder driver that turns on before its level settles: the HIGH of a
+  // type I answer must not be taken for a start bit (no t_D, clock-count or t_cal report).
+  auto s = make_scenario(10, MHz(1), false, 1);
+  s.line.failsafe_level = false;
+  s.line.encoder.driver_delay = ns(40);
+  s.line.encoder.enable_delay = ns(20);
+  s.encoder.output_delay = ns(50);  // keeps the round trip at the t_D bound
+  master::Operation bad = s.script.back();
+  bad.mode_bits = 0b001110;
+  s.script.insert(s.script.begin(), bad);
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(r.frames.size(), 2U);
+  EXPECT_EQ(r.frames[0].outcome, master::FrameOutcome::Type1Error);
+  EXPECT_TRUE(r.violations.empty()) << r.violations.front().check << ": " << r.violations.front().message;
+}
+
+TEST(CheckerMeasurementProcedure, CompensatingWithoutEverMeasuringIsReported) {
+  auto s = make_scenario(100, MHz(8), true, 3);
+  s.script.erase(s.script.begin());
+  s.master.fixed_t_d = us(1) + ns(200);  // right, but never measured (2.1.2)
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kMeasurementProcedure), 1U);
+  EXPECT_EQ(test_support::count_ok(r), 3U);
+}
+
+TEST(CheckerContinuousClock, EveryWordIsJudgedOnItsOwn) {
+  // 2 MHz over 40 m without compensation: t_D 0.6 us > T/2, every word is sampled off-window.
+  auto s = make_scenario(40, MHz(2), false, 1);
+  s.encoder.version = protocol::EndatVersion::V2_1;
+  s.script.back().command = protocol::ModeCommand::EncoderSendPositionValues;
+  s.script.back().continuous_words = 4;
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kSamplingWindow), 5U);
+}
+
+TEST(CheckerContention, IsAttributedToTheFrameItHappensIn) {
+  auto s = make_scenario(100, MHz(8), true, 2);
+  s.master.t_st = Time::zero();
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_GE(count_violations(r, checker::check::kContention), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kContention) {
+      ASSERT_TRUE(v.frame.has_value());
+      EXPECT_GE(*v.frame, 3U);  // frames 0..2 measure t_D at 200 kHz, where the first LOW is long enough
+    }
 }
