@@ -10,6 +10,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 #include "scenarios/loader.hpp"
@@ -32,6 +33,40 @@ std::vector<std::string> split(const std::string& s, char separator) {
   std::size_t begin = 0;
   for (std::size_t end; (end = s.find(separator, begin)) != std::string::npos; begin = end + 1)
     parts.push_back(trim(std::string_view(s).substr(begin, end - begin)));
+  parts.push_back(trim(std::string_view(s).substr(begin)));
+  return parts;
+}
+
+// The values of a --grid: split on the commas outside JSON strings, arrays and objects, so that
+// "a,b", [1,2] and {"x":1,"y":2} are one value each.
+std::vector<std::string> split_values(const std::string& s, const std::string& context) {
+  std::vector<std::string> parts;
+  std::string depth;  // the open brackets, innermost last
+  bool in_string = false, escaped = false;
+  std::size_t begin = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      depth += c;
+    } else if (c == ']' || c == '}') {
+      if (depth.empty() || depth.back() != (c == ']' ? '[' : '{'))
+        throw ScenarioError(context + ": unbalanced '" + std::string(1, c) + "' in the values");
+      depth.pop_back();
+    } else if (c == ',' && depth.empty()) {
+      parts.push_back(trim(std::string_view(s).substr(begin, i - begin)));
+      begin = i + 1;
+    }
+  }
+  if (in_string) throw ScenarioError(context + ": a string without its closing '\"' in the values");
+  if (!depth.empty()) throw ScenarioError(context + ": '" + depth.substr(depth.size() - 1) + "' without its closing bracket in the values");
   parts.push_back(trim(std::string_view(s).substr(begin)));
   return parts;
 }
@@ -80,6 +115,80 @@ void check_pointer(const std::string& pointer, const std::string& context) {
   }
   if (!valid)
     throw ScenarioError(context + ": \"" + pointer + "\" is not a JSON pointer to a scenario key (such as /line/cable_length_m)");
+}
+
+// The reference tokens of a pointer that check_pointer accepted, unescaped (~1 is '/', ~0 '~').
+std::vector<std::string> pointer_tokens(const std::string& pointer) {
+  std::vector<std::string> tokens;
+  for (std::size_t begin = 1;;) {
+    const auto end = pointer.find('/', begin);
+    std::string token = pointer.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    std::string unescaped;
+    for (std::size_t i = 0; i < token.size(); ++i) {
+      if (token[i] == '~' && i + 1 < token.size()) {
+        unescaped += token[i + 1] == '1' ? '/' : '~';
+        ++i;
+      } else {
+        unescaped += token[i];
+      }
+    }
+    tokens.push_back(std::move(unescaped));
+    if (end == std::string::npos) return tokens;
+    begin = end + 1;
+  }
+}
+
+// The first `count` tokens as a pointer.
+std::string pointer_prefix(const std::string& pointer, std::size_t count) {
+  std::size_t end = 0;
+  for (std::size_t k = 0; k < count && end != std::string::npos; ++k) end = pointer.find('/', end + 1);
+  return count == 0 ? std::string("(the top level)") : pointer.substr(0, end);
+}
+
+std::string kind_of(const json& v) {
+  if (v.is_object()) return "an object";
+  if (v.is_array()) return "an array";
+  if (v.is_string()) return "a string";
+  if (v.is_boolean()) return "a boolean";
+  if (v.is_number()) return "a number";
+  return "null";
+}
+
+// A --grid pointer must name something the scenario has: every step but the last an existing
+// key or element; the last an existing array element, or a key of an existing object (which
+// may be missing: an optional key, judged by the loader like any other).
+void check_pointer_in(const json& base, const std::string& file, const std::string& pointer) {
+  const auto tokens = pointer_tokens(pointer);
+  const std::string context = "--grid " + pointer + ": " + file + ": ";
+  const json* node = &base;
+  for (std::size_t k = 0; k < tokens.size(); ++k) {
+    const std::string& token = tokens[k];
+    const std::string at = pointer_prefix(pointer, k);
+    const bool last = k + 1 == tokens.size();
+    if (node->is_object()) {
+      const auto it = node->find(token);
+      if (it != node->end()) {
+        node = &*it;
+        continue;
+      }
+      if (last) return;  // a missing key of an existing object
+      throw ScenarioError(context + "no key \"" + token + "\" at " + at + ", so nothing to patch at " + pointer +
+                          " (give " + pointer_prefix(pointer, k + 1) + " a JSON object as its value instead)");
+    }
+    if (node->is_array()) {
+      const bool digits = !token.empty() && token.find_first_not_of("0123456789") == std::string::npos &&
+                          (token.size() == 1 || token[0] != '0');
+      const std::string range = node->empty() ? "it is empty" : "it has " + std::to_string(node->size()) +
+                                (node->size() == 1 ? " element, index 0" : " elements, 0 .. " + std::to_string(node->size() - 1));
+      if (!digits || token.size() > 9 || std::stoul(token) >= node->size())
+        throw ScenarioError(context + "no element \"" + token + "\" in the array at " + at + " (" + range +
+                            "); a grid pointer must name an element that exists");
+      node = &(*node)[std::stoul(token)];
+      continue;
+    }
+    throw ScenarioError(context + at + " is " + kind_of(*node) + ", not an object or an array, so it has no \"" +
+                        token + "\"");
+  }
 }
 
 std::vector<std::size_t> digits_at(const std::vector<GridAxis>& grid, std::size_t index) {
@@ -202,7 +311,7 @@ GridAxis parse_grid_axis(const std::string& text) {
   if (equals == std::string::npos) throw ScenarioError(context + ": expected POINTER=V1,V2,... or POINTER=START:STOP:STEP");
   GridAxis axis{trim(std::string_view(text).substr(0, equals)), {}};
   check_pointer(axis.pointer, context);
-  for (const auto& item : split(text.substr(equals + 1), ',')) {
+  for (const auto& item : split_values(text.substr(equals + 1), context)) {
     if (item.empty()) throw ScenarioError(context + ": an empty value");
     if (auto range = range_values(item, context)) {
       axis.values.insert(axis.values.end(), range->begin(), range->end());
@@ -238,10 +347,22 @@ SweepPoint summarize(const Scenario& scenario, const ScenarioResult& r) {
   return p;
 }
 
+void check_grid(const json& base, const std::string& file, const std::vector<GridAxis>& grid) {
+  for (std::size_t a = 0; a < grid.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b) {
+      const std::string &first = grid[b].pointer, &second = grid[a].pointer;
+      if (first == second) throw ScenarioError("--grid " + first + " is given twice");
+      const bool first_inside = first.rfind(second + "/", 0) == 0, second_inside = second.rfind(first + "/", 0) == 0;
+      if (first_inside || second_inside)
+        throw ScenarioError("--grid " + (first_inside ? second : first) + " and --grid " + (first_inside ? first : second) +
+                            ": the second lies inside the first, so one would overwrite the other");
+    }
+  for (const auto& axis : grid) check_pointer_in(base, file, axis.pointer);
+  (void)grid_size(grid);
+}
+
 Sweep run_sweep(const json& base, const std::string& file, const std::vector<GridAxis>& grid, const SweepOptions& options) {
-  std::set<std::string> pointers;
-  for (const auto& axis : grid)
-    if (!pointers.insert(axis.pointer).second) throw ScenarioError("--grid " + axis.pointer + ": given twice");
+  check_grid(base, file, grid);
   const std::size_t n = grid_size(grid);
   // Load every point before running any, so that bad input stops the sweep at once.
   std::vector<Scenario> scenarios;
@@ -472,21 +593,38 @@ void draw_axes(std::ostream& out, const Sweep& sweep, const MaximumTable& m, std
       << xml(sweep.name + ": largest " + sweep.grid[m.axis].pointer + " with clean reads") << "</text>\n";
 }
 
-// The legend: a heading (the series key) and one entry per line.
+// A cross: where a line has no clean point.
+void draw_cross(std::ostream& out, double cx, double cy, const char* colour) {
+  out << "<path d=\"M" << px(cx - 4) << "," << px(cy - 4) << " L" << px(cx + 4) << "," << px(cy + 4) << " M"
+      << px(cx - 4) << "," << px(cy + 4) << " L" << px(cx + 4) << "," << px(cy - 4) << "\" stroke=\"" << colour
+      << "\" stroke-width=\"2\"/>\n";
+}
+
+constexpr const char* kNoCleanText = "no clean value";
+
+// The legend: a heading (the series key), one entry per line and, when some x has no clean
+// point, what the crosses mean.
 struct Legend {
   std::string heading;
   std::vector<std::string> entries;
+  bool gaps = false;
   double width() const {
     std::size_t chars = heading.size();
     for (const auto& e : entries) chars = std::max(chars, e.size() + 5);
+    if (gaps) chars = std::max(chars, std::string_view(kNoCleanText).size() + 5);
     return 30 + kCharWidth * static_cast<double>(chars);
   }
 };
 
 Legend legend_of(const Sweep& sweep, const MaximumTable& m, const ChartShape& shape) {
-  if (!shape.series) return {"", {"largest clean " + sweep.grid[m.axis].pointer}};
-  Legend legend{sweep.grid[*shape.series].pointer, {}};
-  for (const auto& v : sweep.grid[*shape.series].values) legend.entries.push_back(value_text(v));
+  Legend legend;
+  if (!shape.series) {
+    legend.entries.push_back("largest clean " + sweep.grid[m.axis].pointer);
+  } else {
+    legend.heading = sweep.grid[*shape.series].pointer;
+    for (const auto& v : sweep.grid[*shape.series].values) legend.entries.push_back(value_text(v));
+  }
+  legend.gaps = std::any_of(m.rows.begin(), m.rows.end(), [](const MaximumTable::Row& r) { return !r.maximum; });
   return legend;
 }
 
@@ -500,6 +638,9 @@ void draw_legend(std::ostream& out, const Legend& legend) {
     out << "<line x1=\"" << kRight + 15 << "\" y1=\"" << px(y) << "\" x2=\"" << kRight + 40 << "\" y2=\"" << px(y)
         << "\" stroke=\"" << kColours[k % kColours.size()] << "\" stroke-width=\"2\"/><text x=\"" << kRight + 46
         << "\" y=\"" << px(y + 4) << "\">" << xml(legend.entries[k]) << "</text>\n";
+  if (!legend.gaps) return;
+  draw_cross(out, kRight + 27.5, y, "#555");
+  out << "<text x=\"" << kRight + 46 << "\" y=\"" << px(y + 4) << "\">" << kNoCleanText << "</text>\n";
 }
 
 // (x, maximum) of the rows that belong to series value k, by x; no maximum: no clean point.
@@ -517,24 +658,31 @@ std::vector<std::pair<double, std::optional<double>>> series_line(const Sweep& s
   return line;
 }
 
-// One line per series value; a row without a clean point breaks the line.
+// One line per series value. A row without a clean point breaks the line and gets a cross on
+// the bottom edge of the plot, off the scale, the series side by side; a point between two gaps
+// is a dot.
 void draw_series(std::ostream& out, const Sweep& sweep, const MaximumTable& m, const ChartShape& shape,
                  const Scale& x, const Scale& y) {
   const std::size_t series_count = shape.series ? sweep.grid[*shape.series].values.size() : 1;
   for (std::size_t k = 0; k < series_count; ++k) {
     const char* colour = kColours[k % kColours.size()];
     std::string points;
+    std::size_t count = 0;
     const auto flush = [&] {
-      if (!points.empty())
+      if (count > 1)
         out << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\" points=\"" << points << "\"/>\n";
       points.clear();
+      count = 0;
     };
     for (const auto& [xv, yv] : series_line(sweep, m, shape, k)) {
       if (!yv) {
         flush();
+        draw_cross(out, x(xv) + 10 * (static_cast<double>(k) - static_cast<double>(series_count - 1) / 2), kBottom,
+                   colour);
         continue;
       }
       points += (points.empty() ? "" : " ") + px(x(xv)) + "," + px(y(*yv));
+      ++count;
       out << "<circle cx=\"" << px(x(xv)) << "\" cy=\"" << px(y(*yv)) << "\" r=\"3\" fill=\"" << colour << "\"/>\n";
     }
     flush();

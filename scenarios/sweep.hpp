@@ -21,9 +21,10 @@ struct GridAxis {
   std::vector<nlohmann::json> values;
 };
 
-// "POINTER=V1,V2,...". A value is JSON when it parses as JSON (numbers, true, false), otherwise
-// a string ("2 MHz"); an item "START:STOP:STEP" of three numbers is a range that includes STOP
-// when the steps reach it. Throws ScenarioError for bad syntax.
+// "POINTER=V1,V2,...". The values split at the commas outside JSON strings, arrays and objects
+// ("a,b" is one value). A value is JSON when it parses as JSON (numbers, true, false, "quoted",
+// [...], {...}), otherwise a string ("2 MHz"); an item "START:STOP:STEP" of three numbers is a
+// range that includes STOP when the steps reach it. Throws ScenarioError for bad syntax.
 GridAxis parse_grid_axis(const std::string& text);
 
 // What one grid point gave.
@@ -57,7 +58,13 @@ struct SweepOptions {
 // The scenario file as JSON, after it loaded as a scenario on its own.
 nlohmann::json read_scenario_json(const std::string& path);
 
-// Patches `base` at the grid's pointers for every point and loads it (so the loader validates
+// Throws ScenarioError, naming the pointers, when a pointer is given twice or lies inside
+// another (/line and /line/cable_length_m), when it does not name an existing element of an
+// array or a key of an existing object in `base` (a missing key of an existing object is
+// fine: the loader judges it), or when an axis has no values or the grid is too large.
+void check_grid(const nlohmann::json& base, const std::string& file, const std::vector<GridAxis>& grid);
+
+// check_grid, then patches `base` at the grid's pointers for every point and loads it (so the loader validates
 // every value; its errors name the grid point), then runs all points on `options.jobs` threads.
 Sweep run_sweep(const nlohmann::json& base, const std::string& file, const std::vector<GridAxis>& grid,
                 const SweepOptions& options = {});

@@ -43,9 +43,12 @@ const char* const kRunHelp =
 const char* const kSweepHelp =
     "sweep runs one scenario at every point of a grid: each --grid names a key by JSON pointer\n"
     "(/line/cable_length_m, /master/f_c, /master/delay_compensation, ...) and its values, parsed as\n"
-    "JSON when they parse (numbers, true, false) and taken as strings otherwise (\"2 MHz\");\n"
-    "START:STOP:STEP is a range. The grid is the Cartesian product. A point is clean when the script\n"
-    "finished, every read is ok and equals the encoder's position, and no check reported anything.\n"
+    "JSON when they parse (numbers, true, false, \"quoted\", [...], {...}) and taken as strings\n"
+    "otherwise (\"2 MHz\"); commas inside JSON strings, arrays and objects do not split values;\n"
+    "START:STOP:STEP is a range. A pointer names an existing array element or a key of an existing\n"
+    "object, and no pointer lies inside another. The grid is the Cartesian product; the output\n"
+    "files are opened before it runs. A point is clean when the script finished, every read is ok\n"
+    "and equals the encoder's position, and no check reported anything.\n"
     "--maximize POINTER prints, for each combination of the other keys, the largest clean value of\n"
     "POINTER; --svg draws it over the one other numeric key. Exit status: 0 when the sweep ran,\n"
     "2 for bad input (the message names the grid point) or usage.\n";
@@ -132,16 +135,51 @@ void write_sweep_outputs(const SweepArgs& o, const scenarios::Sweep& result,
   if (o.svg) write_file(*o.svg, scenarios::maximum_svg(result, *table));
 }
 
+// Every output path is opened before the sweep runs, so that a typo in a directory shows at
+// once and not after all the points ran. Opened for appending, which leaves an existing file as
+// it is; a file the probe created goes again.
+void check_sweep_outputs(const SweepArgs& o) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::string, std::string>> outputs;  // option, path
+  if (o.csv) outputs.emplace_back("--csv", *o.csv);
+  if (o.json) outputs.emplace_back("--json", *o.json);
+  if (o.svg) outputs.emplace_back("--svg", *o.svg);
+  const auto same = [](const std::string& a, const std::string& b) {
+    std::error_code ea, eb;
+    const auto ca = fs::weakly_canonical(a, ea), cb = fs::weakly_canonical(b, eb);
+    return ea || eb ? a == b : ca == cb;
+  };
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [option, path] = outputs[i];
+    for (std::size_t j = 0; j < i; ++j)
+      if (same(outputs[j].second, path))
+        throw std::runtime_error(outputs[j].first + " " + outputs[j].second + " and " + option + " " + path +
+                                 ": the same file");
+    if (same(o.file, path)) throw std::runtime_error(option + " " + path + ": that is the scenario file");
+    std::error_code ec;
+    const bool existed = fs::exists(path, ec);
+    bool ok = false;
+    {
+      std::ofstream probe(path, std::ios::binary | std::ios::app);
+      ok = static_cast<bool>(probe);
+    }
+    if (!ok) throw std::runtime_error(option + " " + path + ": cannot open the file for writing");
+    if (!existed) fs::remove(path, ec);
+  }
+}
+
 int sweep(const SweepArgs& o) {
   std::vector<scenarios::GridAxis> grid;
   for (const auto& g : o.grid) grid.push_back(scenarios::parse_grid_axis(g));
   const auto base = scenarios::read_scenario_json(o.file);
+  scenarios::check_grid(base, o.file, grid);
   if (o.maximize) {
     // A bad --maximize or chart shape stops the sweep before it runs, not after.
     const scenarios::Sweep empty{o.file, "", grid, {}};
     const auto table = scenarios::maximize(empty, *o.maximize);
     if (o.svg) (void)scenarios::maximum_svg(empty, table);
   }
+  check_sweep_outputs(o);
   const auto options = sweep_run_options(o);
   const auto result = scenarios::run_sweep(base, o.file, grid, options);
   if (options.progress) std::cerr << "\n";
