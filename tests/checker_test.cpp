@@ -240,9 +240,7 @@ TEST(CheckerFloatingData, AnEncoderTakingModeBitsFromAnUndrivenLineIsReported) {
 
 TEST(CheckerErrorRecovery, AfterTypeOneTheMasterWaitsThirtyMicroseconds) {
   auto s = make_scenario(1, MHz(1), false, 1);
-  master::Operation bad = s.script.back();
-  bad.mode_bits = 0b000101;
-  s.script.insert(s.script.begin(), bad);
+  test_support::prepend_disturbed_read(s, 0b000101);
   s.master.error_wait = us(30);
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kErrorRecovery), 0U);
   s.master.error_wait = us(25);  // t_m of the encoder (20 us) + t_R is met, A2's 30 us is not
@@ -326,9 +324,7 @@ TEST(CheckerBoundaries, RecoveryTimeByOnePicosecond) {
 
 TEST(CheckerBoundaries, WaitAfterErrorHandlingByOnePicosecond) {
   auto s = make_scenario(1, MHz(1), false, 1);
-  master::Operation bad = s.script.back();
-  bad.mode_bits = 0b000101;
-  s.script.insert(s.script.begin(), bad);
+  test_support::prepend_disturbed_read(s, 0b000101);
   s.master.error_wait = ns(29'500);  // + t_r_wait 0.5 us = 30 us
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kErrorRecovery), 0U);
   s.master.error_wait = ns(29'500) - ps(1);
@@ -404,9 +400,7 @@ TEST(CheckerTypeOne, AnAnswerThatDrivesHighAtOnceIsNoStartBit) {
   s.line.encoder.driver_delay = ns(40);
   s.line.encoder.enable_delay = ns(20);
   s.encoder.output_delay = ns(50);  // keeps the round trip at the t_D bound
-  master::Operation bad = s.script.back();
-  bad.mode_bits = 0b001110;
-  s.script.insert(s.script.begin(), bad);
+  test_support::prepend_disturbed_read(s, 0b001110);
   const auto r = scenarios::run_scenario(s);
   ASSERT_EQ(r.frames.size(), 2U);
   EXPECT_EQ(r.frames[0].outcome, master::FrameOutcome::Type1Error);

@@ -114,9 +114,7 @@ TEST(MasterFrame, NoStartBitTimesOutAndTheNextReadWorks) {
   auto s = make_scenario(1, MHz(1), false, 1);
   s.encoder.type1 = slave::Type1Handling::NoStartBit;
   s.master.start_bit_timeout = us(200);
-  master::Operation bad = s.script.back();
-  bad.mode_bits = 0b000101;
-  s.script.insert(s.script.begin(), bad);
+  test_support::prepend_disturbed_read(s, 0b000101);
   const auto r = scenarios::run_scenario(s);
   ASSERT_EQ(r.frames.size(), 2U);
   EXPECT_EQ(r.frames[0].outcome, master::FrameOutcome::NoStartBit);

@@ -24,6 +24,14 @@ inline scenarios::Scenario make_scenario(double cable_m, sim::Hertz f_c, bool co
   return s;
 }
 
+// Puts a read with disturbed mode bits (a type I error handling) before the scenario's reads.
+inline void prepend_disturbed_read(scenarios::Scenario& s, std::uint8_t mode_bits) {
+  master::Operation bad = s.script.back();
+  bad.mode_bits = mode_bits;
+  bad.count = 1;
+  s.script.insert(s.script.begin(), bad);
+}
+
 inline std::size_t count_ok(const scenarios::ScenarioResult& r) {
   std::size_t n = 0;
   for (const auto& f : r.frames) n += !f.measurement && f.outcome == master::FrameOutcome::Ok;
