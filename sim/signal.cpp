@@ -16,11 +16,8 @@ bool Signal::commit() {
   value_ = next_;
   last_change_ = kernel_.now();
   ++changes_;
+  notify_value_ = value_ ? 1 : 0;
   return true;
-}
-
-void Signal::notify() {
-  for (const Action& l : listeners_) l.fn(l.ctx, value_ ? 1 : 0);
 }
 
 }  // namespace endatsim::sim

@@ -16,7 +16,17 @@ class SignalBase {
   // Update phase, in two passes: every pending value is committed first, then the listeners
   // of the signals that changed run, so no listener sees a half-updated set of signals.
   virtual bool commit() = 0;
-  virtual void notify() = 0;
+  // Listener actions receive the new value as their argument, in place of Action::arg.
+  void on_change(Action listener) { listeners_.push_back(listener); }
+  void notify() const {
+    for (const Action& l : listeners_) l.fn(l.ctx, notify_value_);
+  }
+
+ protected:
+  std::uint64_t notify_value_ = 0;  // set by commit(), so that notify() needs no virtual call
+
+ private:
+  std::vector<Action> listeners_;
 };
 
 class Signal final : public SignalBase {
@@ -28,15 +38,12 @@ class Signal final : public SignalBase {
 
   bool read() const { return value_; }
   void write(bool v);
-  // Listener actions receive the new value (0 or 1) as their argument, in place of Action::arg.
-  void on_change(Action listener) { listeners_.push_back(listener); }
 
   const std::string& name() const { return name_; }
   Time last_change() const { return last_change_; }
   std::uint64_t changes() const { return changes_; }
 
   bool commit() override;
-  void notify() override;
 
  private:
   Kernel& kernel_;
@@ -46,7 +53,6 @@ class Signal final : public SignalBase {
   bool pending_ = false;
   Time last_change_{0};
   std::uint64_t changes_ = 0;
-  std::vector<Action> listeners_;
 };
 
 }  // namespace endatsim::sim
