@@ -70,13 +70,6 @@ TEST(CheckerSamplingWindow, ACarefulMasterWithoutCompensationStillSamplesOutside
   EXPECT_EQ(count_violations(r, checker::check::kSamplingWindow), 2U);
 }
 
-TEST(CheckerContention, MissingTstOnALongCableMakesBothDriversCollide) {
-  auto s = make_scenario(100, MHz(8), true, 1);
-  s.master.t_st = Time::zero();
-  const auto r = scenarios::run_scenario(s);
-  EXPECT_GE(count_violations(r, checker::check::kContention), 1U);
-}
-
 TEST(CheckerMeasurementClock, DelayMeasuredAt1MHzIsReported) {
   auto s = make_scenario(10, MHz(2), true, 1);
   s.master.measurement.f_c = MHz(1);
@@ -426,7 +419,8 @@ TEST(CheckerContinuousClock, EveryWordIsJudgedOnItsOwn) {
   EXPECT_EQ(count_violations(r, checker::check::kSamplingWindow), 5U);
 }
 
-TEST(CheckerContention, IsAttributedToTheFrameItHappensIn) {
+// Without t_ST on 100 m the master drives DATA before the encoder's release has come back.
+TEST(CheckerContention, MissingTstOnALongCableCollidesInsideTheReadFrames) {
   auto s = make_scenario(100, MHz(8), true, 2);
   s.master.t_st = Time::zero();
   const auto r = scenarios::run_scenario(s);
