@@ -13,6 +13,12 @@ std::string_view field_name(Field f) {
     case Field::Error2: return "F2";
     case Field::Position: return "position";
     case Field::Crc: return "CRC";
+    case Field::Address: return "address";
+    case Field::Parameter: return "parameter";
+    case Field::TestValue: return "test value";
+    case Field::LeadingLow: return "leading low";
+    case Field::Status: return "status";
+    case Field::AdditionalData: return "additional data";
     case Field::Count: break;
   }
   return "?";
@@ -81,5 +87,67 @@ std::vector<std::uint8_t> encode_position_frame(EndatVersion command_type, unsig
   position_frame_layout(command_type, position_bits).encode(values, bits);
   return bits;
 }
+
+namespace {
+
+constexpr FieldSpec kStart{Field::StartBit, 1, BitOrder::MsbFirst};
+constexpr FieldSpec kAddress{Field::Address, 8, BitOrder::MsbFirst};
+constexpr FieldSpec kParameter{Field::Parameter, 16, BitOrder::MsbFirst};
+constexpr FieldSpec kCrc{Field::Crc, 5, BitOrder::MsbFirst};
+
+std::vector<std::uint8_t> encode(const Layout& layout, const FieldValues& values) {
+  std::vector<std::uint8_t> bits;
+  bits.reserve(layout.width());
+  layout.encode(values, bits);
+  return bits;
+}
+
+constexpr std::size_t at(Field f) { return static_cast<std::size_t>(f); }
+
+}  // namespace
+
+Layout parameter_frame_layout() { return Layout({kStart, kAddress, kParameter, kCrc}); }
+
+Layout payload_layout() { return Layout({kAddress, kParameter}); }
+
+std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint16_t parameter) {
+  FieldValues v{};
+  v[at(Field::StartBit)] = 1;
+  v[at(Field::Address)] = address;
+  v[at(Field::Parameter)] = parameter;
+  v[at(Field::Crc)] = make_crc_norm(address, parameter);
+  return encode(parameter_frame_layout(), v);
+}
+
+Layout test_values_layout() {
+  return Layout({kStart, {Field::Error1, 1, BitOrder::MsbFirst}, {Field::TestValue, kTestValueBits, BitOrder::LsbFirst},
+                 kCrc});
+}
+
+std::vector<std::uint8_t> encode_test_values(bool error1, std::uint64_t test_value) {
+  FieldValues v{};
+  v[at(Field::StartBit)] = 1;
+  v[at(Field::Error1)] = error1;
+  v[at(Field::TestValue)] = test_value;
+  v[at(Field::Crc)] = make_crc_pos(kTestValueBits, error1, true, false, test_value);
+  return encode(test_values_layout(), v);
+}
+
+Layout additional_datum_layout() {
+  return Layout({{Field::LeadingLow, 1, BitOrder::MsbFirst},
+                 {Field::Status, 8, BitOrder::MsbFirst},
+                 {Field::AdditionalData, 16, BitOrder::MsbFirst},
+                 kCrc});
+}
+
+std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data) {
+  FieldValues v{};
+  v[at(Field::Status)] = status;
+  v[at(Field::AdditionalData)] = data;
+  v[at(Field::Crc)] = make_crc_norm(status, data);
+  return encode(additional_datum_layout(), v);
+}
+
+Layout supplement_layout() { return Layout({kStart, kAddress, kParameter}); }
 
 }  // namespace endatsim::protocol

@@ -12,7 +12,20 @@
 
 namespace endatsim::protocol {
 
-enum class Field : std::uint8_t { StartBit, Error1, Error2, Position, Crc, Count };
+enum class Field : std::uint8_t {
+  StartBit,
+  Error1,
+  Error2,
+  Position,
+  Crc,
+  Address,         // 8 bits: address, MRS code or port address (A7 first)
+  Parameter,       // 16 bits: parameter or instruction (D15 first)
+  TestValue,       // 40 bits, LSB first (2.9)
+  LeadingLow,      // the LOW bit that opens an additional datum (2.3.5)
+  Status,          // additional datum byte 0: WRN RM Busy I4..I0
+  AdditionalData,  // additional datum bytes 1 and 2
+  Count
+};
 
 enum class BitOrder : std::uint8_t { LsbFirst, MsbFirst };
 
@@ -54,5 +67,25 @@ struct PositionWord {
 // The answer bits in wire order, start bit first, CRC computed per appendix A4.
 std::vector<std::uint8_t> encode_position_frame(EndatVersion command_type, unsigned position_bits,
                                                 const PositionWord& word);
+
+// 2.4 .. 2.10, timing-model §1.4: S, address/MRS/port (8), parameter (16), CRC = MakeCrcNorm.
+// The same 8 + 16 bits (without S and CRC) are what the master sends after a 2.1 mode command.
+Layout parameter_frame_layout();
+Layout payload_layout();  // master -> encoder: address (8), parameter (16)
+std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint16_t parameter);
+
+// 2.9: S F1 test value (40 bits, LSB first) CRC = MakeCrcPos over 40 bits (A4.4.2).
+constexpr unsigned kTestValueBits = 40;
+Layout test_values_layout();
+std::vector<std::uint8_t> encode_test_values(bool error1, std::uint64_t test_value);
+
+// 2.3.5: a LOW bit, byte 0 (status), bytes 1 and 2, CRC over the 24 bits = MakeCrcNorm.
+constexpr unsigned kAdditionalDatumBits = 30;
+Layout additional_datum_layout();
+std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data);
+
+// Timing-model §1.6 (likely): the 2.2 command supplement is a start bit 1, then 8 + 16 bits MSB
+// first, and no CRC from the master.
+Layout supplement_layout();
 
 }  // namespace endatsim::protocol

@@ -28,13 +28,25 @@ enum class ModeCommand : std::uint8_t {
   EncoderReceiveCommunicationCommand,
 };
 
+// What the encoder answers with (2.3.1, 2.4–2.10; timing-model §1.4).
+enum class AnswerFormat : std::uint8_t {
+  Position,    // S F1 [F2] position CRC [AI2] [AI1]
+  TestValues,  // S F1 test value (40 bits) CRC — 2.9, A4.4.2 "the data width is always 40 bits"
+  Parameter,   // S, 8-bit address/MRS/port echo, 16 bits, CRC (MakeCrcNorm)
+};
+
 struct ModeCommandInfo {
   ModeCommand command;
   std::uint8_t bits;        // M2 is bit 5, (M0) is bit 0; sent M2 first
   EndatVersion version;     // the "type" of the mode command (2.1 or 2.2)
   std::string_view name;    // spec wording
   std::string_view key;     // snake_case name used in scenarios and reports
+  unsigned payload_bits;    // master -> encoder right after the mode bits: 0 or 8 + 16
+  AnswerFormat answer;
+  bool supplement;          // 2.2: 8 + 16 bits from the master after the encoder's data (timing-model §1.6)
 };
+
+constexpr unsigned kPayloadBits = 24;  // address / MRS code / port (8) + parameter (16)
 
 std::span<const ModeCommandInfo> mode_commands();
 const ModeCommandInfo& info(ModeCommand command);

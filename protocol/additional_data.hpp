@@ -1,0 +1,80 @@
+// Additional data 1 and 2 (spec 2.3.5): information codes I4..I0 and the status byte, as data.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace endatsim::protocol {
+
+// Byte 0 of an additional datum: WRN RM Busy I4..I0, WRN first (2.3.5; bit weights timing-model §1.5).
+struct AdditionalDataStatus {
+  static constexpr std::uint8_t kWarning = 0x80;
+  static constexpr std::uint8_t kReferenceMark = 0x40;
+  static constexpr std::uint8_t kBusy = 0x20;
+  static constexpr std::uint8_t kInformation = 0x1F;
+};
+
+// 2.3.5.1 (I = 0..15, additional data 1) and 2.3.5.2 (I = 16..31, additional data 2).
+enum class Information : std::uint8_t {
+  Nop1 = 0,
+  Diagnosis = 1,
+  PositionValue2Word1 = 2,
+  PositionValue2Word2 = 3,
+  PositionValue2Word3 = 4,
+  MemoryParameterLsb = 5,
+  MemoryParameterMsb = 6,
+  MrsCodeAcknowledgment = 7,
+  TestCommandAcknowledgment = 8,
+  TestValuesWord1 = 9,
+  TestValuesWord2 = 10,
+  TestValuesWord3 = 11,
+  Temperature1 = 12,
+  Temperature2 = 13,
+  AdditionalSensors = 14,
+  Type3Error1 = 15,
+  Nop2 = 16,
+  Commutation = 17,
+  Acceleration = 18,
+  CommutationAndAcceleration = 19,
+  LimitPositionSignals = 20,
+  LimitPositionSignalsAndAcceleration = 21,
+  AsynchronousPositionWord1 = 22,
+  AsynchronousPositionWord2 = 23,
+  AsynchronousPositionWord3 = 24,
+  OperatingStatusErrorSources = 25,
+  Reserved26 = 26,
+  Timestamp = 27,
+  Reserved28 = 28,
+  Reserved29 = 29,
+  Reserved30 = 30,
+  Type3Error2 = 31,
+};
+
+struct InformationInfo {
+  Information code;
+  std::string_view name;
+  std::string_view key;
+  // A2 cause 13: codes that may not be selected (26, 28, 29, 30) answer with type III.
+  bool selectable;
+  // Bit of "Status of additional data 1/2" (EnDat 2.2 manufacturer words 0/1, 3.9.2/3.9.3) that
+  // says the encoder supports the code; none = always supported (NOP, acknowledgments).
+  std::optional<unsigned> support_bit;
+};
+
+std::span<const InformationInfo> information_codes();
+const InformationInfo& info(Information code);
+std::optional<Information> information_from_key(std::string_view key);
+
+constexpr bool is_additional_data_2(Information i) { return static_cast<std::uint8_t>(i) >= 16; }
+// 2.4.2.2: the MRS code that selects `i`.
+constexpr std::uint8_t selection_mrs(Information i) { return static_cast<std::uint8_t>(0x40 | static_cast<std::uint8_t>(i)); }
+// The code an MRS code 0x40..0x5F selects.
+constexpr Information information_of_mrs(std::uint8_t mrs) { return static_cast<Information>(mrs & 0x1F); }
+
+// A2 cause 14 note: the additional sensors carry a 4-bit address and 12 bits of data; values
+// are in 0.1 K steps with an offset of 115 K (2.3.5.1, 3.9.6).
+constexpr unsigned kAdditionalSensorOffsetTenthKelvin = 1150;
+
+}  // namespace endatsim::protocol

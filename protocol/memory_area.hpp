@@ -1,0 +1,53 @@
+// Memory areas and their MRS codes (spec 2.4.1, 2.4.2.1, 2.4.2.3, 3.1, 3.2), as data.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace endatsim::protocol {
+
+enum class MemoryArea : std::uint8_t {
+  OperatingStatus,          // B9: words 0..3 (3.4)
+  Manufacturer1,            // A1: words 4..15 of the encoder manufacturer's 48 words (3.5)
+  Manufacturer2,            // A3: words 16..31
+  Manufacturer3,            // A5: words 32..47
+  OperatingParameters,      // A7: 16 words (3.6)
+  Oem1,                     // A9 .. AF: parameters of the OEM, partitioned by words 9 and 10 (3.5.5)
+  Oem2,
+  Oem3,
+  Oem4,
+  Compensation1,            // B1 .. B7: compensation values, partitioned by words 11 and 12
+  Compensation2,
+  Compensation3,
+  Compensation4,
+  ManufacturerEndat22,      // BD: 64 words (3.9), selectable only with a 2.2 mode command
+  Section2,                 // BF + block address: 256 words per block (3.2)
+  OperatingParameters2,     // BB: 256 words, volatile (3.10)
+  AsynchronousPosition,     // 60 + time delay as address (2.4.2.3)
+};
+
+// Bit of word 2 (write protection status, 3.4.3) that protects an area; none = never writable
+// through its own protection bit.
+struct MemoryAreaInfo {
+  MemoryArea area;
+  std::uint8_t mrs;
+  std::string_view name;
+  std::string_view key;
+  bool endat22_only;                         // 2.4.2.1 / A2 cause 7: only with a 2.2 mode command
+  std::optional<unsigned> protection_bit;   // word 2 bit (3.4.3)
+};
+
+std::span<const MemoryAreaInfo> memory_areas();
+const MemoryAreaInfo& info(MemoryArea area);
+std::optional<MemoryArea> memory_area_from_mrs(std::uint8_t mrs);
+std::optional<MemoryArea> memory_area_from_key(std::string_view key);
+
+// 2.4.2.2: MRS codes 0x40 + I select additional data 1 (I = 0..15), 0x50 + (I - 16) additional
+// data 2 (I = 16..31); 0x4F and 0x5F stop sending.
+constexpr bool selects_additional_data(std::uint8_t mrs) { return (mrs & 0xE0) == 0x40; }
+constexpr std::uint8_t kStopAdditionalData1 = 0x4F;
+constexpr std::uint8_t kStopAdditionalData2 = 0x5F;
+
+}  // namespace endatsim::protocol
