@@ -1,5 +1,6 @@
 #include "scenarios/loader.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -407,8 +408,9 @@ Scenario read_scenario(const json& root, const std::string& file) {
   Scenario s;
   s.file = file;
   s.name = o.req("name").as_string();
-  if (s.name.empty() || s.name.find_first_of("/\\ \t\n") != std::string::npos)
-    o.req("name").fail("a non-empty name without spaces or slashes");
+  if (s.name.empty() || s.name.find_first_of("/\\ \t\n") != std::string::npos ||
+      std::any_of(s.name.begin(), s.name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+    o.req("name").fail("a non-empty name without spaces, slashes or control characters");
   if (auto v = o.opt("description")) s.description = v->as_string();
   if (auto v = o.opt("seed")) s.seed = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_time")) s.max_time = v->as_duration(sim::us(1), sim::ms(60'000));
@@ -430,12 +432,13 @@ Scenario read_scenario(const json& root, const std::string& file) {
 // deeper than kMaxDepth and a key given twice in one object (the last would win).
 class ParseGuard {
  public:
-  explicit ParseGuard(const std::string& file) : file_(file) {}
+  // `where` follows the path of the value read next, for errors nlohmann reports without one.
+  ParseGuard(const std::string& file, std::string& where) : file_(file), where_(&where) {}
 
   bool operator()(int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
     if (static_cast<std::size_t>(depth) > kMaxDepth)
-      throw ScenarioError(file_ + ": nested deeper than " + std::to_string(kMaxDepth) + " levels");
+      throw ScenarioError(file_ + ": at " + next_path() + ": nested deeper than " + std::to_string(kMaxDepth) + " levels");
     switch (event) {
       case E::object_start:
       case E::array_start:
@@ -458,6 +461,7 @@ class ParseGuard {
         next_element();
         break;
     }
+    *where_ = next_path();
     return true;
   }
 
@@ -476,18 +480,30 @@ class ParseGuard {
     for (const Level& l : stack_) p += "/" + (l.array ? std::to_string(l.index) : l.key);
     return p;
   }
+  // Like path(), but an array's last index is that of the element that comes next.
+  std::string next_path() const {
+    std::string p;
+    for (std::size_t i = 0; i < stack_.size(); ++i) {
+      const Level& l = stack_[i];
+      p += "/" + (l.array ? std::to_string(i + 1 == stack_.size() ? l.index + 1 : l.index) : l.key);
+    }
+    return p.empty() ? "/" : p;
+  }
   const std::string& file_;
+  std::string* where_;
   std::vector<Level> stack_;
 };
 
 Scenario load_scenario_text(const std::string& text, const std::string& file_name) {
   json root;
+  std::string where = "/";
   try {
-    root = json::parse(text, ParseGuard(file_name));
+    root = json::parse(text, ParseGuard(file_name, where));
   } catch (const json::exception& e) {  // syntax, invalid UTF-8, number overflow
     std::string what = e.what();
     const auto bracket = what.find("] ");
-    throw ScenarioError(file_name + ": not valid JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
+    const std::string at = e.id == 406 ? "at " + where + ": " : "";  // 406: number overflow, reported without a place
+    throw ScenarioError(file_name + ": " + at + "not valid JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
   }
   try {
     return read_scenario(root, file_name);
@@ -508,7 +524,7 @@ Scenario load_scenario_file(const std::string& path) {
     text.append(buffer, static_cast<std::size_t>(in.gcount()));
     if (text.size() > kMaxFileBytes) throw ScenarioError(path + ": larger than 4 MiB, not a scenario");
   }
-  if (text.empty()) throw ScenarioError(path + ": empty file, expected a JSON scenario object");
+  if (text.empty()) throw ScenarioError(path + ": at /: empty file, expected a JSON scenario object");
   return load_scenario_text(text, path);
 }
 

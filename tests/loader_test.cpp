@@ -117,9 +117,9 @@ TEST(ScenarioLoader, DuplicateKeysAreRejectedWithTheirPath) {
   EXPECT_NE(in_array.find("at /script/1/op: duplicate key"), std::string::npos) << in_array;
 }
 
-TEST(ScenarioLoader, NumberOverflowIsReportedAsBadJson) {
+TEST(ScenarioLoader, NumberOverflowIsReportedAsBadJsonWithItsPath) {
   const std::string message = error_of(valid_with("10}", "1e400}"));
-  EXPECT_EQ(message.rfind("bad.json: not valid JSON", 0), 0U) << message;
+  EXPECT_EQ(message.rfind("bad.json: at /line/cable_length_m: not valid JSON: number overflow", 0), 0U) << message;
 }
 
 TEST(ScenarioLoader, ADirectoryIsNotAScenario) {
