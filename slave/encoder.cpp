@@ -1,12 +1,25 @@
 #include "slave/encoder.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace endatsim::slave {
 namespace {
 
+using protocol::ErrorCause;
+using MC = ModeCommand;
+using I = Information;
+
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
+}
+
+constexpr unsigned kFirstStartBitClock = 11;  // timing-model §1.2: start bit no earlier than RE11
+constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see README)
+constexpr std::uint16_t kInstructionHighImpedance = 0x0002;                    // 2.10: word 5 bit 1
+
+std::uint16_t word_of(std::uint64_t value, unsigned index) {  // 16-bit word `index` (0 = LSB word)
+  return static_cast<std::uint16_t>(value >> (16 * index));
 }
 
 }  // namespace
@@ -31,6 +44,12 @@ void EncoderParams::validate() const {
             "t_m_short must be 1.25 .. 3.75 us (2.3.2 note 3), got " + sim::format_time(*t_m_short));
   require(!short_t_m_selected || t_m_short.has_value(), "short_t_m_selected needs t_m_short");
   require(t_r >= Time::zero() && t_r <= sim::us(100), "t_R must be 0 .. 100 us, got " + sim::format_time(t_r));
+  for (auto [name, t] : {std::pair{"t_ac_read", t_ac_read}, {"t_ac_write", t_ac_write}})
+    require(t >= Time::zero() && t <= sim::ms(12),
+            std::string("encoder ") + name + " must be 0 .. 12 ms (2.3.2: t_ac), got " + sim::format_time(t));
+  require(supplement_end_marker_delay >= Time::zero() && supplement_end_marker_delay <= sim::us(1),
+          "encoder supplement_end_marker_delay must be 0 .. 1 us (below the shortest t_m), got " +
+              sim::format_time(supplement_end_marker_delay));
   require(output_delay >= Time::zero() && output_delay <= sim::us(1),
           "encoder output_delay must be 0 .. 1 us, got " + sim::format_time(output_delay));
   require(continuous_low_bits >= 1 && continuous_low_bits <= 7,
@@ -41,6 +60,17 @@ void EncoderParams::validate() const {
   require(motion.start < (std::uint64_t{1} << position_bits),
           "motion.start must be below 2^position_bits = " + std::to_string(std::uint64_t{1} << position_bits) +
               ", got " + std::to_string(motion.start));
+  require(sensors.additional_sensors.size() <= 16, "at most 16 additional sensors (4-bit address, 2.3.5.1)");
+  require(sensors.timestamp_unit > Time::zero(), "sensors.timestamp_unit must be > 0");
+  for (const auto& [port, value] : sensors.test_values)
+    require(value < (std::uint64_t{1} << protocol::kTestValueBits),
+            "test value of port " + std::to_string(port) + " must fit 40 bits (2.9)");
+  if (memory) {
+    const Memory m(*memory);
+    require((m.manufacturer_word(word::kPositionFormat) & 0x3F) == position_bits,
+            "memory word 13 says " + std::to_string(m.manufacturer_word(word::kPositionFormat) & 0x3F) +
+                " position bits, but position_bits is " + std::to_string(position_bits));
+  }
 }
 
 std::uint64_t EncoderParams::position_at(Time t) const {
@@ -52,14 +82,60 @@ std::uint64_t EncoderParams::position_at(Time t) const {
   return static_cast<std::uint64_t>(p);
 }
 
+MemoryImage default_memory_image(const EncoderParams& p) {
+  using A = MemoryArea;
+  MemoryImage img;
+  // 3.4.3: the encoder manufacturer's areas and the compensation values are factory protected.
+  const std::uint16_t function_init = p.short_t_m_selected ? kShortRecoveryTimeOn : kShortRecoveryTimeOff;
+  img.areas[A::OperatingStatus] = {0, 0, 0x0039, function_init};
+  std::vector<std::uint16_t> m(48, 0);
+  m[word::kVersion] = 0x8000;                                      // * = 1 for NVM checking (3.5.4)
+  m[word::kOemPartition] = 0x2020;                                 // OEM areas 1 and 2: addresses 0 .. 63
+  m[word::kOemPartition + 1] = 0xFFFF;                             // OEM areas 3 and 4: not available
+  m[word::kCompensationPartition] = m[word::kCompensationPartition + 1] = 0xFFFF;
+  m[word::kPositionFormat] = static_cast<std::uint16_t>(0x8000 | p.position_bits);  // 3.5.6
+  m[word::kEncoderType] = 0x0001;                                  // bit 0 = 1 for NVM checking (3.5.7)
+  m[word::kSupportedErrors] = 0x007F;
+  m[word::kSupportedWarnings] = 0x01FF;
+  m[word::kManufacturerChecksum] = word_sum(m, 4, 46);            // 3.5.26
+  img.areas[A::Manufacturer1].assign(m.begin(), m.begin() + 16);
+  img.areas[A::Manufacturer2].assign(m.begin() + 16, m.begin() + 32);
+  img.areas[A::Manufacturer3].assign(m.begin() + 32, m.end());
+  img.areas[A::OperatingParameters].assign(16, 0);
+  img.areas[A::Oem1].assign(64, 0);
+  img.areas[A::Oem2].assign(64, 0);
+  if (p.version == EndatVersion::V2_2) {
+    std::vector<std::uint16_t> e(64, 0);
+    e[word::kAdditionalData1Support] = 0x001F;  // 3.9.2: all additional data 1
+    e[word::kAdditionalData2Support] = 0x009F;  // 3.9.3: all but "position value 2" in additional data 2
+    e[2] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
+    e[6] = 0x007F;                              // 3.9.8: support of error message 2
+    e[word::kMaxClockFrequency] = 16000;        // 3.9.19: kHz
+    e[word::kEndat22Checksum] = word_sum(e, 0, 62);
+    img.areas[A::ManufacturerEndat22] = e;
+    img.areas[A::OperatingParameters2].assign(16, 0);
+  }
+  return img;
+}
+
 Encoder::Encoder(sim::Kernel& kernel, line::Line& line, const EncoderParams& params)
     : kernel_(kernel), pins_(line.encoder()), params_(params),
+      memory_((params.validate(), params.memory.value_or(default_memory_image(params)))),
       data_logic_(kernel, "encoder_data_logic", false), enable_logic_(kernel, "encoder_enable_logic", true),
       data_out_delay_(kernel, data_logic_, pins_.data_out, params.output_delay),
       enable_out_delay_(kernel, enable_logic_, pins_.data_enable, params.output_delay),
-      recovery_timer_(kernel, sim::bind<&Encoder::on_recovery_time_elapsed>(this)) {
-  params_.validate();
+      recovery_timer_(kernel, sim::bind<&Encoder::on_recovery_time_elapsed>(this)),
+      memory_timer_(kernel, sim::bind<&Encoder::on_memory_access_done>(this)),
+      end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)) {
   pins_.clock_in.on_change(sim::bind<&Encoder::on_clock>(this));
+}
+
+bool Encoder::busy() const { return kernel_.now() < busy_until_; }
+
+bool Encoder::drives_bus() const {
+  // 2.10: word 5 bit 1 "data driver at high-impedance"; an encoder that another address
+  // deselected stays off the bus too.
+  return selected_on_bus_ && (memory_.operating_parameter(word::kInstructions) & kInstructionHighImpedance) == 0;
 }
 
 void Encoder::on_clock(std::uint64_t level) {
@@ -71,16 +147,23 @@ void Encoder::on_clock(std::uint64_t level) {
   else on_rising_edge();
 }
 
+// ---- the frame, edge by edge ---------------------------------------------------------------
+
 void Encoder::begin_frame() {
   // 2.2: "the position value is saved in the encoder with the falling clock edge";
   // 2.3: "with the first falling clock edge, the send block in the encoder must be deactivated".
   state_ = State::Header;
   clock_ = 1;
   mode_bits_ = 0;
+  command_ = nullptr;
+  pending_ = {};
+  answer_.clear();
+  next_bit_ = 0;
   EncoderFrame f;
   f.start = kernel_.now();
   f.position = params_.position_at(kernel_.now());
   frames_.push_back(f);
+  latch_errors();
   release();
 }
 
@@ -92,11 +175,11 @@ void Encoder::on_falling_edge() {
   }
   ++clock_;
   EncoderFrame& f = frames_.back();
+  const unsigned payload = command_ != nullptr ? command_->payload_bits : 0;
   switch (state_) {
-    case State::Header:
     case State::Type1:
     case State::Answer:
-      if (clock_ == params_.driver_enable_edge) {
+      if (clock_ == params_.driver_enable_edge + payload) {
         drive(state_ == State::Type1 && params_.type1 == Type1Handling::AbortHigh);
         enable();
       }
@@ -104,15 +187,16 @@ void Encoder::on_falling_edge() {
     case State::EndOfData:
       // 2.3.1: a continuous clock is only possible with "Encoder send position values";
       // the next position is saved with the falling edge after the HIGH bit.
-      if (f.command == ModeCommand::EncoderSendPositionValues) {
+      if (f.command == MC::EncoderSendPositionValues) {
         f.continuous_positions.push_back(params_.position_at(kernel_.now()));
         ++f.continuous_words;
         state_ = State::ContinuousGap;
         gap_low_bits_ = 0;
+      } else if (payload != 0) {
+        f.too_many_clocks = true;  // 2.4.1: "more clock pulses than required" -> A2
       }
       break;
-    case State::Idle:
-    case State::ContinuousGap:
+    default:
       break;
   }
 }
@@ -122,11 +206,16 @@ void Encoder::on_rising_edge() {
   if (state_ == State::Idle) return;  // a rising edge without a frame: nothing to do
   EncoderFrame& f = frames_.back();
   f.clocks = clock_;
+  const bool bit = pins_.data_in.read();
   switch (state_) {
     case State::Header:
       // 2.3: the encoder accepts the mode bits on the rising edges of clocks 3 .. 8.
-      if (clock_ >= 3 && clock_ <= 8) mode_bits_ = static_cast<std::uint8_t>(mode_bits_ << 1 | pins_.data_in.read());
+      if (clock_ >= 3 && clock_ <= 8) mode_bits_ = static_cast<std::uint8_t>(mode_bits_ << 1 | bit);
       if (clock_ == 8) decode_mode_command();
+      break;
+    case State::Payload:
+      shift_ = shift_ << 1 | bit;
+      if (++shifted_ == protocol::kPayloadBits) answer_parameter_frame();
       break;
     case State::Answer:
       emit_answer_bit();
@@ -136,13 +225,25 @@ void Encoder::on_rising_edge() {
         ++gap_low_bits_;
         drive(false);
       } else {
-        load_answer();
+        load_continuous_word();
         emit_answer_bit();
       }
       break;
-    case State::EndOfData:
-    case State::Type1:
-    case State::Idle:
+    case State::SupplementHunt:
+      // Timing-model §1.6: the line floats (fail-safe HIGH) until the master drives its lead
+      // bits, so the encoder waits for a LOW before it takes a HIGH as the start bit.
+      if (!seen_low_) seen_low_ = !bit;
+      else if (bit) {
+        state_ = State::Supplement;
+        shift_ = 0;
+        shifted_ = 0;
+      }
+      break;
+    case State::Supplement:
+      shift_ = shift_ << 1 | bit;
+      if (++shifted_ == protocol::kPayloadBits) process_supplement();
+      break;
+    default:
       break;
   }
 }
@@ -151,34 +252,138 @@ void Encoder::decode_mode_command() {
   EncoderFrame& f = frames_.back();
   f.mode_bits = mode_bits_;
   f.command = protocol::decode_mode_bits(mode_bits_);
-  const bool supported =
-      f.command == ModeCommand::EncoderSendPositionValues ||
-      (f.command == ModeCommand::EncoderSendPositionValuesWithAdditionalData && params_.version == EndatVersion::V2_2);
-  if (!supported) {
-    f.type1_error = true;  // appendix A2, type I: mode command disrupted or not supported
-    state_ = State::Type1;
+  if (!f.command || (protocol::info(*f.command).version == EndatVersion::V2_2 && params_.version == EndatVersion::V2_1))
+    return abort_type1(ErrorCause::ModeCommandDisrupted);
+  command_ = &protocol::info(*f.command);
+  if (!selected_on_bus_ && *f.command != MC::EncoderReceiveCommunicationCommand) {
+    state_ = State::Type1;  // 2.10: only the addressed encoder reacts; this one keeps off the bus
     return;
   }
-  state_ = State::Answer;
-  const auto type = protocol::info(*f.command).version;
-  answer_ = protocol::encode_position_frame(type, params_.position_bits,
-                                            {params_.error1, !params_.error1, f.position});
-  next_bit_ = 0;
+  if (command_->payload_bits != 0) {
+    state_ = State::Payload;
+    shift_ = 0;
+    shifted_ = 0;
+    return;
+  }
+  answer_position();
 }
 
-void Encoder::load_answer() {
+void Encoder::abort_type1(ErrorCause cause) {
   EncoderFrame& f = frames_.back();
-  answer_ = protocol::encode_position_frame(EndatVersion::V2_1, params_.position_bits,
-                                            {params_.error1, !params_.error1, f.continuous_positions.back()});
-  next_bit_ = 0;
+  f.type1_error = true;  // appendix A2, type I: mode command disrupted or not supported
+  f.error = cause;
+  state_ = State::Type1;
+}
+
+bool Encoder::error_message_1() const {
+  const bool forced = test_port_22_ >= kForcedError1First && test_port_22_ < kForcedError1First + 7;
+  return params_.error1 || forced ||
+         (memory_.operating_status(word::kErrors) & memory_.manufacturer_word(word::kSupportedErrors)) != 0;
+}
+
+bool Encoder::error_message_2() const {
+  const bool forced = test_port_22_ >= kForcedError2First && test_port_22_ < kForcedError2First + 7;
+  return params_.error1 || forced || (memory_.operating_status(word::kErrors) & memory_.endat22_word(6)) != 0;
+}
+
+void Encoder::answer_position() {
+  EncoderFrame& f = frames_.back();
   state_ = State::Answer;
+  first_answer_clock_ = kFirstStartBitClock;
+  answer_not_before_ = f.start + params_.t_cal;  // 2.3.2: t_cal runs from FE1
+  if (command_->answer == protocol::AnswerFormat::TestValues) {
+    const auto it = params_.sensors.test_values.find(test_port_21_);
+    answer_ = protocol::encode_test_values(error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second);
+    return;
+  }
+  // 2.3.1: F2 is low-active; it is only sent with 2.2 mode commands.
+  answer_ = protocol::encode_position_frame(command_->version, params_.position_bits,
+                                            {error_message_1(), !error_message_2(), f.position});
+  if (command_->version != EndatVersion::V2_2) return;
+  // Timing-model §1.3: additional data 2 comes before additional data 1.
+  if (selection_[1]) append_additional_datum(*selection_[1], 1);
+  if (selection_[0]) append_additional_datum(*selection_[0], 0);
+}
+
+void Encoder::answer_parameter_frame() {
+  EncoderFrame& f = frames_.back();
+  f.payload = shift_;
+  const auto address = static_cast<std::uint8_t>(shift_ >> 16);
+  const auto parameter = static_cast<std::uint16_t>(shift_);
+  std::uint16_t echo = parameter;
+  std::optional<ErrorCause> error;
+  Time t_ac{0};
+  const bool memory_access = command_->command != MC::EncoderReceiveTestCommand &&
+                             command_->command != MC::EncoderReceiveCommunicationCommand;
+  if (memory_access && busy()) {
+    error = ErrorCause::Busy;  // 2.3.1 note 1: a 2.1 access with Busy = 1 gets type II
+  } else {
+    switch (command_->command) {
+      case MC::SelectionOfMemoryArea:  // 2.4.1
+        error = memory_.check_selection(address, 0, false);
+        pending_ = {Pending::Kind::Select, {protocol::memory_area_from_mrs(address).value_or(MemoryArea{}), 0}, address,
+                    parameter};
+        t_ac = params_.t_ac_read;
+        break;
+      case MC::EncoderReceiveParameters:  // 2.6
+        error = area_selected_ ? memory_.check_write(selection_area_, address, parameter)
+                               : std::optional{ErrorCause::ImpermissibleMemoryArea};
+        pending_ = {Pending::Kind::Write, selection_area_, address, parameter};
+        t_ac = params_.t_ac_write;
+        break;
+      case MC::EncoderSendParameters:  // 2.5
+        error = area_selected_ ? memory_.read(selection_area_, address, echo)
+                               : std::optional{ErrorCause::ImpermissibleMemoryArea};
+        t_ac = params_.t_ac_read;
+        break;
+      case MC::EncoderReceiveReset:  // 2.7
+        pending_ = {Pending::Kind::Reset, {}, address, parameter};
+        break;
+      case MC::EncoderReceiveTestCommand:  // 2.8
+        test_port_21_ = address;
+        break;
+      case MC::EncoderReceiveCommunicationCommand: {  // 2.10
+        const auto own = static_cast<std::uint8_t>(memory_.operating_parameter(word::kEncoderAddress));
+        const bool was_selected = selected_on_bus_;
+        if (!params_.communication_command_permitted) error = ErrorCause::CommunicationCommandNotPermitted;
+        else if (address == 0 && (parameter & kInstructionHighImpedance) != 0)
+          error = ErrorCause::DataDriverHighImpedanceBroadcast;
+        else if (address != 0 && address != own && was_selected)
+          error = ErrorCause::UnknownCommunicationAddress;
+        selected_on_bus_ = address == 0 || address == own;
+        if (!was_selected && !selected_on_bus_) {
+          state_ = State::Type1;  // not addressed: stays silent
+          return;
+        }
+        pending_ = {Pending::Kind::Write, {MemoryArea::OperatingParameters, 0}, word::kInstructions, parameter};
+        if (address != 0 && address != own) pending_ = {};
+        break;
+      }
+      default:
+        break;
+    }
+  }
+  if (error) {
+    // A2 type II: "the address or parameter is returned inverted".
+    f.error = error;
+    pending_ = {};
+    answer_ = protocol::encode_parameter_frame(static_cast<std::uint8_t>(~address), static_cast<std::uint16_t>(~echo));
+  } else {
+    answer_ = protocol::encode_parameter_frame(address, echo);
+  }
+  state_ = State::Answer;
+  first_answer_clock_ = kFirstStartBitClock + protocol::kPayloadBits;
+  const bool in_frame = params_.t_ac_placement == MemoryAccessPlacement::InFrame;
+  answer_not_before_ = kernel_.now() + (in_frame && !error ? t_ac : Time::zero());
+  if (!in_frame && !error && memory_access) busy_until_ = std::max(busy_until_, kernel_.now() + t_ac);
 }
 
 void Encoder::emit_answer_bit() {
   EncoderFrame& f = frames_.back();
   if (next_bit_ == 0 && f.continuous_words == 0) {
-    // Timing-model §1.2: LOW until t_cal has elapsed since FE1, start bit no earlier than RE11.
-    if (clock_ < 11 || kernel_.now() - f.start < params_.t_cal) {
+    // Timing-model §1.2: LOW until t_cal (or t_ac) has elapsed, start bit no earlier than RE11
+    // (RE35 after a 2.1 parameter frame).
+    if (clock_ < first_answer_clock_ || kernel_.now() < answer_not_before_) {
       drive(false);
       return;
     }
@@ -188,26 +393,292 @@ void Encoder::emit_answer_bit() {
     drive(answer_[next_bit_++] != 0);
     return;
   }
+  if (command_->supplement) {
+    // Timing-model §1.6: the encoder hands DATA to the master for the command supplement.
+    release();
+    state_ = State::SupplementHunt;
+    seen_low_ = false;
+    return;
+  }
   // Timing-model §1.3: after the last CRC bit DATA goes HIGH and stays HIGH for t_m.
   drive(true);
   state_ = State::EndOfData;
 }
 
+void Encoder::load_continuous_word() {
+  EncoderFrame& f = frames_.back();
+  answer_ = protocol::encode_position_frame(EndatVersion::V2_1, params_.position_bits,
+                                            {error_message_1(), true, f.continuous_positions.back()});
+  next_bit_ = 0;
+  state_ = State::Answer;
+}
+
+// ---- EnDat 2.2 command supplement and additional data ------------------------------------
+
+void Encoder::process_supplement() {
+  EncoderFrame& f = frames_.back();
+  f.supplement = shift_;
+  state_ = State::SupplementDone;
+  end_marker_timer_.start(params_.supplement_end_marker_delay);
+  const auto address = static_cast<std::uint8_t>(shift_ >> 16);
+  const auto parameter = static_cast<std::uint16_t>(shift_);
+  const MC c = command_->command;
+  const bool memory_access = c == MC::EncoderSendPositionValuesAndReceiveParameter ||
+                             c == MC::EncoderSendPositionValuesAndSendParameter ||
+                             (c == MC::EncoderSendPositionValuesAndSelectionOfMemoryArea &&
+                              !protocol::selects_additional_data(address));
+  if (memory_access && busy()) {
+    f.supplement_ignored = true;  // 2.3.1 note 1: "ignored" with 2.2 commands
+    return;
+  }
+  switch (c) {
+    case MC::EncoderSendPositionValuesAndSelectionOfMemoryArea: {  // 2.4.2
+      if (protocol::selects_additional_data(address)) {
+        const unsigned which = (address & 0x10) != 0 ? 1 : 0;
+        last_mrs_ = address;
+        last_block_ = 0;
+        if (address == protocol::kStopAdditionalData1 || address == protocol::kStopAdditionalData2) {
+          selection_[which].reset();
+          type3_[which].reset();
+        } else {
+          const Information i = protocol::information_of_mrs(address);
+          selection_[which] = i;
+          type3_[which] = type3_cause(i, which);
+          if (which == 0 && selection_[1]) type3_[1] = type3_cause(*selection_[1], 1);
+        }
+        break;
+      }
+      const auto block = static_cast<std::uint8_t>(parameter);  // block address: low byte (README, guess)
+      const auto error = memory_.check_selection(address, block, true);
+      f.error = error;
+      // A2 type II: the MRS code (block address) is acknowledged inverted.
+      last_mrs_ = error ? static_cast<std::uint8_t>(~address) : address;
+      last_block_ = error ? static_cast<std::uint8_t>(~block) : block;
+      if (!error) {
+        in_progress_ = {Pending::Kind::Select, {*protocol::memory_area_from_mrs(address), block}, address, parameter};
+        start_memory_access(params_.t_ac_read);
+      }
+      break;
+    }
+    case MC::EncoderSendPositionValuesAndReceiveParameter: {  // 2.6.1
+      const auto error = area_selected_ ? memory_.check_write(selection_area_, address, parameter)
+                                        : std::optional{ErrorCause::ImpermissibleMemoryArea};
+      f.error = error;
+      in_progress_ = {error ? Pending::Kind::None : Pending::Kind::Write, selection_area_, address, parameter};
+      memory_error_ = error.has_value();
+      start_memory_access(params_.t_ac_write);
+      break;
+    }
+    case MC::EncoderSendPositionValuesAndSendParameter: {  // 2.5.1
+      std::uint16_t value = 0;
+      const auto error = area_selected_ ? memory_.read(selection_area_, address, value)
+                                        : std::optional{ErrorCause::ImpermissibleMemoryArea};
+      f.error = error;
+      in_progress_ = {Pending::Kind::None, selection_area_, address, error ? parameter : value};
+      memory_error_ = error.has_value();
+      start_memory_access(params_.t_ac_read);
+      break;
+    }
+    case MC::EncoderSendPositionValuesAndReceiveErrorReset:  // 2.7.1
+      memory_.clear_errors_and_warnings();
+      break;
+    case MC::EncoderSendPositionValuesAndReceiveTestCommand:  // 2.8.1, 3.5.3
+      test_port_22_ = address;
+      break;
+    default:
+      break;
+  }
+}
+
+void Encoder::start_memory_access(Time t_ac) {
+  busy_until_ = kernel_.now() + t_ac;
+  memory_timer_.start(t_ac);
+}
+
+void Encoder::on_memory_access_done() {
+  // 2.5.1 / 2.6.1: the result appears in additional data 1 once the busy bit is reset.
+  switch (in_progress_.kind) {
+    case Pending::Kind::Select:
+      selection_area_ = in_progress_.selection;
+      area_selected_ = true;
+      return;
+    case Pending::Kind::Write:
+      memory_.write(in_progress_.selection, in_progress_.address, in_progress_.value);
+      break;
+    default:
+      break;
+  }
+  memory_address_ = memory_error_ ? static_cast<std::uint8_t>(~in_progress_.address) : in_progress_.address;
+  memory_value_ = in_progress_.value;
+  in_progress_ = {};
+}
+
+void Encoder::on_end_marker_due() {
+  if (state_ != State::SupplementDone) return;
+  drive(true);
+  enable();
+}
+
+std::optional<ErrorCause> Encoder::type3_cause(Information i, unsigned which) const {
+  const auto& code = protocol::info(i);
+  if (!code.selectable) return ErrorCause::ImpermissibleAdditionalData;  // A2 cause 13
+  if (code.support_bit) {
+    const auto support = memory_.endat22_word(which == 0 ? word::kAdditionalData1Support : word::kAdditionalData2Support);
+    if (((support >> *code.support_bit) & 1U) == 0) return ErrorCause::UnsupportedAdditionalData;  // cause 14
+  }
+  // A2 cause 15 (interpretation): position value 2 requested through both additional data.
+  const bool pos2_in_ai2 = i >= I::AsynchronousPositionWord1 && i <= I::AsynchronousPositionWord3 &&
+                           (memory_.endat22_word(word::kAdditionalData2Support) & 0x0040) != 0;
+  const bool pos2_in_ai1 = selection_[0] && *selection_[0] >= I::PositionValue2Word1 &&
+                           *selection_[0] <= I::PositionValue2Word3;
+  if (which == 1 && pos2_in_ai2 && pos2_in_ai1) return ErrorCause::DuplicateAdditionalData;
+  return std::nullopt;
+}
+
+std::uint8_t Encoder::status_byte(Information i) const {
+  using S = protocol::AdditionalDataStatus;
+  std::uint8_t s = static_cast<std::uint8_t>(i);
+  if ((memory_.operating_status(word::kWarnings) & memory_.manufacturer_word(word::kSupportedWarnings)) != 0)
+    s |= S::kWarning;
+  if (busy()) s |= S::kBusy;
+  return s;
+}
+
+void Encoder::append_additional_datum(Information selected, unsigned which) {
+  EncoderFrame& f = frames_.back();
+  Information code = selected;
+  std::uint16_t data = 0;
+  const auto& stale = params_.sensors.not_updatable;
+  if (type3_[which]) {
+    code = which == 0 ? I::Type3Error1 : I::Type3Error2;  // A2 type III
+  } else if (std::find(stale.begin(), stale.end(), selected) != stale.end()) {
+    code = which == 0 ? I::Nop1 : I::Nop2;  // A2 type IV
+  } else {
+    data = additional_data_content(selected);
+  }
+  const std::uint8_t status = status_byte(code);
+  f.additional_data_status.push_back(status);
+  const auto bits = protocol::encode_additional_datum(status, data);
+  answer_.insert(answer_.end(), bits.begin(), bits.end());
+}
+
+std::uint16_t Encoder::additional_data_content(Information i) {
+  const Sensors& s = params_.sensors;
+  const EncoderFrame& f = frames_.back();
+  const auto acceleration = s.acceleration;
+  const auto uvw = static_cast<std::uint16_t>((s.commutation & 0x7) << 13);
+  const auto limits = static_cast<std::uint16_t>((s.limit_position_1 ? 0x8000 : 0) | (s.limit_position_2 ? 0x4000 : 0));
+  switch (i) {
+    case I::Diagnosis: {  // A3: valuation numbers in turn
+      if (s.diagnosis.empty()) return 0;
+      const auto& [address, value] = s.diagnosis[diagnosis_index_++ % s.diagnosis.size()];
+      return static_cast<std::uint16_t>(address << 8 | value);
+    }
+    // 2.3.5.1: "position value 2 or test values are always updated by querying the first word".
+    case I::PositionValue2Word1:
+      position2_latched_ = static_cast<std::uint64_t>(static_cast<std::int64_t>(f.position) + s.position2_offset) &
+                           0xFFFF'FFFF'FFFFULL;
+      return word_of(position2_latched_, 0);
+    case I::PositionValue2Word2: return word_of(position2_latched_, 1);
+    case I::PositionValue2Word3: return word_of(position2_latched_, 2);
+    case I::MemoryParameterLsb: return static_cast<std::uint16_t>(memory_address_ << 8 | (memory_value_ & 0xFF));
+    case I::MemoryParameterMsb: return static_cast<std::uint16_t>(memory_address_ << 8 | memory_value_ >> 8);
+    case I::MrsCodeAcknowledgment: return static_cast<std::uint16_t>(last_mrs_ << 8 | last_block_);
+    case I::TestCommandAcknowledgment: return static_cast<std::uint16_t>(test_port_22_ << 8);
+    case I::TestValuesWord1: {
+      const auto it = s.test_values.find(test_port_22_);
+      test_value_latched_ = it == s.test_values.end() ? 0 : it->second;
+      return word_of(test_value_latched_, 0);
+    }
+    case I::TestValuesWord2: return word_of(test_value_latched_, 1);
+    case I::TestValuesWord3: return word_of(test_value_latched_, 2);
+    case I::Temperature1: return s.temperature1;
+    case I::Temperature2: return s.temperature2;
+    case I::AdditionalSensors: {  // 2.3.5.1: the address rolls on every interrogation; 115 K offset
+      if (s.additional_sensors.empty()) return 0;
+      const unsigned address = sensor_address_++ % static_cast<unsigned>(s.additional_sensors.size());
+      const unsigned tenth_k = s.additional_sensors[address];
+      const unsigned value = std::min(4095U, tenth_k - std::min(tenth_k, protocol::kAdditionalSensorOffsetTenthKelvin));
+      return static_cast<std::uint16_t>(address << 12 | value);
+    }
+    case I::Commutation: return uvw;
+    case I::Acceleration: return acceleration;
+    case I::CommutationAndAcceleration: return static_cast<std::uint16_t>(uvw | (acceleration & 0x1FFF));
+    case I::LimitPositionSignals: return limits;
+    case I::LimitPositionSignalsAndAcceleration: return static_cast<std::uint16_t>(limits | (acceleration & 0x3FFF));
+    case I::AsynchronousPositionWord1:
+      async_latched_ = f.position;  // time delay 0 (2.4.2.3); oversampling is not modelled
+      return word_of(async_latched_, 0);
+    case I::AsynchronousPositionWord2: return word_of(async_latched_, 1);
+    case I::AsynchronousPositionWord3: return word_of(async_latched_, 2);
+    case I::OperatingStatusErrorSources: return s.operating_status_error_sources;
+    case I::Timestamp: return static_cast<std::uint16_t>(f.start / s.timestamp_unit);
+    default: return 0;
+  }
+}
+
+// ---- end of frame, reset ---------------------------------------------------------------------
+
 Time Encoder::recovery_time() const {
-  const auto& f = frames_;
-  const bool v22 = state_ != State::Idle && !f.empty() && f.back().command &&
-                   protocol::info(*f.back().command).version == EndatVersion::V2_2;
-  return v22 && params_.short_t_m_selected ? *params_.t_m_short : params_.t_m;
+  const bool v22 = state_ != State::Idle && command_ != nullptr && command_->version == EndatVersion::V2_2;
+  // 3.4.4: word 3 bits 0/1 choose the short recovery time, for 2.2 mode commands only, and only
+  // after the reset that activates word 3.
+  const bool short_selected = (memory_.active_function_initialization() & 0x3) == kShortRecoveryTimeOn;
+  return v22 && short_selected && params_.t_m_short ? *params_.t_m_short : params_.t_m;
 }
 
 void Encoder::on_recovery_time_elapsed() {
   // 2.3: "The transfer is terminated after expiry of a certain time (recovery time I)":
   // DATA falls back to LOW and the encoder is ready again after t_R.
   if (state_ == State::Idle) return;
+  finish_frame();
+}
+
+void Encoder::finish_frame() {
+  EncoderFrame& f = frames_.back();
   state_ = State::Idle;
+  end_marker_timer_.cancel();
   drive(false);
   enable();
   ready_at_ = kernel_.now() + params_.t_r;
+  if (f.too_many_clocks && pending_.kind != Pending::Kind::None) {
+    f.error = ErrorCause::MrsFrameDisrupted;  // the access is discarded
+    return;
+  }
+  switch (pending_.kind) {
+    case Pending::Kind::Select:
+      selection_area_ = pending_.selection;
+      area_selected_ = true;
+      break;
+    case Pending::Kind::Write:
+      memory_.write(pending_.selection, pending_.address, pending_.value);
+      break;
+    case Pending::Kind::Reset:
+      reset();
+      break;
+    case Pending::Kind::None:
+      break;
+  }
+  pending_ = {};
 }
+
+void Encoder::reset() {
+  // 2.7 ("same reaction as from switching power on and off", seed 001): additional data
+  // deselected (2.4.2.2), word 2, word 3 and the operating parameters activated (3.4.3, 3.4.4, 3.6).
+  memory_.activate_on_reset();
+  selection_[0].reset();
+  selection_[1].reset();
+  type3_[0].reset();
+  type3_[1].reset();
+  area_selected_ = false;
+  test_port_21_ = test_port_22_ = 0;
+  sensor_address_ = 0;
+  diagnosis_index_ = 0;
+  memory_timer_.cancel();
+  busy_until_ = kernel_.now();
+  in_progress_ = {};
+}
+
+void Encoder::latch_errors() { memory_.latch_errors(params_.error_sources, params_.warning_sources); }
 
 }  // namespace endatsim::slave

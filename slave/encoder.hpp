@@ -1,16 +1,19 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "line/line.hpp"
 #include "protocol/protocol.hpp"
+#include "slave/memory.hpp"
 
 namespace endatsim::slave {
 
 using protocol::EndatVersion;
+using protocol::Information;
 using protocol::ModeCommand;
 using sim::Time;
 
@@ -22,10 +25,33 @@ enum class EncoderKind : std::uint8_t { Singleturn, Multiturn, Linear };
 // B = DATA stays LOW, no start bit ever comes.
 enum class Type1Handling : std::uint8_t { AbortHigh, NoStartBit };
 
+// Where the memory access time t_ac of a 2.1 parameter frame lies (timing-model §7: the figure
+// is missing). InFrame: the acknowledgment's start bit waits for t_ac while the master keeps
+// clocking. AfterFrame: the acknowledgment comes at once and the encoder is busy for t_ac after
+// the frame; a 2.1 memory access meanwhile is answered with type II (2.3.1 note 1).
+enum class MemoryAccessPlacement : std::uint8_t { InFrame, AfterFrame };
+
 // Position source: fixed (counts_per_s = 0) or constant velocity, wrapping at 2^position_bits.
 struct MotionProfile {
   std::uint64_t start = 0;
   std::int64_t counts_per_s = 0;
+};
+
+// The values behind the additional data (2.3.5).
+struct Sensors {
+  std::int64_t position2_offset = 0;         // position value 2 = position + offset (48 bits)
+  std::uint16_t temperature1 = 2982;         // 0.1 K steps (3.9.6): 25 degC
+  std::uint16_t temperature2 = 2982;
+  std::vector<std::uint16_t> additional_sensors{2982, 2982, 2982};  // 0.1 K; index = 4-bit address
+  std::uint8_t commutation = 0;              // u v w, u the MSB
+  std::uint16_t acceleration = 0;
+  bool limit_position_1 = false;
+  bool limit_position_2 = false;
+  std::uint16_t operating_status_error_sources = 0;  // 2.3.5.3
+  std::vector<std::pair<std::uint8_t, std::uint8_t>> diagnosis{{0, 100}};  // address, valuation number (A3)
+  std::map<std::uint8_t, std::uint64_t> test_values;  // port address -> 40-bit test value
+  Time timestamp_unit = sim::us(1);
+  std::vector<Information> not_updatable;    // A2 cause 16: answered with NOP (type IV)
 };
 
 struct EncoderParams {
@@ -36,19 +62,34 @@ struct EncoderParams {
   Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
   Time t_m = sim::us(20);                      // 2.3.2: recovery time I, 10 .. 30 us
   std::optional<Time> t_m_short;               // 1.25 .. 3.75 us, 2.2 commands only (word 3, 3.4.4)
-  bool short_t_m_selected = false;
+  bool short_t_m_selected = false;             // as if word 3 selected it at power-on
   Time t_r = sim::ns(500);                     // 2.3.2: t_R, time before the next query can be received
+  Time t_ac_read = sim::us(500);               // 2.3.2: memory access time t_ac (0 .. 12 ms) for reads, selections
+  Time t_ac_write = sim::ms(3);                // ... and for writes
+  MemoryAccessPlacement t_ac_placement = MemoryAccessPlacement::InFrame;
+  // Timing-model §1.6 (guess): after the master's supplement the encoder drives the HIGH end
+  // marker this long after the last supplement bit (the master has released DATA by then).
+  Time supplement_end_marker_delay = sim::us(1);
   Time output_delay = sim::ns(60);             // clock input -> data output inside the encoder
   unsigned continuous_low_bits = 1;            // 2.3.1.1: "a maximum of 7 Low Bits" between words
   unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (timing-model §1.2)
   Type1Handling type1 = Type1Handling::AbortHigh;
+  bool communication_command_permitted = true;  // A2 cause 4 when false
   MotionProfile motion;
-  bool error1 = false;  // F1 = 1 / F2 = 0: an error source is active (3.4.1)
+  bool error1 = false;              // F1 = 1 / F2 = 0 regardless of word 0
+  std::uint16_t error_sources = 0;  // word 0 bits (3.4.1) that a fault keeps setting
+  std::uint16_t warning_sources = 0;  // word 1 bits (3.4.2)
+  Sensors sensors;
+  std::optional<MemoryImage> memory;  // none: a consistent image made from these parameters
 
   // Throws std::invalid_argument naming the parameter and its limit.
   void validate() const;
   std::uint64_t position_at(Time t) const;
 };
+
+// A memory image consistent with the parameters: word 13 = position bits, word 39 = t_cal, an
+// OEM area of 64 words in A9 and AB, EnDat 2.2 area for 2.2 encoders, checksums valid.
+MemoryImage default_memory_image(const EncoderParams& p);
 
 // Ground truth of one frame as the encoder saw it.
 struct EncoderFrame {
@@ -56,7 +97,13 @@ struct EncoderFrame {
   std::uint8_t mode_bits = 0;
   std::optional<ModeCommand> command;  // none: redundancy broken
   bool type1_error = false;
+  std::optional<protocol::ErrorCause> error;  // type I or II raised by this frame
   std::uint64_t position = 0;          // latched at FE1
+  std::optional<std::uint32_t> payload;      // the 8 + 16 bits received after the mode bits
+  std::optional<std::uint32_t> supplement;   // the 8 + 16 bits of a 2.2 command supplement
+  bool supplement_ignored = false;           // 2.3.1 note 1: 2.2 access while busy
+  bool too_many_clocks = false;
+  std::vector<std::uint8_t> additional_data_status;  // byte 0 of each additional datum sent
   unsigned start_bit_clock = 0;        // RE index of the start bit, 0 if none was sent
   unsigned clocks = 0;                 // rising edges seen
   unsigned continuous_words = 0;       // further words sent with a continuous clock
@@ -73,43 +120,105 @@ class Encoder {
   const std::vector<EncoderFrame>& frames() const { return frames_; }
   std::uint64_t ignored_clock_edges() const { return ignored_edges_; }
   bool idle() const { return state_ == State::Idle; }
+  bool busy() const;
+  const Memory& memory() const { return memory_; }
+  std::optional<Information> additional_data_1() const { return selection_[0]; }
+  std::optional<Information> additional_data_2() const { return selection_[1]; }
 
   // Internal signals worth tracing: what the encoder logic drives before its output delay.
   sim::Signal& data_logic() { return data_logic_; }
   sim::Signal& enable_logic() { return enable_logic_; }
 
  private:
-  enum class State : std::uint8_t { Idle, Header, Answer, EndOfData, ContinuousGap, Type1 };
+  enum class State : std::uint8_t {
+    Idle, Header, Payload, Answer, EndOfData, ContinuousGap, Type1, SupplementHunt, Supplement, SupplementDone
+  };
+  // A memory operation decided during a frame and carried out when it completes.
+  struct Pending {
+    enum class Kind : std::uint8_t { None, Select, Write, Reset } kind = Kind::None;
+    Selection selection;
+    std::uint8_t address = 0;
+    std::uint16_t value = 0;
+  };
 
   void on_clock(std::uint64_t level);
   void on_falling_edge();
   void on_rising_edge();
   void on_recovery_time_elapsed();
+  void on_memory_access_done();
+  void on_end_marker_due();
   void begin_frame();
   void decode_mode_command();
-  void load_answer();
+  void answer_position();
+  void answer_parameter_frame();
+  void process_supplement();
   void emit_answer_bit();
+  void load_continuous_word();
+  void abort_type1(protocol::ErrorCause cause);
+  void finish_frame();
+  void reset();
+  void latch_errors();
+  bool error_message_1() const;
+  bool error_message_2() const;
+  bool drives_bus() const;
+  std::uint8_t status_byte(Information i) const;
+  void append_additional_datum(Information selected, unsigned which);
+  std::uint16_t additional_data_content(Information i);
+  std::optional<protocol::ErrorCause> type3_cause(Information i, unsigned which) const;
+  void start_memory_access(Time t_ac);
   Time recovery_time() const;
   void drive(bool level) { data_logic_.write(level); }
   void release() { enable_logic_.write(false); }
-  void enable() { enable_logic_.write(true); }
+  void enable() { enable_logic_.write(drives_bus()); }
 
   sim::Kernel& kernel_;
   line::Line::EncoderSide pins_;
   EncoderParams params_;
+  Memory memory_;
   sim::Signal data_logic_;
   sim::Signal enable_logic_;
   sim::TransportDelay data_out_delay_;
   sim::TransportDelay enable_out_delay_;
   sim::Timer recovery_timer_;
+  sim::Timer memory_timer_;
+  sim::Timer end_marker_timer_;
 
+  // Frame state.
   State state_ = State::Idle;
   Time ready_at_{0};
   unsigned clock_ = 0;  // index k of the current clock period: FE_k, RE_k
   std::uint8_t mode_bits_ = 0;
+  const protocol::ModeCommandInfo* command_ = nullptr;
+  std::uint32_t shift_ = 0;
+  unsigned shifted_ = 0;
+  unsigned first_answer_clock_ = 11;  // timing-model §1.2 / §1.4: RE11, or RE35 after a payload
+  Time answer_not_before_{0};
+  bool seen_low_ = false;
   std::vector<std::uint8_t> answer_;
   std::size_t next_bit_ = 0;
   unsigned gap_low_bits_ = 0;
+  Pending pending_;
+
+  // Encoder state that outlives frames.
+  Selection selection_area_;
+  bool area_selected_ = false;
+  std::optional<Information> selection_[2];     // additional data 1 and 2 (2.4.2.2)
+  std::optional<protocol::ErrorCause> type3_[2];  // A2: answered with I = 15 / 31 until reselected
+  Time busy_until_{0};
+  Pending in_progress_;                         // the 2.2 access finishing at busy_until_
+  std::uint8_t last_mrs_ = 0, last_block_ = 0;  // I = 7 acknowledgment
+  std::uint8_t test_port_22_ = 0;               // I = 8 acknowledgment; forced dynamic sampling (3.5.3)
+  std::uint8_t test_port_21_ = 0;               // 2.8: port for "Encoder send test values"
+  std::uint8_t memory_address_ = 0;             // I = 5 / 6
+  std::uint16_t memory_value_ = 0;
+  bool memory_error_ = false;
+  std::uint64_t position2_latched_ = 0;
+  std::uint64_t test_value_latched_ = 0;
+  std::uint64_t async_latched_ = 0;
+  std::size_t diagnosis_index_ = 0;
+  unsigned sensor_address_ = 0;
+  bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command
+
   std::vector<EncoderFrame> frames_;
   std::uint64_t ignored_edges_ = 0;
 };

@@ -393,7 +393,7 @@ TEST(CheckerTypeOne, AnAnswerThatDrivesHighAtOnceIsNoStartBit) {
   s.line.encoder.driver_delay = ns(40);
   s.line.encoder.enable_delay = ns(20);
   s.encoder.output_delay = ns(50);  // keeps the round trip at the t_D bound
-  test_support::prepend_disturbed_read(s, 0b001110);
+  test_support::prepend_disturbed_read(s, 0b001111);
   const auto r = scenarios::run_scenario(s);
   ASSERT_EQ(r.frames.size(), 2U);
   EXPECT_EQ(r.frames[0].outcome, master::FrameOutcome::Type1Error);

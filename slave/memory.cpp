@@ -1,0 +1,244 @@
+#include "slave/memory.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace endatsim::slave {
+namespace {
+
+using Area = MemoryArea;
+
+std::string area_key(Area a) { return std::string(protocol::info(a).key); }
+
+// 3.5.5: four bits per start or end address.
+std::optional<unsigned> partition_address(unsigned code) {
+  switch (code) {
+    case 0x0: return 0;
+    case 0x1: return 31;
+    case 0x2: return 63;
+    case 0x3: return 64;
+    case 0x4: return 127;
+    case 0x5: return 255;
+    default: return std::nullopt;  // 1111 = not available; others are not defined
+  }
+}
+
+// Which partition word and byte describes an OEM or compensation area (3.5.5: words 9..12,
+// low byte the first area of the pair).
+std::optional<std::pair<unsigned, unsigned>> partition_of(Area a) {
+  switch (a) {
+    case Area::Oem1: return std::pair{word::kOemPartition, 0U};
+    case Area::Oem2: return std::pair{word::kOemPartition, 8U};
+    case Area::Oem3: return std::pair{word::kOemPartition + 1, 0U};
+    case Area::Oem4: return std::pair{word::kOemPartition + 1, 8U};
+    case Area::Compensation1: return std::pair{word::kCompensationPartition, 0U};
+    case Area::Compensation2: return std::pair{word::kCompensationPartition, 8U};
+    case Area::Compensation3: return std::pair{word::kCompensationPartition + 1, 0U};
+    case Area::Compensation4: return std::pair{word::kCompensationPartition + 1, 8U};
+    default: return std::nullopt;
+  }
+}
+
+std::size_t fixed_size(Area a) {
+  switch (a) {
+    case Area::OperatingStatus: return 4;
+    case Area::Manufacturer1:
+    case Area::Manufacturer2:
+    case Area::Manufacturer3:
+    case Area::OperatingParameters: return 16;
+    case Area::ManufacturerEndat22: return 64;
+    default: return 0;
+  }
+}
+
+bool factory_protected(Area a) {
+  switch (a) {
+    case Area::Manufacturer1:
+    case Area::Manufacturer2:
+    case Area::Manufacturer3:
+    case Area::ManufacturerEndat22:  // 3.4.3: "factory set to active and cannot be reset"
+    case Area::Compensation1:        // 3: "available exclusively to the encoder manufacturer"
+    case Area::Compensation2:
+    case Area::Compensation3:
+    case Area::Compensation4:
+    case Area::AsynchronousPosition: return true;
+    default: return false;
+  }
+}
+
+}  // namespace
+
+std::uint16_t word_sum(const std::vector<std::uint16_t>& words, unsigned first, unsigned last) {
+  unsigned sum = 0;
+  for (unsigned i = first; i <= last; ++i) sum += words.at(i);
+  return static_cast<std::uint16_t>(sum);
+}
+
+Memory::Memory(MemoryImage image) : image_(std::move(image)) {
+  for (Area a : {Area::OperatingStatus, Area::Manufacturer1, Area::Manufacturer2, Area::Manufacturer3,
+                 Area::OperatingParameters}) {
+    const auto it = image_.areas.find(a);
+    if (it == image_.areas.end() || it->second.size() != fixed_size(a))
+      throw std::invalid_argument("memory area " + area_key(a) + " must have " + std::to_string(fixed_size(a)) +
+                                  " words");
+  }
+  for (const auto& [a, w] : image_.areas) {
+    if (fixed_size(a) != 0 && w.size() != fixed_size(a))
+      throw std::invalid_argument("memory area " + area_key(a) + " must have " + std::to_string(fixed_size(a)) +
+                                  " words, got " + std::to_string(w.size()));
+    if (a == Area::OperatingParameters2 && (w.empty() || w.size() > 256))
+      throw std::invalid_argument("memory area operating_parameters2 must have 1 .. 256 words");
+    if (a == Area::Section2 || a == Area::AsynchronousPosition)
+      throw std::invalid_argument("memory area " + area_key(a) + " is not given as words of its own");
+    if (const auto p = partition_of(a)) {
+      const auto range = address_range({a, 0});
+      if (!range) throw std::invalid_argument("memory area " + area_key(a) + " is not available per word " +
+                                              std::to_string(p->first) + " (3.5.5)");
+      if (w.size() != range->second + 1)
+        throw std::invalid_argument("memory area " + area_key(a) + " must have " + std::to_string(range->second + 1) +
+                                    " words (addresses up to " + std::to_string(range->second) + ", word " +
+                                    std::to_string(p->first) + "), got " + std::to_string(w.size()));
+    }
+  }
+  const unsigned blocks = image_.areas.contains(Area::ManufacturerEndat22) ? endat22_word(word::kSection2Blocks) : 0;
+  if (image_.section2_blocks.size() != blocks)
+    throw std::invalid_argument("section 2 memory has " + std::to_string(image_.section2_blocks.size()) +
+                                " blocks, but word 24 of the EnDat 2.2 manufacturer area says " + std::to_string(blocks));
+  for (const auto& b : image_.section2_blocks)
+    if (b.size() != 256) throw std::invalid_argument("every section 2 block must have 256 words (3.2)");
+  if (const auto it = image_.areas.find(Area::OperatingParameters2); it != image_.areas.end())
+    operating_parameters2_defaults_ = it->second;
+  activate_on_reset();
+}
+
+std::uint16_t Memory::manufacturer_word(unsigned n) const {
+  if (n < 4 || n > 47) throw std::out_of_range("encoder manufacturer words are 4 .. 47");
+  const Area a = n < 16 ? Area::Manufacturer1 : n < 32 ? Area::Manufacturer2 : Area::Manufacturer3;
+  return image_.areas.at(a).at(n % 16);
+}
+
+std::uint16_t Memory::endat22_word(unsigned n) const {
+  const auto it = image_.areas.find(Area::ManufacturerEndat22);
+  return it == image_.areas.end() ? 0 : it->second.at(n);
+}
+
+std::uint16_t Memory::operating_parameter(unsigned n) const {
+  return image_.areas.at(Area::OperatingParameters).at(n);
+}
+
+std::optional<std::pair<unsigned, unsigned>> Memory::address_range(const Selection& s) const {
+  if (const auto p = partition_of(s.area)) {
+    const unsigned w = manufacturer_word(p->first) >> p->second;
+    const auto start = partition_address(w & 0xF);
+    const auto end = partition_address((w >> 4) & 0xF);
+    if (!start || !end || *start > *end) return std::nullopt;
+    return std::pair{*start, *end};
+  }
+  switch (s.area) {
+    case Area::OperatingStatus: return std::pair{0U, 3U};
+    case Area::Manufacturer1: return std::pair{4U, 15U};  // 2.4.1: address area 04h .. 0Fh
+    case Area::Section2:
+      if (s.block >= image_.section2_blocks.size()) return std::nullopt;
+      return std::pair{0U, 255U};
+    case Area::AsynchronousPosition: return std::nullopt;  // selects a time delay, holds no words
+    default: {
+      const auto* w = words(s);
+      if (w == nullptr) return std::nullopt;
+      return std::pair{0U, static_cast<unsigned>(w->size() - 1)};
+    }
+  }
+}
+
+std::vector<std::uint16_t>* Memory::words(const Selection& s) {
+  return const_cast<std::vector<std::uint16_t>*>(std::as_const(*this).words(s));
+}
+
+const std::vector<std::uint16_t>* Memory::words(const Selection& s) const {
+  if (s.area == Area::Section2)
+    return s.block < image_.section2_blocks.size() ? &image_.section2_blocks[s.block] : nullptr;
+  const auto it = image_.areas.find(s.area);
+  return it == image_.areas.end() ? nullptr : &it->second;
+}
+
+std::optional<ErrorCause> Memory::check_selection(std::uint8_t mrs, std::uint8_t block, bool endat22_command) const {
+  // A2 cause 2: a 2.1 MRS code must read 101x xxx1; 010x xxxx and 011x xxxx only with 2.2.
+  const bool area_code = (mrs & 0xE1) == 0xA1;
+  const bool v22_code = (mrs & 0xE0) == 0x40 || (mrs & 0xE0) == 0x60;
+  if (!area_code && !(endat22_command && v22_code)) return ErrorCause::MrsFrameDisrupted;
+  const auto area = protocol::memory_area_from_mrs(mrs);
+  if (!area) return ErrorCause::ImpermissibleMemoryArea;
+  if (protocol::info(*area).endat22_only && !endat22_command) return ErrorCause::ImpermissibleMemoryArea;
+  if (*area == Area::Section2) {
+    if (image_.section2_blocks.empty()) return ErrorCause::ImpermissibleMemoryArea;
+    if (block >= image_.section2_blocks.size()) return ErrorCause::ImpermissibleBlockAddress;
+    return std::nullopt;
+  }
+  if (*area == Area::AsynchronousPosition)
+    return image_.areas.contains(Area::ManufacturerEndat22) &&
+                   (endat22_word(word::kAdditionalData2Support) & 0x0008) != 0
+               ? std::nullopt
+               : std::optional{ErrorCause::ImpermissibleMemoryArea};
+  if (!address_range({*area, 0})) return ErrorCause::ImpermissibleMemoryArea;
+  return std::nullopt;
+}
+
+std::optional<ErrorCause> Memory::read(const Selection& s, std::uint8_t address, std::uint16_t& value) const {
+  const auto range = address_range(s);
+  if (!range || address < range->first || address > range->second)
+    return s.area == Area::OperatingParameters2 ? ErrorCause::UnknownCommunicationAddress
+                                                : ErrorCause::ImpermissibleAddress;
+  value = words(s)->at(address);
+  return std::nullopt;
+}
+
+bool Memory::write_protected(const Selection& s) const {
+  if (factory_protected(s.area)) return true;
+  const auto bit = protocol::info(s.area).protection_bit;
+  if (s.area == Area::Section2) {
+    const unsigned b = std::min<unsigned>(kProtectSection2Block0 + s.block, kProtectSection2BlocksFrom3);
+    return ((active_protection_ >> b) & 1U) != 0;
+  }
+  return bit && ((active_protection_ >> *bit) & 1U) != 0;
+}
+
+std::optional<ErrorCause> Memory::write(const Selection& s, std::uint8_t address, std::uint16_t value) {
+  if (const auto e = check_write(s, address, value)) return e;
+  words(s)->at(address) = value;
+  return std::nullopt;
+}
+
+std::optional<ErrorCause> Memory::check_write(const Selection& s, std::uint8_t address, std::uint16_t value) const {
+  std::uint16_t old = 0;
+  if (const auto e = read(s, address, old)) return e;
+  if (write_protected(s)) return ErrorCause::WriteProtected;
+  if (s.area == Area::OperatingStatus) {
+    if ((address == word::kErrors || address == word::kWarnings) && value != 0) return ErrorCause::ImpermissibleAddress;
+    if (address == word::kWriteProtection && (active_protection_ & ~value) != 0)
+      return ErrorCause::WriteProtectionCleared;
+  }
+  return std::nullopt;
+}
+
+void Memory::latch_errors(std::uint16_t errors, std::uint16_t warnings) {
+  auto& status = image_.areas.at(Area::OperatingStatus);
+  status[word::kErrors] |= errors;
+  status[word::kWarnings] |= warnings;
+}
+
+void Memory::clear_errors_and_warnings() {
+  auto& status = image_.areas.at(Area::OperatingStatus);
+  status[word::kErrors] = 0;
+  status[word::kWarnings] = 0;
+}
+
+void Memory::activate_on_reset() {
+  const auto& status = image_.areas.at(Area::OperatingStatus);
+  active_protection_ = status[word::kWriteProtection];
+  active_functions_ = status[word::kFunctionInitialization];
+  active_operating_ = image_.areas.at(Area::OperatingParameters);
+  if (!operating_parameters2_defaults_.empty())
+    image_.areas[Area::OperatingParameters2] = operating_parameters2_defaults_;
+}
+
+}  // namespace endatsim::slave

@@ -1,0 +1,95 @@
+// The encoder's memory (spec section 3): words per memory area as the MRS codes address them,
+// access rights, irreversible write protection (word 2), function initialisation (word 3) and
+// the checksums of the encoder manufacturer's areas.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "protocol/protocol.hpp"
+
+namespace endatsim::slave {
+
+using protocol::ErrorCause;
+using protocol::MemoryArea;
+
+// Words of each area indexed by their address within the area. The encoder manufacturer's 48
+// words are areas A1 (addresses 4..15 = words 4..15), A3 (words 16..31) and A5 (words 32..47);
+// the operating status (B9) holds words 0..3. OEM and compensation areas are as large as
+// words 9..12 make them (3.5.5); operating parameters 2 (BB) as large as the vector given.
+struct MemoryImage {
+  std::map<MemoryArea, std::vector<std::uint16_t>> areas;
+  std::vector<std::vector<std::uint16_t>> section2_blocks;  // 256 words each (3.2)
+};
+
+// Word numbers used by the model (3.4, 3.5.1, 3.6.1, 3.9.1).
+namespace word {
+constexpr unsigned kErrors = 0, kWarnings = 1, kWriteProtection = 2, kFunctionInitialization = 3;  // B9
+constexpr unsigned kVersion = 8, kOemPartition = 9, kCompensationPartition = 11, kPositionFormat = 13,
+                   kEncoderType = 14, kSupportedErrors = 35, kSupportedWarnings = 36, kCommandSet = 37,
+                   kCalculationTime = 39, kManufacturerChecksum = 47;  // encoder manufacturer, 3.5.1
+constexpr unsigned kAdditionalData1Support = 0, kAdditionalData2Support = 1, kSection2Blocks = 24,
+                   kMaxClockFrequency = 25, kEndat22Checksum = 63;  // BD, 3.9.1
+constexpr unsigned kEncoderAddress = 4, kInstructions = 5;       // A7, 3.6.4 / 3.6.5
+}  // namespace word
+
+// 3.4.3: bits of word 2.
+constexpr unsigned kProtectSection2Block0 = 6, kProtectSection2BlocksFrom3 = 9;
+// 3.4.4: word 3 bits that choose the short recovery time I for 2.2 mode commands (bit 0 = 1
+// and bit 1 = 0; the pair is redundant).
+constexpr std::uint16_t kShortRecoveryTimeOn = 0x0001, kShortRecoveryTimeOff = 0x0002;
+
+// 3.5.26 / 3.9.37: sum of words, overflow not considered.
+std::uint16_t word_sum(const std::vector<std::uint16_t>& words, unsigned first, unsigned last);
+
+// What a memory area selection points at.
+struct Selection {
+  MemoryArea area = MemoryArea::OperatingStatus;
+  std::uint8_t block = 0;  // section 2 block address; asynchronous position time delay
+};
+
+class Memory {
+ public:
+  // Throws std::invalid_argument naming the area and word when the image is inconsistent.
+  explicit Memory(MemoryImage image);
+
+  const MemoryImage& image() const { return image_; }
+  // Encoder manufacturer words 4..47 by number (3.5.1).
+  std::uint16_t manufacturer_word(unsigned n) const;
+  std::uint16_t endat22_word(unsigned n) const;
+  std::uint16_t operating_status(unsigned n) const { return image_.areas.at(MemoryArea::OperatingStatus).at(n); }
+  std::uint16_t operating_parameter(unsigned n) const;
+
+  // 2.4.1 / 2.4.2.1 / 2.4.2.3 / A2 causes 2, 7, 11.
+  std::optional<ErrorCause> check_selection(std::uint8_t mrs, std::uint8_t block, bool endat22_command) const;
+  std::optional<ErrorCause> read(const Selection& s, std::uint8_t address, std::uint16_t& value) const;
+  // A2 causes 8, 9, 10, 12; words 0 and 1 can only be cleared as a whole (3.4.1, 3.4.2).
+  std::optional<ErrorCause> write(const Selection& s, std::uint8_t address, std::uint16_t value);
+  std::optional<ErrorCause> check_write(const Selection& s, std::uint8_t address, std::uint16_t value) const;
+
+  // Error and warning sources set their bits in words 0 and 1; they stay until cleared.
+  void latch_errors(std::uint16_t errors, std::uint16_t warnings);
+  void clear_errors_and_warnings();  // 2.7.1: "Encoder send position values and receive error reset"
+  // 2.7 / 3.4.3 / 3.4.4 / 3.6: "Encoder receive reset" (or power-on) activates word 2, word 3
+  // and the operating parameters as written; operating parameters 2 return to their defaults.
+  void activate_on_reset();
+  std::uint16_t active_write_protection() const { return active_protection_; }
+  std::uint16_t active_function_initialization() const { return active_functions_; }
+  const std::vector<std::uint16_t>& active_operating_parameters() const { return active_operating_; }
+
+ private:
+  std::optional<std::pair<unsigned, unsigned>> address_range(const Selection& s) const;
+  bool write_protected(const Selection& s) const;
+  std::vector<std::uint16_t>* words(const Selection& s);
+  const std::vector<std::uint16_t>* words(const Selection& s) const;
+
+  MemoryImage image_;
+  std::vector<std::uint16_t> operating_parameters2_defaults_;
+  std::uint16_t active_protection_ = 0;
+  std::uint16_t active_functions_ = 0;
+  std::vector<std::uint16_t> active_operating_;
+};
+
+}  // namespace endatsim::slave
