@@ -1,0 +1,172 @@
+// Soak benchmark (not in ctest): millions of frames through master, line, encoder and checker with
+// random faults - clock jitter, disturbed mode bits (type I error handling), cable changes while
+// running (scenario events) and delay re-measurements at random points - and the process's
+// resident memory before, during and after, which must stay flat from one chunk to the next.
+//
+//   endatsim_soak                              2,000,000 frames in 20 chunks of 100,000
+//   endatsim_soak --benchmark_filter=200k     the same with 2 chunks (a quick look)
+//
+// Each iteration runs one chunk: a scenario drawn from a seeded generator (chunk i uses seed i,
+// so a run is reproducible). Counters: frames and frame outcomes in all, median and slowest
+// frames per wall second over the chunks, RSS after the first and the last chunk (MiB), the
+// growth between them, and the peak RSS.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <vector>
+
+#include <malloc.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "scenarios/runner.hpp"
+
+namespace {
+
+namespace sim = endatsim::sim;
+namespace scenarios = endatsim::scenarios;
+namespace master = endatsim::master;
+using sim::Time;
+
+constexpr unsigned kFramesPerChunk = 100'000;
+
+// Resident memory once freed heap pages went back to the system (malloc_trim), so that what
+// is left is what the process still holds, not what glibc keeps cached from the last chunk.
+double rss_mib() {
+  malloc_trim(0);
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+double peak_rss_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+// One chunk: kFramesPerChunk position reads in blocks, with faults drawn from `seed`.
+scenarios::Scenario soak_scenario(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const auto pick = [&](std::uint64_t lo, std::uint64_t hi) { return std::uniform_int_distribution<std::uint64_t>(lo, hi)(rng); };
+  scenarios::Scenario s;
+  s.name = "soak_" + std::to_string(seed);
+  s.seed = seed;
+  s.max_time = sim::ms(60'000);
+  const std::array<sim::Hertz, 3> f_cs{sim::MHz(2), sim::MHz(4), sim::MHz(8)};
+  s.master.f_c = f_cs[pick(0, f_cs.size() - 1)];
+  s.master.t_st = sim::us(2);
+  s.master.delay_compensation = true;
+  s.master.measurement.f_c = sim::kHz(200);
+  s.master.measurement.f_e = 8 * s.master.f_c;
+  // Up to a fifth of the shorter clock phase: sometimes harmless, sometimes a sampling error.
+  s.master.jitter = sim::period_of(s.master.f_c) / 10 * static_cast<std::int64_t>(pick(0, 2)) / 2;
+  s.line.cable_length_m = static_cast<double>(pick(0, 150));
+  s.encoder.motion.start = pick(0, (1U << 25) - 1);
+  s.encoder.motion.counts_per_s = static_cast<std::int64_t>(pick(0, 2'000'000)) - 1'000'000;
+  s.encoder.t_m_short = sim::us(2);
+
+  const Time cycle = sim::us(60);
+  master::Operation measure;
+  measure.kind = master::Operation::Kind::MeasureDelay;
+  s.script.push_back(measure);
+  unsigned frames = 0;
+  while (frames < kFramesPerChunk) {
+    master::Operation read;
+    read.kind = master::Operation::Kind::ReadPosition;
+    read.command = pick(0, 1) == 0 ? master::ModeCommand::EncoderSendPositionValues
+                                   : master::ModeCommand::EncoderSendPositionValuesWithAdditionalData;
+    read.count = std::min<unsigned>(static_cast<unsigned>(pick(200, 3000)), kFramesPerChunk - frames);
+    read.cycle = cycle;
+    s.script.push_back(read);
+    frames += read.count;
+    if (frames < kFramesPerChunk && pick(0, 2) == 0) {  // a disturbed mode command
+      master::Operation bad = read;
+      bad.count = 1;
+      bad.mode_bits = static_cast<std::uint8_t>(pick(0, 63));
+      s.script.push_back(bad);
+      ++frames;
+    }
+    if (pick(0, 4) == 0) s.script.push_back(measure);  // re-measure t_D now and then
+  }
+  // Cable changes at random times within the expected run (a frame per cycle).
+  const std::int64_t span = (cycle * kFramesPerChunk).count();
+  std::vector<std::int64_t> at;
+  for (std::uint64_t n = pick(5, 20); n > 0; --n) at.push_back(static_cast<std::int64_t>(pick(0, static_cast<std::uint64_t>(span))));
+  std::sort(at.begin(), at.end());
+  for (const auto t : at) {
+    scenarios::LineEvent e;
+    e.at = Time{t};
+    e.cable_length_m = static_cast<double>(pick(0, 150));
+    e.cable_delay_per_m = sim::ns(5);
+    s.events.push_back(e);
+  }
+  return s;
+}
+
+void BM_Soak_RandomFaults(benchmark::State& state) {
+  std::uint64_t chunk = 0, frames = 0, events = 0, violations = 0, unfinished = 0;
+  std::array<std::uint64_t, 5> outcomes{};
+  std::vector<double> rates;
+  const double rss_start = rss_mib();
+  double rss_first = 0, rss_last = 0;
+  for (auto _ : state) {
+    const scenarios::Scenario s = soak_scenario(++chunk);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::uint64_t chunk_frames = 0;
+    {
+      const scenarios::ScenarioResult r = scenarios::run_scenario(s);
+      for (const auto& f : r.frames) {
+        if (f.measurement) continue;
+        ++chunk_frames;
+        ++outcomes[std::min<std::size_t>(static_cast<std::size_t>(f.outcome), outcomes.size() - 1)];
+      }
+      events += r.events;
+      violations += r.violations.size();
+      unfinished += r.finished ? 0 : 1;
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    rates.push_back(static_cast<double>(chunk_frames) / wall);
+    frames += chunk_frames;
+    (chunk == 1 ? rss_first : rss_last) = rss_mib();
+    if (std::getenv("ENDATSIM_SOAK_TRACE") != nullptr)
+      std::fprintf(stderr, "chunk %llu: %llu frames, %.0f frames/s, rss %.1f MiB, peak %.1f MiB\n",
+                   static_cast<unsigned long long>(chunk), static_cast<unsigned long long>(chunk_frames),
+                   rates.back(), chunk == 1 ? rss_first : rss_last, peak_rss_mib());
+  }
+  if (rates.empty()) return;
+  if (chunk == 1) rss_last = rss_first;
+  std::sort(rates.begin(), rates.end());
+  state.counters["frames"] = static_cast<double>(frames);
+  state.counters["frames_per_s_median"] = rates[rates.size() / 2];
+  state.counters["frames_per_s_min"] = rates.front();
+  state.counters["events"] = static_cast<double>(events);
+  state.counters["violations"] = static_cast<double>(violations);
+  state.counters["ok"] = static_cast<double>(outcomes[0]);
+  state.counters["crc_error"] = static_cast<double>(outcomes[1]);
+  state.counters["no_start_bit"] = static_cast<double>(outcomes[2]);
+  state.counters["type1_error"] = static_cast<double>(outcomes[3]);
+  state.counters["other_error"] = static_cast<double>(outcomes[4]);
+  state.counters["unfinished_chunks"] = static_cast<double>(unfinished);
+  state.counters["rss_start_mib"] = rss_start;
+  state.counters["rss_first_chunk_mib"] = rss_first;
+  state.counters["rss_last_chunk_mib"] = rss_last;
+  state.counters["rss_growth_mib"] = rss_last - rss_first;
+  state.counters["peak_rss_mib"] = peak_rss_mib();
+  if (frames != chunk * kFramesPerChunk) state.SkipWithError("a chunk lost frames: the script did not run to its end");
+  else if (rss_last - rss_first > 64.0) state.SkipWithError("resident memory grew by more than 64 MiB between chunks");
+}
+BENCHMARK(BM_Soak_RandomFaults)->Name("Soak_2M_frames")->Iterations(20)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_Soak_RandomFaults)->Name("Soak_200k_frames")->Iterations(2)->Unit(benchmark::kSecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
