@@ -31,6 +31,7 @@ std::string_view to_string(FrameOutcome o) {
     case FrameOutcome::CrcError: return "crc_error";
     case FrameOutcome::NoStartBit: return "no_start_bit";
     case FrameOutcome::Type1Error: return "type1_error";
+    case FrameOutcome::Type2Error: return "type2_error";
   }
   return "?";
 }
@@ -64,6 +65,10 @@ void MasterParams::validate() const {
           "master start_bit_timeout must be > 0 and <= 100 ms, got " + sim::format_time(start_bit_timeout));
   require(!fixed_t_d || (*fixed_t_d >= Time::zero() && *fixed_t_d <= sim::us(10)),
           "master fixed_t_d must be 0 .. 10 us, got " + sim::format_time(fixed_t_d.value_or(Time::zero())));
+  require(memory_access_timeout > Time::zero() && memory_access_timeout <= sim::ms(100),
+          "master memory_access_timeout must be > 0 and <= 100 ms, got " + sim::format_time(memory_access_timeout));
+  require(supplement_lead_bits >= 1 && supplement_lead_bits <= 32,
+          "master supplement_lead_bits must be 1 .. 32, got " + std::to_string(supplement_lead_bits));
   require(type1_detect_samples >= 1 && type1_detect_samples <= 64,
           "master type1_detect_samples must be 1 .. 64, got " + std::to_string(type1_detect_samples));
 }
@@ -94,6 +99,7 @@ void Master::next_operation() {
   }
   current_ = operations_.front();
   operations_.pop_front();
+  ++operation_index_;
   const Time begin = std::max(current_->at.value_or(kernel_.now()), kernel_.now());
   switch (current_->kind) {
     case Operation::Kind::Wait:
@@ -105,6 +111,10 @@ void Master::next_operation() {
       counts_.clear();
       frames_left_ = params_.measurement.count;
       break;
+    case Operation::Kind::AwaitNotBusy:
+      current_->command = ModeCommand::EncoderSendPositionValuesWithAdditionalData;
+      frames_left_ = current_->count;
+      break;
     case Operation::Kind::ReadPosition:
       frames_left_ = current_->count;
       break;
@@ -115,8 +125,18 @@ void Master::next_operation() {
 }
 
 void Master::operation_frame_done() {
+  if (current_->kind == Operation::Kind::AwaitNotBusy) {
+    // 2.5.1 / 2.6.1: poll additional data 1 until the busy bit is reset.
+    const auto& ai = frames_.back().additional_data;
+    const bool ready = frames_.back().outcome == FrameOutcome::Ok &&
+                       std::any_of(ai.begin(), ai.end(), [](const AdditionalDatum& d) {
+                         return !protocol::is_additional_data_2(d.information()) && !d.busy();
+                       });
+    if (ready) frames_left_ = 1;
+    else if (frames_left_ == 1) ++busy_timeouts_;
+  }
   if (--frames_left_ > 0) {
-    next_due_ += current_->kind == Operation::Kind::ReadPosition ? current_->cycle : Time::zero();
+    next_due_ += current_->kind != Operation::Kind::MeasureDelay ? current_->cycle : Time::zero();
     if (ready_at_ > next_due_ && current_->cycle > Time::zero()) ++cycle_overruns_;
     const Time at = std::max(next_due_, ready_at_);
     kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
@@ -135,6 +155,7 @@ void Master::start_frame(std::uint64_t) {
   const bool measurement = measuring_;
   frame_ = FrameResult{};
   frame_.index = frames_.size();
+  frame_.operation = operation_index_ - 1;
   frame_.start = kernel_.now();
   frame_.measurement = measurement;
   frame_.command = measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
@@ -143,12 +164,23 @@ void Master::start_frame(std::uint64_t) {
   frame_.compensated = !measurement && params_.delay_compensation && t_d_.has_value();
   frame_.t_d_used = frame_.compensated ? *t_d_ : Time::zero();
 
+  command_ = &protocol::info(frame_.command);
+  payload_ = measurement ? 0 : std::uint32_t{current_->address} << 16 | current_->parameter;
+  if (command_->payload_bits != 0) frame_.payload = payload_;
+  supplement_start_ = 0;
+  supplement_due_ = false;
   f_ = frame_.f_c;
   const Time period = sim::period_of(f_);
   high_ = period * params_.high_permille / 1000;
   low_ = period - high_;
   mode_bits_ = frame_.mode_bits;
-  layout_ = protocol::position_frame_layout(protocol::info(frame_.command).version, params_.position_bits);
+  switch (command_->answer) {
+    case protocol::AnswerFormat::Position:
+      layout_ = protocol::position_frame_layout(command_->version, params_.position_bits);
+      break;
+    case protocol::AnswerFormat::TestValues: layout_ = protocol::test_values_layout(); break;
+    case protocol::AnswerFormat::Parameter: layout_ = protocol::parameter_frame_layout(); break;
+  }
   clock_ = 0;
   last_clock_ = 0;
   clocking_done_ = false;
@@ -185,18 +217,25 @@ void Master::falling_edge() {
   clock_low_ = true;
   pins_.clock_out.write(false);
   // 2.3: the master enables its driver with the second falling edge, sends a dummy 0 and the
-  // six mode bits M2 first on falling edges 3 .. 8, and releases DATA after the mode word.
+  // six mode bits M2 first on falling edges 3 .. 8, then (2.1 parameter frames, timing-model
+  // §1.4) 8 + 16 bits MSB first, and releases DATA after them.
+  const unsigned payload = command_->payload_bits;
+  const unsigned release = kFirstPolledClock + payload;
   if (clock_ == 2) {
     pins_.data_enable.write(true);
     pins_.data_out.write(false);
   } else if (clock_ >= 3 && clock_ <= 8) {
     pins_.data_out.write(((mode_bits_ >> (8 - clock_)) & 1U) != 0);
-  } else if (clock_ == 9) {
+  } else if (clock_ > 8 && clock_ < release) {
+    pins_.data_out.write(((payload_ >> (release - 1 - clock_)) & 1U) != 0);
+  } else if (clock_ == release) {
     pins_.data_enable.write(false);
     pins_.data_out.write(false);
+    if (payload != 0) poll_start_ = kernel_.now();
   }
+  if (supplement_due_) drive_supplement_bit();
   // Without compensation DATA is taken at the falling edge; with it at FE + t_D (2.3).
-  if (clock_ > kFirstPolledClock && rx_ != Rx::Done) {
+  if (clock_ > release && rx_ != Rx::Done) {
     const unsigned slot = clock_ - 1;
     if (frame_.compensated) kernel_.schedule(frame_.t_d_used, sim::bind<&Master::sample>(this, sample_tag(epoch_, slot)));
     else sample_now(slot);
@@ -220,10 +259,12 @@ void Master::rising_edge() {
     counter_start_ = kernel_.now();
     counter_running_ = true;
   }
-  if (rx_ == Rx::Polling && kernel_.now() - poll_start_ > params_.start_bit_timeout) {
+  const Time timeout = command_->payload_bits != 0 ? params_.memory_access_timeout : params_.start_bit_timeout;
+  if (rx_ == Rx::Polling && kernel_.now() - poll_start_ > timeout) {
     end_reception(FrameOutcome::NoStartBit);
   }
-  if (rx_ == Rx::Done || (last_clock_ != 0 && clock_ >= last_clock_ && words_left_ == 0)) {
+  if (supplement_start_ != 0 && clock_ == last_clock_) pins_.data_enable.write(false);
+  if ((rx_ == Rx::Done && !supplement_due_) || (last_clock_ != 0 && clock_ >= last_clock_ && words_left_ == 0)) {
     clocking_done_ = true;
     if (!params_.extra_clock_after_last_bit && rx_ == Rx::Receiving) {
       // No further pulse: the last bit is taken where the next falling edge would be.
@@ -261,8 +302,9 @@ void Master::sample_now(unsigned clock) {
         rx_ = Rx::Receiving;
         rx_bits_.assign(1, 1);
         frame_.start_bit_clock = clock;
-        const unsigned last_bit_clock = clock + layout_.width() - 1;
-        last_clock_ = last_bit_clock + (params_.extra_clock_after_last_bit ? 1 : 0);
+        const unsigned last_bit_clock = clock + answer_width() - 1;
+        // A frame with a supplement clocks on until the master has checked the answer.
+        if (!command_->supplement) last_clock_ = last_bit_clock + (params_.extra_clock_after_last_bit ? 1 : 0);
       }
       break;
     case Rx::Receiving:
@@ -273,20 +315,95 @@ void Master::sample_now(unsigned clock) {
       return;
   }
   for (auto* o : observers_) o->on_sample(frame_, clock, value, in_data);
-  if (rx_ == Rx::Receiving && rx_bits_.size() == layout_.width()) {
-    const auto values = layout_.decode(rx_bits_);
-    using protocol::Field;
-    frame_.error1 = values[static_cast<std::size_t>(Field::Error1)] != 0;
-    frame_.error2 = protocol::info(frame_.command).version == protocol::EndatVersion::V2_2
-                        ? values[static_cast<std::size_t>(Field::Error2)] != 0
-                        : true;
-    frame_.position = values[static_cast<std::size_t>(Field::Position)];
-    frame_.crc_received = static_cast<std::uint8_t>(values[static_cast<std::size_t>(Field::Crc)]);
-    frame_.crc_expected =
-        protocol::make_crc_pos(params_.position_bits, frame_.error1, frame_.error2,
-                               protocol::info(frame_.command).version == protocol::EndatVersion::V2_2, frame_.position);
-    word_received(frame_.crc_received == frame_.crc_expected ? FrameOutcome::Ok : FrameOutcome::CrcError);
+  if (rx_ == Rx::Receiving && rx_bits_.size() == answer_width()) decode_answer();
+}
+
+unsigned Master::answer_width() const {
+  const bool additional_data = command_->answer == protocol::AnswerFormat::Position &&
+                               command_->version == protocol::EndatVersion::V2_2 && !frame_.measurement;
+  return layout_.width() + (additional_data ? protocol::kAdditionalDatumBits * expected_additional_data() : 0);
+}
+
+void Master::decode_answer() {
+  using protocol::Field;
+  const auto values = layout_.decode(rx_bits_);
+  const auto field = [&](Field f) { return values[static_cast<std::size_t>(f)]; };
+  frame_.crc_received = static_cast<std::uint8_t>(field(Field::Crc));
+  bool ok = true;
+  switch (command_->answer) {
+    case protocol::AnswerFormat::Position: {
+      const bool v22 = command_->version == protocol::EndatVersion::V2_2;
+      frame_.error1 = field(Field::Error1) != 0;
+      frame_.error2 = v22 ? field(Field::Error2) != 0 : true;
+      frame_.position = field(Field::Position);
+      frame_.crc_expected =
+          protocol::make_crc_pos(params_.position_bits, frame_.error1, frame_.error2, v22, frame_.position);
+      const auto ai_layout = protocol::additional_datum_layout();
+      for (std::size_t at = layout_.width(); at < rx_bits_.size(); at += protocol::kAdditionalDatumBits) {
+        const auto v = ai_layout.decode(std::span(rx_bits_).subspan(at));
+        AdditionalDatum d;
+        d.status = static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Status)]);
+        d.data = static_cast<std::uint16_t>(v[static_cast<std::size_t>(Field::AdditionalData)]);
+        d.crc_ok = v[static_cast<std::size_t>(Field::Crc)] == protocol::make_crc_norm(d.status, d.data) &&
+                   v[static_cast<std::size_t>(Field::LeadingLow)] == 0;
+        ok = ok && d.crc_ok;
+        frame_.additional_data.push_back(d);
+      }
+      break;
+    }
+    case protocol::AnswerFormat::TestValues:
+      frame_.error1 = field(Field::Error1) != 0;
+      frame_.test_value = field(Field::TestValue);
+      frame_.crc_expected = protocol::make_crc_pos(protocol::kTestValueBits, frame_.error1, true, false, frame_.test_value);
+      break;
+    case protocol::AnswerFormat::Parameter:
+      frame_.echo_address = static_cast<std::uint8_t>(field(Field::Address));
+      frame_.echo_parameter = static_cast<std::uint16_t>(field(Field::Parameter));
+      frame_.crc_expected = protocol::make_crc_norm(frame_.echo_address, frame_.echo_parameter);
+      break;
   }
+  ok = ok && frame_.crc_received == frame_.crc_expected;
+  FrameOutcome outcome = ok ? FrameOutcome::Ok : FrameOutcome::CrcError;
+  // A2 type II: "the address or parameter is returned inverted".
+  if (ok && command_->answer == protocol::AnswerFormat::Parameter &&
+      frame_.echo_address == static_cast<std::uint8_t>(~(payload_ >> 16)))
+    outcome = FrameOutcome::Type2Error;
+  // 2.4.2 ff.: "following transmission of the position value and CRC it must be monitored if an
+  // error has occurred": the supplement only follows a clean answer.
+  if (outcome == FrameOutcome::Ok && command_->supplement) {
+    supplement_due_ = true;
+    frame_.supplement = std::uint32_t{current_->address} << 16 | current_->parameter;
+  }
+  if (outcome == FrameOutcome::Ok) note_selection();
+  word_received(outcome);
+}
+
+void Master::drive_supplement_bit() {
+  // Timing-model §1.6: lead LOW bits, a start bit 1, then 8 + 16 bits MSB first, on falling edges.
+  if (supplement_start_ == 0) {
+    supplement_start_ = clock_;
+    last_clock_ = clock_ + params_.supplement_lead_bits + protocol::kPayloadBits;
+    pins_.data_enable.write(true);
+  }
+  const unsigned k = clock_ - supplement_start_;
+  const unsigned lead = params_.supplement_lead_bits;
+  bool bit = false;
+  if (k == lead) bit = true;
+  else if (k > lead) bit = ((*frame_.supplement >> (protocol::kPayloadBits - (k - lead))) & 1U) != 0;
+  pins_.data_out.write(bit);
+}
+
+void Master::note_selection() {
+  // What the master expects after its own selections (2.4.2.2); a reset clears them (2.7).
+  if (frame_.command == ModeCommand::EncoderReceiveReset) {
+    selected_[0] = selected_[1] = false;
+    return;
+  }
+  if (frame_.command != ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
+  const std::uint8_t mrs = current_->address;
+  if (!protocol::selects_additional_data(mrs)) return;
+  const unsigned which = (mrs & 0x10) != 0 ? 1 : 0;
+  selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
 }
 
 void Master::word_received(FrameOutcome outcome) {
@@ -316,6 +433,7 @@ void Master::end_reception(FrameOutcome outcome) {
   rx_ = Rx::Done;
   frame_.outcome = outcome;
   counter_running_ = false;
+  if (supplement_due_) return;  // clocking goes on through the supplement
   if (last_clock_ == 0 || last_clock_ > clock_) {
     // Aborted: finish the current clock period and leave CLOCK HIGH (A2: wait t_m).
     last_clock_ = clock_;

@@ -58,6 +58,11 @@ struct MasterParams {
   Time t_r_wait = sim::ns(500);  // then t_R before the next FE1 (2.3.2)
   Time error_wait = sim::us(30); // A2: "after an error handling, the maximum t_m of 30 us must be waited"
   Time start_bit_timeout = sim::ms(1);  // t_cal max (2.3.2); polling gives up after this
+  // 2.1 parameter frames: polling after the 24 bits gives up after t_ac max (12 ms, 2.3.2) + 1 ms.
+  Time memory_access_timeout = sim::ms(13);
+  // Timing-model §1.6 (TI's choice, "can optimize"): LOW bits the master drives before the start
+  // bit of a 2.2 command supplement, from the first falling edge after it has checked the answer.
+  unsigned supplement_lead_bits = 7;
   unsigned type1_detect_samples = 8;    // HIGH samples after the turnaround, no LOW: type I (A2, hypothesis A)
   StartBitDetection start_bit_detection = StartBitDetection::WaitLowThenHigh;
 
@@ -67,16 +72,31 @@ struct MasterParams {
   void validate() const;
 };
 
-enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error };
+// Type2Error: a 2.1 parameter frame whose echo came back inverted (A2 type II).
+enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error, Type2Error };
 std::string_view to_string(FrameOutcome o);
+
+// One additional datum as received (2.3.5).
+struct AdditionalDatum {
+  std::uint8_t status = 0;  // WRN RM Busy I4..I0
+  std::uint16_t data = 0;   // bytes 1 and 2
+  bool crc_ok = false;
+  protocol::Information information() const {
+    return static_cast<protocol::Information>(status & protocol::AdditionalDataStatus::kInformation);
+  }
+  bool busy() const { return (status & protocol::AdditionalDataStatus::kBusy) != 0; }
+};
 
 struct FrameResult {
   std::uint64_t index = 0;
+  std::size_t operation = 0;  // index of the operation in the order enqueued
   unsigned word = 0;        // 0: the word after the mode command; k: the k-th continuous-clock word
   Time start{0};            // FE1 at the master logic
   Time end{0};              // last rising edge
   ModeCommand command = ModeCommand::EncoderSendPositionValues;
   std::uint8_t mode_bits = 0;  // as sent
+  std::optional<std::uint32_t> payload;     // 8 + 16 bits sent after the mode bits (2.1 parameter frames)
+  std::optional<std::uint32_t> supplement;  // 8 + 16 bits sent as the 2.2 command supplement
   Hertz f_c = 0;
   bool measurement = false;     // part of a propagation-delay measurement
   bool compensated = false;
@@ -85,6 +105,10 @@ struct FrameResult {
   bool error1 = false;
   bool error2 = true;
   std::uint64_t position = 0;
+  std::uint64_t test_value = 0;        // "Encoder send test values"
+  std::uint8_t echo_address = 0;       // parameter frames: address / MRS code / port as answered
+  std::uint16_t echo_parameter = 0;    // ... and the 16 bits (the parameter read)
+  std::vector<AdditionalDatum> additional_data;  // in wire order: additional data 2 first
   std::uint8_t crc_received = 0;
   std::uint8_t crc_expected = 0;
   unsigned start_bit_clock = 0;  // as the master counted it
@@ -113,7 +137,10 @@ class MasterObserver {
 };
 
 struct Operation {
-  enum class Kind : std::uint8_t { MeasureDelay, ReadPosition, Wait };
+  // ReadPosition sends `command` (any mode command, with `address`/`parameter` as the 2.1
+  // payload or the 2.2 supplement); AwaitNotBusy sends "Encoder send position values with
+  // additional data" until additional data 1 shows Busy = 0 (2.5.1, 2.6.1), at most `count` times.
+  enum class Kind : std::uint8_t { MeasureDelay, ReadPosition, Wait, AwaitNotBusy };
   Kind kind = Kind::ReadPosition;
   std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
   ModeCommand command = ModeCommand::EncoderSendPositionValues;
@@ -124,6 +151,8 @@ struct Operation {
   // 2.3.1: with "Encoder send position values" the clock may run on through further words
   // (continuous clock); this many words follow the first one in each frame.
   unsigned continuous_words = 0;
+  std::uint8_t address = 0;     // address, MRS code or port address
+  std::uint16_t parameter = 0;  // parameter, instruction or block address (low byte)
 };
 
 class Master {
@@ -142,6 +171,9 @@ class Master {
   const std::vector<DelayMeasurementResult>& measurements() const { return measurements_; }
   std::optional<Time> t_d() const { return t_d_; }
   std::uint64_t cycle_overruns() const { return cycle_overruns_; }
+  std::uint64_t busy_timeouts() const { return busy_timeouts_; }
+  // What the master has selected with 2.4.2.2 MRS codes: it expects this many additional data.
+  unsigned expected_additional_data() const { return (selected_[0] ? 1U : 0U) + (selected_[1] ? 1U : 0U); }
 
   sim::Signal& sample_strobe() { return sample_strobe_; }  // toggles at each sampling instant
   sim::Signal& frame_active() { return frame_active_; }
@@ -161,6 +193,10 @@ class Master {
   void end_reception(FrameOutcome outcome);
   void maybe_complete_frame();
   void on_data_in(std::uint64_t level);
+  void decode_answer();
+  void drive_supplement_bit();
+  void note_selection();
+  unsigned answer_width() const;
   Time counter_tick() const;
   void finish_measurement_round();
   Time jittered(Time nominal);
@@ -178,11 +214,14 @@ class Master {
   // Operations.
   std::deque<Operation> operations_;
   std::optional<Operation> current_;
+  std::size_t operation_index_ = 0;  // of current_; 1-based while running
   unsigned frames_left_ = 0;
   Time next_due_{0};
   Time ready_at_{0};
   bool finished_ = false;
   std::uint64_t cycle_overruns_ = 0;
+  std::uint64_t busy_timeouts_ = 0;
+  bool selected_[2] = {false, false};
 
   // The frame on the wire.
   FrameResult frame_;
@@ -195,6 +234,10 @@ class Master {
   unsigned last_clock_ = 0;  // 0 while unknown (start bit not found yet)
   bool clocking_done_ = false;
   std::uint8_t mode_bits_ = 0;
+  const protocol::ModeCommandInfo* command_ = nullptr;
+  std::uint32_t payload_ = 0;
+  unsigned supplement_start_ = 0;  // FE of the first lead bit; 0 = not started
+  bool supplement_due_ = false;
   protocol::Layout layout_;
   Rx rx_ = Rx::Off;
   bool seen_low_ = false;

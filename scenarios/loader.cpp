@@ -300,6 +300,7 @@ master::Operation read_operation(const Node& n) {
   if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), sim::ms(60'000));
   switch (op.kind) {
     case Kind::MeasureDelay:
+    case Kind::AwaitNotBusy:
       break;
     case Kind::Wait:
       op.duration = o.req("duration").as_duration(Time::zero(), sim::ms(60'000));

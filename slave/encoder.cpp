@@ -364,9 +364,10 @@ void Encoder::answer_parameter_frame() {
     }
   }
   if (error) {
-    // A2 type II: "the address or parameter is returned inverted".
+    // A2 type II: "the address or parameter is returned inverted". The high-impedance broadcast
+    // (cause 6) is still carried out: that is what it is for (2.10).
     f.error = error;
-    pending_ = {};
+    if (error != ErrorCause::DataDriverHighImpedanceBroadcast) pending_ = {};
     answer_ = protocol::encode_parameter_frame(static_cast<std::uint8_t>(~address), static_cast<std::uint16_t>(~echo));
   } else {
     answer_ = protocol::encode_parameter_frame(address, echo);

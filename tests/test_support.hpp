@@ -56,11 +56,73 @@ class ScriptedClock {
   std::vector<sim::Time> rising_;
 };
 
+// A hand-written master for one frame: CLOCK at a fixed period from `start` (FE1) for `clocks`
+// pulses, and on each falling edge FE_k the DATA driver does what drive[k-1] says: '0'/'1'
+// drive that level, anything else releases the line. Sequences in the tests are written out
+// from the spec, independently of the master model.
+class ScriptedFrame {
+ public:
+  ScriptedFrame(sim::Kernel& k, line::Line& line, sim::Time period, unsigned clocks, std::string drive,
+                sim::Time start = sim::Time::zero())
+      : k_(k), m_(line.master()), half_(period / 2), clocks_(clocks), drive_(std::move(drive)),
+        timer_(k, sim::bind<&ScriptedFrame::edge>(this)) {
+    timer_.start(start - k.now());
+  }
+
+  // The master's part of a 2.1 frame: FE1 released, dummy 0, six mode bits, then `payload`
+  // bits ("" for none) and released from then on.
+  static std::string header(std::uint8_t mode_bits, const std::string& payload = "") {
+    std::string s = "-0";
+    for (int i = 5; i >= 0; --i) s += ((mode_bits >> i) & 1) ? '1' : '0';
+    return s + payload;
+  }
+
+ private:
+  void edge() {
+    if (low_) {
+      low_ = false;
+      m_.clock_out.write(true);
+      if (clock_ < clocks_) timer_.start(half_);
+      return;
+    }
+    low_ = true;
+    ++clock_;
+    m_.clock_out.write(false);
+    const char c = clock_ <= drive_.size() ? drive_[clock_ - 1] : '-';
+    m_.data_enable.write(c == '0' || c == '1');
+    if (c == '0' || c == '1') m_.data_out.write(c == '1');
+    timer_.start(half_);
+  }
+
+  sim::Kernel& k_;
+  line::Line::MasterSide m_;
+  sim::Time half_;
+  unsigned clocks_;
+  std::string drive_;
+  sim::Timer timer_;
+  unsigned clock_ = 0;
+  bool low_ = false;
+};
+
+// n bits of v, MSB first, as '0'/'1'.
+inline std::string bits_msb(std::uint64_t v, unsigned n) {
+  std::string s;
+  for (unsigned i = n; i-- > 0;) s += ((v >> i) & 1U) ? '1' : '0';
+  return s;
+}
+
+// n bits of v, LSB first.
+inline std::string bits_lsb(std::uint64_t v, unsigned n) {
+  std::string s;
+  for (unsigned i = 0; i < n; ++i) s += ((v >> i) & 1U) ? '1' : '0';
+  return s;
+}
+
 // Records DATA at the encoder's pins at each falling CLOCK edge there: entry k-1 is the bit
 // the encoder put out after RE_(k-1), i.e. slot k-1 (entry 0 is taken at FE1).
 class PinSampler {
  public:
-  PinSampler(sim::Kernel&, line::Line& line) : pins_(line.pins(line::ObservationPoint::EncoderPins)) {
+  PinSampler(sim::Kernel& k, line::Line& line) : k_(k), pins_(line.pins(line::ObservationPoint::EncoderPins)) {
     pins_.clock.on_change(sim::bind<&PinSampler::on_clock>(this));
   }
   // Bits of slots first..last (inclusive) as a string of '0'/'1'.
@@ -69,13 +131,25 @@ class PinSampler {
     for (unsigned k = first; k <= last && k < samples_.size(); ++k) s += samples_[k] ? '1' : '0';
     return s;
   }
+  // The same for the frame whose FE1 is the first falling edge at or after t0.
+  std::string slots_at(sim::Time t0, unsigned first, unsigned last) const {
+    std::size_t base = 0;
+    while (base < times_.size() && times_[base] < t0) ++base;
+    std::string s;
+    for (std::size_t k = base + first; k <= base + last && k < samples_.size(); ++k) s += samples_[k] ? '1' : '0';
+    return s;
+  }
 
  private:
   void on_clock(std::uint64_t level) {
-    if (level == 0) samples_.push_back(pins_.data.read());
+    if (level != 0) return;
+    samples_.push_back(pins_.data.read());
+    times_.push_back(k_.now());
   }
+  sim::Kernel& k_;
   line::Line::Pins pins_;
   std::vector<bool> samples_;
+  std::vector<sim::Time> times_;
 };
 
 }  // namespace endatsim::test_support

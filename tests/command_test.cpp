@@ -1,0 +1,412 @@
+// Every mode command, bit by bit in both directions, against sequences written out from the
+// spec (2.3–2.10, timing-model §1.4–§1.6) with a hand-written master (ScriptedFrame). The CRC
+// values come from protocol::make_crc_*, which crc_test checks against the examples of A4.
+#include <gtest/gtest.h>
+
+#include "slave/encoder.hpp"
+#include "test_support.hpp"
+
+using namespace endatsim;
+using namespace endatsim::sim;
+using endatsim::test_support::bits_lsb;
+using endatsim::test_support::bits_msb;
+using endatsim::test_support::PinSampler;
+using endatsim::test_support::ScriptedFrame;
+using protocol::ErrorCause;
+using MC = protocol::ModeCommand;
+
+namespace {
+
+slave::EncoderParams params(protocol::EndatVersion v = protocol::EndatVersion::V2_2) {
+  slave::EncoderParams p;
+  p.version = v;
+  p.position_bits = 8;
+  p.t_cal = Time::zero();
+  p.t_ac_read = Time::zero();
+  p.t_ac_write = Time::zero();
+  p.motion.start = 0xA5;
+  return p;
+}
+
+struct Bench {
+  explicit Bench(const slave::EncoderParams& ep) : line(k, {}), encoder(k, line, ep), sampler(k, line) {}
+  // One scripted frame every 200 us (well after t_m + t_R); the kernel runs to the end of the
+  // frame's slot, so that a longer memory access is still under way at the next frame.
+  void frame(unsigned clocks, const std::string& drive) {
+    const Time slot = us(200) * static_cast<std::int64_t>(frames.size());
+    starts.push_back(std::max(slot, k.now()));
+    frames.push_back(std::make_unique<ScriptedFrame>(k, line, us(1), clocks, drive, starts.back()));
+    k.run(starts.back() + us(199));
+  }
+  const slave::EncoderFrame& last() const { return encoder.frames().back(); }
+  std::string slots(std::size_t frame, unsigned first, unsigned last) const {
+    return sampler.slots_at(starts.at(frame), first, last);
+  }
+  Kernel k;
+  line::Line line;
+  slave::Encoder encoder;
+  PinSampler sampler;
+  std::vector<std::unique_ptr<ScriptedFrame>> frames;
+  std::vector<Time> starts;
+};
+
+std::string payload(std::uint8_t address, std::uint16_t parameter) {
+  return bits_msb(address, 8) + bits_msb(parameter, 16);
+}
+
+// 2.1 parameter frame (timing-model §1.4): master FE2..FE32, turnaround 33/34, start bit RE35,
+// 8 + 16 bits, CRC on slots 60..64. 65 clocks: the last falling edge samples the CRC's last bit
+// (one more pulse would be "more clock pulses than required", 2.4.1).
+std::string parameter_frame_slots(std::uint8_t mode, std::uint32_t sent, std::uint8_t address, std::uint16_t param) {
+  return ScriptedFrame::header(mode, payload(static_cast<std::uint8_t>(sent >> 16), static_cast<std::uint16_t>(sent)))
+             .substr(1) +
+         "00" "1" + payload(address, param) + bits_msb(protocol::make_crc_norm(address, param), 5);
+}
+
+
+}  // namespace
+
+// ---- 2.1 parameter frames ------------------------------------------------------------------
+
+TEST(ModeCommandSelectionOfMemoryArea, EchoesTheMrsCodeBitExact) {
+  // 2.4.1: select the OEM area A9; the encoder repeats the MRS code and the 16 bits.
+  Bench b(params());
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0x0000)));
+  EXPECT_EQ(b.sampler.slots(2, 64), parameter_frame_slots(0b001110, 0xA90000, 0xA9, 0x0000));
+  EXPECT_EQ(b.last().start_bit_clock, 35U);
+  EXPECT_FALSE(b.last().error.has_value());
+}
+
+TEST(ModeCommandEncoderReceiveParameters, WritesA5B4AtAddress0BOfOemArea2) {
+  // The example of 2.6.1: address 0B, parameter A5B4 in the OEM2 area (MRS AB); read back (2.5).
+  Bench b(params());
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xAB, 0)));
+  b.frame(65, ScriptedFrame::header(0b011100, payload(0x0B, 0xA5B4)));
+  EXPECT_EQ(b.slots(1, 2, 64), parameter_frame_slots(0b011100, 0x0BA5B4, 0x0B, 0xA5B4));
+  EXPECT_EQ(b.encoder.memory().image().areas.at(protocol::MemoryArea::Oem2).at(0x0B), 0xA5B4);
+  b.frame(65, ScriptedFrame::header(0b100011, payload(0x0B, 0)));
+  EXPECT_EQ(b.slots(2, 2, 64), parameter_frame_slots(0b100011, 0x0B0000, 0x0B, 0xA5B4));
+}
+
+TEST(ModeCommandEncoderReceiveReset, EchoesItsBitsAndClearsTheAdditionalDataSelection) {
+  Bench b(params());
+  // 2.4.2.2 selection through the 2.2 supplement, then 2.7 reset.
+  b.frame(59, ScriptedFrame::header(0b001001) + std::string(18, '-') + "0000000" "1" + payload(0x4C, 0));
+  ASSERT_EQ(b.encoder.additional_data_1(), protocol::Information::Temperature1);
+  b.frame(65, ScriptedFrame::header(0b101010, payload(0x00, 0x0000)));
+  EXPECT_EQ(b.slots(1, 2, 64), parameter_frame_slots(0b101010, 0, 0x00, 0x0000));
+  EXPECT_FALSE(b.encoder.additional_data_1().has_value());  // 2.4.2.2: "after a reset ... no additional data"
+}
+
+TEST(ModeCommandEncoderReceiveTestCommand, SetsThePortForSendTestValues) {
+  // 2.8 then 2.9: S F1 40 bits LSB first, CRC over 40 bits (A4.4.2).
+  auto p = params(protocol::EndatVersion::V2_1);
+  p.sensors.test_values[0x05] = 0x12'3456'789AULL;
+  Bench b(p);
+  b.frame(65, ScriptedFrame::header(0b110001, payload(0x05, 0)));
+  EXPECT_EQ(b.sampler.slots(2, 64), parameter_frame_slots(0b110001, 0x050000, 0x05, 0));
+  b.frame(59, ScriptedFrame::header(0b010101));
+  const std::uint64_t v = 0x12'3456'789AULL;
+  EXPECT_EQ(b.slots(1, 9, 58),
+            "00" "1" "0" + bits_lsb(v, 40) + bits_msb(protocol::make_crc_pos(40, false, true, false, v), 5) + "1");
+}
+
+TEST(ModeCommandEncoderReceiveCommunicationCommand, EchoesAddressAndInstruction) {
+  // 2.10: address 17 = 11h assigned in operating parameter word 4, then addressed with 010010.
+  auto p = params();
+  p.memory = slave::default_memory_image(p);
+  p.memory->areas[protocol::MemoryArea::OperatingParameters][slave::word::kEncoderAddress] = 0x0011;
+  Bench b(p);
+  b.frame(65, ScriptedFrame::header(0b010010, payload(0x11, 0x0000)));
+  EXPECT_EQ(b.sampler.slots(2, 64), parameter_frame_slots(0b010010, 0x110000, 0x11, 0x0000));
+}
+
+// ---- type II: the echo comes back inverted (A2 4.2.2) -----------------------------------
+
+struct TypeTwoCase {
+  const char* name;
+  std::uint8_t select;  // MRS code selected first with 001110 (0 = none)
+  std::uint8_t mode;
+  std::uint8_t address;
+  std::uint16_t parameter;
+  ErrorCause cause;
+};
+
+class TypeTwo : public ::testing::TestWithParam<TypeTwoCase> {};
+
+TEST_P(TypeTwo, AnswersWithTheInvertedEcho) {
+  const auto& c = GetParam();
+  Bench b(params());
+  if (c.select != 0) b.frame(65, ScriptedFrame::header(0b001110, payload(c.select, 0)));
+  const std::size_t at = c.select != 0 ? 1 : 0;
+  b.frame(65, ScriptedFrame::header(c.mode, payload(c.address, c.parameter)));
+  const auto inv8 = static_cast<std::uint8_t>(~c.address);
+  const auto inv16 = static_cast<std::uint16_t>(~c.parameter);
+  if (c.mode != 0b100011)  // a read echoes the (inverted) bits sent in place of the data
+    EXPECT_EQ(b.slots(at, 2, 64),
+              parameter_frame_slots(c.mode, std::uint32_t{c.address} << 16 | c.parameter, inv8, inv16));
+  else
+    EXPECT_EQ(b.slots(at, 35, 43), "1" + bits_msb(inv8, 8));
+  ASSERT_TRUE(b.last().error.has_value());
+  EXPECT_EQ(*b.last().error, c.cause);
+  EXPECT_EQ(protocol::error_type(c.cause), protocol::ErrorType::II);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AppendixA2, TypeTwo,
+    ::testing::Values(
+        TypeTwoCase{"Cause2AdditionalDataWithA21Command", 0, 0b001110, 0x4C, 0, ErrorCause::MrsFrameDisrupted},
+        TypeTwoCase{"Cause2NotAnAreaCode", 0, 0b001110, 0xA8, 0, ErrorCause::MrsFrameDisrupted},
+        TypeTwoCase{"Cause7Endat22AreaWithA21Command", 0, 0b001110, 0xBD, 0, ErrorCause::ImpermissibleMemoryArea},
+        TypeTwoCase{"Cause7AreaNotAvailable", 0, 0b001110, 0xAD, 0, ErrorCause::ImpermissibleMemoryArea},
+        TypeTwoCase{"Cause8AddressBeyondTheOemArea", 0xA9, 0b100011, 0x40, 0, ErrorCause::ImpermissibleAddress},
+        TypeTwoCase{"Cause8ManufacturerAddressBelow4", 0xA1, 0b100011, 0x03, 0, ErrorCause::ImpermissibleAddress},
+        TypeTwoCase{"Cause9WriteIntoManufacturerArea", 0xA1, 0b011100, 0x0D, 0x8019, ErrorCause::WriteProtected},
+        TypeTwoCase{"Cause10ClearingAWriteProtectionBit", 0xB9, 0b011100, 0x02, 0x0000,
+                    ErrorCause::WriteProtectionCleared},
+        TypeTwoCase{"Cause8SettingSingleErrorBits", 0xB9, 0b011100, 0x00, 0x0001, ErrorCause::ImpermissibleAddress}),
+    [](const auto& p) { return std::string(p.param.name); });
+
+TEST(TypeTwo, Cause9OemAreaAfterItsWriteProtectionIsActivatedByReset) {
+  // 3.4.3: OR bit 2 into word 2, then "Encoder receive reset" activates it.
+  Bench b(params());
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xB9, 0)));
+  b.frame(65, ScriptedFrame::header(0b011100, payload(0x02, 0x0039 | 0x0004)));
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  b.frame(65, ScriptedFrame::header(0b011100, payload(0x00, 0x1234)));
+  EXPECT_FALSE(b.last().error.has_value()) << "not active before the reset";
+  b.frame(65, ScriptedFrame::header(0b101010, payload(0, 0)));
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  b.frame(65, ScriptedFrame::header(0b011100, payload(0x00, 0x5678)));
+  ASSERT_TRUE(b.last().error.has_value());
+  EXPECT_EQ(*b.last().error, ErrorCause::WriteProtected);
+  EXPECT_EQ(b.encoder.memory().image().areas.at(protocol::MemoryArea::Oem1).at(0), 0x1234);
+}
+
+TEST(TypeTwo, Cause3AccessWhileBusyAfterTheFrame) {
+  auto p = params();
+  p.t_ac_placement = slave::MemoryAccessPlacement::AfterFrame;
+  p.t_ac_write = ms(1);
+  Bench b(p);
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  b.frame(65, ScriptedFrame::header(0b011100, payload(0x01, 0x1111)));
+  EXPECT_FALSE(b.last().error.has_value());
+  b.frame(65, ScriptedFrame::header(0b100011, payload(0x01, 0)));  // 200 us later: still busy
+  ASSERT_TRUE(b.last().error.has_value());
+  EXPECT_EQ(*b.last().error, ErrorCause::Busy);
+}
+
+TEST(TypeTwo, TooManyClocksDiscardTheWrite) {
+  // 2.4.1: "If more clock pulses than required are sent ... an error message is output".
+  Bench b(params());
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  b.frame(69, ScriptedFrame::header(0b011100, payload(0x01, 0x2222)));
+  EXPECT_TRUE(b.last().too_many_clocks);
+  EXPECT_EQ(b.encoder.memory().image().areas.at(protocol::MemoryArea::Oem1).at(1), 0);
+}
+
+TEST(ModeCommandInFrameMemoryAccess, StartBitWaitsForTac) {
+  // Timing-model §7 (InFrame, the default): the acknowledgment's start bit waits t_ac after the
+  // last payload bit (RE32 at 31.5 us at 1 MHz).
+  auto p = params();
+  p.t_ac_read = us(10);
+  Bench b(p);
+  b.frame(80, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  EXPECT_EQ(b.last().start_bit_clock, 42U);  // first RE_k >= 41.5 us
+}
+
+// ---- 2.2: the command supplement and additional data ------------------------------------
+
+namespace {
+
+// Timing-model §1.6 for an 8-bit position and no additional data: the encoder's S F1 F2 pos CRC
+// on slots 11..26, its driver off from RE27; the master's 7 lead LOW bits on FE28..34, start bit
+// FE35, 24 bits FE36..59. Each selected additional datum shifts this by 30 clocks.
+std::string supplement_frame(std::uint8_t mode, std::uint8_t address, std::uint16_t parameter, unsigned k = 0) {
+  return ScriptedFrame::header(mode) + std::string(19 + 30 * k, '-') + "0000000" "1" + payload(address, parameter);
+}
+
+std::string position22(std::uint64_t pos) {
+  return "1" "0" "1" + bits_lsb(pos, 8) + bits_msb(protocol::make_crc_pos(8, false, true, true, pos), 5);
+}
+
+std::string additional_datum(std::uint8_t status, std::uint16_t data) {
+  return "0" + bits_msb(status, 8) + bits_msb(data, 16) + bits_msb(protocol::make_crc_norm(status, data), 5);
+}
+
+}  // namespace
+
+struct SupplementCase {
+  const char* name;
+  std::uint8_t mode;
+};
+
+class Supplement : public ::testing::TestWithParam<SupplementCase> {};
+
+TEST_P(Supplement, EncoderAnswersThenTakesTheSupplementAfterItsStartBit) {
+  Bench b(params());
+  b.frame(59, supplement_frame(GetParam().mode, 0x4C, 0x0102));
+  // Slot 27: nobody drives (fail-safe HIGH); then the master's lead bits, start bit, 24 bits.
+  EXPECT_EQ(b.sampler.slots(9, 58), "00" + position22(0xA5) + "1" "0000000" "1" + payload(0x4C, 0x0102).substr(0, 23));
+  ASSERT_TRUE(b.last().supplement.has_value());
+  EXPECT_EQ(*b.last().supplement, 0x4C0102U);
+}
+
+INSTANTIATE_TEST_SUITE_P(EnDat22, Supplement,
+                         ::testing::Values(SupplementCase{"SelectionOfMemoryArea", 0b001001},
+                                           SupplementCase{"ReceiveParameter", 0b011011},
+                                           SupplementCase{"SendParameter", 0b100100},
+                                           SupplementCase{"ReceiveErrorReset", 0b101101},
+                                           SupplementCase{"ReceiveTestCommand", 0b110110}),
+                         [](const auto& p) { return std::string(p.param.name); });
+
+TEST(AdditionalData, SelectedTemperatureFollowsFromTheNextFrame) {
+  // 2.3.5.1 / 2.4.2.2: MRS 4Ch selects temperature 1; it comes with the next 2.2 position frame.
+  Bench b(params());
+  b.frame(59, supplement_frame(0b001001, 0x4C, 0));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(1, 9, 57), "00" + position22(0xA5) + additional_datum(0x0C, 2982) + "1");
+}
+
+TEST(AdditionalData, AdditionalData2ComesBeforeAdditionalData1) {
+  auto p = params();
+  p.sensors.acceleration = 0x0123;
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x4C, 0));
+  b.frame(89, supplement_frame(0b001001, 0x52, 0, 1));  // 52h: acceleration (additional data 2)
+  b.frame(88, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(2, 9, 87),
+            "00" + position22(0xA5) + additional_datum(0x12, 0x0123) + additional_datum(0x0C, 2982) + "1");
+}
+
+TEST(AdditionalData, StopSendingEndsTheSelection) {
+  Bench b(params());
+  b.frame(59, supplement_frame(0b001001, 0x4C, 0));
+  b.frame(89, supplement_frame(0b001001, 0x4F, 0, 1));
+  b.frame(28, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(2, 9, 27), "00" + position22(0xA5) + "1");
+}
+
+TEST(AdditionalData, TypeThreeForAnImpermissibleCodeUntilReselected) {
+  // A2 cause 13: I = 11010 (26) may not be selected; additional data 2 answers I = 31.
+  Bench b(params());
+  b.frame(59, supplement_frame(0b001001, 0x5A, 0));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(1, 27, 35), "0" + bits_msb(31, 8));
+  b.frame(89, supplement_frame(0b001001, 0x52, 0, 1));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(3, 27, 35), "0" + bits_msb(0x12, 8));
+}
+
+TEST(AdditionalData, TypeThreeForACodeTheEncoderDoesNotSupport) {
+  // A2 cause 14: word 0 of the EnDat 2.2 manufacturer area without bit 2 (temperature 1).
+  auto p = params();
+  p.memory = slave::default_memory_image(p);
+  auto& e = p.memory->areas[protocol::MemoryArea::ManufacturerEndat22];
+  e[0] = 0x001B;
+  e[63] = slave::word_sum(e, 0, 62);
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x4C, 0));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(1, 27, 35), "0" + bits_msb(15, 8));
+}
+
+TEST(AdditionalData, TypeFourNopWhileTheDatumCannotBeUpdated) {
+  auto p = params();
+  p.sensors.not_updatable = {protocol::Information::Temperature1};
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x4C, 0));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(1, 27, 56), additional_datum(0x00, 0));
+}
+
+TEST(AdditionalData, AdditionalSensorsRollTheirAddressAndCarryThe115KOffset) {
+  // 2.3.5.1: the address rises with every interrogation; 12 bits of (T - 115 K) in 0.1 K.
+  auto p = params();
+  p.sensors.additional_sensors = {2982, 3032};
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x4E, 0));
+  for (int i = 0; i < 3; ++i) b.frame(58, ScriptedFrame::header(0b111000));
+  const auto data_of = [&](unsigned frame) { return b.slots(frame, 36, 51); };
+  EXPECT_EQ(data_of(1), bits_msb(0x0000 | (2982 - 1150), 16));
+  EXPECT_EQ(data_of(2), bits_msb(0x1000 | (3032 - 1150), 16));
+  EXPECT_EQ(data_of(3), bits_msb(0x0000 | (2982 - 1150), 16));
+}
+
+TEST(AdditionalData, MemoryReadThroughTheSupplementShowsBusyThenTheValue) {
+  // 2.5.1: read address 0Dh (word 13) of A1 with 100100; I = 5 (memory parameter LSB) shows the
+  // address and the LSB once Busy = 0.
+  auto p = params();
+  p.t_ac_read = us(300);
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x45, 0));
+  b.frame(89, supplement_frame(0b001001, 0xA1, 0, 1));  // busy 300 us
+  b.frame(58, ScriptedFrame::header(0b111000));       // 200 us later
+  EXPECT_EQ(b.slots(2, 28, 35), bits_msb(0x20 | 5, 8)) << "Busy set";
+  b.frame(89, supplement_frame(0b100100, 0x0D, 0, 1));  // 400 us after the selection: done
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(4, 28, 35), bits_msb(0x20 | 5, 8)) << "busy with the read";
+  b.frame(58, ScriptedFrame::header(0b111000));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(6, 28, 51), bits_msb(5, 8) + bits_msb(0x0D, 8) + bits_msb(0x08, 8));
+}
+
+TEST(AdditionalData, AccessWhileBusyWithA22CommandIsIgnored) {
+  // 2.3.1 note 1: "Parameter access attempts with EnDat 2.2 commands will be ignored."
+  auto p = params();
+  p.t_ac_write = us(500);
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0xA9, 0));
+  b.frame(59, supplement_frame(0b011011, 0x01, 0x1111));
+  b.frame(59, supplement_frame(0b011011, 0x02, 0x2222));  // 200 us later: busy
+  EXPECT_TRUE(b.last().supplement_ignored);
+  b.k.run();
+  const auto& oem = b.encoder.memory().image().areas.at(protocol::MemoryArea::Oem1);
+  EXPECT_EQ(oem.at(1), 0x1111);
+  EXPECT_EQ(oem.at(2), 0);
+}
+
+TEST(ModeCommandErrorReset, ClearsWordsZeroAndOne) {
+  // 2.7.1: errors and warnings are reset; F1 = 1 / F2 = 0 before, 0 / 1 once the source is gone.
+  auto p = params();
+  p.error_sources = 0x0004;
+  Bench b(p);
+  b.frame(28, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.sampler.slots(11, 13), "110");
+  EXPECT_EQ(b.encoder.memory().operating_status(0), 0x0004);
+  b.frame(59, supplement_frame(0b101101, 0, 0));
+  EXPECT_EQ(b.encoder.memory().operating_status(0), 0x0000);
+}
+
+TEST(ModeCommandTestCommand22, ForcedDynamicSamplingSetsF1AndIsAcknowledged) {
+  // 3.5.3: port 01h forces error message 1; I = 8 acknowledges the port; port 00h ends it.
+  Bench b(params());
+  b.frame(59, supplement_frame(0b001001, 0x48, 0));
+  b.frame(89, supplement_frame(0b110110, 0x01, 0, 1));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(2, 11, 13), "111");
+  EXPECT_EQ(b.slots(2, 28, 43), bits_msb(8, 8) + bits_msb(0x01, 8));
+  b.frame(89, supplement_frame(0b110110, 0x00, 0, 1));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(4, 11, 13), "101");
+}
+
+TEST(ModeCommandType1, A21EncoderAnswers22CommandsAsNotSupported) {
+  Bench b(params(protocol::EndatVersion::V2_1));
+  b.frame(30, ScriptedFrame::header(0b111000));
+  EXPECT_TRUE(b.last().type1_error);
+  EXPECT_EQ(*b.last().error, ErrorCause::ModeCommandDisrupted);
+  EXPECT_EQ(b.sampler.slots(10, 20), "11111111111");  // hypothesis A: DATA HIGH
+}
+
+TEST(ModeCommandCommunicationCommand, HighImpedanceBroadcastSilencesTheEncoder) {
+  // 2.10 / A2 cause 6: address 0000h with "data driver at high-impedance": the acknowledgment
+  // is inverted, then the encoder keeps off the bus.
+  Bench b(params());
+  b.frame(65, ScriptedFrame::header(0b010010, payload(0x00, 0x0002)));
+  ASSERT_TRUE(b.last().error.has_value());
+  EXPECT_EQ(*b.last().error, ErrorCause::DataDriverHighImpedanceBroadcast);
+  b.frame(30, ScriptedFrame::header(0b000111));
+  EXPECT_EQ(b.last().start_bit_clock, 11U);
+  EXPECT_EQ(b.slots(1, 10, 20), "11111111111") << "fail-safe HIGH: nobody drives";
+}
