@@ -1,18 +1,27 @@
-// endatsim — command-line front end: runs scenarios and writes summaries, VCD and JSON results;
-// sweeps one scenario over a grid of parameters and writes CSV, JSON and an SVG chart.
-// Exit codes: 0 every expectation holds (sweep: the sweep ran), 1 one does not, 2 bad input or usage.
+// endatsim — command-line front end: runs scenarios and writes summaries, VCD, JSON and JUnit
+// results and decoded transaction logs; sweeps one scenario over a grid of parameters (CSV,
+// JSON, SVG chart); validates scenario files; draws frame diagrams (SVG).
+// Results go to stdout, errors and progress to stderr; colour only on a terminal.
+// Exit codes: 0 every expectation holds (sweep, validate, diagram: done), 1 one does not,
+// 2 bad input or usage.
 #include <unistd.h>
 
 #include <boost/program_options.hpp>
 #include <charconv>
-#include <set>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
 #include <thread>
 
+#include "scenarios/diagram.hpp"
+#include "scenarios/junit.hpp"
 #include "scenarios/scenarios.hpp"
 #include "scenarios/sweep.hpp"
+#include "scenarios/transaction_log.hpp"
 
 namespace po = boost::program_options;
 using namespace endatsim;
@@ -23,25 +32,38 @@ constexpr int kPass = 0;
 constexpr int kFail = 1;
 constexpr int kBadInput = 2;
 
-const char* const kUsage =
-    "usage: endatsim run FILE... [--vcd PATH] [--json PATH] [--seed N] [--verbose|--quiet]\n"
-    "       endatsim sweep FILE --grid POINTER=V1,V2,...|START:STOP:STEP [--grid ...] [--maximize POINTER]\n"
-    "                      [--csv PATH] [--json PATH] [--svg PATH] [--jobs N] [--quiet]\n"
-    "       endatsim --help | --version\n";
+const char* const kRunUsage =
+    "usage: endatsim run FILE... [--vcd PATH] [--json PATH] [--junit PATH] [--log PATH] [--log-json PATH]\n"
+    "                    [--seed N] [--verbose|--quiet] [--color auto|always|never]\n";
+const char* const kSweepUsage =
+    "usage: endatsim sweep FILE --grid POINTER=V1,V2,...|START:STOP:STEP [--grid ...] [--maximize POINTER]\n"
+    "                      [--csv PATH] [--json PATH] [--svg PATH] [--jobs N] [--verbose|--quiet]\n";
+const char* const kValidateUsage = "usage: endatsim validate FILE... [--quiet]\n";
+const char* const kDiagramUsage =
+    "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet]\n";
+
+std::string usage() {
+  return std::string(kRunUsage) + kSweepUsage + kValidateUsage + kDiagramUsage +
+         "       endatsim --help | --version | COMMAND --help | COMMAND --version\n";
+}
 
 const char* const kRunHelp =
-    "Runs EnDat scenarios (JSON files) through the cycle-accurate model of master, line and\n"
+    "run: runs EnDat scenarios (JSON files) through the cycle-accurate model of master, line and\n"
     "encoder, checks the timing conditions of spec 2.3.2 and judges each scenario's expectations.\n"
     "\n"
     "Prints a summary per scenario on stdout: frames and their outcomes, positions, CRC errors,\n"
     "the measured propagation delay t_D, timing violations (time, measured value, limit, spec\n"
-    "section) and every expectation that failed.\n"
+    "section) and every expectation that failed. With several files a progress line goes to\n"
+    "stderr when stderr is a terminal.\n"
+    "--log writes the decoded transaction log (one line per frame: time, mode command, fields\n"
+    "sent and received, CRC, additional data, outcome, violations), --log-json the same as JSON\n"
+    "lines; PATH - is stdout. --junit writes JUnit XML, one test case per scenario.\n"
     "\n"
     "Exit status: 0 when every expectation of every scenario holds, 1 when one does not,\n"
     "2 for bad input (the message names the file, the JSON path and what was expected) or usage.\n";
 
 const char* const kSweepHelp =
-    "sweep runs one scenario at every point of a grid: each --grid names a key by JSON pointer\n"
+    "sweep: runs one scenario at every point of a grid: each --grid names a key by JSON pointer\n"
     "(/line/cable_length_m, /master/f_c, /master/delay_compensation, ...) and its values, parsed as\n"
     "JSON when they parse (numbers, true, false, \"quoted\", [...], {...}) and taken as strings\n"
     "otherwise (\"2 MHz\"); commas inside JSON strings, arrays and objects do not split values;\n"
@@ -50,16 +72,147 @@ const char* const kSweepHelp =
     "files are opened before it runs. A point is clean when the script finished, every read is ok\n"
     "and equals the encoder's position, and no check reported anything.\n"
     "--maximize POINTER prints, for each combination of the other keys, the largest clean value of\n"
-    "POINTER; --svg draws it over the one other numeric key. Exit status: 0 when the sweep ran,\n"
+    "POINTER; --svg draws it over the one other numeric key. --verbose lists every point. A\n"
+    "progress counter goes to stderr when stderr is a terminal. Exit status: 0 when the sweep ran,\n"
     "2 for bad input (the message names the grid point) or usage.\n";
+
+const char* const kValidateHelp =
+    "validate: loads scenario files without running them, as run would, and prints 'valid FILE'\n"
+    "for each good one on stdout; errors (file, JSON path, what was expected) go to stderr.\n"
+    "The JSON Schema schema/scenario.schema.json describes the same format for editors.\n"
+    "Exit status: 0 when every file is valid, 2 when one is not or for usage errors.\n";
+
+const char* const kDiagramHelp =
+    "diagram: runs a scenario and draws one frame (--frame N, the index in the run's frame list,\n"
+    "default the first frame that is not a delay measurement) or a time window (--from, --to)\n"
+    "as an SVG timing diagram: CLOCK and DATA at the master's and the encoder's pins, driver\n"
+    "enables, the master's sampling instants, the fields (mode bits, start bit, F1, F2, position,\n"
+    "CRC), the timing parameters t_ST, t_cal, t_D and t_m as dimension arrows with their measured\n"
+    "values, and the checker's violations in red. The same input gives the same bytes.\n"
+    "Exit status: 0 when the diagram was written, 2 for bad input or usage.\n";
+
+enum class Command { Run, Sweep, Validate, Diagram };
+
+struct CommandInfo {
+  Command command;
+  const char* name;
+  const char* usage;
+  const char* help;
+};
+
+const CommandInfo kCommands[] = {
+    {Command::Run, "run", kRunUsage, kRunHelp},
+    {Command::Sweep, "sweep", kSweepUsage, kSweepHelp},
+    {Command::Validate, "validate", kValidateUsage, kValidateHelp},
+    {Command::Diagram, "diagram", kDiagramUsage, kDiagramHelp},
+};
+
+// Each command's own options; --help, --version, --quiet everywhere.
+po::options_description options_of(Command c) {
+  po::options_description o(std::string("Options"));
+  o.add_options()("help,h", "show this help")("version", "print the version")(
+      "quiet,q", "print less: run only failing scenarios; sweep no progress and no point count");
+  switch (c) {
+    case Command::Run:
+      o.add_options()("verbose,v", "list every frame and expectation")(
+          "vcd", po::value<std::string>(), "write waveforms (VCD; a directory when several files are given)")(
+          "json", po::value<std::string>(), "write results as JSON to this file")(
+          "junit", po::value<std::string>(), "write JUnit XML (one test case per scenario) to this file")(
+          "log", po::value<std::string>(), "write the decoded transaction log (text; - for stdout)")(
+          "log-json", po::value<std::string>(), "write the transaction log as JSON lines (- for stdout)")(
+          "seed", po::value<std::string>(), "override every scenario's seed (0 .. 2^64-1)")(
+          "color", po::value<std::string>(), "auto (default: only on a terminal, not with NO_COLOR), always, never");
+      break;
+    case Command::Sweep:
+      o.add_options()("verbose,v", "list every grid point")(
+          "grid", po::value<std::vector<std::string>>(), "POINTER=V1,V2,... or POINTER=START:STOP:STEP (repeat for more keys)")(
+          "maximize", po::value<std::string>(), "print the largest clean value of this grid key per other combination")(
+          "csv", po::value<std::string>(), "write one row per grid point to this file")(
+          "json", po::value<std::string>(), "write the points as JSON to this file")(
+          "svg", po::value<std::string>(), "write a chart of the --maximize table to this file")(
+          "jobs", po::value<std::string>(), "threads (default: the number of cores)");
+      break;
+    case Command::Validate:
+      break;
+    case Command::Diagram:
+      o.add_options()("svg", po::value<std::string>(), "write the diagram to this file (required)")(
+          "frame", po::value<std::string>(), "index of the frame to draw")(
+          "from", po::value<std::string>(), "start of a time window, e.g. \"1.2 ms\"")(
+          "to", po::value<std::string>(), "end of the time window")(
+          "seed", po::value<std::string>(), "override the scenario's seed");
+      break;
+  }
+  return o;
+}
+
+std::optional<std::uint64_t> parse_uint(const std::string& text) {
+  std::uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc{} || end != text.data() + text.size() || text.empty()) return std::nullopt;
+  return v;
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+}
+
+// Colour for the summary's verdicts, only where a person reads it.
+bool use_color(const std::string& mode) {
+  if (mode == "always") return true;
+  if (mode == "never") return false;
+  const char* no_color = std::getenv("NO_COLOR");
+  return isatty(STDOUT_FILENO) != 0 && (no_color == nullptr || *no_color == '\0');
+}
+
+std::string colorize(const std::string& text) {
+  const std::string red = "\033[31m", green = "\033[32m", yellow = "\033[33m", off = "\033[0m";
+  std::istringstream in(text);
+  std::string out, line;
+  const std::vector<std::pair<std::string, std::string>> marks{
+      {"PASS ", green}, {"FAIL ", red}, {"  FAIL ", red}, {"    error ", red}, {"    warning ", yellow}, {"  violation ", red}};
+  while (std::getline(in, line)) {
+    for (const auto& [prefix, colour] : marks) {
+      if (line.rfind(prefix, 0) != 0) continue;
+      const auto lead = prefix.find_first_not_of(' ');
+      const auto word_end = prefix.size() - 1;
+      line = line.substr(0, lead) + colour + line.substr(lead, word_end - lead) + off + line.substr(word_end);
+      break;
+    }
+    out += line + "\n";
+  }
+  return out;
+}
+
+// A log destination: "-" is stdout, otherwise a file opened once for all scenarios.
+class LogSink {
+ public:
+  explicit LogSink(const std::optional<std::string>& path) {
+    if (!path || *path == "-") return;
+    file_.open(*path, std::ios::binary);
+    if (!file_) throw std::runtime_error("cannot open '" + *path + "' for writing");
+  }
+  void write(const std::string& text) {
+    if (file_.is_open()) file_ << text;
+    else std::cout << text;
+  }
+
+ private:
+  std::ofstream file_;
+};
 
 struct Options {
   std::vector<std::string> files;
   std::optional<std::string> vcd;
   std::optional<std::string> json;
+  std::optional<std::string> junit;
+  std::optional<std::string> log;
+  std::optional<std::string> log_json;
   std::optional<std::uint64_t> seed;
   bool verbose = false;
   bool quiet = false;
+  bool color = false;
 };
 
 std::string output_path(const std::string& base, const std::string& name, const std::string& ext, bool many) {
@@ -78,23 +231,39 @@ int run(const Options& o) {
                                      "\"; their waveforms would overwrite each other in " + *o.vcd);
   }
   const bool many = loaded.size() > 1;
+  LogSink log(o.log), log_json(o.log_json);
+  // Progress only where someone watches it: not in logs, pipes or CI.
+  const bool progress = many && !o.quiet && isatty(STDERR_FILENO) != 0;
   nlohmann::json all = nlohmann::json::array();
+  std::vector<scenarios::ScenarioResult> results;
   bool passed = true;
-  for (const auto& s : loaded) {
+  for (std::size_t i = 0; i < loaded.size(); ++i) {
+    const auto& s = loaded[i];
+    if (progress) std::cerr << "\r\033[K[" << i + 1 << "/" << loaded.size() << "] " << s.name << std::flush;
     scenarios::RunOptions ro;
     ro.seed = o.seed;
     if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", many);
-    const auto result = scenarios::run_scenario(s, ro);
+    auto result = scenarios::run_scenario(s, ro);
+    if (progress) std::cerr << "\r\033[K" << std::flush;
     passed = passed && result.passed();
-    if (!o.quiet || !result.passed()) scenarios::write_summary(std::cout, result, o.verbose);
+    if (!o.quiet || !result.passed()) {
+      std::ostringstream summary;
+      scenarios::write_summary(summary, result, o.verbose);
+      std::cout << (o.color ? colorize(summary.str()) : summary.str()) << std::flush;
+    }
+    if (o.log) log.write(scenarios::transaction_log_text(result));
+    if (o.log_json) log_json.write(scenarios::transaction_log_jsonl(result));
     all.push_back(scenarios::to_json(result));
+    if (o.junit) results.push_back(std::move(result));
   }
-  if (o.json) {
-    std::ofstream out(*o.json);
-    out << nlohmann::json{{"endatsim", ENDATSIM_VERSION}, {"passed", passed}, {"scenarios", all}}.dump(2) << "\n";
-    if (!out) throw std::runtime_error("cannot write '" + *o.json + "'");
+  if (o.junit) write_file(*o.junit, scenarios::junit_xml(results));
+  if (o.json)
+    write_file(*o.json,
+               nlohmann::json{{"endatsim", ENDATSIM_VERSION}, {"passed", passed}, {"scenarios", all}}.dump(2) + "\n");
+  if (!o.quiet) {
+    const std::string verdict = passed ? "all scenarios passed" : "some scenarios failed";
+    std::cout << (o.color ? (passed ? "\033[32m" : "\033[31m") + verdict + "\033[0m" : verdict) << "\n";
   }
-  if (!o.quiet) std::cout << (passed ? "all scenarios passed" : "some scenarios failed") << "\n";
   return passed ? kPass : kFail;
 }
 
@@ -107,13 +276,8 @@ struct SweepArgs {
   std::optional<std::string> svg;
   unsigned jobs = 1;
   bool quiet = false;
+  bool verbose = false;
 };
-
-void write_file(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
-}
 
 scenarios::SweepOptions sweep_run_options(const SweepArgs& o) {
   scenarios::SweepOptions so;
@@ -187,6 +351,13 @@ int sweep(const SweepArgs& o) {
   if (o.maximize) table = scenarios::maximize(result, *o.maximize);
   write_sweep_outputs(o, result, table);
   const auto clean = std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return p.clean; });
+  if (o.verbose)
+    for (const auto& p : result.points) {
+      std::string where;
+      for (std::size_t i = 0; i < p.values.size() && i < grid.size(); ++i)
+        where += (i == 0 ? "" : " ") + grid[i].pointer + "=" + p.values[i].dump();
+      std::cout << (p.clean ? "clean " : "not clean ") << where << "\n";
+    }
   if (!o.quiet) std::cout << result.points.size() << " points, " << clean << " clean\n";
   if (table) std::cout << scenarios::maximum_text(result, *table);
   return kPass;
@@ -199,19 +370,11 @@ std::optional<unsigned> parse_jobs(const std::string& text) {
   return jobs;
 }
 
-// Options of the other command are usage errors, not silently ignored.
-std::optional<std::string> foreign_option(const po::variables_map& vm, const std::string& command) {
-  const std::vector<std::string> run_only{"vcd", "seed", "verbose"}, sweep_only{"grid", "maximize", "csv", "svg", "jobs"};
-  for (const auto& name : command == "run" ? sweep_only : run_only)
-    if (vm.count(name) != 0) return name;
-  return std::nullopt;
-}
-
 int sweep_command(const po::variables_map& vm) {
   SweepArgs o;
   const auto files = vm.count("files") != 0 ? vm["files"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (files.size() != 1 || vm.count("grid") == 0) {
-    std::cerr << "endatsim sweep: expected one scenario file and at least one --grid\n" << kUsage;
+    std::cerr << "endatsim sweep: expected one scenario file and at least one --grid\n" << kSweepUsage;
     return kBadInput;
   }
   o.file = files.front();
@@ -238,91 +401,197 @@ int sweep_command(const po::variables_map& vm) {
     o.jobs = *jobs;
   }
   o.quiet = vm.count("quiet") != 0;
+  o.verbose = vm.count("verbose") != 0;
   return sweep(o);
+}
+
+std::optional<std::string> string_option(const po::variables_map& vm, const char* name) {
+  if (vm.count(name) == 0) return std::nullopt;
+  return vm[name].as<std::string>();
+}
+
+std::vector<std::string> files_of(const po::variables_map& vm) {
+  return vm.count("files") != 0 ? vm["files"].as<std::vector<std::string>>() : std::vector<std::string>{};
 }
 
 int run_command(const po::variables_map& vm) {
   Options o;
-  if (vm.count("files") != 0) o.files = vm["files"].as<std::vector<std::string>>();
+  o.files = files_of(vm);
   if (o.files.empty()) {
-    std::cerr << "endatsim run: no scenario file given\n" << kUsage;
+    std::cerr << "endatsim run: no scenario file given\n" << kRunUsage;
     return kBadInput;
   }
-  if (vm.count("vcd") != 0) o.vcd = vm["vcd"].as<std::string>();
-  if (vm.count("json") != 0) o.json = vm["json"].as<std::string>();
-  if (vm.count("seed") != 0) {
-    const std::string text = vm["seed"].as<std::string>();
-    std::uint64_t seed = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), seed);
-    if (ec != std::errc{} || end != text.data() + text.size()) {
-      std::cerr << "endatsim run: --seed expects an integer 0 .. 18446744073709551615, got '" << text << "'\n";
+  o.vcd = string_option(vm, "vcd");
+  o.json = string_option(vm, "json");
+  o.junit = string_option(vm, "junit");
+  o.log = string_option(vm, "log");
+  o.log_json = string_option(vm, "log-json");
+  if (const auto text = string_option(vm, "seed")) {
+    o.seed = parse_uint(*text);
+    if (!o.seed) {
+      std::cerr << "endatsim run: --seed expects an integer 0 .. 18446744073709551615, got '" << *text << "'\n";
       return kBadInput;
     }
-    o.seed = seed;
+  }
+  const std::string color = string_option(vm, "color").value_or("auto");
+  if (color != "auto" && color != "always" && color != "never") {
+    std::cerr << "endatsim run: --color expects auto, always or never, got '" << color << "'\n";
+    return kBadInput;
   }
   o.verbose = vm.count("verbose") != 0;
   o.quiet = vm.count("quiet") != 0;
+  if (o.verbose && o.quiet) {
+    std::cerr << "endatsim run: --verbose and --quiet exclude each other\n";
+    return kBadInput;
+  }
+  o.color = use_color(color);
   return run(o);
+}
+
+int validate_command(const po::variables_map& vm) {
+  const auto files = files_of(vm);
+  if (files.empty()) {
+    std::cerr << "endatsim validate: no scenario file given\n" << kValidateUsage;
+    return kBadInput;
+  }
+  bool ok = true;
+  for (const auto& file : files) {
+    try {
+      const auto s = scenarios::load_scenario_file(file);
+      if (vm.count("quiet") == 0) std::cout << "valid " << file << " (" << s.name << ")\n";
+    } catch (const scenarios::ScenarioError& e) {
+      std::cerr << "endatsim: " << e.what() << "\n";
+      ok = false;
+    }
+  }
+  return ok ? kPass : kBadInput;
+}
+
+int diagram_command(const po::variables_map& vm) {
+  const auto files = files_of(vm);
+  const auto svg = string_option(vm, "svg");
+  if (files.size() != 1 || !svg) {
+    std::cerr << "endatsim diagram: expected one scenario file and --svg PATH\n" << kDiagramUsage;
+    return kBadInput;
+  }
+  scenarios::DiagramOptions d;
+  if (const auto f = string_option(vm, "frame")) {
+    d.frame = parse_uint(*f);
+    if (!d.frame) {
+      std::cerr << "endatsim diagram: --frame expects a frame index, got '" << *f << "'\n";
+      return kBadInput;
+    }
+  }
+  const auto from = string_option(vm, "from"), to = string_option(vm, "to");
+  if (from.has_value() != to.has_value() || (from && d.frame)) {
+    std::cerr << "endatsim diagram: give --frame N, or --from and --to together\n";
+    return kBadInput;
+  }
+  try {
+    if (from) d.window = std::make_pair(sim::parse_duration(*from), sim::parse_duration(*to));
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "endatsim diagram: --from/--to: " << e.what() << "\n";
+    return kBadInput;
+  }
+  if (d.window && d.window->second <= d.window->first) {
+    std::cerr << "endatsim diagram: --to must be later than --from\n";
+    return kBadInput;
+  }
+  if (const auto text = string_option(vm, "seed")) {
+    d.seed = parse_uint(*text);
+    if (!d.seed) {
+      std::cerr << "endatsim diagram: --seed expects an integer 0 .. 18446744073709551615, got '" << *text << "'\n";
+      return kBadInput;
+    }
+  }
+  const auto scenario = scenarios::load_scenario_file(files.front());
+  const auto diagram = scenarios::frame_diagram(scenario, d);
+  write_file(*svg, diagram.svg);
+  if (vm.count("quiet") == 0) std::cout << diagram.caption << "\n";
+  return kPass;
+}
+
+const CommandInfo* find_command(const std::string& name) {
+  for (const auto& c : kCommands)
+    if (name == c.name) return &c;
+  return nullptr;
+}
+
+// An option of another command is a usage error that says so.
+std::optional<std::string> owner_of(const std::string& option, Command current) {
+  for (const auto& c : kCommands) {
+    if (c.command == current) continue;
+    const auto o = options_of(c.command);
+    if (o.find_nothrow(option, false) != nullptr) return c.name;
+  }
+  return std::nullopt;
+}
+
+void print_help_all() {
+  std::cout << usage() << "\n";
+  for (const auto& c : kCommands) std::cout << c.help << "\n";
+  for (const auto& c : kCommands) std::cout << c.name << " " << options_of(c.command) << "\n";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  po::options_description common("Options");
-  common.add_options()("help,h", "show this help")("version", "print the version")(
-      "json", po::value<std::string>(), "write results as JSON to this file")(
-      "quiet,q", "run: print only failing scenarios; sweep: no progress and no point count");
-  po::options_description run_options("run");
-  run_options.add_options()("vcd", po::value<std::string>(),
-                            "write waveforms (VCD; a directory when several files are given)")(
-      "seed", po::value<std::string>(), "override every scenario's seed (0 .. 2^64-1)")(
-      "verbose,v", "list every frame and expectation");
-  po::options_description sweep_options("sweep");
-  sweep_options.add_options()("grid", po::value<std::vector<std::string>>(),
-                              "POINTER=V1,V2,... or POINTER=START:STOP:STEP (repeat for more keys)")(
-      "maximize", po::value<std::string>(), "print the largest clean value of this grid key per other combination")(
-      "csv", po::value<std::string>(), "write one row per grid point to this file")(
-      "svg", po::value<std::string>(), "write a chart of the --maximize table to this file")(
-      "jobs", po::value<std::string>(), "threads (default: the number of cores)");
-  po::options_description visible;
-  visible.add(common).add(run_options).add(sweep_options);
-  po::options_description hidden;
-  hidden.add_options()("command", po::value<std::string>())("files", po::value<std::vector<std::string>>());
+  const std::string first = argc > 1 ? argv[1] : "";
+  if (first == "--version") {
+    std::cout << "endatsim " << ENDATSIM_VERSION << "\n";
+    return kPass;
+  }
+  if (first == "--help" || first == "-h" || first == "help") {
+    print_help_all();
+    return kPass;
+  }
+  const CommandInfo* info = find_command(first);
+  if (info == nullptr) {
+    std::cerr << (first.empty() ? "endatsim: no command given\n"
+                  : first[0] == '-' ? "endatsim: " + first + " before a command\n"
+                                    : "endatsim: unknown command '" + first + "'\n")
+              << usage();
+    return kBadInput;
+  }
+  const auto visible = options_of(info->command);
   po::options_description all;
-  all.add(visible).add(hidden);
+  all.add(visible).add_options()("files", po::value<std::vector<std::string>>());
   po::positional_options_description positional;
-  positional.add("command", 1).add("files", -1);
-
+  positional.add("files", -1);
   po::variables_map vm;
   try {
-    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
+    po::store(po::command_line_parser(argc - 1, argv + 1).options(all).positional(positional).run(), vm);
     po::notify(vm);
-  } catch (const po::error& e) {
-    std::cerr << "endatsim: " << e.what() << "\n" << kUsage;
+  } catch (const po::unknown_option& e) {
+    std::string name = e.get_option_name();
+    while (!name.empty() && name.front() == '-') name.erase(0, 1);
+    if (const auto owner = owner_of(name, info->command))
+      std::cerr << "endatsim " << info->name << ": --" << name << " is not an option of " << info->name
+                << " (it is one of " << *owner << ")\n";
+    else std::cerr << "endatsim " << info->name << ": " << e.what() << "\n";
+    std::cerr << info->usage;
     return kBadInput;
+  } catch (const po::error& e) {
+    std::cerr << "endatsim " << info->name << ": " << e.what() << "\n" << info->usage;
+    return kBadInput;
+  }
+  if (vm.count("help") != 0) {
+    std::cout << info->usage << "\n" << info->help << "\n" << visible;
+    return kPass;
   }
   if (vm.count("version") != 0) {
     std::cout << "endatsim " << ENDATSIM_VERSION << "\n";
     return kPass;
   }
-  const std::string command = vm.count("command") != 0 ? vm["command"].as<std::string>() : "";
-  if (vm.count("help") != 0) {
-    std::cout << kUsage << "\n" << kRunHelp << "\n" << kSweepHelp << visible;
-    return kPass;
-  }
-  if (command != "run" && command != "sweep") {
-    std::cerr << (command.empty() ? "endatsim: no command given\n" : "endatsim: unknown command '" + command + "'\n")
-              << kUsage;
-    return kBadInput;
-  }
-  if (const auto name = foreign_option(vm, command)) {
-    std::cerr << "endatsim " << command << ": --" << *name << " is not an option of " << command << "\n" << kUsage;
-    return kBadInput;
-  }
   try {
-    return command == "run" ? run_command(vm) : sweep_command(vm);
+    switch (info->command) {
+      case Command::Run: return run_command(vm);
+      case Command::Sweep: return sweep_command(vm);
+      case Command::Validate: return validate_command(vm);
+      case Command::Diagram: return diagram_command(vm);
+    }
   } catch (const std::exception& e) {  // ScenarioError included: bad input
     std::cerr << "endatsim: " << e.what() << "\n";
-    return kBadInput;
   }
+  return kBadInput;
 }

@@ -1,0 +1,453 @@
+#include "scenarios/diagram.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "scenarios/runner.hpp"
+#include "scenarios/vcd_reader.hpp"
+
+namespace endatsim::scenarios {
+namespace {
+
+using T64 = std::int64_t;
+constexpr T64 kNone = -1;
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '&') out += "&amp;";
+    else if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+// A 1-bit waveform read back from the VCD.
+struct Wave {
+  const VcdVariable* v = nullptr;
+  bool at(T64 t) const {
+    bool value = false;
+    for (const auto& c : v->changes) {
+      if (c.time > t) break;
+      value = c.value == '1';
+    }
+    return value;
+  }
+  // Times of edges in (from, to]: rising (1), falling (0) or both (-1).
+  std::vector<T64> edges(T64 from, T64 to, int kind) const {
+    std::vector<T64> out;
+    for (std::size_t i = 1; i < v->changes.size(); ++i) {
+      const auto& c = v->changes[i];
+      if (c.time <= from) continue;
+      if (c.time > to) break;
+      const bool rising = c.value == '1' && v->changes[i - 1].value == '0';
+      const bool falling = c.value == '0' && v->changes[i - 1].value == '1';
+      if ((kind == 1 && rising) || (kind == 0 && falling) || (kind == -1 && (rising || falling))) out.push_back(c.time);
+    }
+    return out;
+  }
+  T64 first(T64 from, T64 to, int kind) const {
+    const auto e = edges(from, to, kind);
+    return e.empty() ? kNone : e.front();
+  }
+};
+
+// Time -> x, with long stretches without any edge drawn as short axis breaks.
+class Axis {
+ public:
+  struct Segment {
+    T64 a, b;
+    double v;       // virtual start
+    double length;  // virtual length
+    bool broken;
+  };
+
+  Axis(T64 from, T64 to, std::vector<T64> edges, T64 max_gap, double x0, double width) : x0_(x0) {
+    edges.push_back(from);
+    edges.push_back(to);
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    double virtual_length = 0;
+    for (std::size_t i = 1; i < edges.size(); ++i) {
+      const T64 a = std::max(edges[i - 1], from), b = std::min(edges[i], to);
+      if (b <= a) continue;
+      const bool broken = b - a > max_gap;
+      const double length = static_cast<double>(broken ? max_gap / 2 : b - a);
+      segments_.push_back({a, b, virtual_length, length, broken});
+      virtual_length += length;
+    }
+    scale_ = virtual_length > 0 ? width / virtual_length : 1.0;
+  }
+  double x(T64 t) const {
+    if (segments_.empty()) return x0_;
+    if (t <= segments_.front().a) return x0_;
+    for (const auto& s : segments_) {
+      if (t > s.b) continue;
+      const double fraction = static_cast<double>(t - s.a) / static_cast<double>(s.b - s.a);
+      return x0_ + (s.v + fraction * s.length) * scale_;
+    }
+    const auto& last = segments_.back();
+    return x0_ + (last.v + last.length) * scale_;
+  }
+  const std::vector<Segment>& segments() const { return segments_; }
+
+ private:
+  double x0_;
+  double scale_ = 1.0;
+  std::vector<Segment> segments_;
+};
+
+}  // namespace
+
+namespace {
+
+// A temporary file that goes again, named per process and call.
+struct TempFile {
+  std::string path;
+  TempFile() {
+    static std::atomic<unsigned> counter{0};
+    path = (std::filesystem::temp_directory_path() /
+            ("endatsim_diagram_" + std::to_string(getpid()) + "_" + std::to_string(counter++) + ".vcd"))
+               .string();
+  }
+  ~TempFile() {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+};
+
+constexpr double kLeft = 190, kWidth = 1380, kRowHeight = 26;
+
+class Svg {
+ public:
+  std::string out;
+  void line(double x1, double y1, double x2, double y2, const std::string& style) {
+    out += "<line x1=\"" + num(x1) + "\" y1=\"" + num(y1) + "\" x2=\"" + num(x2) + "\" y2=\"" + num(y2) + "\" " + style +
+           "/>\n";
+  }
+  void text(double x, double y, const std::string& t, const std::string& style = "") {
+    out += "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\"" + (style.empty() ? "" : " " + style) + ">" + escape(t) +
+           "</text>\n";
+  }
+  void rect(double x, double y, double w, double h, const std::string& style) {
+    out += "<rect x=\"" + num(x) + "\" y=\"" + num(y) + "\" width=\"" + num(w) + "\" height=\"" + num(h) + "\" " +
+           style + "/>\n";
+  }
+  // A dimension arrow from x1 to x2 at height y with its label above.
+  void dimension(double x1, double x2, double y, const std::string& label, bool bad) {
+    const std::string colour = bad ? "#c00000" : "#1f4e9c";
+    line(x1, y - 7, x1, y + 7, "stroke=\"" + colour + "\"");
+    line(x2, y - 7, x2, y + 7, "stroke=\"" + colour + "\"");
+    out += "<path d=\"M" + num(x1) + " " + num(y) + " H" + num(x2) + "\" stroke=\"" + colour +
+           "\" marker-start=\"url(#arrow)\" marker-end=\"url(#arrow)\"/>\n";
+    text((x1 + x2) / 2, y - 4, label, "text-anchor=\"middle\" fill=\"" + colour + "\" font-size=\"11\"");
+  }
+  // A labelled box over a bit field; the label shrinks to `short_label` or nothing when narrow.
+  void field(double x1, double x2, double y, const std::string& label, const std::string& short_label) {
+    rect(x1, y, std::max(x2 - x1, 0.5), 16, "fill=\"#eef3fb\" stroke=\"#7a93bf\" stroke-width=\"0.8\"");
+    const double width = x2 - x1;
+    const std::string shown = static_cast<double>(label.size()) * 6.2 + 4 < width         ? label
+                              : static_cast<double>(short_label.size()) * 6.2 + 2 < width ? short_label
+                                                                                           : "";
+    if (!shown.empty()) text((x1 + x2) / 2, y + 12, shown, "text-anchor=\"middle\" font-size=\"10\"");
+  }
+};
+
+struct Row {
+  std::string name;   // variable in the VCD
+  std::string label;  // shown at the left
+  double y;           // top of the HIGH level
+  bool strobe;        // drawn as ticks (a toggle per event)
+};
+
+}  // namespace
+
+Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
+  TempFile vcd;
+  RunOptions ro;
+  ro.vcd_path = vcd.path;
+  ro.seed = options.seed;
+  const ScenarioResult r = run_scenario(scenario, ro);
+  const VcdFile file = read_vcd_file(vcd.path);
+  if (!file.issues.empty()) throw std::runtime_error("the waveform did not read back: " + file.issues.front().message);
+  const auto wave = [&](const std::string& name) {
+    const VcdVariable* v = file.find(name);
+    if (v == nullptr) throw std::runtime_error("the waveform has no " + name);
+    return Wave{v};
+  };
+  const Wave m_clock = wave("master.clock"), m_data = wave("master.data"), m_en = wave("master.data_driver_enable"),
+             m_sample = wave("master.sample"), e_clock = wave("encoder.clock"), e_data = wave("encoder.data"),
+             e_en = wave("encoder.data_driver_enable");
+
+  // What to draw.
+  const master::FrameResult* frame = nullptr;
+  T64 from = 0, to = 0;
+  const T64 period = sim::period_of(scenario.master.f_c).count();
+  if (options.window) {
+    from = options.window->first.count();
+    to = std::min(options.window->second.count(), r.simulated.count());
+    if (from >= r.simulated.count())
+      throw std::invalid_argument("--from " + sim::format_time(options.window->first) + " is after the end of the run (" +
+                                  sim::format_time(r.simulated) + ")");
+  } else {
+    if (options.frame) {
+      if (*options.frame >= r.frames.size())
+        throw std::invalid_argument("frame " + std::to_string(*options.frame) + ": the run has " +
+                                    std::to_string(r.frames.size()) + " frames (0 .. " +
+                                    std::to_string(r.frames.empty() ? 0 : r.frames.size() - 1) + ")");
+      frame = &r.frames[*options.frame];
+    } else {
+      for (const auto& f : r.frames)
+        if (!f.measurement) {
+          frame = &f;
+          break;
+        }
+      if (frame == nullptr && !r.frames.empty()) frame = &r.frames.front();
+      if (frame == nullptr) throw std::invalid_argument("the run has no frames to draw");
+    }
+    // Continuous-clock words share the frame's FE1: draw to the last of them.
+    T64 end = frame->end.count();
+    for (const auto& f : r.frames)
+      if (f.start == frame->start) end = std::max(end, f.end.count());
+    const T64 frame_period = sim::period_of(frame->f_c).count();
+    from = frame->start.count() - 2 * frame_period;
+    const sim::Time recovery = scenario.encoder.short_t_m_selected && scenario.encoder.t_m_short ? *scenario.encoder.t_m_short
+                                                                                                : scenario.encoder.t_m;
+    to = end + recovery.count() + scenario.encoder.t_r.count() + 2 * frame_period;
+    for (const auto& f : r.frames)  // not into the next frame
+      if (f.start > frame->start && f.start.count() < to) to = std::max(end + frame_period, f.start.count() - frame_period / 2);
+    to = std::min(to, r.simulated.count());
+    from = std::max<T64>(from, 0);
+  }
+  const T64 f_period = frame != nullptr ? sim::period_of(frame->f_c).count() : period;
+
+  // Measurements on the waveforms.
+  struct Measure {
+    std::string name;
+    T64 a = kNone, b = kNone;
+    std::string row;
+  };
+  std::vector<Measure> measures;
+  std::vector<T64> m_fe, m_re, e_fe, e_re;
+  T64 e_start = kNone, m_start = kNone;
+  std::size_t launch = 0;  // the encoder's rising edge (1 = RE1) that launched the start bit
+  if (frame != nullptr) {
+    const T64 fe1 = m_clock.first(frame->start.count() - 1, to, 0);
+    const T64 e_fe1 = e_clock.first(frame->start.count() - 1, to, 0);
+    if (fe1 != kNone && e_fe1 != kNone) {
+      m_fe = m_clock.edges(fe1 - 1, to, 0);
+      m_re = m_clock.edges(fe1, to, 1);
+      e_fe = e_clock.edges(e_fe1 - 1, to, 0);
+      e_re = e_clock.edges(e_fe1, to, 1);
+      if (!m_re.empty()) measures.push_back({"t_ST", fe1, m_re.front(), "master.clock"});
+      const bool word = frame->outcome == master::FrameOutcome::Ok || frame->outcome == master::FrameOutcome::CrcError;
+      const T64 enabled = e_en.first(e_fe1, to, 1);
+      if (word && enabled != kNone) e_start = e_data.first(enabled, to, 1);
+      if (e_start != kNone) {
+        // The edge that launched the start bit: the encoder's receiver, logic and driver lie
+        // between its clock pin and its data pin, at 8 MHz more than a period.
+        const T64 internal = (scenario.line.encoder.receiver_delay + scenario.encoder.output_delay +
+                              scenario.line.encoder.driver_delay)
+                                 .count();
+        for (T64 re : e_re)
+          if (re + internal <= e_start) ++launch;
+        measures.push_back({"t_cal", e_fe1, e_start, "encoder.data"});
+        if (launch >= 1 && launch <= m_re.size()) {
+          const T64 re_s = m_re[launch - 1];
+          m_start = m_data.first(re_s, to, 1);
+          if (m_start != kNone) measures.push_back({"t_D", re_s, m_start, "master.data"});
+        }
+      }
+      if (!e_re.empty()) {
+        const T64 low = e_data.first(e_re.back(), to, 0);
+        if (low != kNone && e_start != kNone) measures.push_back({"t_m", e_re.back(), low, "encoder.data"});
+      }
+    }
+  }
+
+  // Axis with breaks over stretches longer than eight clock periods without an edge.
+  std::vector<T64> all_edges;
+  for (const Wave* w : {&m_clock, &m_data, &m_en, &m_sample, &e_clock, &e_data, &e_en}) {
+    const auto e = w->edges(from, to, -1);
+    all_edges.insert(all_edges.end(), e.begin(), e.end());
+  }
+  const Axis axis(from, to, all_edges, 8 * f_period, kLeft, kWidth);
+
+  const std::vector<Row> rows{
+      {"master.clock", "CLOCK (master pins)", 80, false},
+      {"master.data", "DATA (master pins)", 176, false},
+      {"master.data_driver_enable", "master DATA driver on", 250, false},
+      {"master.sample", "master samples DATA", 300, true},
+      {"encoder.clock", "CLOCK (encoder pins)", 350, false},
+      {"encoder.data", "DATA (encoder pins)", 430, false},
+      {"encoder.data_driver_enable", "encoder DATA driver on", 504, false},
+  };
+  const auto row_y = [&](const std::string& name) {
+    for (const auto& row : rows)
+      if (row.name == name) return row.y;
+    return 0.0;
+  };
+
+  std::vector<const checker::Violation*> violations;
+  for (const auto& v : r.violations) {
+    const bool in_frame = frame != nullptr && v.frame && *v.frame == frame->index;
+    const bool in_window = frame == nullptr && v.time.count() >= from && v.time.count() <= to;
+    if (in_frame || in_window) violations.push_back(&v);
+  }
+  const double axis_y = 560;
+  const double height = axis_y + 50 + 16.0 * static_cast<double>(violations.size() + 1) + 20;
+
+  Svg svg;
+  svg.out = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"1600\" height=\"" + num(height) + "\" viewBox=\"0 0 1600 " +
+            num(height) + "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"12\">\n";
+  svg.out +=
+      "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"5\" refY=\"5\" markerWidth=\"6\" markerHeight=\"6\" "
+      "orient=\"auto-start-reverse\"><path d=\"M0 0 L10 5 L0 10 z\" fill=\"context-stroke\"/></marker></defs>\n";
+  svg.rect(0, 0, 1600, height, "fill=\"white\"");
+  std::string title = scenario.name;
+  std::string caption;
+  if (frame != nullptr) {
+    title += ": frame #" + std::to_string(frame->index) + ", " + std::string(protocol::info(frame->command).key) + " (" +
+             std::string(master::to_string(frame->outcome)) + ")";
+  } else {
+    title += ": " + sim::format_time(sim::Time{from}) + " .. " + sim::format_time(sim::Time{to});
+  }
+  svg.text(20, 26, title, "font-size=\"16\" font-weight=\"bold\"");
+  std::string subtitle = "f_c " + sim::format_frequency(frame != nullptr ? frame->f_c : scenario.master.f_c) + ", cable " +
+                         num(scenario.line.cable_length_m) + " m, " +
+                         (frame != nullptr && frame->compensated ? "delay compensation t_D = " + sim::format_time(frame->t_d_used)
+                                                                 : std::string("no delay compensation")) +
+                         ", true round trip " + sim::format_time(r.true_round_trip) + ", seed " + std::to_string(r.seed);
+  svg.text(20, 46, subtitle, "fill=\"#444\"");
+
+  // Axis breaks as grey bands.
+  for (const auto& s : axis.segments())
+    if (s.broken) {
+      const double x1 = axis.x(s.a), x2 = axis.x(s.b);
+      svg.rect(x1, 64, x2 - x1, axis_y - 64, "fill=\"#f2f2f2\"");
+      svg.text((x1 + x2) / 2, axis_y + 14, "// " + sim::format_time(sim::Time{s.b - s.a}),
+               "text-anchor=\"middle\" fill=\"#888\" font-size=\"10\"");
+    }
+
+  // Waveforms.
+  for (const auto& row : rows) {
+    const Wave w = wave(row.name);
+    svg.text(16, row.y + kRowHeight / 2 + 4, row.label);
+    if (row.strobe) {
+      for (T64 t : w.edges(from, to, -1)) svg.line(axis.x(t), row.y + 4, axis.x(t), row.y + kRowHeight, "stroke=\"#1f7a3a\"");
+      continue;
+    }
+    const auto level_y = [&](bool high) { return high ? row.y : row.y + kRowHeight; };
+    bool level = w.at(from);
+    std::string d = "M" + num(axis.x(from)) + " " + num(level_y(level));
+    for (T64 t : w.edges(from, to, -1)) {
+      level = !level;
+      d += " H" + num(axis.x(t)) + " V" + num(level_y(level));
+    }
+    d += " H" + num(axis.x(to));
+    svg.out += "<path d=\"" + d + "\" fill=\"none\" stroke=\"black\" stroke-width=\"1.2\"/>\n";
+  }
+  // Sampling instants across the master's DATA.
+  for (T64 t : m_sample.edges(from, to, -1))
+    svg.line(axis.x(t), row_y("master.data") - 4, axis.x(t), row_y("master.sample"),
+             "stroke=\"#1f7a3a\" stroke-dasharray=\"2 2\" stroke-width=\"0.8\"");
+
+  // Fields.
+  if (frame != nullptr && m_fe.size() >= 9) {
+    std::string bits;
+    for (int b = 5; b >= 0; --b) bits += ((frame->mode_bits >> b) & 1U) != 0 ? '1' : '0';
+    svg.field(axis.x(m_fe[2]), axis.x(m_fe[8]), row_y("master.data") - 22, "mode bits " + bits, bits);
+    svg.field(axis.x(m_fe[0]), axis.x(m_fe[2]), row_y("master.data") - 22, "turnaround", "");
+  }
+  if (e_start != kNone && frame != nullptr && launch >= 1) {
+    const auto layout = protocol::position_frame_layout(protocol::info(frame->command).version, scenario.master.position_bits);
+    std::size_t slot = launch - 1;  // index into e_re of the rising edge that launched the bit
+    for (const auto& spec : layout.fields()) {
+      const std::size_t last = slot + spec.width;  // edge after the field
+      if (last >= e_re.size() + 1) break;
+      const T64 a = e_re[slot], b = last < e_re.size() ? e_re[last] : e_re[last - 1] + f_period;
+      std::string name(protocol::field_name(spec.field));
+      std::string short_name = spec.field == protocol::Field::StartBit ? "S" : name;
+      if (spec.field == protocol::Field::Position) name += " (" + std::to_string(spec.width) + " bits, LSB first)";
+      if (spec.field == protocol::Field::Crc) name += " (5 bits)";
+      svg.field(axis.x(a), axis.x(b), row_y("encoder.data") - 22, name, short_name);
+      slot = last;
+    }
+  }
+
+  // Timing parameters.
+  const auto bad_check = [&](const std::string& check) {
+    for (const auto* v : violations)
+      if (v->check == check) return true;
+    return false;
+  };
+  for (const auto& m : measures) {
+    const double y = row_y(m.row) + kRowHeight + 18;
+    const std::string value = sim::format_time(sim::Time{m.b - m.a});
+    const std::string check = m.name == "t_ST" ? "t_st" : m.name == "t_cal" ? "t_cal" : m.name == "t_D" ? "t_d" : "t_m_t_r";
+    svg.dimension(axis.x(m.a), axis.x(m.b), y, m.name + " = " + value, bad_check(check));
+    caption += (caption.empty() ? "" : ", ") + m.name + " " + value;
+  }
+
+  // Violations: a red mark at the time on its end's rows, and the list below.
+  double list_y = axis_y + 50;
+  std::vector<std::pair<double, double>> labels;
+  if (!violations.empty()) svg.text(20, list_y, "Violations", "font-weight=\"bold\" fill=\"#c00000\"");
+  for (const auto* v : violations) {
+    const bool encoder_side = v->where == line::ObservationPoint::EncoderPins;
+    const double y1 = encoder_side ? row_y("encoder.clock") - 6 : row_y("master.clock") - 6;
+    const double y2 = encoder_side ? row_y("encoder.data_driver_enable") + kRowHeight : row_y("master.sample") + kRowHeight;
+    const double x = axis.x(std::clamp(v->time.count(), from, to));
+    svg.line(x, y1, x, y2, "stroke=\"#c00000\" stroke-width=\"1.5\"");
+    double label_y = y1 + 8;
+    for (const auto& [lx, ly] : labels)  // stagger labels that would overlap
+      if (std::abs(lx - x) < 90 && std::abs(ly - label_y) < 10) label_y = ly + 11;
+    labels.emplace_back(x, label_y);
+    svg.text(x + 3, label_y, v->check, "fill=\"#c00000\" font-size=\"10\"");
+    list_y += 16;
+    std::string text = std::string(checker::to_string(v->severity)) + " " + v->check + " at " + sim::format_time(v->time) +
+                       " (" + std::string(line::to_string(v->where));
+    if (v->clock) text += ", clock " + std::to_string(*v->clock);
+    if (!v->field.empty()) text += ", " + v->field;
+    text += "): measured " + v->measured + ", limit " + v->limit + " [" + v->spec + "]";
+    svg.text(20, list_y, text, "fill=\"#c00000\" font-size=\"11\"");
+  }
+
+  // Time axis: ticks at the window's ends and at the frame's FE1.
+  svg.line(kLeft, axis_y, kLeft + kWidth, axis_y, "stroke=\"#888\"");
+  std::vector<T64> ticks{from, to};
+  if (!m_fe.empty()) ticks.push_back(m_fe.front());
+  std::vector<double> placed;
+  for (T64 t : ticks) {
+    if (std::any_of(placed.begin(), placed.end(), [&](double x) { return std::abs(x - axis.x(t)) < 70; })) continue;
+    placed.push_back(axis.x(t));
+    svg.line(axis.x(t), axis_y - 4, axis.x(t), axis_y + 4, "stroke=\"#888\"");
+    svg.text(axis.x(t), axis_y + 28, sim::format_time(sim::Time{t}), "text-anchor=\"middle\" fill=\"#666\" font-size=\"10\"");
+  }
+  if (!m_fe.empty()) svg.text(axis.x(m_fe.front()), 74, "FE1", "text-anchor=\"middle\" fill=\"#666\" font-size=\"10\"");
+  svg.out += "</svg>\n";
+
+  Diagram d;
+  d.svg = std::move(svg.out);
+  d.caption = title + (caption.empty() ? "" : ": " + caption) +
+              (violations.empty() ? "" : "; " + std::to_string(violations.size()) + " violations");
+  return d;
+}
+
+}  // namespace endatsim::scenarios

@@ -1,0 +1,72 @@
+#include "scenarios/junit.hpp"
+
+#include <sstream>
+
+#include "scenarios/report.hpp"
+
+namespace endatsim::scenarios {
+
+std::string xml_escape(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      case '\n': case '\t': case '\r': out += c; break;
+      default:
+        if (static_cast<unsigned char>(c) >= 0x20) out += c;  // other control characters are not XML
+    }
+  }
+  return out;
+}
+
+namespace {
+
+std::string failure_text(const ScenarioResult& r) {
+  std::string body;
+  for (const auto& e : r.expectations)
+    if (!e.passed) body += "expectation " + e.name + ": " + e.detail + "\n";
+  std::ostringstream summary;
+  write_summary(summary, r, false);
+  return body + "\n" + summary.str();
+}
+
+}  // namespace
+
+std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name) {
+  std::size_t failures = 0;
+  for (const auto& r : results) failures += r.passed() ? 0 : 1;
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  x += "<testsuites name=\"" + xml_escape(suite_name) + "\" tests=\"" + std::to_string(results.size()) +
+       "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\">\n";
+  x += "  <testsuite name=\"" + xml_escape(suite_name) + "\" tests=\"" + std::to_string(results.size()) +
+       "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\" skipped=\"0\">\n";
+  for (const auto& r : results) {
+    x += "    <testcase classname=\"" + xml_escape(suite_name + ".scenarios") + "\" name=\"" + xml_escape(r.name) +
+         "\" file=\"" + xml_escape(r.file) + "\" assertions=\"" + std::to_string(r.expectations.size()) + "\">\n";
+    x += "      <properties>\n";
+    x += "        <property name=\"seed\" value=\"" + std::to_string(r.seed) + "\"/>\n";
+    x += "        <property name=\"simulated\" value=\"" + xml_escape(sim::format_time(r.simulated)) + "\"/>\n";
+    x += "        <property name=\"frames\" value=\"" + std::to_string(r.frames.size()) + "\"/>\n";
+    x += "        <property name=\"violations\" value=\"" + std::to_string(r.violations.size()) + "\"/>\n";
+    x += "      </properties>\n";
+    if (!r.passed()) {
+      std::string first;
+      std::size_t failed = 0;
+      for (const auto& e : r.expectations)
+        if (!e.passed && failed++ == 0) first = e.name + ": " + e.detail;
+      if (failed > 1) first += " (and " + std::to_string(failed - 1) + " more)";
+      x += "      <failure type=\"expectation\" message=\"" + xml_escape(first) + "\">" + xml_escape(failure_text(r)) +
+           "</failure>\n";
+    }
+    x += "    </testcase>\n";
+  }
+  x += "  </testsuite>\n</testsuites>\n";
+  return x;
+}
+
+}  // namespace endatsim::scenarios

@@ -1,0 +1,19 @@
+// JUnit XML for CI servers (Jenkins, GitLab, GitHub test reporters): one <testsuite> for a
+// run, one <testcase> per scenario, a <failure> per scenario whose expectations do not all
+// hold, carrying the violated expectations and the timing violations. No wall-clock times or
+// host names: the same run gives the same bytes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scenarios/runner.hpp"
+
+namespace endatsim::scenarios {
+
+std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name = "endatsim");
+
+// Escapes text for XML attributes and character data; drops characters XML 1.0 forbids.
+std::string xml_escape(const std::string& text);
+
+}  // namespace endatsim::scenarios

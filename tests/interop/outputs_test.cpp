@@ -1,0 +1,164 @@
+// JUnit XML, the decoded transaction log and frame diagrams, from real runs of bundled scenarios.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "scenarios/diagram.hpp"
+#include "scenarios/junit.hpp"
+#include "scenarios/scenarios.hpp"
+#include "scenarios/transaction_log.hpp"
+
+using namespace endatsim;
+
+namespace {
+
+const std::string kBundled = std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/";
+
+scenarios::ScenarioResult run_bundled(const std::string& name) {
+  return scenarios::run_scenario(scenarios::load_scenario_file(kBundled + name + ".json"));
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto p = text.find(what); p != std::string::npos; p = text.find(what, p + what.size())) ++n;
+  return n;
+}
+
+// A scenario whose expectation cannot hold: one clean read, expected two.
+scenarios::ScenarioResult failing() {
+  const auto s = scenarios::load_scenario_text(R"({"name": "wrong<&>", "line": {"cable_length_m": 1},
+    "master": {"f_c": "1 MHz"}, "script": [{"op": "read_position"}], "expect": {"outcomes": {"ok": 2}}})",
+                                               "inline.json");
+  return scenarios::run_scenario(s);
+}
+
+}  // namespace
+
+TEST(Junit, OneTestCasePerScenarioAndFailuresCarryTheExpectation) {
+  const std::vector<scenarios::ScenarioResult> results{run_bundled("endat21_1mhz_10m"), failing()};
+  const std::string xml = scenarios::junit_xml(results);
+  EXPECT_EQ(xml.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"endatsim\" tests=\"2\" failures=\"1\"", 0), 0U)
+      << xml;
+  EXPECT_EQ(count(xml, "<testcase "), 2U);
+  EXPECT_NE(xml.find("name=\"endat21_1mhz_10m\""), std::string::npos);
+  EXPECT_EQ(count(xml, "<failure "), 1U);
+  // The violated expectation, escaped, in the message; the name escaped too.
+  EXPECT_NE(xml.find("<failure type=\"expectation\" message=\"outcomes.ok: 1 (expected 2)\">"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("name=\"wrong&lt;&amp;&gt;\""), std::string::npos) << xml;
+  EXPECT_EQ(xml, scenarios::junit_xml(results));  // no clocks, no host names: same bytes
+}
+
+TEST(Junit, EscapesMarkupAndDropsControlCharacters) {
+  EXPECT_EQ(scenarios::xml_escape("a<b>&\"c'\x01\n"), "a&lt;b&gt;&amp;&quot;c&apos;\n");
+}
+
+TEST(TransactionLog, OneRecordPerFrameWithCrcAndViolations) {
+  const auto r = run_bundled("endat22_2mhz_100m_uncompensated");
+  const std::string text = scenarios::transaction_log_text(r);
+  EXPECT_EQ(count(text, "\n"), r.frames.size() + 1);  // a header line, then one line per frame
+  const auto first = text.substr(text.find('\n') + 1, text.find('\n', text.find('\n') + 1) - text.find('\n') - 1);
+  EXPECT_NE(first.find("encoder_send_position_values_with_additional_data"), std::string::npos) << first;
+  EXPECT_NE(first.find("sent: mode_bits=111000 f_c=2 MHz"), std::string::npos) << first;
+  EXPECT_NE(first.find("position=" + std::to_string(r.frames[0].position)), std::string::npos) << first;
+  EXPECT_NE(first.find("CRC FAIL (expected " + std::to_string(r.frames[0].crc_expected) + ")"), std::string::npos) << first;
+  EXPECT_NE(first.find("-> crc_error  violations:"), std::string::npos) << first;
+  EXPECT_NE(first.find("sampling_window"), std::string::npos) << first;
+
+  const std::string jsonl = scenarios::transaction_log_jsonl(r);
+  std::istringstream in(jsonl);
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(in, line)) {
+    const auto j = nlohmann::json::parse(line);
+    const auto& f = r.frames[n];
+    EXPECT_EQ(j.at("frame").get<std::uint64_t>(), f.index);
+    EXPECT_EQ(j.at("time_ps").get<std::int64_t>(), f.start.count());
+    EXPECT_EQ(j.at("crc_ok"), false);
+    EXPECT_EQ(j.at("received").at("position").get<std::uint64_t>(), f.position);
+    EXPECT_TRUE(j.at("additional").is_object());
+    EXPECT_FALSE(j.at("violations").empty());
+    EXPECT_EQ(j.at("scenario"), "endat22_2mhz_100m_uncompensated");
+    ++n;
+  }
+  EXPECT_EQ(n, r.frames.size());
+}
+
+TEST(TransactionLog, CleanReadsAndMeasurementFrames) {
+  const auto r = run_bundled("endat22_2mhz_100m_compensated");
+  const auto records = scenarios::transactions(r.frames, r.violations);
+  ASSERT_EQ(records.size(), r.frames.size());
+  std::size_t measurements = 0, ok = 0;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const auto& t = records[i];
+    if (r.frames[i].measurement) {
+      ++measurements;
+      EXPECT_TRUE(t["sent"]["delay_measurement"].get<bool>());
+      EXPECT_TRUE(t["received"].contains("delay_count")) << t.dump();
+    } else {
+      ++ok;
+      EXPECT_EQ(t["crc_ok"], true) << t.dump();
+      EXPECT_EQ(t["sent"]["t_d"], sim::format_time(r.frames[i].t_d_used));
+      EXPECT_NE(scenarios::transaction_line(t).find("CRC ok"), std::string::npos);
+    }
+    EXPECT_TRUE(t["violations"].empty()) << t.dump();
+  }
+  EXPECT_GE(measurements, 3U);
+  EXPECT_EQ(ok, 10U);
+}
+
+TEST(TransactionLog, RecorderCollectsWhatTheMasterReports) {
+  scenarios::TransactionRecorder recorder;
+  master::FrameResult f;
+  f.index = 7;
+  f.outcome = master::FrameOutcome::NoStartBit;
+  recorder.on_frame_start(f);
+  recorder.on_frame_end(f);
+  ASSERT_EQ(recorder.frames().size(), 1U);
+  const auto t = scenarios::transaction_of(recorder.frames().front(), {});
+  EXPECT_EQ(t["frame"], 7);
+  EXPECT_TRUE(t["crc_ok"].is_null());
+  EXPECT_EQ(t["outcome"], "no_start_bit");
+}
+
+TEST(Diagram, DrawsTheFrameWithMeasuredTimingAndViolations) {
+  const auto s = scenarios::load_scenario_file(kBundled + "endat22_2mhz_100m_uncompensated.json");
+  const auto d = scenarios::frame_diagram(s, {});
+  EXPECT_EQ(d.svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0), 0U);
+  // At the master's pins the round trip lacks the master's own driver and receiver (20 + 50 ns).
+  EXPECT_NE(d.svg.find(">t_D = 1.13 us</text>"), std::string::npos);
+  EXPECT_NE(d.svg.find(">t_ST = 2 us</text>"), std::string::npos);
+  EXPECT_NE(d.svg.find(">t_m = 20.13 us</text>"), std::string::npos);
+  EXPECT_NE(d.svg.find(">t_cal = "), std::string::npos);
+  EXPECT_NE(d.svg.find(">mode bits 111000</text>"), std::string::npos);
+  for (const char* field : {">S</text>", ">F1</text>", ">F2</text>", ">position (25 bits, LSB first)</text>"})
+    EXPECT_NE(d.svg.find(field), std::string::npos) << field;
+  // The checker's findings for frame 0, in red.
+  EXPECT_NE(d.svg.find("fill=\"#c00000\" font-size=\"11\">error sampling_window at 6.25 us"), std::string::npos);
+  EXPECT_EQ(count(d.svg, "stroke=\"#c00000\" stroke-width=\"1.5\""), 3U);
+  EXPECT_NE(d.caption.find("3 violations"), std::string::npos) << d.caption;
+  EXPECT_EQ(d.svg, scenarios::frame_diagram(s, {}).svg);  // same input, same bytes
+}
+
+TEST(Diagram, CleanCompensatedFrameHasTheCrcAndNoRed) {
+  const auto s = scenarios::load_scenario_file(kBundled + "endat22_8mhz_100m_compensated.json");
+  const auto d = scenarios::frame_diagram(s, {});
+  EXPECT_NE(d.svg.find(">t_D = 1.13 us</text>"), std::string::npos);  // 8 MHz: t_D is nine periods
+  EXPECT_NE(d.svg.find(">CRC"), std::string::npos);  // "CRC (5 bits)" or, when narrow, "CRC"
+  EXPECT_EQ(d.svg.find("#c00000\" font-size"), std::string::npos);
+}
+
+TEST(Diagram, WindowsAndBadRequests) {
+  const auto s = scenarios::load_scenario_file(kBundled + "endat21_1mhz_10m.json");
+  scenarios::DiagramOptions o;
+  o.window = std::make_pair(sim::us(0), sim::us(60));
+  const auto d = scenarios::frame_diagram(s, o);
+  EXPECT_NE(d.caption.find("0 ps .. 60 us"), std::string::npos) << d.caption;
+  o.window.reset();
+  o.frame = 999;
+  try {
+    scenarios::frame_diagram(s, o);
+    FAIL() << "frame 999 was drawn";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 999: the run has 5 frames (0 .. 4)"), std::string::npos) << e.what();
+  }
+}
