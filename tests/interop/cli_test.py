@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""The command line as CI and people use it: --help and --version on every subcommand, results
+on stdout and errors on stderr, no colour or progress in pipes, JUnit XML that parses, --json
+results that validate against schema/results.schema.json, transaction logs, validate, diagram.
+
+usage: cli_test.py ENDATSIM SOURCE_DIR WORKDIR
+"""
+import json
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import jsonschema
+
+endatsim, source, work = sys.argv[1:]
+os.makedirs(work, exist_ok=True)
+bundled = os.path.join(source, "scenarios", "bundled")
+clean = os.path.join(bundled, "endat21_1mhz_10m.json")
+uncompensated = os.path.join(bundled, "endat22_2mhz_100m_uncompensated.json")
+failures = []
+
+
+def run(*args, env=None):
+    return subprocess.run([endatsim, *args], capture_output=True, text=True, timeout=300, env=env)
+
+
+def check(condition, what, r=None):
+    if not condition:
+        failures.append(what + ("" if r is None else "\n  exit %d\n  stdout: %s\n  stderr: %s" % (r.returncode, r.stdout[:2000], r.stderr[:2000])))
+
+
+def path(name):
+    return os.path.join(work, name)
+
+
+# --help and --version everywhere, on stdout, exit 0.
+for command in ("run", "sweep", "validate", "diagram"):
+    r = run(command, "--help")
+    check(r.returncode == 0 and r.stdout.startswith("usage: endatsim " + command) and r.stderr == "", command + " --help", r)
+    r = run(command, "--version")
+    check(r.returncode == 0 and r.stdout.startswith("endatsim ") and r.stderr == "", command + " --version", r)
+r = run("--help")
+check(r.returncode == 0 and all(c in r.stdout for c in ("run:", "sweep:", "validate:", "diagram:", "Exit status")), "--help", r)
+
+# Usage errors: stderr, exit 2, nothing on stdout.
+r = run("run", clean, "--grid", "/x=1")
+check(r.returncode == 2 and "--grid is not an option of run (it is one of sweep)" in r.stderr and r.stdout == "", "foreign option", r)
+r = run("run", clean, "--verbose", "--quiet")
+check(r.returncode == 2 and "exclude each other" in r.stderr and r.stdout == "", "--verbose --quiet", r)
+r = run("run", clean, "--color", "sometimes")
+check(r.returncode == 2 and "--color expects auto, always or never" in r.stderr, "--color value", r)
+r = run("run", path("missing.json"))
+check(r.returncode == 2 and "missing.json: cannot open the file" in r.stderr and r.stdout == "", "missing file", r)
+
+# In a pipe: no colour, no progress; with --color always the verdicts are coloured.
+r = run("run", clean, uncompensated)
+check(r.returncode == 0 and "\033" not in r.stdout and r.stderr == "", "pipe: no colour, no progress", r)
+r = run("run", clean, "--color", "always")
+check(r.returncode == 0 and "\033[32mPASS\033[0m endat21_1mhz_10m" in r.stdout, "--color always", r)
+
+# JUnit, JSON results, transaction logs.
+failing = path("failing.json")
+with open(failing, "w") as f:
+    json.dump({"name": "failing", "line": {"cable_length_m": 1}, "master": {"f_c": "1 MHz"},
+               "script": [{"op": "read_position"}], "expect": {"outcomes": {"ok": 2}}}, f)
+r = run("run", clean, uncompensated, failing, "--quiet", "--junit", path("junit.xml"), "--json", path("results.json"),
+        "--log", "-", "--log-json", path("log.jsonl"))
+check(r.returncode == 1, "a failing scenario exits 1", r)
+root = ET.parse(path("junit.xml")).getroot()
+suite = root.find("testsuite")
+cases = suite.findall("testcase")
+check(root.tag == "testsuites" and suite.get("tests") == "3" and suite.get("failures") == "1" and len(cases) == 3,
+      "JUnit: three test cases, one failure")
+failed = [c for c in cases if c.find("failure") is not None]
+check(len(failed) == 1 and failed[0].get("name") == "failing" and
+      failed[0].find("failure").get("message") == "outcomes.ok: 1 (expected 2)", "JUnit: the failure names the expectation")
+results = json.load(open(path("results.json")))
+schema = json.load(open(os.path.join(source, "schema", "results.schema.json")))
+try:
+    jsonschema.validate(results, schema, cls=jsonschema.Draft202012Validator)
+except jsonschema.ValidationError as e:
+    failures.append("results.json does not validate against schema/results.schema.json: %s at %s" % (e.message, list(e.absolute_path)))
+frames = sum(len(s["frames"]) for s in results["scenarios"])
+log_lines = [l for l in r.stdout.splitlines() if not l.startswith("#") and "  sent: " in l]
+check(len(log_lines) == frames, "--log -: one line per frame (%d lines, %d frames)" % (len(log_lines), frames), r)
+records = [json.loads(l) for l in open(path("log.jsonl"))]
+check(len(records) == frames and {"time_ps", "command", "sent", "received", "crc_ok", "additional", "violations"} <= set(records[0]),
+      "--log-json: one record per frame with the documented keys")
+check(any(rec["crc_ok"] is False and rec["violations"] for rec in records), "--log-json: the CRC errors with their violations")
+
+# validate: stdout for good files, stderr for bad ones.
+bad = path("bad.json")
+with open(bad, "w") as f:
+    f.write('{"name": "bad", "line": {"cable_length_m": 1}, "master": {"f_c": "1 MHz"}, "script": [{"op": "jump"}]}')
+r = run("validate", clean, bad)
+check(r.returncode == 2 and r.stdout == "valid %s (endat21_1mhz_10m)\n" % clean and bad + ": at /script/0/op" in r.stderr,
+      "validate", r)
+
+# diagram: an SVG that parses; bad requests are usage errors.
+r = run("diagram", uncompensated, "--svg", path("frame.svg"))
+check(r.returncode == 0 and "t_D 1.13 us" in r.stdout, "diagram", r)
+svg = ET.parse(path("frame.svg")).getroot()
+check(svg.tag == "{http://www.w3.org/2000/svg}svg", "diagram: an SVG document")
+r = run("diagram", uncompensated, "--svg", path("frame2.svg"), "--frame", "99")
+check(r.returncode == 2 and "frame 99: the run has 4 frames" in r.stderr, "diagram --frame 99", r)
+r = run("diagram", uncompensated)
+check(r.returncode == 2 and "--svg PATH" in r.stderr, "diagram without --svg", r)
+r = run("diagram", uncompensated, "--svg", path("w.svg"), "--from", "10 us", "--to", "5 us")
+check(r.returncode == 2 and "--to must be later than --from" in r.stderr, "diagram window", r)
+
+# sweep --verbose lists the points.
+r = run("sweep", clean, "--grid", "/line/cable_length_m=1,2", "--verbose", "--jobs", "1")
+check(r.returncode == 0 and "clean /line/cable_length_m=1" in r.stdout and "2 points" in r.stdout, "sweep --verbose", r)
+
+if failures:
+    print("FAIL:\n" + "\n".join(failures), file=sys.stderr)
+    sys.exit(1)
+print("command line: all checks hold")
