@@ -1,0 +1,20 @@
+#!/bin/sh
+# Installs this build into a fresh prefix, then builds and runs the out-of-tree testbench of
+# examples/testbench against it through find_package(endatsim): headers, libraries and the
+# CMake package must be complete, and the testbench (its own master, endatsim's encoder model
+# and checker) must pass.
+# usage: install_test.sh BUILD_DIR SOURCE_DIR WORK_DIR CXX_FLAGS
+set -eu
+build=$1 source=$2 work=$3 flags=$4
+rm -rf "$work"
+mkdir -p "$work"
+cmake --install "$build" --prefix "$work/prefix" >"$work/install.log"
+for f in include/endatsim/scenarios/scenarios.hpp include/endatsim/checker/checker.hpp lib/cmake/endatsim/endatsimConfig.cmake \
+         share/endatsim/schema/scenario.schema.json bin/endatsim bin/endatsim-vcdlint; do
+  [ -e "$work/prefix/$f" ] || { echo "FAIL: $f was not installed" >&2; exit 1; }
+done
+"$work/prefix/bin/endatsim" --version
+cmake -S "$source/examples/testbench" -B "$work/tb" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_FLAGS="$flags" >"$work/configure.log" \
+  || { cat "$work/configure.log" >&2; exit 1; }
+cmake --build "$work/tb" >"$work/build.log" 2>&1 || { cat "$work/build.log" >&2; exit 1; }
+"$work/tb/testbench"
