@@ -46,19 +46,22 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
               "the encoder released DATA too late after FE1: the master drives from FE2"}, "FE1 release");
   } else if (enabled != 0 && released_ && !driving_) {
     driving_ = true;
-    if (current_.falling.size() < kTurnaroundEdge) {
+    const unsigned turnaround = kTurnaroundEdge + current_.header.payload_bits;
+    if (current_.falling.size() < turnaround) {
       report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
-              now, current_.header.index, clock, "before FE9", "after FE9", Severity::Error,
+              now, current_.header.index, clock, "before FE" + std::to_string(turnaround),
+              "after FE" + std::to_string(turnaround), Severity::Error,
               "the encoder drove DATA while the master still sends the mode command"}, "turnaround");
       return;
     }
     // Read from FE9, after which the master has released DATA; the alternative reading starts
     // at FE10 and would allow one more period.
-    const Time t_oe = now - current_.falling[kTurnaroundEdge - 1];
+    const Time t_oe = now - current_.falling[turnaround - 1];
     if (t_oe > period)
       report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
               now, current_.header.index, clock, format_time(t_oe), "<= T = " + format_time(period), Severity::Error,
-              "the encoder took longer than one clock period after FE9 to drive DATA"}, "turnaround");
+              "the encoder took longer than one clock period after FE" + std::to_string(turnaround) +
+                  " to drive DATA"}, "turnaround");
   }
 }
 
@@ -179,22 +182,25 @@ void TimingChecker::check_master_sample(const master::FrameResult& frame, unsign
 // The frame needs its last bit clocked out (RE_(s + width - 1)) and may have one more pulse,
 // which carries the HIGH end of data (timing-model §1.7). Fewer leave the encoder hanging in
 // the middle of the cycle; more are taken as a continuous clock (2.3.1), which only
-// "Encoder send position values" supports (HEIDENHAIN FAQ, timing-model §1.4).
+// "Encoder send position values" supports (HEIDENHAIN FAQ, timing-model §1.4), and make a 2.1
+// parameter frame an error (2.4.1). A 2.2 command supplement runs on after the answer.
 void TimingChecker::check_clock_count(const PinFrame& f) {
   if (start_clock_ == 0) return;  // no start bit: nothing to count against
   const bool v22 = f.header.command_type == protocol::EndatVersion::V2_2;
-  const unsigned width = protocol::position_frame_layout(f.header.command_type, encoder_.position_bits).width();
-  const unsigned last_bit = start_clock_ + width - 1;
+  const bool parameter_frame = f.header.payload_bits != 0;
+  const unsigned last_bit = start_clock_ + f.header.answer_bits - 1;
   const auto clocks = static_cast<unsigned>(f.rising.size());
   const std::string spec = "2.3.1 and 2.4.1 (the number of clock pulses)";
   if (clocks < last_bit)
     report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
             clocks, std::to_string(clocks) + " pulses", ">= " + std::to_string(last_bit), Severity::Error,
             "the clock stopped before the encoder's last bit: the encoder hangs in the middle of the cycle"}, "end of frame");
-  else if (v22 && clocks > last_bit + 1)
+  else if ((v22 || parameter_frame) && !f.header.supplement && clocks > last_bit + 1)
     report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
-            clocks, std::to_string(clocks) + " pulses", "<= " + std::to_string(last_bit + 1), Severity::Warning,
-            "clock pulses beyond the end of the frame"}, "end of frame");
+            clocks, std::to_string(clocks) + " pulses", "<= " + std::to_string(last_bit + 1),
+            parameter_frame ? Severity::Error : Severity::Warning,
+            parameter_frame ? "more clock pulses than required: the encoder discards the access (2.4.1)"
+                            : "clock pulses beyond the end of the frame"}, "end of frame");
 }
 
 }  // namespace endatsim::checker

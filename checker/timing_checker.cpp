@@ -79,9 +79,10 @@ std::span<const std::string_view> check::all() {
 // The field of bit slot `clock` as the master counts the frame.
 std::string TimingChecker::field_of(const master::FrameResult& frame, unsigned clock) const {
   if (frame.start_bit_clock == 0 || clock < frame.start_bit_clock) return "start-bit polling";
-  const auto layout = protocol::position_frame_layout(protocol::info(frame.command).version, master_.position_bits);
+  const auto layout = protocol::answer_layout(protocol::info(frame.command), master_.position_bits);
   const unsigned bit = clock - frame.start_bit_clock;
-  return bit < layout.width() ? std::string(protocol::field_name(layout.field_at(bit))) : "after the CRC";
+  if (bit < layout.width()) return std::string(protocol::field_name(layout.field_at(bit)));
+  return bit < frame.answer_bits ? "additional data" : "after the CRC";
 }
 
 std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
@@ -135,8 +136,14 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
   }
   last_frame_was_measurement_ = frame.measurement;
   frame_starts_.emplace_back(frame.start, frame.index);
-  const FrameHeader h{frame.index, frame.measurement, frame.compensated, protocol::info(frame.command).version,
-                      frame.f_c, frame.t_d_used};
+  // The answer as the encoder sends it: its own position width, the additional data the master
+  // selected.
+  const auto& command = protocol::info(frame.command);
+  const unsigned additional = frame.answer_bits - protocol::answer_layout(command, master_.position_bits).width();
+  const unsigned answer = protocol::answer_layout(command, encoder_.position_bits).width() + additional;
+  const FrameHeader h{frame.index,          frame.measurement, frame.compensated, command.version,
+                      command.payload_bits, answer,            command.supplement, frame.f_c,
+                      frame.t_d_used};
   pending_.emplace_back(master_falling_edges_ + 1, h);
   master_rising_.clear();
   sampling_reported_ = false;

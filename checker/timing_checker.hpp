@@ -102,6 +102,9 @@ class TimingChecker final : public master::MasterObserver {
     bool measurement = false;
     bool compensated = false;
     protocol::EndatVersion command_type = protocol::EndatVersion::V2_1;
+    unsigned payload_bits = 0;  // master bits after the mode bits (2.1 parameter frames)
+    unsigned answer_bits = 0;   // the encoder's answer, start bit to the last CRC
+    bool supplement = false;    // a 2.2 command supplement follows the answer
     sim::Hertz f_c = 0;
     Time t_d_used{0};
   };

@@ -69,6 +69,9 @@ void MasterParams::validate() const {
           "master memory_access_timeout must be > 0 and <= 100 ms, got " + sim::format_time(memory_access_timeout));
   require(supplement_lead_bits >= 1 && supplement_lead_bits <= 32,
           "master supplement_lead_bits must be 1 .. 32, got " + std::to_string(supplement_lead_bits));
+  require(supplement_driven_lead_bits >= 1 && supplement_driven_lead_bits <= supplement_lead_bits,
+          "master supplement_driven_lead_bits must be 1 .. supplement_lead_bits (" +
+              std::to_string(supplement_lead_bits) + "), got " + std::to_string(supplement_driven_lead_bits));
   require(type1_detect_samples >= 1 && type1_detect_samples <= 64,
           "master type1_detect_samples must be 1 .. 64, got " + std::to_string(type1_detect_samples));
 }
@@ -174,13 +177,8 @@ void Master::start_frame(std::uint64_t) {
   high_ = period * params_.high_permille / 1000;
   low_ = period - high_;
   mode_bits_ = frame_.mode_bits;
-  switch (command_->answer) {
-    case protocol::AnswerFormat::Position:
-      layout_ = protocol::position_frame_layout(command_->version, params_.position_bits);
-      break;
-    case protocol::AnswerFormat::TestValues: layout_ = protocol::test_values_layout(); break;
-    case protocol::AnswerFormat::Parameter: layout_ = protocol::parameter_frame_layout(); break;
-  }
+  layout_ = protocol::answer_layout(*command_, params_.position_bits);
+  frame_.answer_bits = answer_width();
   clock_ = 0;
   last_clock_ = 0;
   clocking_done_ = false;
@@ -383,10 +381,10 @@ void Master::drive_supplement_bit() {
   if (supplement_start_ == 0) {
     supplement_start_ = clock_;
     last_clock_ = clock_ + params_.supplement_lead_bits + protocol::kPayloadBits;
-    pins_.data_enable.write(true);
   }
   const unsigned k = clock_ - supplement_start_;
   const unsigned lead = params_.supplement_lead_bits;
+  if (k == lead - params_.supplement_driven_lead_bits) pins_.data_enable.write(true);
   bool bit = false;
   if (k == lead) bit = true;
   else if (k > lead) bit = ((*frame_.supplement >> (protocol::kPayloadBits - (k - lead))) & 1U) != 0;

@@ -63,6 +63,9 @@ struct MasterParams {
   // Timing-model §1.6 (TI's choice, "can optimize"): LOW bits the master drives before the start
   // bit of a 2.2 command supplement, from the first falling edge after it has checked the answer.
   unsigned supplement_lead_bits = 7;
+  // Of those, the master drives only the last ones: before them DATA is left undriven, so that
+  // the encoder's release can travel the cable back first (a turnaround like t_ST's).
+  unsigned supplement_driven_lead_bits = 2;
   unsigned type1_detect_samples = 8;    // HIGH samples after the turnaround, no LOW: type I (A2, hypothesis A)
   StartBitDetection start_bit_detection = StartBitDetection::WaitLowThenHigh;
 
@@ -97,6 +100,7 @@ struct FrameResult {
   std::uint8_t mode_bits = 0;  // as sent
   std::optional<std::uint32_t> payload;     // 8 + 16 bits sent after the mode bits (2.1 parameter frames)
   std::optional<std::uint32_t> supplement;  // 8 + 16 bits sent as the 2.2 command supplement
+  unsigned answer_bits = 0;                 // the answer the master expects: S .. CRC and additional data
   Hertz f_c = 0;
   bool measurement = false;     // part of a propagation-delay measurement
   bool compensated = false;

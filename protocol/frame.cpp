@@ -148,6 +148,15 @@ std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint
   return encode(additional_datum_layout(), v);
 }
 
+Layout answer_layout(const ModeCommandInfo& command, unsigned position_bits) {
+  switch (command.answer) {
+    case AnswerFormat::TestValues: return test_values_layout();
+    case AnswerFormat::Parameter: return parameter_frame_layout();
+    case AnswerFormat::Position: break;
+  }
+  return position_frame_layout(command.version, position_bits);
+}
+
 Layout supplement_layout() { return Layout({kStart, kAddress, kParameter}); }
 
 }  // namespace endatsim::protocol

@@ -84,6 +84,9 @@ constexpr unsigned kAdditionalDatumBits = 30;
 Layout additional_datum_layout();
 std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data);
 
+// The encoder's answer to `command` without additional data: position, test-value or parameter frame.
+Layout answer_layout(const ModeCommandInfo& command, unsigned position_bits);
+
 // Timing-model §1.6 (likely): the 2.2 command supplement is a start bit 1, then 8 + 16 bits MSB
 // first, and no CRC from the master.
 Layout supplement_layout();

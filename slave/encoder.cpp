@@ -50,6 +50,8 @@ void EncoderParams::validate() const {
   require(supplement_end_marker_delay >= Time::zero() && supplement_end_marker_delay <= sim::us(1),
           "encoder supplement_end_marker_delay must be 0 .. 1 us (below the shortest t_m), got " +
               sim::format_time(supplement_end_marker_delay));
+  require(supplement_ignore_clocks <= 16,
+          "encoder supplement_ignore_clocks must be 0 .. 16, got " + std::to_string(supplement_ignore_clocks));
   require(output_delay >= Time::zero() && output_delay <= sim::us(1),
           "encoder output_delay must be 0 .. 1 us, got " + sim::format_time(output_delay));
   require(continuous_low_bits >= 1 && continuous_low_bits <= 7,
@@ -231,7 +233,9 @@ void Encoder::on_rising_edge() {
       break;
     case State::SupplementHunt:
       // Timing-model §1.6: the line floats (fail-safe HIGH) until the master drives its lead
-      // bits, so the encoder waits for a LOW before it takes a HIGH as the start bit.
+      // bits, so the encoder waits for a LOW before it takes a HIGH as the start bit. Right
+      // after its release it still sees its own last bit, so it ignores a few edges.
+      if (clock_ <= release_clock_ + params_.supplement_ignore_clocks) break;
       if (!seen_low_) seen_low_ = !bit;
       else if (bit) {
         state_ = State::Supplement;
@@ -398,6 +402,7 @@ void Encoder::emit_answer_bit() {
     // Timing-model §1.6: the encoder hands DATA to the master for the command supplement.
     release();
     state_ = State::SupplementHunt;
+    release_clock_ = clock_;
     seen_low_ = false;
     return;
   }

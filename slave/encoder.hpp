@@ -70,6 +70,9 @@ struct EncoderParams {
   // Timing-model §1.6 (guess): after the master's supplement the encoder drives the HIGH end
   // marker this long after the last supplement bit (the master has released DATA by then).
   Time supplement_end_marker_delay = sim::us(1);
+  // ... and before it, ignores DATA for this many rising edges after handing the line over,
+  // while its own last bit fades (guess; the master's lead bits must be more).
+  unsigned supplement_ignore_clocks = 3;
   Time output_delay = sim::ns(60);             // clock input -> data output inside the encoder
   unsigned continuous_low_bits = 1;            // 2.3.1.1: "a maximum of 7 Low Bits" between words
   unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (timing-model §1.2)
@@ -194,6 +197,7 @@ class Encoder {
   unsigned first_answer_clock_ = 11;  // timing-model §1.2 / §1.4: RE11, or RE35 after a payload
   Time answer_not_before_{0};
   bool seen_low_ = false;
+  unsigned release_clock_ = 0;  // RE at which the encoder handed DATA to the master's supplement
   std::vector<std::uint8_t> answer_;
   std::size_t next_bit_ = 0;
   unsigned gap_low_bits_ = 0;

@@ -1,0 +1,152 @@
+// The master model speaking every kind of mode command to the encoder model, judged by the
+// timing checker on the way (no violation may appear on a clean line).
+#include <gtest/gtest.h>
+
+#include "scenario_support.hpp"
+
+using namespace endatsim;
+using namespace endatsim::sim;
+using MC = protocol::ModeCommand;
+using Kind = master::Operation::Kind;
+
+namespace {
+
+master::Operation op(MC command, std::uint8_t address = 0, std::uint16_t parameter = 0) {
+  master::Operation o;
+  o.command = command;
+  o.address = address;
+  o.parameter = parameter;
+  return o;
+}
+
+master::Operation await_not_busy(unsigned max_polls = 100) {
+  master::Operation o;
+  o.kind = Kind::AwaitNotBusy;
+  o.count = max_polls;
+  o.cycle = us(50);
+  return o;
+}
+
+scenarios::Scenario scenario(double cable_m, Hertz f_c, bool compensated, std::vector<master::Operation> script) {
+  auto s = test_support::make_scenario(cable_m, f_c, compensated, 1);
+  s.script.pop_back();
+  s.encoder.t_ac_read = us(200);
+  s.encoder.t_ac_write = us(800);
+  for (auto& o : script) s.script.push_back(o);
+  return s;
+}
+
+const master::FrameResult& last_of(const scenarios::ScenarioResult& r, std::size_t operation) {
+  const master::FrameResult* f = nullptr;
+  for (const auto& x : r.frames)
+    if (x.operation == operation) f = &x;
+  if (f == nullptr) throw std::runtime_error("no frame for operation " + std::to_string(operation));
+  return *f;
+}
+
+std::string violations(const scenarios::ScenarioResult& r) {
+  std::string s;
+  for (const auto& v : r.violations) s += v.check + ": " + v.message + "\n";
+  return s;
+}
+
+}  // namespace
+
+TEST(MasterParameterAccess, EnDat21SelectWriteAndReadBack) {
+  // 2.4, 2.6, 2.5 with the example values of 2.6.1 (OEM2, address 0Bh, A5B4h).
+  const auto s = scenario(10, MHz(1), false,
+                          {op(MC::SelectionOfMemoryArea, 0xAB), op(MC::EncoderReceiveParameters, 0x0B, 0xA5B4),
+                           op(MC::EncoderSendParameters, 0x0B)});
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.finished);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(last_of(r, i).outcome, master::FrameOutcome::Ok) << i;
+  EXPECT_EQ(last_of(r, 0).echo_address, 0xAB);
+  EXPECT_EQ(last_of(r, 1).echo_parameter, 0xA5B4);
+  EXPECT_EQ(last_of(r, 2).echo_parameter, 0xA5B4);
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
+
+TEST(MasterParameterAccess, EnDat21WriteIntoProtectedAreaIsTypeTwo) {
+  const auto s = scenario(10, MHz(1), false,
+                          {op(MC::SelectionOfMemoryArea, 0xA1), op(MC::EncoderReceiveParameters, 0x0D, 0x1234)});
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(last_of(r, 1).outcome, master::FrameOutcome::Type2Error);
+  EXPECT_EQ(last_of(r, 1).echo_address, 0xF2);  // ~0Dh
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
+
+TEST(MasterParameterAccess, EnDat22ReadThroughTheSupplementWithBusyPolling) {
+  // 2.5.1: select "memory parameters LSB" as additional data 1, select the area, poll busy,
+  // read, poll busy; the last poll carries address 0Dh and the LSB of word 13 (25 bits: 19h).
+  const auto s = scenario(
+      30, MHz(4), true,
+      {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x45),
+       op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0xA1), await_not_busy(),
+       op(MC::EncoderSendPositionValuesAndSendParameter, 0x0D), await_not_busy()});
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.finished);
+  const auto& last = last_of(r, 5);
+  ASSERT_EQ(last.outcome, master::FrameOutcome::Ok);
+  ASSERT_EQ(last.additional_data.size(), 1U);
+  EXPECT_EQ(last.additional_data[0].information(), protocol::Information::MemoryParameterLsb);
+  EXPECT_FALSE(last.additional_data[0].busy());
+  EXPECT_EQ(last.additional_data[0].data, 0x0D19);
+  std::size_t polls = 0;
+  for (const auto& f : r.frames) polls += f.operation == 5;
+  EXPECT_GT(polls, 1U) << "the encoder was busy for t_ac = 200 us";
+  EXPECT_EQ(r.frames.back().position, 104462U);
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
+
+TEST(MasterParameterAccess, EnDat22WriteThenReadBack) {
+  const auto s = scenario(
+      50, MHz(8), true,
+      {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x45),
+       op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0xA9), await_not_busy(),
+       op(MC::EncoderSendPositionValuesAndReceiveParameter, 0x10, 0xBEEF), await_not_busy(),
+       op(MC::EncoderSendPositionValuesAndSendParameter, 0x10), await_not_busy(),
+       op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x46), await_not_busy()});
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.finished);
+  EXPECT_EQ(last_of(r, 7).additional_data.at(0).data, 0x10EF);
+  EXPECT_EQ(last_of(r, 9).additional_data.at(0).data, 0x10BE);
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
+
+TEST(MasterAdditionalData, BothAdditionalDataArriveInWireOrder) {
+  auto s = scenario(20, MHz(4), true,
+                    {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x4D),
+                     op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x51),
+                     op(MC::EncoderSendPositionValuesWithAdditionalData)});
+  s.encoder.sensors.commutation = 0b101;
+  s.encoder.sensors.temperature2 = 3100;
+  const auto r = scenarios::run_scenario(s);
+  const auto& f = last_of(r, 3);
+  ASSERT_EQ(f.outcome, master::FrameOutcome::Ok);
+  ASSERT_EQ(f.additional_data.size(), 2U);
+  EXPECT_EQ(f.additional_data[0].information(), protocol::Information::Commutation);
+  EXPECT_EQ(f.additional_data[0].data, 0xA000);
+  EXPECT_EQ(f.additional_data[1].information(), protocol::Information::Temperature2);
+  EXPECT_EQ(f.additional_data[1].data, 3100);
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
+
+TEST(MasterTestValues, EnDat21TestCommandThenTestValues) {
+  auto s = scenario(5, MHz(1), false, {op(MC::EncoderReceiveTestCommand, 0x07), op(MC::EncoderSendTestValues)});
+  s.encoder.sensors.test_values[0x07] = 0xFF'0000'1234ULL;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(last_of(r, 1).outcome, master::FrameOutcome::Ok);
+  EXPECT_EQ(last_of(r, 1).test_value, 0xFF'0000'1234ULL);
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
+
+TEST(MasterReset, ResetAndErrorReset) {
+  auto s = scenario(5, MHz(1), false,
+                    {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x4C), op(MC::EncoderReceiveReset),
+                     op(MC::EncoderSendPositionValuesWithAdditionalData),
+                     op(MC::EncoderSendPositionValuesAndReceiveErrorReset)});
+  const auto r = scenarios::run_scenario(s);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(last_of(r, i).outcome, master::FrameOutcome::Ok) << i;
+  EXPECT_TRUE(last_of(r, 2).additional_data.empty()) << "2.4.2.2: none after a reset";
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
