@@ -247,6 +247,9 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   std::vector<T64> m_fe, m_re, e_fe, e_re;
   T64 e_start = kNone, m_start = kNone;
   std::size_t launch = 0;  // the encoder's rising edge (1 = RE1) that launched the start bit
+  // The encoder's receiver, logic and driver lie between its clock pin and its data pin.
+  const T64 internal =
+      (scenario.line.encoder.receiver_delay + scenario.encoder.output_delay + scenario.line.encoder.driver_delay).count();
   if (frame != nullptr) {
     const T64 fe1 = m_clock.first(frame->start.count() - 1, to, 0);
     const T64 e_fe1 = e_clock.first(frame->start.count() - 1, to, 0);
@@ -260,11 +263,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
       const T64 enabled = e_en.first(e_fe1, to, 1);
       if (word && enabled != kNone) e_start = e_data.first(enabled, to, 1);
       if (e_start != kNone) {
-        // The edge that launched the start bit: the encoder's receiver, logic and driver lie
-        // between its clock pin and its data pin, at 8 MHz more than a period.
-        const T64 internal = (scenario.line.encoder.receiver_delay + scenario.encoder.output_delay +
-                              scenario.line.encoder.driver_delay)
-                                 .count();
+        // The edge that launched the start bit (at 8 MHz the internal delay exceeds a period).
         for (T64 re : e_re)
           if (re + internal <= e_start) ++launch;
         measures.push_back({"t_cal", e_fe1, e_start, "encoder.data"});
@@ -381,7 +380,8 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     for (const auto& spec : layout.fields()) {
       const std::size_t last = slot + spec.width;  // edge after the field
       if (last >= e_re.size() + 1) break;
-      const T64 a = e_re[slot], b = last < e_re.size() ? e_re[last] : e_re[last - 1] + f_period;
+      // Bits appear on the encoder's DATA pin the encoder's internal delay after the clock edge.
+      const T64 a = e_re[slot] + internal, b = (last < e_re.size() ? e_re[last] : e_re[last - 1] + f_period) + internal;
       std::string name(protocol::field_name(spec.field));
       std::string short_name = spec.field == protocol::Field::StartBit ? "S" : name;
       if (spec.field == protocol::Field::Position) name += " (" + std::to_string(spec.width) + " bits, LSB first)";
