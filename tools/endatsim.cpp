@@ -33,7 +33,7 @@ constexpr int kFail = 1;
 constexpr int kBadInput = 2;
 
 const char* const kRunUsage =
-    "usage: endatsim run FILE... [--vcd PATH] [--json PATH] [--junit PATH] [--log PATH] [--log-json PATH]\n"
+    "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH] [--log PATH] [--log-json PATH]\n"
     "                    [--seed N] [--verbose|--quiet] [--color auto|always|never]\n";
 const char* const kSweepUsage =
     "usage: endatsim sweep FILE --grid POINTER=V1,V2,...|START:STOP:STEP [--grid ...] [--maximize POINTER]\n"
@@ -116,6 +116,7 @@ po::options_description options_of(Command c) {
     case Command::Run:
       o.add_options()("verbose,v", "list every frame and expectation")(
           "vcd", po::value<std::string>(), "write waveforms (VCD; a directory when several files are given)")(
+          "gtkw", "also write a GTKWave save file (.gtkw) beside each VCD, signals grouped by end")(
           "json", po::value<std::string>(), "write results as JSON to this file")(
           "junit", po::value<std::string>(), "write JUnit XML (one test case per scenario) to this file")(
           "log", po::value<std::string>(), "write the decoded transaction log (text; - for stdout)")(
@@ -210,10 +211,25 @@ struct Options {
   std::optional<std::string> log;
   std::optional<std::string> log_json;
   std::optional<std::uint64_t> seed;
+  bool gtkw = false;
   bool verbose = false;
   bool quiet = false;
   bool color = false;
 };
+
+// A GTKWave save file beside the VCD: opens with the signals shown, grouped by end.
+void write_gtkw(const std::string& vcd_path) {
+  std::filesystem::path path(vcd_path);
+  path.replace_extension(".gtkw");
+  std::string text = "[*] endatsim " ENDATSIM_VERSION "\n[dumpfile] \"" +
+                     std::filesystem::absolute(vcd_path).lexically_normal().string() + "\"\n[timestart] 0\n";
+  for (const char* end : {"master", "encoder"}) {
+    text += std::string("@200\n-") + end + " pins\n@28\n";
+    for (const char* signal : {"clock", "data", "data_driver_enable"}) text += std::string(end) + "." + signal + "\n";
+    if (std::string(end) == "master") text += "master.sample\nmaster.frame\n";
+  }
+  write_file(path.string(), text);
+}
 
 std::string output_path(const std::string& base, const std::string& name, const std::string& ext, bool many) {
   if (!many) return base;
@@ -243,6 +259,7 @@ int run(const Options& o) {
     scenarios::RunOptions ro;
     ro.seed = o.seed;
     if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", many);
+    if (o.vcd && o.gtkw) write_gtkw(*ro.vcd_path);
     auto result = scenarios::run_scenario(s, ro);
     if (progress) std::cerr << "\r\033[K" << std::flush;
     passed = passed && result.passed();
@@ -426,6 +443,11 @@ int run_command(const po::variables_map& vm) {
   o.junit = string_option(vm, "junit");
   o.log = string_option(vm, "log");
   o.log_json = string_option(vm, "log-json");
+  o.gtkw = vm.count("gtkw") != 0;
+  if (o.gtkw && !o.vcd) {
+    std::cerr << "endatsim run: --gtkw writes a GTKWave save file beside each --vcd file; give --vcd PATH\n";
+    return kBadInput;
+  }
   if (const auto text = string_option(vm, "seed")) {
     o.seed = parse_uint(*text);
     if (!o.seed) {

@@ -66,7 +66,7 @@ def main():
             fail(tool + " is not installed (tools/quickstart installs it: sigrok-cli, gtkwave, xvfb)")
     os.makedirs(work, exist_ok=True)
     vcd, results = os.path.join(work, "wave.vcd"), os.path.join(work, "results.json")
-    run([endatsim, "run", scenario, "--vcd", vcd, "--json", results, "--quiet"])
+    run([endatsim, "run", scenario, "--vcd", vcd, "--gtkw", "--json", results, "--quiet"])
     frames = json.load(open(results))["scenarios"][0]["frames"]
     # Continuous-clock words report the pulses counted since FE1: a frame's last word has them all.
     per_frame = {}
@@ -121,6 +121,18 @@ def main():
         if gtk[name] != edges:
             fail("GTKWave sees %s with %s edges, endatsim wrote %s" % (name, gtk[name], edges))
     print("gtkwave: same edges on all %d signals" % len(gtk))
+
+    # The save file written by --gtkw: GTKWave opens with every signal shown, master first.
+    shown = os.path.join(work, "shown.tcl")
+    with open(shown, "w") as out:
+        out.write('puts "displayed [gtkwave::getDisplayedSignals]"\ngtkwave::/File/Quit\n')
+    r = run(["xvfb-run", "-a", "gtkwave", "-S", shown, vcd, os.path.join(work, "wave.gtkw")], cwd=work)
+    displayed = [line.split()[1:] for line in r.stdout.splitlines() if line.startswith("displayed")]
+    expected = ["master.clock", "master.data", "master.data_driver_enable", "master.sample", "master.frame",
+                "encoder.clock", "encoder.data", "encoder.data_driver_enable"]
+    if displayed != [expected]:
+        fail("GTKWave shows %s with the save file, expected %s" % (displayed, expected))
+    print("gtkwave: the .gtkw save file shows all %d signals" % len(expected))
 
 
 main()
