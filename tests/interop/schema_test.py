@@ -8,7 +8,12 @@ removed) and the schema and `endatsim validate` must give the same verdict on ev
 
 When this fails after a change to the loader (a new operation, a new key), update the schema.
 
-usage: schema_test.py ENDATSIM SCHEMA BUNDLED_DIR README WORKDIR
+The malformed corpus in tests/malformed/ (every file there is rejected by the loader) must be
+rejected by the schema too, or not parse as JSON at all, except the cases listed in
+BEYOND_SCHEMA: constraints JSON Schema cannot state (ranges inside duration strings, order of
+times, relations between numbers, duplicate keys, which JSON parsers resolve silently).
+
+usage: schema_test.py ENDATSIM SCHEMA BUNDLED_DIR README WORKDIR [MALFORMED_DIR]
 """
 import copy
 import glob
@@ -24,6 +29,27 @@ except ImportError:
 
 REQUIRED = {("name",), ("line",), ("master",), ("script",), ("line", "cable_length_m"), ("master", "f_c")}
 FREE_TEXT = {"name", "description"}
+
+BEYOND_SCHEMA = {
+    "cable_delay_too_large.json": "range inside a duration string",
+    "duplicate_key.json": "duplicate keys: JSON parsers keep the last",
+    "duplicate_nested_key.json": "duplicate keys: JSON parsers keep the last",
+    "events_backwards.json": "order of times",
+    "expect_count_range_reversed.json": "relation between the two numbers of a count string",
+    "f_c_too_high.json": "range inside a frequency string",
+    "f_c_zero.json": "range inside a frequency string",
+    "huge_duration.json": "range inside a duration string",
+    "huge_duration_in_range_digits.json": "range inside a duration string",
+    "huge_frequency.json": "range inside a frequency string",
+    "jitter_too_large_for_clock.json": "relation between jitter and the clock period",
+    "max_time_zero.json": "range inside a duration string",
+    "motion_start_beyond_position_bits.json": "relation between motion.start and position_bits",
+    "script_at_backwards.json": "order of times",
+    "start_bit_timeout_zero.json": "range inside a duration string",
+    "t_cal_fraction_of_ps.json": "a duration that is not a whole number of picoseconds",
+    "t_m_too_short.json": "range inside a duration string",
+    "transceiver_delay_too_large.json": "range inside a duration string",
+}
 
 
 def readme_example(path):
@@ -92,9 +118,10 @@ def mutants(doc):
 
 
 def main():
-    if len(sys.argv) != 6:
+    if len(sys.argv) not in (6, 7):
         sys.exit(__doc__)
-    endatsim, schema_path, bundled, readme, work = sys.argv[1:]
+    endatsim, schema_path, bundled, readme, work = sys.argv[1:6]
+    malformed = sys.argv[6] if len(sys.argv) == 7 else None
     os.makedirs(work, exist_ok=True)
     schema = json.load(open(schema_path))
     jsonschema.Draft202012Validator.check_schema(schema)
@@ -144,12 +171,30 @@ def main():
         else:
             agreed += 1
             rejected_both += 0 if schema_ok else 1
+    corpus = 0
+    if malformed:
+        for path in sorted(glob.glob(os.path.join(malformed, "*.json"))):
+            name = os.path.basename(path)
+            try:
+                doc = json.loads(open(path, "rb").read().decode("utf-8"))
+            except (ValueError, UnicodeDecodeError, RecursionError):
+                corpus += 1  # no JSON tool reads it: rejected by both
+                continue
+            if not validator.is_valid(doc) or name in BEYOND_SCHEMA:
+                corpus += 1
+                continue
+            problems.append("%s: the loader rejects it, the schema accepts it -> tighten the schema, or list it in "
+                            "BEYOND_SCHEMA in tests/interop/schema_test.py with the reason" % path)
+        if corpus == 0:
+            problems.append("no malformed scenarios found in " + malformed)
+
     if problems:
         print("FAIL: schema/scenario.schema.json and scenarios/loader.cpp disagree:", file=sys.stderr)
         for p in problems:
             print("  " + p, file=sys.stderr)
         sys.exit(1)
-    print("%d documents validate; %d cases agree (%d rejected by both)" % (len(documents), agreed, rejected_both))
+    print("%d documents validate; %d cases agree (%d rejected by both); %d malformed files rejected" %
+          (len(documents), agreed, rejected_both, corpus))
 
 
 main()
