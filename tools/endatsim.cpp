@@ -9,7 +9,9 @@
 #include <boost/program_options.hpp>
 #include <charconv>
 #include <cstdlib>
+#include <chrono>
 #include <filesystem>
+#include <future>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -53,7 +55,7 @@ const char* const kRunHelp =
     "\n"
     "Prints a summary per scenario on stdout: frames and their outcomes, positions, CRC errors,\n"
     "the measured propagation delay t_D, timing violations (time, measured value, limit, spec\n"
-    "section) and every expectation that failed. With several files a progress line goes to\n"
+    "section) and every expectation that failed. A progress line (scenario, elapsed time) goes to\n"
     "stderr when stderr is a terminal.\n"
     "--log writes the decoded transaction log (one line per frame: time, mode command, fields\n"
     "sent and received, CRC, additional data, outcome, violations), --log-json the same as JSON\n"
@@ -237,6 +239,21 @@ std::string output_path(const std::string& base, const std::string& name, const 
   return (std::filesystem::path(base) / (name + ext)).string();
 }
 
+// Runs one scenario while a line on stderr shows which one and, after a second, the elapsed time.
+scenarios::ScenarioResult run_with_progress(const scenarios::Scenario& s, const scenarios::RunOptions& ro, std::size_t n,
+                                            std::size_t total) {
+  auto future = std::async(std::launch::async, [&] { return scenarios::run_scenario(s, ro); });
+  const auto begin = std::chrono::steady_clock::now();
+  const std::string label = "[" + std::to_string(n) + "/" + std::to_string(total) + "] " + s.name;
+  std::cerr << "\r\033[K" << label << std::flush;
+  while (future.wait_for(std::chrono::milliseconds(250)) != std::future_status::ready) {
+    const auto tenths = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - begin).count() / 100;
+    if (tenths >= 10) std::cerr << "\r\033[K" << label << " (" << tenths / 10 << "." << tenths % 10 << " s)" << std::flush;
+  }
+  std::cerr << "\r\033[K" << std::flush;
+  return future.get();
+}
+
 int run(const Options& o) {
   std::vector<scenarios::Scenario> loaded;
   std::set<std::string> names;
@@ -249,19 +266,17 @@ int run(const Options& o) {
   const bool many = loaded.size() > 1;
   LogSink log(o.log), log_json(o.log_json);
   // Progress only where someone watches it: not in logs, pipes or CI.
-  const bool progress = many && !o.quiet && isatty(STDERR_FILENO) != 0;
+  const bool progress = !o.quiet && isatty(STDERR_FILENO) != 0;
   nlohmann::json all = nlohmann::json::array();
   std::vector<scenarios::ScenarioResult> results;
   bool passed = true;
   for (std::size_t i = 0; i < loaded.size(); ++i) {
     const auto& s = loaded[i];
-    if (progress) std::cerr << "\r\033[K[" << i + 1 << "/" << loaded.size() << "] " << s.name << std::flush;
     scenarios::RunOptions ro;
     ro.seed = o.seed;
     if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", many);
     if (o.vcd && o.gtkw) write_gtkw(*ro.vcd_path);
-    auto result = scenarios::run_scenario(s, ro);
-    if (progress) std::cerr << "\r\033[K" << std::flush;
+    auto result = progress ? run_with_progress(s, ro, i + 1, loaded.size()) : scenarios::run_scenario(s, ro);
     passed = passed && result.passed();
     if (!o.quiet || !result.passed()) {
       std::ostringstream summary;

@@ -59,6 +59,25 @@ check(r.returncode == 0 and "\033" not in r.stdout and r.stderr == "", "pipe: no
 r = run("run", clean, "--color", "always")
 check(r.returncode == 0 and "\033[32mPASS\033[0m endat21_1mhz_10m" in r.stdout, "--color always", r)
 
+# On a terminal (script(1) gives the command a pty): a progress line and coloured verdicts;
+# NO_COLOR turns the colour off, not the progress.
+def on_terminal(args, no_color=False):
+    env = dict(os.environ)
+    env.pop("NO_COLOR", None)
+    if no_color:
+        env["NO_COLOR"] = "1"
+    command = " ".join("'" + a + "'" for a in [endatsim, *args])
+    return subprocess.run(["script", "-qec", command, "/dev/null"], capture_output=True, text=True, timeout=300, env=env)
+
+
+r = on_terminal(["run", clean, uncompensated])
+check(r.returncode == 0 and "[1/2] endat21_1mhz_10m" in r.stdout and "[2/2] endat22_2mhz_100m_uncompensated" in r.stdout
+      and "\033[32mPASS\033[0m endat21_1mhz_10m" in r.stdout, "terminal: progress and colour", r)
+r = on_terminal(["run", clean], no_color=True)
+check(r.returncode == 0 and "[1/1] endat21_1mhz_10m" in r.stdout and "\033[32m" not in r.stdout, "terminal with NO_COLOR", r)
+r = on_terminal(["run", clean, "--quiet"])
+check(r.returncode == 0 and "[1/1]" not in r.stdout, "terminal with --quiet: no progress", r)
+
 # JUnit, JSON results, transaction logs.
 failing = path("failing.json")
 with open(failing, "w") as f:
