@@ -13,6 +13,7 @@ using sim::format_time;
 
 constexpr unsigned kTurnaroundEdge = 9;       // FE9: the master has sent its mode bits (timing-model §1.2)
 constexpr Time kCalculationTimeMax = sim::ms(1);  // 2.3.2 t_cal maximum
+constexpr Time kMemoryAccessMax = sim::ms(12);    // 2.3.2 t_ac maximum
 constexpr Time kPeriodAtMinimumFc = sim::us(10);  // 2.3.2 note 6: T = 1/f_c min (100 kHz)
 
 }  // namespace
@@ -82,6 +83,10 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
   const auto carried_by = std::upper_bound(current_.rising.begin(), current_.rising.end(), launched);
   start_clock_ = static_cast<unsigned>(carried_by - current_.rising.begin());
   if (start_clock_ == 0) return;
+  if (current_.header.payload_bits != 0) {
+    check_memory_access_time();
+    return;
+  }
   const Time t_cal = current_.rising[start_clock_ - 1] - current_.fe1;
   const Time limit = kCalculationTimeMax + sim::period_of(current_.header.f_c);
   if (t_cal > limit)
@@ -89,6 +94,19 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
             kernel_.now(), current_.header.index, start_clock_, format_time(t_cal),
             "<= 1 ms + T = " + format_time(limit), Severity::Error,
             "the start bit came later than the longest calculation time allows"}, "start bit");
+}
+
+// 2.1 parameter frames: the acknowledgment's start bit waits for the memory access, which
+// begins with the last bit of the master's 8 + 16 (timing-model §7, "in the frame").
+void TimingChecker::check_memory_access_time() {
+  const unsigned last_payload = kTurnaroundEdge - 1 + current_.header.payload_bits;
+  if (start_clock_ <= last_payload) return;
+  const Time t_ac = current_.rising[start_clock_ - 1] - current_.rising[last_payload - 1];
+  const Time limit = kMemoryAccessMax + sim::period_of(current_.header.f_c);
+  if (t_ac > limit)
+    report({std::string(check::kMemoryAccess), "2.3.2 t_ac maximum 12 ms", ObservationPoint::EncoderPins,
+            kernel_.now(), current_.header.index, start_clock_, format_time(t_ac), "<= 12 ms + T = " + format_time(limit),
+            Severity::Error, "the acknowledgment came later than the longest memory access time allows"}, "start bit");
 }
 
 void TimingChecker::on_master_data(std::uint64_t level) {

@@ -72,7 +72,7 @@ std::span<const std::string_view> check::all() {
                                     kPulseLow,       kSamplingWindow,   kRecovery,             kContention,
                                     kDriverOff,      kDriverOn,         kCalculationTime,      kDataDelay,
                                     kShortRecoveryClock, kStartDelay,   kFloatingData,         kErrorRecovery,
-                                    kDataDelayTolerance, kClockCount};
+                                    kDataDelayTolerance, kClockCount,  kMemoryAccess};
   return names;
 }
 

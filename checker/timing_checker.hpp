@@ -39,6 +39,7 @@ inline constexpr std::string_view kFloatingData = "floating_data";
 inline constexpr std::string_view kErrorRecovery = "error_recovery";
 inline constexpr std::string_view kDataDelayTolerance = "t_d_tolerance";
 inline constexpr std::string_view kClockCount = "clock_count";
+inline constexpr std::string_view kMemoryAccess = "t_ac";
 // Every check name above, for loaders and reports.
 std::span<const std::string_view> all();
 }  // namespace check
@@ -126,6 +127,7 @@ class TimingChecker final : public master::MasterObserver {
   void on_master_driven(std::uint64_t driven);
   void check_start_delay(const PinFrame& f);
   void check_delay_tolerance(Time t_d);
+  void check_memory_access_time();
   void check_clock_count(const PinFrame& f);
   std::string field_of(const master::FrameResult& frame, unsigned clock) const;
   void check_encoder_sample(unsigned clock);

@@ -93,6 +93,25 @@ class Node {
     if (f < min || f > max) fail(range);
     return f;
   }
+  // An integer given as a number or as a string in hex ("0xA5B4") or decimal: memory words,
+  // addresses and MRS codes read best in hex.
+  std::uint64_t as_word(std::uint64_t max) const {
+    const std::string what = "an integer 0 .. " + std::to_string(max) + " or a hex string such as \"0x1F\"";
+    if (!j_.is_string()) {
+      if (!j_.is_number_unsigned() && !(j_.is_number_integer() && j_.get<std::int64_t>() >= 0)) fail(what);
+      if (j_.get<std::uint64_t>() > max) fail(what);
+      return j_.get<std::uint64_t>();
+    }
+    const std::string s = j_.get<std::string>();
+    const bool hex = s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
+    const std::string digits = hex ? s.substr(2) : s;
+    if (digits.empty() || digits.size() > 16 ||
+        digits.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789") != std::string::npos)
+      fail(what);
+    const std::uint64_t v = std::stoull(digits, nullptr, hex ? 16 : 10);
+    if (v > max) fail(what);
+    return v;
+  }
   template <class E>
   E as_enum(std::initializer_list<std::pair<std::string_view, E>> choices) const {
     std::string names;
@@ -198,6 +217,84 @@ void read_line(const Node& n, line::LineParams& p) {
   validated(n, [&] { p.validate(); });
 }
 
+std::vector<std::uint16_t> read_words(const Node& n, std::size_t max) {
+  if (!n.raw().is_array() || n.raw().size() > max) n.fail("an array of at most " + std::to_string(max) + " words");
+  std::vector<std::uint16_t> words;
+  for (std::size_t i = 0; i < n.raw().size(); ++i)
+    words.push_back(static_cast<std::uint16_t>(Node(n.raw()[i], n.path() + "/" + std::to_string(i), n.file()).as_word(0xFFFF)));
+  return words;
+}
+
+protocol::Information read_information(const Node& n) {
+  const auto i = protocol::information_from_key(n.as_string());
+  if (!i) n.fail("an information code of 2.3.5 such as \"temperature_1\"");
+  return *i;
+}
+
+void read_sensors(const Node& n, slave::Sensors& s) {
+  Object o(n);
+  const auto tenth_kelvin = [](const Node& v) { return static_cast<std::uint16_t>(v.as_uint(0, 0xFFFF)); };
+  if (auto v = o.opt("position2_offset")) s.position2_offset = v->as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
+  if (auto v = o.opt("temperature_1")) s.temperature1 = tenth_kelvin(*v);
+  if (auto v = o.opt("temperature_2")) s.temperature2 = tenth_kelvin(*v);
+  if (auto v = o.opt("additional_sensors")) s.additional_sensors = read_words(*v, 16);
+  if (auto v = o.opt("commutation")) s.commutation = static_cast<std::uint8_t>(v->as_uint(0, 7));
+  if (auto v = o.opt("acceleration")) s.acceleration = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+  if (auto v = o.opt("limit_position_1")) s.limit_position_1 = v->as_bool();
+  if (auto v = o.opt("limit_position_2")) s.limit_position_2 = v->as_bool();
+  if (auto v = o.opt("operating_status_error_sources"))
+    s.operating_status_error_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+  if (auto v = o.opt("diagnosis")) {
+    if (!v->raw().is_array()) v->fail("an array of {\"address\", \"value\"}");
+    s.diagnosis.clear();
+    for (std::size_t i = 0; i < v->raw().size(); ++i) {
+      const Node item(v->raw()[i], v->path() + "/" + std::to_string(i), n.file());
+      Object d(item);
+      const auto address = static_cast<std::uint8_t>(d.req("address").as_word(0xFF));
+      s.diagnosis.emplace_back(address, static_cast<std::uint8_t>(d.req("value").as_word(0xFF)));
+      d.done();
+    }
+  }
+  if (auto v = o.opt("test_values")) {
+    if (!v->raw().is_object()) v->fail("an object of port address -> 40-bit test value");
+    for (const auto& [port, value] : v->raw().items()) {
+      const json key = port;
+      const auto a = static_cast<std::uint8_t>(Node(key, v->path() + "/" + port, n.file()).as_word(0xFF));
+      s.test_values[a] = Node(value, v->path() + "/" + port, n.file()).as_word((std::uint64_t{1} << 40) - 1);
+    }
+  }
+  if (auto v = o.opt("timestamp_unit")) s.timestamp_unit = v->as_duration(sim::ns(1), sim::ms(1));
+  if (auto v = o.opt("not_updatable")) {
+    if (!v->raw().is_array()) v->fail("an array of information codes");
+    for (std::size_t i = 0; i < v->raw().size(); ++i)
+      s.not_updatable.push_back(read_information(Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file())));
+  }
+  o.done();
+}
+
+// Memory areas given as arrays of words replace those of the default image (3.1).
+void read_memory(const Node& n, slave::EncoderParams& p) {
+  if (!n.raw().is_object()) n.fail("an object of memory area -> array of words");
+  slave::MemoryImage image = slave::default_memory_image(p);
+  for (const auto& [key, value] : n.raw().items()) {
+    const Node item(value, n.path() + "/" + key, n.file());
+    if (key == "section2_blocks") {
+      if (!value.is_array() || value.size() > 256) item.fail("an array of at most 256 blocks of 256 words");
+      image.section2_blocks.clear();
+      for (std::size_t i = 0; i < value.size(); ++i)
+        image.section2_blocks.push_back(read_words(Node(value[i], item.path() + "/" + std::to_string(i), n.file()), 256));
+      continue;
+    }
+    const auto area = protocol::memory_area_from_key(key);
+    if (!area || *area == protocol::MemoryArea::Section2 || *area == protocol::MemoryArea::AsynchronousPosition)
+      item.fail_raw("unknown memory area \"" + key + "\" (expected operating_status, manufacturer_1 .. 3, "
+                    "operating_parameters, oem_1 .. 4, compensation_1 .. 4, manufacturer_endat22, "
+                    "operating_parameters2 or section2_blocks)");
+    image.areas[*area] = read_words(item, 256);
+  }
+  p.memory = image;
+}
+
 void read_encoder(const Node& n, slave::EncoderParams& p) {
   Object o(n);
   using slave::EncoderKind;
@@ -220,11 +317,28 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     p.type1 = v->as_enum<slave::Type1Handling>(
         {{"abort_high", slave::Type1Handling::AbortHigh}, {"no_start_bit", slave::Type1Handling::NoStartBit}});
   if (auto v = o.opt("error1")) p.error1 = v->as_bool();
+  if (auto v = o.opt("error_sources")) p.error_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+  if (auto v = o.opt("warning_sources")) p.warning_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+  if (auto v = o.opt("t_ac_read")) p.t_ac_read = v->as_duration(Time::zero(), sim::ms(12));
+  if (auto v = o.opt("t_ac_write")) p.t_ac_write = v->as_duration(Time::zero(), sim::ms(12));
+  if (auto v = o.opt("t_ac_placement"))
+    p.t_ac_placement = v->as_enum<slave::MemoryAccessPlacement>(
+        {{"in_frame", slave::MemoryAccessPlacement::InFrame}, {"after_frame", slave::MemoryAccessPlacement::AfterFrame}});
+  if (auto v = o.opt("supplement_end_marker_delay"))
+    p.supplement_end_marker_delay = v->as_duration(Time::zero(), sim::us(1));
+  if (auto v = o.opt("supplement_ignore_clocks")) p.supplement_ignore_clocks = static_cast<unsigned>(v->as_uint(0, 16));
+  if (auto v = o.opt("communication_command_permitted")) p.communication_command_permitted = v->as_bool();
+  if (auto v = o.opt("sensors")) read_sensors(*v, p.sensors);
   if (auto v = o.opt("motion")) {
     Object m(*v);
     if (auto s = m.opt("start")) p.motion.start = s->as_uint(0, (std::uint64_t{1} << 48) - 1);
     if (auto s = m.opt("counts_per_s")) p.motion.counts_per_s = s->as_int(-(std::int64_t{1} << 48), std::int64_t{1} << 48);
     m.done();
+  }
+  // Last: the default image follows the parameters read above (word 13, t_m_short, version).
+  if (auto v = o.opt("memory")) {
+    read_memory(*v, p);
+    validated(*v, [&] { p.validate(); });
   }
   o.done();
   validated(n, [&] { p.validate(); });
@@ -246,6 +360,10 @@ void read_master(const Node& n, master::MasterParams& p) {
   if (auto v = o.opt("error_wait")) p.error_wait = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("start_bit_timeout")) p.start_bit_timeout = v->as_duration(sim::ps(1), sim::ms(100));
   if (auto v = o.opt("type1_detect_samples")) p.type1_detect_samples = static_cast<unsigned>(v->as_uint(1, 64));
+  if (auto v = o.opt("memory_access_timeout")) p.memory_access_timeout = v->as_duration(sim::ps(1), sim::ms(100));
+  if (auto v = o.opt("supplement_lead_bits")) p.supplement_lead_bits = static_cast<unsigned>(v->as_uint(1, 32));
+  if (auto v = o.opt("supplement_driven_lead_bits"))
+    p.supplement_driven_lead_bits = static_cast<unsigned>(v->as_uint(1, 32));
   if (auto v = o.opt("start_bit_detection"))
     p.start_bit_detection = v->as_enum<master::StartBitDetection>(
         {{"wait_low_then_high", master::StartBitDetection::WaitLowThenHigh},
@@ -291,46 +409,180 @@ std::uint8_t read_mode_bits(const Node& n) {
   return static_cast<std::uint8_t>(std::stoul(s, nullptr, 2));
 }
 
-master::Operation read_operation(const Node& n) {
+std::uint8_t read_byte(const Node& n) { return static_cast<std::uint8_t>(n.as_word(0xFF)); }
+std::uint16_t read_word16(const Node& n) { return static_cast<std::uint16_t>(n.as_word(0xFFFF)); }
+
+// 2.4.1 / 2.4.2.1: an MRS code as a number, a hex string or the name of a memory area.
+std::uint8_t read_mrs(const Node& n) {
+  if (n.raw().is_string()) {
+    const std::string s = n.raw().get<std::string>();
+    if (const auto a = protocol::memory_area_from_key(s)) return protocol::info(*a).mrs;
+    if (s.rfind("0x", 0) != 0 && s.rfind("0X", 0) != 0) {
+      std::string names;
+      for (const auto& a : protocol::memory_areas()) names += (names.empty() ? "" : ", ") + std::string(a.key);
+      n.fail("an MRS code such as \"0xA9\" or a memory area (" + names + ")");
+    }
+  }
+  return read_byte(n);
+}
+
+// "2.1" (default) or "2.2": which type of mode command carries the access.
+bool read_endat22(Object& o) {
+  auto v = o.opt("command_type");
+  return v && v->as_enum<bool>({{"2.1", false}, {"2.2", true}});
+}
+
+AdditionalDataExpectation read_additional_data_expectation(const Node& n) {
+  Object o(n);
+  AdditionalDataExpectation e;
+  const Node code = o.req("information");
+  const auto i = protocol::information_from_key(code.as_string());
+  if (!i) {
+    std::string names;
+    for (const auto& c : protocol::information_codes()) names += (names.empty() ? "" : ", ") + std::string(c.key);
+    code.fail("an information code (" + names + ")");
+  }
+  e.information = *i;
+  if (auto v = o.opt("data")) e.data = read_word16(*v);
+  if (auto v = o.opt("busy")) e.busy = v->as_bool();
+  o.done();
+  return e;
+}
+
+FrameExpectation read_frame_expectation(const Node& n) {
+  Object o(n);
+  FrameExpectation e;
+  if (auto v = o.opt("outcome"))
+    e.outcome = std::string(v->as_enum<std::string_view>({{"ok", "ok"},
+                                                          {"crc_error", "crc_error"},
+                                                          {"no_start_bit", "no_start_bit"},
+                                                          {"type1_error", "type1_error"},
+                                                          {"type2_error", "type2_error"}}));
+  if (auto v = o.opt("position")) e.position = v->as_uint(0, (std::uint64_t{1} << 48) - 1);
+  if (auto v = o.opt("error1")) e.error1 = v->as_bool();
+  if (auto v = o.opt("echo_address")) e.echo_address = read_byte(*v);
+  if (auto v = o.opt("echo_parameter")) e.echo_parameter = read_word16(*v);
+  if (auto v = o.opt("test_value")) e.test_value = v->as_word((std::uint64_t{1} << 40) - 1);
+  if (auto v = o.opt("additional_data")) {
+    if (!v->raw().is_array() || v->raw().size() > 2) v->fail("an array of at most two additional data");
+    std::vector<AdditionalDataExpectation> list;
+    for (std::size_t i = 0; i < v->raw().size(); ++i)
+      list.push_back(read_additional_data_expectation(Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file())));
+    e.additional_data = list;
+  }
+  o.done();
+  return e;
+}
+
+// Operations named after the spec's procedures map onto mode commands with their 8 + 16 bits.
+void read_access(Object& o, const std::string& op, master::Operation& x) {
+  using MC = protocol::ModeCommand;
+  if (op == "select_memory_area") {
+    const bool v22 = read_endat22(o);
+    x.command = v22 ? MC::EncoderSendPositionValuesAndSelectionOfMemoryArea : MC::SelectionOfMemoryArea;
+    x.address = read_mrs(o.req("mrs"));
+    if (auto v = o.opt("block")) {
+      if (!v22) v->fail_raw("a block address needs \"command_type\": \"2.2\" (2.4.2)");
+      x.parameter = read_byte(*v);
+    }
+  } else if (op == "write_parameter") {
+    x.command = read_endat22(o) ? MC::EncoderSendPositionValuesAndReceiveParameter : MC::EncoderReceiveParameters;
+    x.address = read_byte(o.req("address"));
+    x.parameter = read_word16(o.req("value"));
+  } else if (op == "read_parameter") {
+    x.command = read_endat22(o) ? MC::EncoderSendPositionValuesAndSendParameter : MC::EncoderSendParameters;
+    x.address = read_byte(o.req("address"));
+  } else if (op == "test_command") {
+    x.command = read_endat22(o) ? MC::EncoderSendPositionValuesAndReceiveTestCommand : MC::EncoderReceiveTestCommand;
+    x.address = read_byte(o.req("port"));
+  } else if (op == "select_additional_data") {
+    x.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+    const Node code = o.req("additional_data");
+    const std::string key = code.as_string();
+    const auto i = protocol::information_from_key(key);
+    if (key == "stop_1") x.address = protocol::kStopAdditionalData1;
+    else if (key == "stop_2") x.address = protocol::kStopAdditionalData2;
+    else if (i) x.address = protocol::selection_mrs(*i);
+    else code.fail("an information code of 2.3.5 (e.g. temperature_1, memory_parameter_lsb) or stop_1 / stop_2");
+  } else if (op == "communication_command") {
+    x.command = MC::EncoderReceiveCommunicationCommand;
+    x.address = read_byte(o.req("address"));
+    x.parameter = read_word16(o.req("instruction"));
+  } else if (op == "reset") {
+    x.command = MC::EncoderReceiveReset;
+  } else if (op == "error_reset") {
+    x.command = MC::EncoderSendPositionValuesAndReceiveErrorReset;
+  } else if (op == "send_test_values") {
+    x.command = MC::EncoderSendTestValues;
+  }
+}
+
+void read_frame_operation(Object& o, const std::string& name, master::Operation& op) {
+  const bool generic = name == "frame";
+  if (generic) op.command = read_command(o.req("command"));
+  else if (auto v = o.opt("command")) op.command = read_command(*v);
+  if (!generic && protocol::info(op.command).answer != protocol::AnswerFormat::Position)
+    o.req("command").fail("a position command; use \"op\": \"frame\" for the others");
+  const auto& c = protocol::info(op.command);
+  if (generic && (c.payload_bits != 0 || c.supplement)) {
+    if (auto v = o.opt("address")) op.address = read_byte(*v);
+    if (auto v = o.opt("parameter")) op.parameter = read_word16(*v);
+  }
+  if (auto v = o.opt("mode_bits")) op.mode_bits = read_mode_bits(*v);
+  if (auto v = o.opt("count")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
+  if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
+  if (auto v = o.opt("continuous_words")) {
+    op.continuous_words = static_cast<unsigned>(v->as_uint(0, 100'000));
+    if (op.continuous_words > 0 && op.command != protocol::ModeCommand::EncoderSendPositionValues)
+      v->fail_raw("a continuous clock is only possible with encoder_send_position_values (spec 2.3.1)");
+  }
+}
+
+master::Operation read_operation(const Node& n, std::optional<FrameExpectation>& expect) {
   Object o(n);
   master::Operation op;
   using Kind = master::Operation::Kind;
-  op.kind = o.req("op").as_enum<Kind>(
-      {{"measure_delay", Kind::MeasureDelay}, {"read_position", Kind::ReadPosition}, {"wait", Kind::Wait}});
+  const Node kind = o.req("op");
+  const auto name = std::string(kind.as_enum<std::string_view>(
+      {{"measure_delay", "measure_delay"}, {"read_position", "read_position"}, {"frame", "frame"},
+       {"wait", "wait"}, {"await_not_busy", "await_not_busy"}, {"select_memory_area", "select_memory_area"},
+       {"write_parameter", "write_parameter"}, {"read_parameter", "read_parameter"},
+       {"test_command", "test_command"}, {"select_additional_data", "select_additional_data"},
+       {"communication_command", "communication_command"}, {"reset", "reset"}, {"error_reset", "error_reset"},
+       {"send_test_values", "send_test_values"}}));
+  op.kind = name == "measure_delay" ? Kind::MeasureDelay
+            : name == "wait"         ? Kind::Wait
+            : name == "await_not_busy" ? Kind::AwaitNotBusy
+                                       : Kind::ReadPosition;
   if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), sim::ms(60'000));
-  switch (op.kind) {
-    case Kind::MeasureDelay:
-    case Kind::AwaitNotBusy:
-      break;
-    case Kind::Wait:
-      op.duration = o.req("duration").as_duration(Time::zero(), sim::ms(60'000));
-      break;
-    case Kind::ReadPosition:
-      if (auto v = o.opt("command")) op.command = read_command(*v);
-      if (op.command != protocol::ModeCommand::EncoderSendPositionValues &&
-          op.command != protocol::ModeCommand::EncoderSendPositionValuesWithAdditionalData)
-        o.req("command").fail("a position command (encoder_send_position_values or "
-                              "encoder_send_position_values_with_additional_data)");
-      if (auto v = o.opt("mode_bits")) op.mode_bits = read_mode_bits(*v);
-      if (auto v = o.opt("count")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
-      if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
-      if (auto v = o.opt("continuous_words")) {
-        op.continuous_words = static_cast<unsigned>(v->as_uint(0, 100'000));
-        if (op.continuous_words > 0 && op.command != protocol::ModeCommand::EncoderSendPositionValues)
-          v->fail_raw("a continuous clock is only possible with encoder_send_position_values (spec 2.3.1)");
-      }
-      break;
+  if (auto v = o.opt("expect")) {
+    if (op.kind == Kind::Wait || op.kind == Kind::MeasureDelay) v->fail_raw("\"expect\" needs an operation that sends frames");
+    expect = read_frame_expectation(*v);
+  }
+  if (op.kind == Kind::Wait) {
+    op.duration = o.req("duration").as_duration(Time::zero(), sim::ms(60'000));
+  } else if (op.kind == Kind::AwaitNotBusy) {
+    op.count = 1000;
+    op.cycle = sim::us(50);
+    if (auto v = o.opt("max_polls")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
+    if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
+  } else if (name == "read_position" || name == "frame") {
+    read_frame_operation(o, name, op);
+  } else if (op.kind == Kind::ReadPosition) {
+    read_access(o, name, op);
   }
   o.done();
   return op;
 }
 
-void read_script(const Node& n, std::vector<master::Operation>& script) {
+void read_script(const Node& n, std::vector<master::Operation>& script,
+                 std::vector<std::optional<FrameExpectation>>& expectations) {
   if (!n.raw().is_array() || n.raw().empty()) n.fail("a non-empty array of operations");
   std::optional<Time> last_at;
   for (std::size_t i = 0; i < n.raw().size(); ++i) {
     const Node item(n.raw()[i], n.path() + "/" + std::to_string(i), n.file());
-    script.push_back(read_operation(item));
+    expectations.emplace_back();
+    script.push_back(read_operation(item, expectations.back()));
     if (const auto at = script.back().at) {
       if (last_at && *at < *last_at)
         Node(item.raw()["at"], item.path() + "/at", n.file())
@@ -377,7 +629,8 @@ void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std
 
 void read_expect(const Node& n, Expectations& e) {
   Object o(n);
-  static constexpr std::array<std::string_view, 4> kOutcomes{"ok", "crc_error", "no_start_bit", "type1_error"};
+  static constexpr std::array<std::string_view, 5> kOutcomes{"ok", "crc_error", "no_start_bit", "type1_error",
+                                                             "type2_error"};
   if (auto v = o.opt("outcomes")) read_count_map(*v, e.outcomes, kOutcomes);
   if (auto v = o.opt("positions_match_encoder")) e.positions_match_encoder = v->as_bool();
   if (auto v = o.opt("positions")) {
@@ -400,6 +653,24 @@ void read_expect(const Node& n, Expectations& e) {
   }
   if (auto v = o.opt("violations")) read_count_map(*v, e.violations, checker::check::all());
   if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);
+  if (auto v = o.opt("max_busy_timeouts")) e.max_busy_timeouts = v->as_uint(0, UINT64_MAX);
+  if (auto v = o.opt("memory")) {
+    if (!v->raw().is_array()) v->fail("an array of {\"area\", \"address\", \"value\"}");
+    for (std::size_t i = 0; i < v->raw().size(); ++i) {
+      const Node item(v->raw()[i], v->path() + "/" + std::to_string(i), n.file());
+      Object m(item);
+      MemoryExpectation me;
+      const Node area = m.req("area");
+      const auto a = protocol::memory_area_from_key(area.as_string());
+      if (!a) area.fail("a memory area name such as \"oem_1\"");
+      me.area = *a;
+      if (auto b = m.opt("block")) me.block = read_byte(*b);
+      me.address = read_byte(m.req("address"));
+      me.value = read_word16(m.req("value"));
+      m.done();
+      e.memory.push_back(me);
+    }
+  }
   o.done();
 }
 
@@ -420,7 +691,7 @@ Scenario read_scenario(const json& root, const std::string& file) {
   read_master(o.req("master"), s.master);
   s.master.seed = s.seed;
   if (auto v = o.opt("checker")) read_checker(*v, s.checker);
-  read_script(o.req("script"), s.script);
+  read_script(o.req("script"), s.script, s.operation_expectations);
   if (auto v = o.opt("events")) read_events(*v, s.line, s.events);
   if (auto v = o.opt("expect")) read_expect(*v, s.expect);
   o.done();

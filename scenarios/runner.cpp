@@ -30,7 +30,9 @@ PositionComparison compare_positions_with_encoder(const Scenario& s, const Scena
   std::string detail;
   std::uint64_t compared = 0;
   for (const auto& f : r.frames) {
-    if (f.measurement || f.outcome != master::FrameOutcome::Ok) continue;
+    if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
+        protocol::info(f.command).answer != protocol::AnswerFormat::Position)
+      continue;
     const auto* ef = encoder_frame_for(r, f, clock_path);
     ++compared;
     // Word k > 0 of a continuous clock was latched at the falling edge after the HIGH bit.
@@ -58,7 +60,9 @@ void judge_positions(const Scenario& s, ScenarioResult& r) {
   if (e.positions) {
     std::vector<std::uint64_t> read;
     for (const auto& f : r.frames)
-      if (!f.measurement && f.outcome == master::FrameOutcome::Ok) read.push_back(f.position);
+      if (!f.measurement && f.outcome == master::FrameOutcome::Ok &&
+          protocol::info(f.command).answer == protocol::AnswerFormat::Position)
+        read.push_back(f.position);
     const bool ok = read == *e.positions;
     std::string detail = ok ? "all " + std::to_string(read.size()) + " as expected" : "read";
     if (!ok)
@@ -91,6 +95,69 @@ void judge_delay(const Scenario& s, ScenarioResult& r) {
   }
 }
 
+std::string hex(std::uint64_t v, int digits) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  std::string s;
+  for (int i = digits - 1; i >= 0; --i) s += kDigits[(v >> (4 * i)) & 0xF];
+  return "0x" + s;
+}
+
+// One operation's "expect", against the last frame the operation sent.
+void judge_operation(std::size_t index, const FrameExpectation& e, ScenarioResult& r) {
+  const master::FrameResult* f = nullptr;
+  for (const auto& x : r.frames)
+    if (x.operation == index) f = &x;
+  const std::string name = "script/" + std::to_string(index) + "/expect";
+  if (f == nullptr) {
+    r.expectations.push_back({name, false, "the operation sent no frame"});
+    return;
+  }
+  std::vector<std::string> wrong;
+  const auto differ = [&](const std::string& what, const std::string& got, const std::string& want) {
+    if (got != want) wrong.push_back(what + " " + got + " (expected " + want + ")");
+  };
+  if (e.outcome) differ("outcome", std::string(master::to_string(f->outcome)), *e.outcome);
+  if (e.position) differ("position", std::to_string(f->position), std::to_string(*e.position));
+  if (e.error1) differ("F1", std::to_string(f->error1), std::to_string(*e.error1));
+  if (e.echo_address) differ("echo address", hex(f->echo_address, 2), hex(*e.echo_address, 2));
+  if (e.echo_parameter) differ("echo parameter", hex(f->echo_parameter, 4), hex(*e.echo_parameter, 4));
+  if (e.test_value) differ("test value", hex(f->test_value, 10), hex(*e.test_value, 10));
+  if (e.additional_data) {
+    differ("additional data count", std::to_string(f->additional_data.size()), std::to_string(e.additional_data->size()));
+    for (std::size_t i = 0; i < e.additional_data->size() && i < f->additional_data.size(); ++i) {
+      const auto& want = (*e.additional_data)[i];
+      const auto& got = f->additional_data[i];
+      const std::string at = "additional data " + std::to_string(i) + " ";
+      differ(at + "information", std::string(protocol::info(got.information()).key),
+             std::string(protocol::info(want.information).key));
+      if (want.data) differ(at + "data", hex(got.data, 4), hex(*want.data, 4));
+      if (want.busy) differ(at + "busy", std::to_string(got.busy()), std::to_string(*want.busy));
+    }
+  }
+  std::string detail = "frame " + std::to_string(f->index);
+  for (const auto& w : wrong) detail += "; " + w;
+  r.expectations.push_back({name, wrong.empty(), detail});
+}
+
+void judge_memory(const Scenario& s, ScenarioResult& r) {
+  for (const auto& m : s.expect.memory) {
+    const auto& areas = r.encoder_memory.areas;
+    const std::vector<std::uint16_t>* words = nullptr;
+    if (m.area == protocol::MemoryArea::Section2) {
+      if (m.block < r.encoder_memory.section2_blocks.size()) words = &r.encoder_memory.section2_blocks[m.block];
+    } else if (const auto it = areas.find(m.area); it != areas.end()) {
+      words = &it->second;
+    }
+    const std::string name = "memory." + std::string(protocol::info(m.area).key) + "/" + hex(m.address, 2);
+    if (words == nullptr || m.address >= words->size()) {
+      r.expectations.push_back({name, false, "the encoder has no such word"});
+      continue;
+    }
+    const std::uint16_t v = (*words)[m.address];
+    r.expectations.push_back({name, v == m.value, hex(v, 4) + " (expected " + hex(m.value, 4) + ")"});
+  }
+}
+
 void judge(const Scenario& s, ScenarioResult& r) {
   r.expectations.push_back({"script finished", r.finished,
                             r.finished ? "at " + sim::format_time(r.simulated)
@@ -111,6 +178,12 @@ void judge(const Scenario& s, ScenarioResult& r) {
     if (s.expect.violations.count(name) != 0 || n == 0) continue;
     r.expectations.push_back({"violations." + name, false, std::to_string(n) + " (expected none: not listed)"});
   }
+  for (std::size_t i = 0; i < s.operation_expectations.size(); ++i)
+    if (s.operation_expectations[i]) judge_operation(i, *s.operation_expectations[i], r);
+  judge_memory(s, r);
+  if (s.expect.max_busy_timeouts)
+    r.expectations.push_back({"max_busy_timeouts", r.busy_timeouts <= *s.expect.max_busy_timeouts,
+                              std::to_string(r.busy_timeouts)});
   if (s.expect.max_cycle_overruns) {
     r.expectations.push_back({"max_cycle_overruns", r.cycle_overruns <= *s.expect.max_cycle_overruns,
                               std::to_string(r.cycle_overruns)});
@@ -188,6 +261,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.encoder_frames = encoder.frames();
   r.violations = checker.violations();
   r.cycle_overruns = master.cycle_overruns();
+  r.busy_timeouts = master.busy_timeouts();
+  r.encoder_memory = encoder.memory().image();
   judge(scenario, r);
   return r;
 }

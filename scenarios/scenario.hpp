@@ -29,6 +29,31 @@ struct DelayExpectation {
   bool max_error_is_eighth = false;  // "T/8": an eighth of the period at the master's f_c
 };
 
+// What the last frame of one operation must show (an "expect" inside a script entry).
+struct AdditionalDataExpectation {
+  protocol::Information information = protocol::Information::Nop1;
+  std::optional<std::uint16_t> data;
+  std::optional<bool> busy;
+};
+
+struct FrameExpectation {
+  std::optional<std::string> outcome;           // master::to_string(FrameOutcome)
+  std::optional<std::uint64_t> position;
+  std::optional<bool> error1;
+  std::optional<std::uint8_t> echo_address;     // parameter frames
+  std::optional<std::uint16_t> echo_parameter;  // parameter frames: the parameter written or read
+  std::optional<std::uint64_t> test_value;
+  std::optional<std::vector<AdditionalDataExpectation>> additional_data;  // in wire order
+};
+
+// A word of the encoder's memory at the end of the run (ground truth, not what the master read).
+struct MemoryExpectation {
+  protocol::MemoryArea area = protocol::MemoryArea::OperatingStatus;
+  std::uint8_t block = 0;
+  std::uint8_t address = 0;
+  std::uint16_t value = 0;
+};
+
 struct Expectations {
   std::map<std::string, CountMatcher> outcomes;    // non-measurement frames by master::FrameOutcome
   std::optional<bool> positions_match_encoder;
@@ -36,6 +61,8 @@ struct Expectations {
   std::optional<DelayExpectation> delay_measurement;
   std::map<std::string, CountMatcher> violations;  // checks not listed must not occur
   std::optional<std::uint64_t> max_cycle_overruns;
+  std::vector<MemoryExpectation> memory;
+  std::optional<std::uint64_t> max_busy_timeouts;
 };
 
 // Something that happens to the line while the script runs (a connector swap, a cable change).
@@ -56,6 +83,7 @@ struct Scenario {
   master::MasterParams master;
   checker::CheckerParams checker;
   std::vector<master::Operation> script;
+  std::vector<std::optional<FrameExpectation>> operation_expectations;  // one per script entry
   std::vector<LineEvent> events;
   Expectations expect;
 };
