@@ -1,6 +1,7 @@
 #include "scenarios/transaction_log.hpp"
 
 #include <bitset>
+#include <cstdio>
 
 namespace endatsim::scenarios {
 namespace {
@@ -8,6 +9,12 @@ namespace {
 using nlohmann::ordered_json;
 
 std::string mode_bits_text(std::uint8_t bits) { return std::bitset<6>(bits).to_string(); }
+
+std::string hex(std::uint64_t value, int digits) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "0x%0*llX", digits, static_cast<unsigned long long>(value));
+  return buf;
+}
 
 std::string value_text(const ordered_json& v) {
   if (v.is_string()) return v.get<std::string>();
@@ -37,15 +44,36 @@ ordered_json transaction_of(const master::FrameResult& f, const std::vector<chec
   sent["f_c"] = sim::format_frequency(f.f_c);
   if (f.measurement) sent["delay_measurement"] = true;
   if (f.compensated) sent["t_d"] = sim::format_time(f.t_d_used);
+  if (f.payload) {  // 2.1 parameter frames: address / MRS code / port, then 16 bits
+    sent["address"] = hex(*f.payload >> 16 & 0xFFU, 2);
+    sent["parameter"] = hex(*f.payload & 0xFFFFU, 4);
+  }
+  if (f.supplement) {  // 2.2 command supplement
+    sent["supplement_address"] = hex(*f.supplement >> 16 & 0xFFU, 2);
+    sent["supplement_parameter"] = hex(*f.supplement & 0xFFFFU, 4);
+  }
   t["sent"] = sent;
 
   ordered_json received = ordered_json::object();
+  const auto& command = protocol::info(f.command);
   const bool word = f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError;
   if (f.start_bit_clock > 0) received["start_bit_clock"] = f.start_bit_clock;
   if (word) {
-    received["F1"] = f.error1 ? 1 : 0;
-    if (protocol::info(f.command).version == protocol::EndatVersion::V2_2) received["F2"] = f.error2 ? 1 : 0;
-    received["position"] = f.position;
+    switch (command.answer) {
+      case protocol::AnswerFormat::Position:
+        received["F1"] = f.error1 ? 1 : 0;
+        if (command.version == protocol::EndatVersion::V2_2) received["F2"] = f.error2 ? 1 : 0;
+        received["position"] = f.position;
+        break;
+      case protocol::AnswerFormat::TestValues:
+        received["F1"] = f.error1 ? 1 : 0;
+        received["test_value"] = hex(f.test_value, 10);
+        break;
+      case protocol::AnswerFormat::Parameter:
+        received["address"] = hex(f.echo_address, 2);
+        received["parameter"] = hex(f.echo_parameter, 4);
+        break;
+    }
     received["crc"] = f.crc_received;
   }
   received["clocks"] = f.clocks;
@@ -55,8 +83,19 @@ ordered_json transaction_of(const master::FrameResult& f, const std::vector<chec
   if (word) t["crc_ok"] = f.outcome == master::FrameOutcome::Ok;
   else t["crc_ok"] = nullptr;
   if (word && f.outcome == master::FrameOutcome::CrcError) t["crc_expected"] = f.crc_expected;
-  // Additional data words (2.2 mode commands) join here, name -> value, when the master decodes them.
-  t["additional"] = ordered_json::object();
+  // Additional data (2.3.5), in wire order, by information code: the 16 data bits, and the
+  // status flags and CRC only when they say something.
+  ordered_json additional = ordered_json::object();
+  if (word)
+    for (const auto& d : f.additional_data) {
+      const std::string key(protocol::info(d.information()).key);
+      additional[key] = hex(d.data, 4);
+      if (!d.crc_ok) additional[key + ".crc_ok"] = false;
+      if (d.busy()) additional[key + ".busy"] = true;
+      if ((d.status & protocol::AdditionalDataStatus::kWarning) != 0) additional[key + ".warning"] = true;
+      if ((d.status & protocol::AdditionalDataStatus::kReferenceMark) != 0) additional[key + ".reference_mark"] = true;
+    }
+  t["additional"] = additional;
   t["outcome"] = master::to_string(f.outcome);
 
   ordered_json vs = ordered_json::array();

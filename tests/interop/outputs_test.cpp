@@ -162,3 +162,29 @@ TEST(Diagram, WindowsAndBadRequests) {
     EXPECT_NE(std::string(e.what()).find("frame 999: the run has 5 frames (0 .. 4)"), std::string::npos) << e.what();
   }
 }
+
+TEST(TransactionLog, ParameterFramesAndAdditionalDataAreFields) {
+  const auto params = run_bundled("parameters_endat21_write_read");
+  bool parameter_frame = false;
+  for (auto t : scenarios::transactions(params.frames, params.violations)) {
+    if (t["command"] != "encoder_receive_parameters" || t["crc_ok"] != true) continue;
+    parameter_frame = true;
+    EXPECT_TRUE(t["sent"].contains("address")) << t.dump();
+    EXPECT_EQ(t["received"]["address"], t["sent"]["address"]) << t.dump();  // the encoder echoes the address
+    EXPECT_FALSE(t["received"].contains("position")) << t.dump();
+  }
+  EXPECT_TRUE(parameter_frame);
+
+  const auto additional = run_bundled("additional_data_rolling_selection");
+  std::size_t with_data = 0;
+  for (const auto& f : additional.frames) {
+    const auto t = scenarios::transaction_of(f, additional.violations);
+    EXPECT_EQ(t["additional"].size() > 0, !f.additional_data.empty() && t["crc_ok"].is_boolean()) << t.dump();
+    if (f.additional_data.empty()) continue;
+    ++with_data;
+    const std::string key(protocol::info(f.additional_data.front().information()).key);
+    ASSERT_TRUE(t["additional"].contains(key)) << t.dump();
+    EXPECT_NE(scenarios::transaction_line(t).find("additional: " + key + "="), std::string::npos);
+  }
+  EXPECT_GT(with_data, 0U);
+}
