@@ -1,8 +1,9 @@
 // protocol/ — what both ends of the line agree on, as data: the 14 mode commands
 // (mode_command.hpp, spec 2.3), the 5-bit CRC (crc.hpp, appendix A4), the bit layouts of
 // the frames (frame.hpp, 2.3.1, 2.3.5, 2.4–2.10), the MRS codes of the memory areas
-// (memory_area.hpp, 2.4), the additional-data information codes (additional_data.hpp, 2.3.5)
-// and the error causes of appendix A2 (error_handling.hpp). Master and encoder both use it;
+// (memory_area.hpp, 2.4), the additional-data information codes (additional_data.hpp, 2.3.5),
+// the error causes of appendix A2 (error_handling.hpp) and the meaning of the parameter words
+// of 3.5, 3.6 and 3.9 (parameters.hpp). Master and encoder both use it;
 // it depends on nothing else in endatsim.
 #pragma once
 
@@ -12,3 +13,4 @@
 #include "protocol/frame.hpp"
 #include "protocol/memory_area.hpp"
 #include "protocol/mode_command.hpp"
+#include "protocol/parameters.hpp"

@@ -1,0 +1,249 @@
+// The meaning of the parameter words (spec 3.5 parameters of the encoder manufacturer, 3.6
+// operating parameters, 3.9 parameters of the encoder manufacturer for EnDat 2.2): encode and
+// decode functions for the words the spec defines with worked examples, and human-readable
+// strings for reports. Every function cites its section.
+//
+// Details the text extraction of the spec lost (tables with a missing column, figures) are
+// marked "UNCERTAIN" with what was assumed; tests/parameters_test.cpp reproduces every worked
+// example that survived.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace endatsim::protocol::parameters {
+
+// Bit 15 "is always set to logical high for NVM checking" in words 8, 13, 30, 31 (3.5.4,
+// 3.5.6, 3.5.16, 3.5.17); word 14 carries its NVM bit in bit 0 (3.5.7).
+constexpr std::uint16_t kNvmBit15 = 0x8000;
+constexpr std::uint16_t kNvmBit0 = 0x0001;
+
+// 32-bit values spread over two words, the low word first (words 15/16, 20/21, 22/23; 3.5.8,
+// 3.5.12, 3.5.13).
+constexpr std::array<std::uint16_t, 2> split32(std::uint32_t v) {
+  return {static_cast<std::uint16_t>(v & 0xFFFF), static_cast<std::uint16_t>(v >> 16)};
+}
+constexpr std::uint32_t join32(std::uint16_t low, std::uint16_t high) {
+  return static_cast<std::uint32_t>(high) << 16 | low;
+}
+
+// ---- 3.5.4 word 8: version of the EnDat interface ----------------------------------------------
+// Example "Version 4" = 8004h. Only the integer part of the version is stored.
+std::uint16_t encode_version(unsigned version);  // throws std::invalid_argument above 7FFFh
+unsigned decode_version(std::uint16_t word);
+
+// ---- 3.5.5 words 9..12: memory allocation of the OEM and compensation areas --------------------
+// Per area one byte: high nibble the end address, low nibble the start address, each one of the
+// codes 0000 = 0, 0001 = 31, 0010 = 63, 0011 = 64, 0100 = 127, 0101 = 255, 1111 = not available.
+// Word 9 low byte = OEM area 1 (MRS A9), high byte = area 2 (AB); word 10: areas 3 (AD), 4 (AF);
+// words 11 and 12 likewise for the compensation areas B1, B3, B5, B7.
+// Example "256 words": words 9..12 = 20FFh, FF20h, FFFFh, 20FFh (OEM areas 2 and 3 and
+// compensation area 4 at addresses 0..63). The extracted bit rows of that example lost one
+// column each; the values follow from the text of the example and are unambiguous.
+struct AddressRange {
+  unsigned start = 0;
+  unsigned end = 0;
+  bool operator==(const AddressRange&) const = default;
+};
+using Partition = std::optional<AddressRange>;  // none: not available
+std::optional<unsigned> partition_address(unsigned code);          // none for 1111 and undefined codes
+std::optional<unsigned> partition_code(unsigned address);          // none for an address without a code
+std::uint8_t encode_partition(const Partition& p);                 // throws for addresses without a code
+Partition decode_partition(std::uint8_t byte);                     // none unless both nibbles are defined
+std::uint16_t encode_partition_word(const Partition& low_area, const Partition& high_area);
+std::pair<Partition, Partition> decode_partition_word(std::uint16_t word);  // {low byte, high byte}
+
+// ---- 3.5.6 word 13: clock pulses for the position value -----------------------------------------
+// Example: 25-bit format = 19h, word 13 = 8019h (bit 15 = 1 for NVM checking). Start, error and
+// CRC bits are not counted.
+// UNCERTAIN: the extracted bit row shows five value columns where the x columns end; bits 0..5
+// are taken as the count (formats above 31 bits need six; masters in the field read six).
+constexpr std::uint16_t kPositionBitsMask = 0x003F;
+std::uint16_t encode_position_bits(unsigned bits);  // throws outside 1 .. 63
+unsigned decode_position_bits(std::uint16_t word);
+
+// ---- 3.5.7 word 14: encoder type ---------------------------------------------------------------
+// Bits 15..12 the type; bit 0 always 1 for NVM checking; bits 11..1 reserved for future types
+// (2^11 JH, 2^10 AMO; the spec's example for cyclic coding is 7073h).
+enum class EncoderType : std::uint8_t {
+  IncrementalLinear = 0x0,                       // without distance-coded reference marks
+  IncrementalLinearDistanceCoded = 0x1,
+  IncrementalLinearBattery = 0x2,                // with battery buffer
+  IncrementalLinearBatteryDistanceCoded = 0x3,
+  AbsoluteLinear = 0x4,
+  TouchProbe = 0x5,                              // "Note touch probes D1 - D11"
+  AbsoluteLinearCyclicCoding = 0x6,
+  NoteD1D11 = 0x7,                               // "Note D1 - D11" (the note is not in the text)
+  IncrementalRotary = 0x8,                       // rotary or angle, without distance-coded marks
+  IncrementalRotaryDistanceCoded = 0x9,
+  IncrementalRotaryBattery = 0xA,
+  IncrementalRotaryBatteryDistanceCoded = 0xB,
+  Singleturn = 0xC,                              // singleturn rotary or angle encoder
+  MultiturnBattery = 0xD,                        // multiturn rotary encoder with battery buffer
+  MultiturnGears = 0xE,
+  ExternalInterfaceBox = 0xF,
+};
+std::uint16_t encode_encoder_type(EncoderType type);  // type << 12 | NVM bit 0
+EncoderType decode_encoder_type(std::uint16_t word);
+std::string_view encoder_type_name(EncoderType type);  // the wording of the 3.5.7 table
+bool is_linear(EncoderType type);
+
+// ---- 3.5.8 words 15/16: signal period of the incremental signals ----------------------------------
+// nm for linear encoders, signal periods per revolution for rotary ones; 0 for EnDat21/EnDat22.
+// Examples: 20 um = 20000 = 4E20h / 0000h; 2048 periods per revolution = 0800h / 0000h.
+constexpr std::array<std::uint16_t, 2> encode_signal_period(std::uint32_t v) { return split32(v); }
+constexpr std::uint32_t decode_signal_period(std::uint16_t w15, std::uint16_t w16) { return join32(w15, w16); }
+
+// ---- 3.5.9 word 17: distinguishable revolutions (multiturn only, 0 for singleturn) --------------
+// Example 2048 = 0800h; 65535 means "see word 34 of the EnDat 2.2 area".
+std::uint16_t encode_revolutions(std::uint32_t revolutions);  // above 65535: 65535
+constexpr std::uint16_t kRevolutionsSeeEndat22Word34 = 0xFFFF;
+
+// ---- 3.5.12 words 20/21: measuring step (nm, linear) or measuring steps per revolution ---------
+// Examples: 100 nm = 0064h / 0000h; 1 800 000 steps per revolution = 1B7740h = 7740h / 001Bh.
+// 0 in both words: see words 27..29 of the EnDat 2.2 area.
+constexpr std::array<std::uint16_t, 2> encode_measuring_steps(std::uint32_t v) { return split32(v); }
+constexpr std::uint32_t decode_measuring_steps(std::uint16_t w20, std::uint16_t w21) { return join32(w20, w21); }
+// "100 nm" for linear encoders, "33554432 steps/rev" for rotary ones, and for 0
+// "0 (see EnDat 2.2 words 27 .. 29)".
+std::string measuring_step_string(EncoderType type, std::uint32_t value);
+
+// ---- 3.5.13 words 22/23 and 3.6.2 operating parameters 0..2: datum shift ---------------------------
+// A two's complement over the words, low word first (word 2 of the operating parameters extends
+// it to 48 bits for position values above 32 bits).
+std::array<std::uint16_t, 2> encode_datum_shift32(std::int64_t value);  // throws outside int32
+std::int64_t decode_datum_shift32(std::uint16_t w0, std::uint16_t w1);
+std::array<std::uint16_t, 3> encode_datum_shift48(std::int64_t value);  // throws outside 48 bits
+std::int64_t decode_datum_shift48(std::uint16_t w0, std::uint16_t w1, std::uint16_t w2);
+// The spec's examples store a shift "by +N measuring steps" as the two's complement of N, i.e.
+// as -N: "+20 mm" with 0.1 um steps = 200 000 = 30D40h -> FFFCF2C0h; "+45 degrees" with 8192
+// steps per revolution = 1024 -> FFFFFC00h; 3.6.2 adds a 40 mm shift (FFF9E580h) to the
+// manufacturer's FFFCF2C0h, giving FFF6D840h.
+// UNCERTAIN: figures 48..53, which show which way the datum moves, are lost; the sign
+// convention is taken from the example values alone.
+constexpr std::int64_t datum_shift_value(std::int64_t shift_steps) { return -shift_steps; }
+constexpr std::int64_t datum_shift_steps(std::int64_t value) { return -value; }
+// Rounded to the nearest measuring step: 45 degrees at 8192 steps/rev = 1024.
+std::int64_t angle_to_steps(double degrees, std::uint32_t steps_per_revolution);
+// 3.5.13 / 3.6.2: an EnDat-compliant shift is a multiple of the measuring steps per signal
+// period; rounds to the nearest multiple (3.6.2: 569 -> 568 with 4 steps per period).
+std::int64_t endat_compliant_shift(std::int64_t steps, std::int64_t steps_per_signal_period);
+
+// ---- 3.5.14 words 24..26: ID number ------------------------------------------------------------
+// Words 25 (low) and 26 (high) the first six digits as a binary number, word 24 the last two
+// characters in ASCII (first character in the high byte). Example "262 144 A1": 262144 =
+// 40000h, word 24 = 4131h ('A' = 41h, '1' = 31h), word 25 = 0000h, word 26 = 0004h.
+struct IdNumber {
+  std::uint32_t number = 0;
+  char suffix[2] = {' ', ' '};
+  bool operator==(const IdNumber&) const = default;
+};
+std::array<std::uint16_t, 3> encode_id_number(const IdNumber& id);  // words 24, 25, 26
+IdNumber decode_id_number(std::uint16_t w24, std::uint16_t w25, std::uint16_t w26);
+// "262144 A1": the number with at least six digits, a space, the two characters (blanks and
+// NULs left out). Throws std::invalid_argument for non-printable characters.
+std::string id_number_string(const IdNumber& id);
+// Accepts "262144 A1", "262 144 A1" and "262144-A1".
+IdNumber parse_id_number(std::string_view text);
+
+// ---- 3.5.15 words 27..29: serial number ---------------------------------------------------------
+// A 32-bit binary number between two ASCII characters: word 27 = bits 7..0 | last character,
+// word 28 = bits 23..8, word 29 = first character | bits 31..24. Example "(blank)2637991A":
+// 2637991 = 2840A7h, words 27..29 = A741h, 2840h, 2000h (the first character is empty = 20h).
+struct SerialNumber {
+  char prefix = ' ';
+  std::uint32_t number = 0;
+  char suffix = ' ';
+  bool operator==(const SerialNumber&) const = default;
+};
+std::array<std::uint16_t, 3> encode_serial_number(const SerialNumber& s);  // words 27, 28, 29
+SerialNumber decode_serial_number(std::uint16_t w27, std::uint16_t w28, std::uint16_t w29);
+// "2637991A": prefix, decimal number, suffix; blank (20h) and NUL characters left out.
+std::string serial_number_string(const SerialNumber& s);
+
+// ---- 3.5.16 word 30: direction of rotation or traverse ------------------------------------------
+// Bit 15 = 1 for NVM checking, default 0 in bit 0.
+// UNCERTAIN: the table's "= 0" entry for bit 0 is lost; its "= 1" entry reads "ascending
+// position values" (with respect to the documented direction of measurement), so bit 0 = 0 is
+// taken as falling position values.
+std::uint16_t encode_direction(bool ascending);
+bool decode_direction_ascending(std::uint16_t word);
+
+// ---- 3.5.22 word 37: EnDat command set ----------------------------------------------------------
+// Three functions, each in a pair of bits that must be stored inversely: bit 0 = 1 / bit 1 = 0
+// command set 2.2, bits 2/3 safety-relevant applications, bits 4/5 mode command "Encoder receive
+// communication command". "The function is only supported if the associated bits are inversely
+// saved": 2.2 with communication command = 0019h, 2.2 alone = 0029h, 2.1 only = 002Ah.
+struct CommandSet {
+  bool endat22 = false;
+  bool safety = false;
+  bool communication_command = false;
+  bool operator==(const CommandSet&) const = default;
+};
+std::uint16_t encode_command_set(const CommandSet& c);
+CommandSet decode_command_set(std::uint16_t word);      // a pair stored equally counts as not supported
+bool command_set_consistent(std::uint16_t word);         // every pair stored inversely
+std::string command_set_string(std::uint16_t word);     // "2.2, communication command"
+
+// ---- 3.5.24 word 39: maximum calculation time t_cal --------------------------------------------
+// Bits 15..13 the unit: 000 not supported, 001 us, 010 ms, 011 ns, 100 to be determined.
+// UNCERTAIN: the column header "unit of time" spans two columns in the extraction but the unit
+// table has three bits, so the value is taken as bits 12..0 (0 .. 8191). The spec's example
+// ("linear encoder with calculation time of 1 ms") is a lost figure; this code stores 1 ms as
+// ms x 1 = 4001h (the coarsest unit that holds the value exactly).
+enum class TimeUnit : std::uint8_t { NotSupported = 0, Microseconds = 1, Milliseconds = 2, Nanoseconds = 3, ToBeDetermined = 4 };
+struct CalculationTime {
+  TimeUnit unit = TimeUnit::NotSupported;
+  std::uint16_t value = 0;  // 0 .. 8191
+  bool operator==(const CalculationTime&) const = default;
+};
+std::uint16_t encode_calculation_time(const CalculationTime& t);  // throws for value > 8191 or a unit > 4
+CalculationTime decode_calculation_time(std::uint16_t word);      // units 5..7 decode as ToBeDetermined
+// The coarsest of ms, us, ns that holds t exactly in 13 bits; throws if none does.
+CalculationTime calculation_time_from(std::chrono::nanoseconds t);
+std::optional<std::chrono::nanoseconds> calculation_time_duration(const CalculationTime& t);  // none: not given
+std::string calculation_time_string(const CalculationTime& t);  // "5 us", "1 ms", "not supported"
+
+// ---- 3.5.25 word 40: EnDat ordering designation ---------------------------------------------------
+// "EnDat" and two characters, stored in ASCII (first in the high byte). Example EnDat22 = 3232h;
+// 0000h = not supported yet. EnDat01/EnDat02 with, EnDat21/EnDat22 without incremental signals.
+// UNCERTAIN: the overview lists the designation against words 40..42 but 3.5.25 describes only
+// word 40; words 41 and 42 are left 0.
+std::uint16_t encode_ordering_designation(std::string_view designation);  // "EnDat22"; throws otherwise
+std::optional<std::string> decode_ordering_designation(std::uint16_t word);  // none for 0000h
+
+// ---- 3.5.26 / 3.9.37: checksums -------------------------------------------------------------------
+// Word 47 = word 4 + ... + word 46; EnDat 2.2 word 63 = word 0 + ... + word 62; overflow ignored.
+std::uint16_t checksum(std::span<const std::uint16_t> words, unsigned first, unsigned last);
+// words: the 48 words of the encoder manufacturer (indices 0..3 ignored) / the 64 of area BD.
+std::uint16_t manufacturer_checksum(std::span<const std::uint16_t> words48);
+std::uint16_t endat22_checksum(std::span<const std::uint16_t> words64);
+
+// ---- 3.9.2 / 3.9.3 EnDat 2.2 words 0 and 1: supported additional data ------------------------------
+// Word 0 (additional data 1): bit 0 position value 2, 1 test values, 2 temperature sensor 1
+// (external), 3 temperature sensor 2 (on board), 4 additional sensors. Word 1 (additional data 2):
+// bit 0 commutation, 1 acceleration, 2 limit position signals, 3 asynchronous position value,
+// 4 operating status error sources, 5 reserved, 6 position value 2 (2.3.5.2), 7 timestamp.
+std::span<const std::string_view> additional_data_1_names();  // index = bit
+std::span<const std::string_view> additional_data_2_names();
+// Bits by name (throws std::invalid_argument naming the unknown name and the known ones).
+std::uint16_t encode_additional_data_1(std::span<const std::string_view> names);
+std::uint16_t encode_additional_data_2(std::span<const std::string_view> names);
+std::vector<std::string_view> decode_additional_data_1(std::uint16_t word);  // names of the set bits
+std::vector<std::string_view> decode_additional_data_2(std::uint16_t word);  // unassigned bits are left out
+std::string additional_data_string(const std::vector<std::string_view>& names);  // "a, b" or "none"
+
+// ---- 3.9.18 / 3.9.19 EnDat 2.2 words 24 and 25 -----------------------------------------------------
+// Word 24: number of section-2 blocks (0 = no section 2). Word 25: maximum clock frequency in kHz
+// (example 8 MHz = 8000 = 1F40h).
+std::uint16_t encode_max_clock_frequency_khz(std::uint32_t khz);  // throws above 65535
+std::string clock_frequency_string(std::uint16_t khz);           // "8 MHz", "500 kHz", "2.5 MHz"
+
+}  // namespace endatsim::protocol::parameters
