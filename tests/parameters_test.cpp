@@ -64,8 +64,10 @@ TEST(Parameters, Word14EncoderTypes) {
   EXPECT_EQ(encode_encoder_type(EncoderType::MultiturnGears), 0xE001);
   EXPECT_EQ(encode_encoder_type(EncoderType::AbsoluteLinear), 0x4001);
   EXPECT_EQ(encode_encoder_type(EncoderType::IncrementalRotaryDistanceCoded), 0x9001);
-  // The spec's example for absolute encoders with cyclic coding: 7073h.
+  // The spec's future example for absolute encoders with cyclic coding, 7073h, keeps bit 0 and
+  // uses bits 11..1; its type nibble is 7.
   EXPECT_EQ(decode_encoder_type(0x7073), EncoderType::NoteD1D11);
+  EXPECT_EQ(0x7073 & kNvmBit0, kNvmBit0);
   for (unsigned t = 0; t < 16; ++t) {
     const auto type = static_cast<EncoderType>(t);
     EXPECT_EQ(decode_encoder_type(encode_encoder_type(type)), type);

@@ -1,0 +1,455 @@
+#include "slave/profile.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace endatsim::slave {
+namespace {
+
+namespace pm = protocol::parameters;
+using json = nlohmann::json;
+using Area = MemoryArea;
+
+constexpr std::size_t kMaxFileBytes = 4 << 20;
+
+std::string hex4(unsigned w) {
+  char b[8];
+  std::snprintf(b, sizeof b, "%04X", w & 0xFFFFU);
+  return b;
+}
+
+std::string word_string(std::uint16_t w) { return "0x" + hex4(w); }
+
+std::string kind_key(EncoderKind k) {
+  switch (k) {
+    case EncoderKind::Singleturn: return "singleturn";
+    case EncoderKind::Multiturn: return "multiturn";
+    case EncoderKind::Linear: return "linear";
+  }
+  return "singleturn";
+}
+
+std::string version_key(EndatVersion v) { return v == EndatVersion::V2_1 ? "2.1" : "2.2"; }
+
+std::string area_path(Area a) { return "/memory/" + std::string(protocol::info(a).key); }
+
+// The JSON path of word n of the encoder manufacturer (3.5.1: A1 words 0..15, A3 16..31, A5 32..47).
+std::string manufacturer_path(unsigned n) {
+  const Area a = n < 16 ? Area::Manufacturer1 : n < 32 ? Area::Manufacturer2 : Area::Manufacturer3;
+  return area_path(a) + "/" + std::to_string(n % 16);
+}
+
+std::string describe(const json& j) {
+  std::string dump = j.dump(-1, ' ', true, json::error_handler_t::replace);
+  if (dump.size() > 40) dump = dump.substr(0, 37) + "...";
+  return std::string(j.type_name()) + " " + dump;
+}
+
+class Node {
+ public:
+  Node(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {}
+  [[noreturn]] void fail(const std::string& expected) const { fail_raw("expected " + expected + ", got " + describe(j_)); }
+  [[noreturn]] void fail_raw(const std::string& message) const {
+    throw ProfileError(file_ + ": at " + (path_.empty() ? "/" : path_) + ": " + message);
+  }
+  const json& raw() const { return j_; }
+  const std::string& path() const { return path_; }
+  Node child(const std::string& key) const { return Node(j_.at(key), path_ + "/" + key, file_); }
+  Node item(std::size_t i) const { return Node(j_.at(i), path_ + "/" + std::to_string(i), file_); }
+
+  std::string as_string() const {
+    if (!j_.is_string()) fail("a string");
+    return j_.get<std::string>();
+  }
+  unsigned as_uint(unsigned min, unsigned max) const {
+    const std::string range = "an integer " + std::to_string(min) + " .. " + std::to_string(max);
+    if (!j_.is_number_unsigned() && !(j_.is_number_integer() && j_.get<std::int64_t>() >= 0)) fail(range);
+    const auto v = j_.get<std::uint64_t>();
+    if (v < min || v > max) fail(range);
+    return static_cast<unsigned>(v);
+  }
+  std::uint16_t as_word() const {
+    const std::string what = "a 16-bit word as a hex string such as \"0x8019\"";
+    if (!j_.is_string()) fail(what);
+    const std::string s = j_.get<std::string>();
+    if (s.size() < 3 || s.size() > 6 || s[0] != '0' || (s[1] != 'x' && s[1] != 'X') ||
+        s.find_first_not_of("0123456789abcdefABCDEF", 2) != std::string::npos)
+      fail(what);
+    return static_cast<std::uint16_t>(std::stoul(s.substr(2), nullptr, 16));
+  }
+  std::vector<std::uint16_t> as_words(std::size_t min, std::size_t max) const {
+    const std::string what = "an array of " + (min == max ? std::to_string(min) : std::to_string(min) + " .. " +
+                                                                                     std::to_string(max)) +
+                             " hex words";
+    if (!j_.is_array() || j_.size() < min || j_.size() > max) fail(what);
+    std::vector<std::uint16_t> w;
+    for (std::size_t i = 0; i < j_.size(); ++i) w.push_back(item(i).as_word());
+    return w;
+  }
+
+ private:
+  const json& j_;
+  std::string path_;
+  const std::string& file_;
+};
+
+// How many words each area holds in the file: fixed ones, OEM and compensation areas as words
+// 9..12 make them (slave::Memory checks those), operating parameters 2 up to 256.
+std::pair<std::size_t, std::size_t> size_limits(Area a) {
+  switch (a) {
+    case Area::OperatingStatus: return {4, 4};
+    case Area::Manufacturer1:
+    case Area::Manufacturer2:
+    case Area::Manufacturer3:
+    case Area::OperatingParameters: return {16, 16};
+    case Area::ManufacturerEndat22: return {64, 64};
+    default: return {1, 256};
+  }
+}
+
+EncoderProfile read_profile(const json& root, const std::string& file) {
+  const Node r(root, "", file);
+  if (!root.is_object()) r.fail("a profile object with name, description, version, kind, position_bits, "
+                                "multiturn_bits and memory");
+  static const std::vector<std::string> kKeys{"name", "description", "version", "kind", "position_bits",
+                                              "multiturn_bits", "memory"};
+  for (const auto& [key, value] : root.items())
+    if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end())
+      Node(value, "/" + key, file).fail_raw("unknown key \"" + key +
+                                            "\" (expected name, description, version, kind, position_bits, "
+                                            "multiturn_bits or memory)");
+  for (const char* key : {"name", "version", "kind", "position_bits", "memory"})
+    if (!root.contains(key)) r.fail_raw(std::string("missing key \"") + key + "\"");
+  EncoderProfile p;
+  p.name = r.child("name").as_string();
+  if (p.name.empty()) r.child("name").fail("a non-empty name");
+  if (root.contains("description")) p.description = r.child("description").as_string();
+  const std::string version = r.child("version").as_string();
+  if (version == "2.1") p.version = EndatVersion::V2_1;
+  else if (version == "2.2") p.version = EndatVersion::V2_2;
+  else r.child("version").fail("\"2.1\" or \"2.2\"");
+  const std::string kind = r.child("kind").as_string();
+  if (kind == "singleturn") p.kind = EncoderKind::Singleturn;
+  else if (kind == "multiturn") p.kind = EncoderKind::Multiturn;
+  else if (kind == "linear") p.kind = EncoderKind::Linear;
+  else r.child("kind").fail("one of \"singleturn\", \"multiturn\", \"linear\"");
+  p.position_bits = r.child("position_bits").as_uint(1, 48);
+  if (root.contains("multiturn_bits")) p.multiturn_bits = r.child("multiturn_bits").as_uint(0, p.position_bits - 1);
+
+  const Node m = r.child("memory");
+  if (!m.raw().is_object()) m.fail("an object of memory area -> array of hex words");
+  for (const auto& [key, value] : m.raw().items()) {
+    const Node item = m.child(key);
+    if (key == "section2_blocks") {
+      if (!value.is_array() || value.size() > 256) item.fail("an array of at most 256 blocks of 256 hex words");
+      for (std::size_t i = 0; i < value.size(); ++i) p.memory.section2_blocks.push_back(item.item(i).as_words(256, 256));
+      continue;
+    }
+    const auto area = protocol::memory_area_from_key(key);
+    if (!area || *area == Area::Section2 || *area == Area::AsynchronousPosition)
+      item.fail_raw("unknown memory area \"" + key +
+                    "\" (expected operating_status, manufacturer_1 .. 3, operating_parameters, oem_1 .. 4, "
+                    "compensation_1 .. 4, manufacturer_endat22, operating_parameters2 or section2_blocks)");
+    const auto [min, max] = size_limits(*area);
+    p.memory.areas[*area] = item.as_words(min, max);
+  }
+  for (Area a : {Area::OperatingStatus, Area::Manufacturer1, Area::Manufacturer2, Area::Manufacturer3,
+                 Area::OperatingParameters})
+    if (!p.memory.areas.contains(a)) m.fail_raw("missing memory area \"" + std::string(protocol::info(a).key) + "\"");
+  const auto problems = check_profile(p);
+  if (!problems.empty()) throw ProfileError(file + ": at " + problems.front());
+  return p;
+}
+
+void write_words(std::ostringstream& out, const std::vector<std::uint16_t>& w, const std::string& indent) {
+  out << '[';
+  if (w.size() <= 8) {
+    for (std::size_t i = 0; i < w.size(); ++i) out << (i ? ", " : "") << '"' << word_string(w[i]) << '"';
+    out << ']';
+    return;
+  }
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    if (i % 8 == 0) out << (i ? ",\n" : "\n") << indent << "  ";
+    else out << ", ";
+    out << '"' << word_string(w[i]) << '"';
+  }
+  out << '\n' << indent << ']';
+}
+
+}  // namespace
+
+void EncoderProfile::apply(EncoderParams& p) const {
+  p.kind = kind;
+  p.version = version;
+  p.position_bits = position_bits;
+  p.multiturn_bits = multiturn_bits;
+  p.memory = memory;
+  if (const auto t = pm::calculation_time_duration(pm::decode_calculation_time(manufacturer_words()[39]))) p.t_cal = *t;
+}
+
+std::vector<std::uint16_t> EncoderProfile::manufacturer_words() const {
+  std::vector<std::uint16_t> w(48, 0);
+  for (unsigned i = 0; i < 3; ++i) {
+    const Area a = i == 0 ? Area::Manufacturer1 : i == 1 ? Area::Manufacturer2 : Area::Manufacturer3;
+    const auto it = memory.areas.find(a);
+    if (it == memory.areas.end()) continue;
+    for (unsigned k = (i == 0 ? 4U : 0U); k < 16 && k < it->second.size(); ++k) w[i * 16 + k] = it->second[k];
+  }
+  return w;
+}
+
+std::vector<std::uint16_t> EncoderProfile::endat22_words() const {
+  const auto it = memory.areas.find(Area::ManufacturerEndat22);
+  return it == memory.areas.end() ? std::vector<std::uint16_t>{} : it->second;
+}
+
+bool operator==(const EncoderProfile& a, const EncoderProfile& b) {
+  return a.name == b.name && a.description == b.description && a.version == b.version && a.kind == b.kind &&
+         a.position_bits == b.position_bits && a.multiturn_bits == b.multiturn_bits &&
+         a.memory.areas == b.memory.areas && a.memory.section2_blocks == b.memory.section2_blocks;
+}
+
+std::vector<std::string> check_profile(const EncoderProfile& p) {
+  std::vector<std::string> problems;
+  const auto expect = [&](bool ok, const std::string& path, const std::string& expected, std::uint16_t got) {
+    if (!ok) problems.push_back(path + ": expected " + expected + ", got " + hex4(got) + "h");
+  };
+  try {
+    const Memory memory(p.memory);
+  } catch (const std::exception& e) {
+    problems.push_back("/memory: " + std::string(e.what()));
+    return problems;
+  }
+  const auto& a1 = p.memory.areas.at(Area::Manufacturer1);
+  for (unsigned i = 0; i < 4; ++i) expect(a1[i] == 0, area_path(Area::Manufacturer1) + "/" + std::to_string(i),
+                                          "0 (words 0..3 of A1 are not used; 3.5.1 starts at word 4)", a1[i]);
+  const auto m = p.manufacturer_words();
+  // 3.5.5: an OEM or compensation area is in the image exactly when words 9..12 make it available.
+  const Area partitioned[8] = {Area::Oem1,          Area::Oem2,          Area::Oem3,          Area::Oem4,
+                               Area::Compensation1, Area::Compensation2, Area::Compensation3, Area::Compensation4};
+  for (unsigned i = 0; i < 8; ++i) {
+    const unsigned word = 9 + i / 2;
+    const auto pair = pm::decode_partition_word(m[word]);
+    const bool available = (i % 2 == 0 ? pair.first : pair.second).has_value();
+    if (available && !p.memory.areas.contains(partitioned[i]))
+      problems.push_back("/memory: expected area " + std::string(protocol::info(partitioned[i]).key) +
+                         ", which word " + std::to_string(word) + " makes available (3.5.5)");
+  }
+  for (unsigned n : {8U, 13U, 30U, 31U})
+    expect((m[n] & pm::kNvmBit15) != 0, manufacturer_path(n), "bit 15 = 1 for NVM checking (3.5)", m[n]);
+  expect((m[14] & pm::kNvmBit0) != 0, manufacturer_path(14), "bit 0 = 1 for NVM checking (3.5.7)", m[14]);
+  expect(pm::decode_position_bits(m[13]) == p.position_bits, manufacturer_path(13),
+         "position_bits " + std::to_string(p.position_bits) + " in bits 0..5 (3.5.6)", m[13]);
+  const auto type = pm::decode_encoder_type(m[14]);
+  const bool multiturn_type = type == pm::EncoderType::MultiturnBattery || type == pm::EncoderType::MultiturnGears;
+  const bool type_ok = p.kind == EncoderKind::Linear       ? pm::is_linear(type)
+                       : p.kind == EncoderKind::Multiturn ? multiturn_type
+                                                          : !pm::is_linear(type) && !multiturn_type;
+  expect(type_ok, manufacturer_path(14), "an encoder type of kind " + kind_key(p.kind) + " (3.5.7)", m[14]);
+  const std::uint16_t revolutions =
+      p.kind == EncoderKind::Multiturn ? pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U)) : 0;
+  expect(m[17] == revolutions, manufacturer_path(17),
+         hex4(revolutions) + "h distinguishable revolutions (3.5.9)", m[17]);
+  if (p.kind != EncoderKind::Linear) {
+    const std::uint64_t steps = pm::decode_measuring_steps(m[20], m[21]);
+    const std::uint64_t expected = std::uint64_t{1} << (p.position_bits - p.multiturn_bits);
+    if (steps != 0 && steps != expected)
+      problems.push_back(manufacturer_path(20) + ": expected " + std::to_string(expected) +
+                         " measuring steps per revolution in words 20/21 (3.5.12), got " + std::to_string(steps));
+  }
+  const auto commands = pm::decode_command_set(m[37]);
+  expect(pm::command_set_consistent(m[37]) && commands.endat22 == (p.version == EndatVersion::V2_2),
+         manufacturer_path(37), "bit pairs stored inversely, command set " + version_key(p.version) + " (3.5.22)",
+         m[37]);
+  if (const auto d = pm::decode_ordering_designation(m[40])) {
+    const bool printable = (*d)[5] > 0x20 && (*d)[5] < 0x7F && (*d)[6] > 0x20 && (*d)[6] < 0x7F;
+    const bool needs22 = (*d)[6] == '2';  // EnDat02 / EnDat22: command set 2.2 (brochure 004)
+    expect(printable && (!needs22 || p.version == EndatVersion::V2_2), manufacturer_path(40),
+           "\"EnDat\" and two printable characters, x2 only with version 2.2 (3.5.25)", m[40]);
+  }
+  expect(pm::manufacturer_checksum(m) == m[47], manufacturer_path(47),
+         hex4(pm::manufacturer_checksum(m)) + "h = word 4 + ... + word 46 (3.5.26)", m[47]);
+  const auto e = p.endat22_words();
+  if (p.version == EndatVersion::V2_2 && e.empty())
+    problems.push_back("/memory: expected area manufacturer_endat22 for version 2.2 (3.9)");
+  if (p.version == EndatVersion::V2_1 && !e.empty())
+    problems.push_back(area_path(Area::ManufacturerEndat22) + ": expected no EnDat 2.2 area for version 2.1 (3.9)");
+  if (!e.empty())
+    expect(pm::endat22_checksum(e) == e[63], area_path(Area::ManufacturerEndat22) + "/63",
+           hex4(pm::endat22_checksum(e)) + "h = word 0 + ... + word 62 (3.9.37)", e[63]);
+  return problems;
+}
+
+std::vector<std::pair<std::string, std::string>> describe_profile(const EncoderProfile& p) {
+  const auto m = p.manufacturer_words();
+  const auto type = pm::decode_encoder_type(m[14]);
+  std::vector<std::pair<std::string, std::string>> d;
+  d.emplace_back("encoder type (word 14)", std::string(pm::encoder_type_name(type)));
+  d.emplace_back("position bits (word 13)", std::to_string(pm::decode_position_bits(m[13])));
+  d.emplace_back("measuring step (words 20/21)", pm::measuring_step_string(type, pm::decode_measuring_steps(m[20], m[21])));
+  if (p.kind == EncoderKind::Multiturn) d.emplace_back("distinguishable revolutions (word 17)", std::to_string(m[17]));
+  d.emplace_back("ID number (words 24..26)", pm::id_number_string(pm::decode_id_number(m[24], m[25], m[26])));
+  d.emplace_back("serial number (words 27..29)",
+                 pm::serial_number_string(pm::decode_serial_number(m[27], m[28], m[29])));
+  d.emplace_back("command set (word 37)", pm::command_set_string(m[37]));
+  d.emplace_back("t_cal (word 39)", pm::calculation_time_string(pm::decode_calculation_time(m[39])));
+  d.emplace_back("ordering designation (word 40)", pm::decode_ordering_designation(m[40]).value_or("not supported"));
+  const auto e = p.endat22_words();
+  if (!e.empty()) {
+    d.emplace_back("additional data 1 (2.2 word 0)", pm::additional_data_string(pm::decode_additional_data_1(e[0])));
+    d.emplace_back("additional data 2 (2.2 word 1)", pm::additional_data_string(pm::decode_additional_data_2(e[1])));
+    d.emplace_back("maximum clock frequency (2.2 word 25)", pm::clock_frequency_string(e[25]));
+  }
+  return d;
+}
+
+EncoderProfile load_profile_text(const std::string& text, const std::string& file_name) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::exception& e) {
+    std::string what = e.what();
+    const auto bracket = what.find("] ");
+    throw ProfileError(file_name + ": not valid JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
+  }
+  try {
+    return read_profile(root, file_name);
+  } catch (const json::exception& e) {
+    throw ProfileError(file_name + ": " + e.what());
+  }
+}
+
+EncoderProfile load_profile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw ProfileError(path + ": not a regular file, expected a JSON encoder profile");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ProfileError(path + ": cannot open the file");
+  std::string text;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxFileBytes) throw ProfileError(path + ": larger than 4 MiB, not an encoder profile");
+  }
+  if (text.empty()) throw ProfileError(path + ": at /: empty file, expected a JSON encoder profile object");
+  return load_profile_text(text, path);
+}
+
+std::string profile_text(const EncoderProfile& p) {
+  std::ostringstream out;
+  out << "{\n";
+  out << "  \"name\": " << json(p.name).dump() << ",\n";
+  out << "  \"description\": " << json(p.description).dump() << ",\n";
+  out << "  \"version\": \"" << version_key(p.version) << "\",\n";
+  out << "  \"kind\": \"" << kind_key(p.kind) << "\",\n";
+  out << "  \"position_bits\": " << p.position_bits << ",\n";
+  out << "  \"multiturn_bits\": " << p.multiturn_bits << ",\n";
+  out << "  \"memory\": {";
+  bool first = true;
+  for (const auto& [area, words] : p.memory.areas) {  // std::map: in the order of MemoryArea
+    out << (first ? "\n" : ",\n") << "    \"" << protocol::info(area).key << "\": ";
+    write_words(out, words, "    ");
+    first = false;
+  }
+  if (!p.memory.section2_blocks.empty()) {
+    out << (first ? "\n" : ",\n") << "    \"section2_blocks\": [";
+    for (std::size_t b = 0; b < p.memory.section2_blocks.size(); ++b) {
+      out << (b ? ",\n" : "\n") << "      ";
+      write_words(out, p.memory.section2_blocks[b], "      ");
+    }
+    out << "\n    ]";
+  }
+  out << "\n  }\n}\n";
+  return out.str();
+}
+
+void save_profile(const std::string& path, const EncoderProfile& profile) {
+  const std::string text = profile_text(profile);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw ProfileError(path + ": cannot open the file for writing");
+  out << text;
+  out.close();
+  if (!out) throw ProfileError(path + ": cannot write the file");
+}
+
+EncoderProfile build_profile(const ProfileParameters& p) {
+  EncoderProfile profile;
+  profile.name = p.name;
+  profile.description = p.description;
+  profile.version = p.version;
+  profile.kind = p.kind;
+  profile.position_bits = p.position_bits;
+  profile.multiturn_bits = p.multiturn_bits;
+  std::vector<std::uint16_t> m(48, 0);
+  m[8] = pm::encode_version(p.interface_version);
+  m[9] = pm::encode_partition_word(p.oem[0], p.oem[1]);
+  m[10] = pm::encode_partition_word(p.oem[2], p.oem[3]);
+  m[11] = pm::encode_partition_word(p.compensation[0], p.compensation[1]);
+  m[12] = pm::encode_partition_word(p.compensation[2], p.compensation[3]);
+  m[13] = pm::encode_position_bits(p.position_bits);
+  m[14] = pm::encode_encoder_type(p.type);
+  const auto period = pm::encode_signal_period(p.signal_period);
+  m[15] = period[0];
+  m[16] = period[1];
+  if (p.kind == EncoderKind::Multiturn) m[17] = pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U));
+  m[18] = p.reference_mark_increment;
+  std::uint32_t steps = p.measuring_steps;
+  if (steps == 0 && p.kind != EncoderKind::Linear) steps = std::uint32_t{1} << (p.position_bits - p.multiturn_bits);
+  const auto s = pm::encode_measuring_steps(steps);
+  m[20] = s[0];
+  m[21] = s[1];
+  const auto shift = pm::encode_datum_shift48(p.datum_shift);
+  m[22] = shift[0];
+  m[23] = shift[1];
+  const auto id = pm::encode_id_number(p.id);
+  std::copy(id.begin(), id.end(), m.begin() + 24);
+  const auto serial = pm::encode_serial_number(p.serial);
+  std::copy(serial.begin(), serial.end(), m.begin() + 27);
+  m[30] = pm::encode_direction(p.ascending);
+  m[31] = pm::kNvmBit15;  // 3.5.17: external commissioning diagnostics not supported
+  m[32] = p.max_speed;
+  m[33] = p.accuracy[0];
+  m[34] = p.accuracy[1];
+  m[35] = p.supported_errors;
+  m[36] = p.supported_warnings;
+  m[37] = pm::encode_command_set({p.version == EndatVersion::V2_2, false, p.communication_command});
+  m[39] = pm::encode_calculation_time(p.t_cal);
+  m[40] = p.ordering_designation.empty() ? 0 : pm::encode_ordering_designation(p.ordering_designation);
+  m[47] = pm::manufacturer_checksum(m);
+  auto& areas = profile.memory.areas;
+  areas[Area::OperatingStatus] = {0, 0, p.write_protection, p.function_initialization};
+  areas[Area::Manufacturer1].assign(m.begin(), m.begin() + 16);
+  areas[Area::Manufacturer2].assign(m.begin() + 16, m.begin() + 32);
+  areas[Area::Manufacturer3].assign(m.begin() + 32, m.end());
+  // 3.6.2: the factory setting of the operating parameters holds the manufacturer's datum shift.
+  std::vector<std::uint16_t> op(16, 0);
+  op[0] = shift[0];
+  op[1] = shift[1];
+  if (p.position_bits > 32) op[2] = shift[2];
+  areas[Area::OperatingParameters] = op;
+  const Area oem[4] = {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4};
+  const Area comp[4] = {Area::Compensation1, Area::Compensation2, Area::Compensation3, Area::Compensation4};
+  for (unsigned i = 0; i < 4; ++i) {
+    if (p.oem[i]) areas[oem[i]].assign(p.oem[i]->end + 1, 0);
+    if (p.compensation[i]) areas[comp[i]].assign(p.compensation[i]->end + 1, 0);
+  }
+  if (p.version == EndatVersion::V2_2) {
+    std::vector<std::uint16_t> e(64, 0);
+    e[0] = pm::encode_additional_data_1(p.additional_data_1);
+    e[1] = pm::encode_additional_data_2(p.additional_data_2);
+    e[2] = p.additional_functions;
+    e[6] = p.supported_errors_2;
+    e[25] = pm::encode_max_clock_frequency_khz(p.max_clock_khz);
+    e[63] = pm::endat22_checksum(e);
+    areas[Area::ManufacturerEndat22] = e;
+    areas[Area::OperatingParameters2].assign(16, 0);
+  }
+  return profile;
+}
+
+}  // namespace endatsim::slave
