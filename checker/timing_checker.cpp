@@ -79,10 +79,14 @@ std::span<const std::string_view> check::all() {
 // The field of bit slot `clock` as the master counts the frame.
 std::string TimingChecker::field_of(const master::FrameResult& frame, unsigned clock) const {
   if (frame.start_bit_clock == 0 || clock < frame.start_bit_clock) return "start-bit polling";
-  const auto layout = protocol::answer_layout(protocol::info(frame.command), master_.position_bits);
+  const auto layout = protocol::answer_layout(protocol::info(frame.command), bits_of(frame));
   const unsigned bit = clock - frame.start_bit_clock;
   if (bit < layout.width()) return std::string(protocol::field_name(layout.field_at(bit)));
   return bit < frame.answer_bits ? "additional data" : "after the CRC";
+}
+
+unsigned TimingChecker::bits_of(const master::FrameResult& frame) const {
+  return frame.position_bits != 0 ? frame.position_bits : master_.position_bits;
 }
 
 std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
@@ -138,8 +142,10 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
   frame_starts_.emplace_back(frame.start, frame.index);
   // The answer as the encoder sends it: its own position width, the additional data the master
   // selected.
+  // (A FrameResult from another master may leave answer_bits and position_bits at 0.)
   const auto& command = protocol::info(frame.command);
-  const unsigned additional = frame.answer_bits - protocol::answer_layout(command, master_.position_bits).width();
+  const unsigned master_width = protocol::answer_layout(command, bits_of(frame)).width();
+  const unsigned additional = frame.answer_bits > master_width ? frame.answer_bits - master_width : 0;
   const unsigned answer = protocol::answer_layout(command, encoder_.position_bits).width() + additional;
   const FrameHeader h{frame.index,          frame.measurement, frame.compensated, command.version,
                       command.payload_bits, answer,            command.supplement, frame.f_c,

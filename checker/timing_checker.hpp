@@ -130,6 +130,7 @@ class TimingChecker final : public master::MasterObserver {
   void check_memory_access_time();
   void check_clock_count(const PinFrame& f);
   std::string field_of(const master::FrameResult& frame, unsigned clock) const;
+  unsigned bits_of(const master::FrameResult& frame) const;
   void check_encoder_sample(unsigned clock);
   void check_master_sample(const master::FrameResult& frame, unsigned clock);
   void on_master_clock(std::uint64_t level);

@@ -58,13 +58,19 @@ void MasterParams::validate() const {
           "delay measurement max_rounds must be 1 .. 100, got " + std::to_string(measurement.max_rounds));
   require(position_bits >= 1 && position_bits <= 48,
           "master position_bits must be 1 .. 48, got " + std::to_string(position_bits));
-  for (auto [name, t] : {std::pair{"t_m_wait", t_m_wait}, {"t_r_wait", t_r_wait}, {"error_wait", error_wait}})
+  for (auto [name, t] : {std::pair{"t_m_wait", t_m_wait}, {"t_r_wait", t_r_wait}, {"error_wait", error_wait},
+                         {"reset_wait", reset_wait}})
     require(t >= Time::zero() && t <= sim::ms(100),
             std::string("master ") + name + " must be 0 .. 100 ms, got " + sim::format_time(t));
   require(start_bit_timeout > Time::zero() && start_bit_timeout <= sim::ms(100),
           "master start_bit_timeout must be > 0 and <= 100 ms, got " + sim::format_time(start_bit_timeout));
   require(!fixed_t_d || (*fixed_t_d >= Time::zero() && *fixed_t_d <= sim::us(10)),
           "master fixed_t_d must be 0 .. 10 us, got " + sim::format_time(fixed_t_d.value_or(Time::zero())));
+  require(power_on.t1_t2 >= Time::zero() && power_on.t1_t2 <= sim::ms(10'000) && power_on.t3 >= Time::zero() &&
+              power_on.t3 <= sim::ms(10'000),
+          "master power_on t1_t2 and t3 must be 0 .. 10 s");
+  require(power_on.pulse > Time::zero() && power_on.pulse <= sim::ms(1),
+          "master power_on pulse must be > 0 and <= 1 ms, got " + sim::format_time(power_on.pulse));
   require(memory_access_timeout > Time::zero() && memory_access_timeout <= sim::ms(100),
           "master memory_access_timeout must be > 0 and <= 100 ms, got " + sim::format_time(memory_access_timeout));
   require(supplement_lead_bits >= 1 && supplement_lead_bits <= 32,
@@ -84,6 +90,7 @@ Master::Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params
       layout_(protocol::position_frame_layout(protocol::EndatVersion::V2_1, params.position_bits)) {
   params_.validate();
   t_d_ = params_.fixed_t_d;
+  position_bits_ = params_.position_bits;
   pins_.data_in.on_change(sim::bind<&Master::on_data_in>(this));
 }
 
@@ -102,11 +109,17 @@ void Master::next_operation() {
   }
   current_ = operations_.front();
   operations_.pop_front();
-  ++operation_index_;
   const Time begin = std::max(current_->at.value_or(kernel_.now()), kernel_.now());
   switch (current_->kind) {
     case Operation::Kind::Wait:
       operation_timer_.start(begin + current_->duration - kernel_.now());
+      return;
+    case Operation::Kind::PowerOnSequence:
+      kernel_.schedule(begin + params_.power_on.t1_t2 - kernel_.now(), sim::bind<&Master::power_on_pulse>(this, 0));
+      return;
+    case Operation::Kind::StartupRoutine:
+      expand_startup_routine();
+      next_operation();
       return;
     case Operation::Kind::MeasureDelay:
       measuring_ = true;
@@ -125,6 +138,71 @@ void Master::next_operation() {
   next_due_ = begin;
   const Time at = std::max(next_due_, ready_at_);
   kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
+}
+
+void Master::power_on_pulse(std::uint64_t phase) {
+  // One LOW pulse, then CLOCK HIGH for t3 (2.3.3).
+  if (phase == 0) {
+    pins_.clock_out.write(false);
+    kernel_.schedule(params_.power_on.pulse, sim::bind<&Master::power_on_pulse>(this, 1));
+    return;
+  }
+  pins_.clock_out.write(true);
+  ready_at_ = std::max(ready_at_, kernel_.now() + params_.power_on.t3);
+  operation_timer_.start(params_.power_on.t3);
+}
+
+void Master::expand_startup_routine() {
+  // Seed 002, "Spannungsversorgung und Einschalten": EnDat 2.1 mode commands only.
+  using P = Operation::Purpose;
+  const std::size_t index = current_->script_index;
+  const auto frame = [index](ModeCommand c, std::uint8_t address = 0, std::uint16_t parameter = 0,
+                             P purpose = P::Step) {
+    Operation o;
+    o.script_index = index;
+    o.command = c;
+    o.address = address;
+    o.parameter = parameter;
+    o.purpose = purpose;
+    return o;
+  };
+  using MC = ModeCommand;
+  const std::vector<Operation> routine{
+      frame(MC::EncoderReceiveReset),  // then reset_wait (50 ms)
+      frame(MC::SelectionOfMemoryArea, 0xB9),
+      frame(MC::EncoderSendParameters, 0, 0, P::Errors),
+      frame(MC::EncoderSendParameters, 1, 0, P::Warnings),
+      frame(MC::EncoderReceiveParameters, 0, 0x0000),  // 3.4.1: alarms cleared by writing 0000h
+      frame(MC::EncoderReceiveParameters, 1, 0x0000),  // 3.4.2: warnings likewise
+      frame(MC::SelectionOfMemoryArea, 0xA1),
+      frame(MC::EncoderSendParameters, 13, 0, P::Word13),
+      frame(MC::SelectionOfMemoryArea, 0xA5),
+      frame(MC::EncoderSendParameters, 37 - 32, 0, P::Word37),
+  };
+  startup_ = {};
+  startup_.completed = true;
+  for (auto it = routine.rbegin(); it != routine.rend(); ++it) operations_.push_front(*it);
+}
+
+void Master::note_startup(const FrameResult& f) {
+  using P = Operation::Purpose;
+  if (current_->purpose == P::None) return;
+  if (f.outcome != FrameOutcome::Ok) {
+    ++startup_.failed_frames;
+    startup_.completed = false;
+    return;
+  }
+  switch (current_->purpose) {
+    case P::Errors: startup_.errors = f.echo_parameter; break;
+    case P::Warnings: startup_.warnings = f.echo_parameter; break;
+    case P::Word13:
+      startup_.word13 = f.echo_parameter;
+      if (params_.adopt_word13 && (f.echo_parameter & 0x3F) != 0) position_bits_ = f.echo_parameter & 0x3F;
+      break;
+    case P::Word37: startup_.word37 = f.echo_parameter; break;
+    case P::None:
+    case P::Step: break;
+  }
 }
 
 void Master::operation_frame_done() {
@@ -158,7 +236,7 @@ void Master::start_frame(std::uint64_t) {
   const bool measurement = measuring_;
   frame_ = FrameResult{};
   frame_.index = frames_.size();
-  frame_.operation = operation_index_ - 1;
+  frame_.operation = current_->script_index;
   frame_.start = kernel_.now();
   frame_.measurement = measurement;
   frame_.command = measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
@@ -177,8 +255,9 @@ void Master::start_frame(std::uint64_t) {
   high_ = period * params_.high_permille / 1000;
   low_ = period - high_;
   mode_bits_ = frame_.mode_bits;
-  layout_ = protocol::answer_layout(*command_, params_.position_bits);
+  layout_ = protocol::answer_layout(*command_, position_bits_);
   frame_.answer_bits = answer_width();
+  frame_.position_bits = position_bits_;
   clock_ = 0;
   last_clock_ = 0;
   clocking_done_ = false;
@@ -335,7 +414,7 @@ void Master::decode_answer() {
       frame_.error2 = v22 ? field(Field::Error2) != 0 : true;
       frame_.position = field(Field::Position);
       frame_.crc_expected =
-          protocol::make_crc_pos(params_.position_bits, frame_.error1, frame_.error2, v22, frame_.position);
+          protocol::make_crc_pos(position_bits_, frame_.error1, frame_.error2, v22, frame_.position);
       const auto ai_layout = protocol::additional_datum_layout();
       for (std::size_t at = layout_.width(); at < rx_bits_.size(); at += protocol::kAdditionalDatumBits) {
         const auto v = ai_layout.decode(std::span(rx_bits_).subspan(at));
@@ -449,11 +528,14 @@ void Master::maybe_complete_frame() {
   frame_active_.write(false);
   const bool error_handling = frame_.outcome == FrameOutcome::NoStartBit || frame_.outcome == FrameOutcome::Type1Error;
   ready_at_ = frame_.end + (error_handling ? params_.error_wait : params_.t_m_wait) + params_.t_r_wait;
+  if (frame_.command == ModeCommand::EncoderReceiveReset && frame_.outcome == FrameOutcome::Ok)
+    ready_at_ = std::max(ready_at_, frame_.end + params_.reset_wait);
   if (frame_.measurement && frame_.outcome == FrameOutcome::Ok && captured_count_) {
     frame_.delay_count_time = counter_tick() * *captured_count_;
     counts_.push_back(*captured_count_);
   }
   frames_.push_back(frame_);
+  if (!frame_.measurement) note_startup(frame_);
   for (auto* o : observers_) o->on_frame_end(frame_);
   operation_frame_done();
 }

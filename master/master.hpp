@@ -57,6 +57,17 @@ struct MasterParams {
   Time t_m_wait = sim::us(30);   // CLOCK held HIGH after a frame: at least t_m of the encoder
   Time t_r_wait = sim::ns(500);  // then t_R before the next FE1 (2.3.2)
   Time error_wait = sim::us(30); // A2: "after an error handling, the maximum t_m of 30 us must be waited"
+  Time reset_wait = sim::ms(50); // seed 002 start-up routine: "50 ms warten" after "Encoder receive reset"
+  // 2.3.3, seed 002 figure (TI's reading, timing-model §3.3): after switching on, CLOCK stays at
+  // a valid level for t1 >= 800 ms and HIGH for t2 = 80 .. 120 ms, then at least one LOW pulse
+  // > 125 ns, then HIGH for t3 = 380 .. 420 ms before the first request.
+  struct PowerOnSequence {
+    Time t1_t2 = sim::ms(900);
+    Time pulse = sim::us(1);
+    Time t3 = sim::ms(400);
+  } power_on;
+  // The start-up routine reads word 13 and from then on clocks that many position bits.
+  bool adopt_word13 = true;
   Time start_bit_timeout = sim::ms(1);  // t_cal max (2.3.2); polling gives up after this
   // 2.1 parameter frames: polling after the 24 bits gives up after t_ac max (12 ms, 2.3.2) + 1 ms.
   Time memory_access_timeout = sim::ms(13);
@@ -92,7 +103,7 @@ struct AdditionalDatum {
 
 struct FrameResult {
   std::uint64_t index = 0;
-  std::size_t operation = 0;  // index of the operation in the order enqueued
+  std::size_t operation = 0;  // index of the operation in the order enqueued (Operation::script_index)
   unsigned word = 0;        // 0: the word after the mode command; k: the k-th continuous-clock word
   Time start{0};            // FE1 at the master logic
   Time end{0};              // last rising edge
@@ -101,6 +112,7 @@ struct FrameResult {
   std::optional<std::uint32_t> payload;     // 8 + 16 bits sent after the mode bits (2.1 parameter frames)
   std::optional<std::uint32_t> supplement;  // 8 + 16 bits sent as the 2.2 command supplement
   unsigned answer_bits = 0;                 // the answer the master expects: S .. CRC and additional data
+  unsigned position_bits = 0;               // as the master clocks them (configured, or word 13)
   Hertz f_c = 0;
   bool measurement = false;     // part of a propagation-delay measurement
   bool compensated = false;
@@ -144,7 +156,12 @@ struct Operation {
   // ReadPosition sends `command` (any mode command, with `address`/`parameter` as the 2.1
   // payload or the 2.2 supplement); AwaitNotBusy sends "Encoder send position values with
   // additional data" until additional data 1 shows Busy = 0 (2.5.1, 2.6.1), at most `count` times.
-  enum class Kind : std::uint8_t { MeasureDelay, ReadPosition, Wait, AwaitNotBusy };
+  // PowerOnSequence drives CLOCK as 2.3.3 asks after switching on; StartupRoutine is the
+  // switch-on routine of seed 002 with EnDat 2.1 commands only (reset, wait 50 ms, read and clear
+  // alarms and warnings, read words 13 and 37).
+  enum class Kind : std::uint8_t { MeasureDelay, ReadPosition, Wait, AwaitNotBusy, PowerOnSequence, StartupRoutine };
+  // What a frame of the start-up routine reads, for Master::startup().
+  enum class Purpose : std::uint8_t { None, Step, Errors, Warnings, Word13, Word37 };
   Kind kind = Kind::ReadPosition;
   std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
   ModeCommand command = ModeCommand::EncoderSendPositionValues;
@@ -157,6 +174,18 @@ struct Operation {
   unsigned continuous_words = 0;
   std::uint8_t address = 0;     // address, MRS code or port address
   std::uint16_t parameter = 0;  // parameter, instruction or block address (low byte)
+  Purpose purpose = Purpose::None;
+  std::size_t script_index = 0;  // set by enqueue(); the frames' FrameResult::operation
+};
+
+// What the start-up routine found (seed 002).
+struct StartupInfo {
+  bool completed = false;  // every frame of the routine answered without error
+  std::optional<std::uint16_t> errors;    // operating status word 0, before clearing (3.4.1)
+  std::optional<std::uint16_t> warnings;  // word 1 (3.4.2)
+  std::optional<std::uint16_t> word13;    // clock pulses for the position value (3.5.6)
+  std::optional<std::uint16_t> word37;    // EnDat command set (3.5.22)
+  unsigned failed_frames = 0;
 };
 
 class Master {
@@ -166,7 +195,10 @@ class Master {
   Master& operator=(const Master&) = delete;
 
   void add_observer(MasterObserver* o) { observers_.push_back(o); }
-  void enqueue(const Operation& op) { operations_.push_back(op); }
+  void enqueue(Operation op) {
+    op.script_index = enqueued_++;
+    operations_.push_back(op);
+  }
   void start();  // begins the queued operations at the current time
   bool finished() const { return finished_; }
 
@@ -176,6 +208,8 @@ class Master {
   std::optional<Time> t_d() const { return t_d_; }
   std::uint64_t cycle_overruns() const { return cycle_overruns_; }
   std::uint64_t busy_timeouts() const { return busy_timeouts_; }
+  const StartupInfo& startup() const { return startup_; }
+  unsigned position_bits() const { return position_bits_; }
   // What the master has selected with 2.4.2.2 MRS codes: it expects this many additional data.
   unsigned expected_additional_data() const { return (selected_[0] ? 1U : 0U) + (selected_[1] ? 1U : 0U); }
 
@@ -197,6 +231,9 @@ class Master {
   void end_reception(FrameOutcome outcome);
   void maybe_complete_frame();
   void on_data_in(std::uint64_t level);
+  void power_on_pulse(std::uint64_t phase);
+  void expand_startup_routine();
+  void note_startup(const FrameResult& f);
   void decode_answer();
   void drive_supplement_bit();
   void note_selection();
@@ -218,13 +255,15 @@ class Master {
   // Operations.
   std::deque<Operation> operations_;
   std::optional<Operation> current_;
-  std::size_t operation_index_ = 0;  // of current_; 1-based while running
+  std::size_t enqueued_ = 0;
   unsigned frames_left_ = 0;
   Time next_due_{0};
   Time ready_at_{0};
   bool finished_ = false;
   std::uint64_t cycle_overruns_ = 0;
   std::uint64_t busy_timeouts_ = 0;
+  StartupInfo startup_;
+  unsigned position_bits_ = 0;  // as configured, or as word 13 said
   bool selected_[2] = {false, false};
 
   // The frame on the wire.

@@ -310,6 +310,8 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("t_m_short")) p.t_m_short = v->as_duration(sim::ns(1250), sim::ns(3750));
   if (auto v = o.opt("short_t_m_selected")) p.short_t_m_selected = v->as_bool();
   if (auto v = o.opt("t_r")) p.t_r = v->as_duration(Time::zero(), sim::us(100));
+  if (auto v = o.opt("startup_time")) p.startup_time = v->as_duration(Time::zero(), sim::ms(10'000));
+  if (auto v = o.opt("reset_time")) p.reset_time = v->as_duration(Time::zero(), sim::ms(1000));
   if (auto v = o.opt("output_delay")) p.output_delay = v->as_duration(Time::zero(), sim::us(1));
   if (auto v = o.opt("continuous_low_bits")) p.continuous_low_bits = static_cast<unsigned>(v->as_uint(1, 7));
   if (auto v = o.opt("driver_enable_edge")) p.driver_enable_edge = static_cast<unsigned>(v->as_uint(9, 10));
@@ -358,6 +360,15 @@ void read_master(const Node& n, master::MasterParams& p) {
   if (auto v = o.opt("t_m_wait")) p.t_m_wait = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("t_r_wait")) p.t_r_wait = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("error_wait")) p.error_wait = v->as_duration(Time::zero(), sim::ms(100));
+  if (auto v = o.opt("reset_wait")) p.reset_wait = v->as_duration(Time::zero(), sim::ms(100));
+  if (auto v = o.opt("adopt_word13")) p.adopt_word13 = v->as_bool();
+  if (auto v = o.opt("power_on")) {
+    Object m(*v);
+    if (auto s = m.opt("t1_t2")) p.power_on.t1_t2 = s->as_duration(Time::zero(), sim::ms(10'000));
+    if (auto s = m.opt("pulse")) p.power_on.pulse = s->as_duration(sim::ps(1), sim::ms(1));
+    if (auto s = m.opt("t3")) p.power_on.t3 = s->as_duration(Time::zero(), sim::ms(10'000));
+    m.done();
+  }
   if (auto v = o.opt("start_bit_timeout")) p.start_bit_timeout = v->as_duration(sim::ps(1), sim::ms(100));
   if (auto v = o.opt("type1_detect_samples")) p.type1_detect_samples = static_cast<unsigned>(v->as_uint(1, 64));
   if (auto v = o.opt("memory_access_timeout")) p.memory_access_timeout = v->as_duration(sim::ps(1), sim::ms(100));
@@ -549,14 +560,18 @@ master::Operation read_operation(const Node& n, std::optional<FrameExpectation>&
        {"write_parameter", "write_parameter"}, {"read_parameter", "read_parameter"},
        {"test_command", "test_command"}, {"select_additional_data", "select_additional_data"},
        {"communication_command", "communication_command"}, {"reset", "reset"}, {"error_reset", "error_reset"},
-       {"send_test_values", "send_test_values"}}));
-  op.kind = name == "measure_delay" ? Kind::MeasureDelay
-            : name == "wait"         ? Kind::Wait
-            : name == "await_not_busy" ? Kind::AwaitNotBusy
-                                       : Kind::ReadPosition;
+       {"send_test_values", "send_test_values"}, {"power_on_sequence", "power_on_sequence"},
+       {"startup_routine", "startup_routine"}}));
+  op.kind = name == "measure_delay"       ? Kind::MeasureDelay
+            : name == "wait"              ? Kind::Wait
+            : name == "await_not_busy"    ? Kind::AwaitNotBusy
+            : name == "power_on_sequence" ? Kind::PowerOnSequence
+            : name == "startup_routine"   ? Kind::StartupRoutine
+                                          : Kind::ReadPosition;
   if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), sim::ms(60'000));
   if (auto v = o.opt("expect")) {
-    if (op.kind == Kind::Wait || op.kind == Kind::MeasureDelay) v->fail_raw("\"expect\" needs an operation that sends frames");
+    if (op.kind == Kind::Wait || op.kind == Kind::MeasureDelay || op.kind == Kind::PowerOnSequence)
+      v->fail_raw("\"expect\" needs an operation that sends frames");
     expect = read_frame_expectation(*v);
   }
   if (op.kind == Kind::Wait) {
@@ -654,6 +669,17 @@ void read_expect(const Node& n, Expectations& e) {
   if (auto v = o.opt("violations")) read_count_map(*v, e.violations, checker::check::all());
   if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_busy_timeouts")) e.max_busy_timeouts = v->as_uint(0, UINT64_MAX);
+  if (auto v = o.opt("startup")) {
+    Object st(*v);
+    StartupExpectation se;
+    if (auto x = st.opt("completed")) se.completed = x->as_bool();
+    if (auto x = st.opt("errors")) se.errors = read_word16(*x);
+    if (auto x = st.opt("warnings")) se.warnings = read_word16(*x);
+    if (auto x = st.opt("word13")) se.word13 = read_word16(*x);
+    if (auto x = st.opt("word37")) se.word37 = read_word16(*x);
+    st.done();
+    e.startup = se;
+  }
   if (auto v = o.opt("memory")) {
     if (!v->raw().is_array()) v->fail("an array of {\"area\", \"address\", \"value\"}");
     for (std::size_t i = 0; i < v->raw().size(); ++i) {

@@ -158,6 +158,23 @@ void judge_memory(const Scenario& s, ScenarioResult& r) {
   }
 }
 
+void judge_startup(const StartupExpectation& e, ScenarioResult& r) {
+  const auto& got = r.startup;
+  if (e.completed)
+    r.expectations.push_back({"startup.completed", got.completed == *e.completed,
+                              got.completed ? "every frame answered" : std::to_string(got.failed_frames) + " frames failed"});
+  const auto word = [&](const char* name, const std::optional<std::uint16_t>& want,
+                        const std::optional<std::uint16_t>& read) {
+    if (!want) return;
+    r.expectations.push_back({std::string("startup.") + name, read == want,
+                              (read ? hex(*read, 4) : std::string("not read")) + " (expected " + hex(*want, 4) + ")"});
+  };
+  word("errors", e.errors, got.errors);
+  word("warnings", e.warnings, got.warnings);
+  word("word13", e.word13, got.word13);
+  word("word37", e.word37, got.word37);
+}
+
 void judge(const Scenario& s, ScenarioResult& r) {
   r.expectations.push_back({"script finished", r.finished,
                             r.finished ? "at " + sim::format_time(r.simulated)
@@ -181,6 +198,7 @@ void judge(const Scenario& s, ScenarioResult& r) {
   for (std::size_t i = 0; i < s.operation_expectations.size(); ++i)
     if (s.operation_expectations[i]) judge_operation(i, *s.operation_expectations[i], r);
   judge_memory(s, r);
+  if (s.expect.startup) judge_startup(*s.expect.startup, r);
   if (s.expect.max_busy_timeouts)
     r.expectations.push_back({"max_busy_timeouts", r.busy_timeouts <= *s.expect.max_busy_timeouts,
                               std::to_string(r.busy_timeouts)});
@@ -262,6 +280,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.violations = checker.violations();
   r.cycle_overruns = master.cycle_overruns();
   r.busy_timeouts = master.busy_timeouts();
+  r.startup = master.startup();
   r.encoder_memory = encoder.memory().image();
   judge(scenario, r);
   return r;

@@ -38,6 +38,7 @@ struct ScenarioResult {
   std::uint64_t cycle_overruns = 0;
   std::uint64_t busy_timeouts = 0;     // await_not_busy operations that gave up
   slave::MemoryImage encoder_memory;   // at the end of the run
+  master::StartupInfo startup;
   std::vector<ExpectationResult> expectations;
   bool passed() const;
 };

@@ -54,6 +54,12 @@ struct MemoryExpectation {
   std::uint16_t value = 0;
 };
 
+// What the start-up routine of seed 002 must have read.
+struct StartupExpectation {
+  std::optional<bool> completed;
+  std::optional<std::uint16_t> errors, warnings, word13, word37;
+};
+
 struct Expectations {
   std::map<std::string, CountMatcher> outcomes;    // non-measurement frames by master::FrameOutcome
   std::optional<bool> positions_match_encoder;
@@ -63,6 +69,7 @@ struct Expectations {
   std::optional<std::uint64_t> max_cycle_overruns;
   std::vector<MemoryExpectation> memory;
   std::optional<std::uint64_t> max_busy_timeouts;
+  std::optional<StartupExpectation> startup;
 };
 
 // Something that happens to the line while the script runs (a connector swap, a cable change).

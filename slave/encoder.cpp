@@ -44,6 +44,10 @@ void EncoderParams::validate() const {
             "t_m_short must be 1.25 .. 3.75 us (2.3.2 note 3), got " + sim::format_time(*t_m_short));
   require(!short_t_m_selected || t_m_short.has_value(), "short_t_m_selected needs t_m_short");
   require(t_r >= Time::zero() && t_r <= sim::us(100), "t_R must be 0 .. 100 us, got " + sim::format_time(t_r));
+  require(startup_time >= Time::zero() && startup_time <= sim::ms(10'000),
+          "encoder startup_time must be 0 .. 10 s, got " + sim::format_time(startup_time));
+  require(reset_time >= Time::zero() && reset_time <= sim::ms(1000),
+          "encoder reset_time must be 0 .. 1 s, got " + sim::format_time(reset_time));
   for (auto [name, t] : {std::pair{"t_ac_read", t_ac_read}, {"t_ac_write", t_ac_write}})
     require(t >= Time::zero() && t <= sim::ms(12),
             std::string("encoder ") + name + " must be 0 .. 12 ms (2.3.2: t_ac), got " + sim::format_time(t));
@@ -128,8 +132,25 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line& line, const EncoderParams& par
       enable_out_delay_(kernel, enable_logic_, pins_.data_enable, params.output_delay),
       recovery_timer_(kernel, sim::bind<&Encoder::on_recovery_time_elapsed>(this)),
       memory_timer_(kernel, sim::bind<&Encoder::on_memory_access_done>(this)),
-      end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)) {
+      end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
+      startup_timer_(kernel, sim::bind<&Encoder::on_started>(this)) {
   pins_.clock_in.on_change(sim::bind<&Encoder::on_clock>(this));
+  if (params_.startup_time > Time::zero()) go_offline(params_.startup_time);
+}
+
+// 2.3.3 (figure labels, seed 002: "*) hochohmig"): during run-up DATA is high-impedance and the
+// encoder takes no clock; afterwards DATA is driven LOW, the EnDat idle level (2.3).
+void Encoder::go_offline(Time duration) {
+  offline_ = true;
+  state_ = State::Idle;
+  enable_logic_.write(false);
+  startup_timer_.start(duration);
+}
+
+void Encoder::on_started() {
+  offline_ = false;
+  drive(false);
+  enable();
 }
 
 bool Encoder::busy() const { return kernel_.now() < busy_until_; }
@@ -141,7 +162,7 @@ bool Encoder::drives_bus() const {
 }
 
 void Encoder::on_clock(std::uint64_t level) {
-  if (kernel_.now() < ready_at_) {  // t_R: not ready for the next query yet
+  if (offline_ || kernel_.now() < ready_at_) {  // running up, or t_R: not ready for the next query yet
     ++ignored_edges_;
     return;
   }
@@ -683,6 +704,7 @@ void Encoder::reset() {
   memory_timer_.cancel();
   busy_until_ = kernel_.now();
   in_progress_ = {};
+  if (params_.reset_time > Time::zero()) go_offline(params_.reset_time);
 }
 
 void Encoder::latch_errors() { memory_.latch_errors(params_.error_sources, params_.warning_sources); }

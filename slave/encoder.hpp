@@ -64,6 +64,12 @@ struct EncoderParams {
   std::optional<Time> t_m_short;               // 1.25 .. 3.75 us, 2.2 commands only (word 3, 3.4.4)
   bool short_t_m_selected = false;             // as if word 3 selected it at power-on
   Time t_r = sim::ns(500);                     // 2.3.2: t_R, time before the next query can be received
+  // 2.3.3 / seeds 001, 002: run-up after switching on, about 1 s (1.3 s in seed 004); DATA is
+  // high-impedance and clocks are ignored meanwhile. 0: the run starts with the encoder up.
+  Time startup_time{0};
+  // 2.7 "same reaction as switching the power off and on": the encoder restarts for this long
+  // after "Encoder receive reset" (guess; the brochures' routine waits 50 ms, seed 002).
+  Time reset_time = sim::ms(20);
   Time t_ac_read = sim::us(500);               // 2.3.2: memory access time t_ac (0 .. 12 ms) for reads, selections
   Time t_ac_write = sim::ms(3);                // ... and for writes
   MemoryAccessPlacement t_ac_placement = MemoryAccessPlacement::InFrame;
@@ -123,6 +129,7 @@ class Encoder {
   const std::vector<EncoderFrame>& frames() const { return frames_; }
   std::uint64_t ignored_clock_edges() const { return ignored_edges_; }
   bool idle() const { return state_ == State::Idle; }
+  bool started() const { return !offline_; }
   bool busy() const;
   const Memory& memory() const { return memory_; }
   std::optional<Information> additional_data_1() const { return selection_[0]; }
@@ -150,6 +157,8 @@ class Encoder {
   void on_recovery_time_elapsed();
   void on_memory_access_done();
   void on_end_marker_due();
+  void on_started();
+  void go_offline(Time duration);
   void begin_frame();
   void decode_mode_command();
   void answer_position();
@@ -185,6 +194,7 @@ class Encoder {
   sim::Timer recovery_timer_;
   sim::Timer memory_timer_;
   sim::Timer end_marker_timer_;
+  sim::Timer startup_timer_;
 
   // Frame state.
   State state_ = State::Idle;
@@ -222,6 +232,7 @@ class Encoder {
   std::size_t diagnosis_index_ = 0;
   unsigned sensor_address_ = 0;
   bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command
+  bool offline_ = false;                        // running up after power-on or reset (2.3.3)
 
   std::vector<EncoderFrame> frames_;
   std::uint64_t ignored_edges_ = 0;

@@ -24,6 +24,7 @@ slave::EncoderParams params(protocol::EndatVersion v = protocol::EndatVersion::V
   p.t_cal = Time::zero();
   p.t_ac_read = Time::zero();
   p.t_ac_write = Time::zero();
+  p.reset_time = Time::zero();  // frames every 200 us, also right after a reset
   p.motion.start = 0xA5;
   return p;
 }
