@@ -375,8 +375,10 @@ void Encoder::answer_parameter_frame() {
           error = ErrorCause::DataDriverHighImpedanceBroadcast;
         else if (address != 0 && address != own && was_selected)
           error = ErrorCause::UnknownCommunicationAddress;
-        selected_on_bus_ = address == 0 || address == own;
-        if (!was_selected && !selected_on_bus_) {
+        // 2.10: "only the encoder with the previously selected address reacts ... until a new
+        // address is given"; the change takes effect after this frame's acknowledgment.
+        bus_selection_after_frame_ = address == 0 || address == own;
+        if (!was_selected && !*bus_selection_after_frame_) {
           state_ = State::Type1;  // not addressed: stays silent
           return;
         }
@@ -665,6 +667,8 @@ void Encoder::finish_frame() {
   EncoderFrame& f = frames_.back();
   state_ = State::Idle;
   end_marker_timer_.cancel();
+  if (bus_selection_after_frame_) selected_on_bus_ = *bus_selection_after_frame_;
+  bus_selection_after_frame_.reset();
   drive(false);
   enable();
   ready_at_ = kernel_.now() + params_.t_r;

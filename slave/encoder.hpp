@@ -232,6 +232,7 @@ class Encoder {
   std::size_t diagnosis_index_ = 0;
   unsigned sensor_address_ = 0;
   bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command
+  std::optional<bool> bus_selection_after_frame_;
   bool offline_ = false;                        // running up after power-on or reset (2.3.3)
 
   std::vector<EncoderFrame> frames_;

@@ -411,3 +411,78 @@ TEST(ModeCommandCommunicationCommand, HighImpedanceBroadcastSilencesTheEncoder) 
   EXPECT_EQ(b.last().start_bit_clock, 11U);
   EXPECT_EQ(b.slots(1, 10, 20), "11111111111") << "fail-safe HIGH: nobody drives";
 }
+
+// ---- the remaining causes of appendix A2 -------------------------------------------------
+
+TEST(AppendixA2, Cause4CommunicationCommandNotPermitted) {
+  auto p = params();
+  p.communication_command_permitted = false;
+  Bench b(p);
+  b.frame(65, ScriptedFrame::header(0b010010, payload(0x00, 0x0000)));
+  EXPECT_EQ(b.sampler.slots(35, 59), "1" + payload(0xFF, 0xFFFF));
+  EXPECT_EQ(*b.last().error, ErrorCause::CommunicationCommandNotPermitted);
+}
+
+TEST(AppendixA2, Cause12TheActiveEncoderGetsAnotherAddress) {
+  // 2.10: the selected encoder (address 11h) receives a communication command for 22h.
+  auto p = params();
+  p.memory = slave::default_memory_image(p);
+  p.memory->areas[protocol::MemoryArea::OperatingParameters][slave::word::kEncoderAddress] = 0x0011;
+  Bench b(p);
+  b.frame(65, ScriptedFrame::header(0b010010, payload(0x22, 0x0000)));
+  EXPECT_EQ(b.sampler.slots(35, 43), "1" + bits_msb(0xDD, 8));
+  EXPECT_EQ(*b.last().error, ErrorCause::UnknownCommunicationAddress);
+  b.frame(30, ScriptedFrame::header(0b000111));  // no longer addressed: silent
+  EXPECT_EQ(b.last().start_bit_clock, 0U);
+}
+
+TEST(AppendixA2, Cause11BlockAddressBeyondWord24IsAcknowledgedInverted) {
+  // 2.4.2 / 3.2: two section-2 blocks (word 24); block 5 does not exist. The MRS acknowledgment
+  // (additional data 1, I = 7) carries the MRS code and the block address inverted.
+  auto p = params();
+  p.memory = slave::default_memory_image(p);
+  auto& e = p.memory->areas[protocol::MemoryArea::ManufacturerEndat22];
+  e[slave::word::kSection2Blocks] = 2;
+  e[63] = slave::word_sum(e, 0, 62);
+  p.memory->section2_blocks.assign(2, std::vector<std::uint16_t>(256, 0));
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x47, 0));
+  b.frame(89, supplement_frame(0b001001, 0xBF, 0x0005, 1));
+  EXPECT_EQ(*b.last().error, ErrorCause::ImpermissibleBlockAddress);
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(2, 28, 51), bits_msb(7, 8) + bits_msb(0x40, 8) + bits_msb(0xFA, 8));
+  b.frame(89, supplement_frame(0b001001, 0xBF, 0x0001, 1));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(4, 28, 51), bits_msb(7, 8) + bits_msb(0xBF, 8) + bits_msb(0x01, 8));
+}
+
+TEST(AppendixA2, Cause15PositionValue2InBothAdditionalData) {
+  // Interpretation of cause 15: with "position value 2" offered by additional data 2 (3.9.3 bit 6)
+  // and selected in additional data 1 as well, additional data 2 answers I = 31.
+  auto p = params();
+  p.memory = slave::default_memory_image(p);
+  auto& e = p.memory->areas[protocol::MemoryArea::ManufacturerEndat22];
+  e[slave::word::kAdditionalData2Support] |= 0x0040;
+  e[63] = slave::word_sum(e, 0, 62);
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x42, 0));
+  b.frame(89, supplement_frame(0b001001, 0x56, 0, 1));
+  b.frame(88, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(2, 27, 35), "0" + bits_msb(31, 8));
+  EXPECT_EQ(b.slots(2, 57, 65), "0" + bits_msb(2, 8));
+}
+
+TEST(AppendixA2, EveryCauseHasItsType) {
+  using T = protocol::ErrorType;
+  EXPECT_EQ(protocol::error_type(ErrorCause::ModeCommandDisrupted), T::I);
+  for (auto c : {ErrorCause::MrsFrameDisrupted, ErrorCause::Busy, ErrorCause::CommunicationCommandNotPermitted,
+                 ErrorCause::EibNotInitialised, ErrorCause::DataDriverHighImpedanceBroadcast,
+                 ErrorCause::ImpermissibleMemoryArea, ErrorCause::ImpermissibleAddress, ErrorCause::WriteProtected,
+                 ErrorCause::WriteProtectionCleared, ErrorCause::ImpermissibleBlockAddress,
+                 ErrorCause::UnknownCommunicationAddress})
+    EXPECT_EQ(protocol::error_type(c), T::II) << protocol::describe(c);
+  for (auto c : {ErrorCause::ImpermissibleAdditionalData, ErrorCause::UnsupportedAdditionalData,
+                 ErrorCause::DuplicateAdditionalData})
+    EXPECT_EQ(protocol::error_type(c), T::III) << protocol::describe(c);
+  EXPECT_EQ(protocol::error_type(ErrorCause::AdditionalDataNotUpdated), T::IV);
+}
