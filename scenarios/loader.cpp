@@ -1,8 +1,11 @@
 #include "scenarios/loader.hpp"
 
+#include "slave/profile.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -275,7 +278,7 @@ void read_sensors(const Node& n, slave::Sensors& s) {
 // Memory areas given as arrays of words replace those of the default image (3.1).
 void read_memory(const Node& n, slave::EncoderParams& p) {
   if (!n.raw().is_object()) n.fail("an object of memory area -> array of words");
-  slave::MemoryImage image = slave::default_memory_image(p);
+  slave::MemoryImage image = p.memory.value_or(slave::default_memory_image(p));
   for (const auto& [key, value] : n.raw().items()) {
     const Node item(value, n.path() + "/" + key, n.file());
     if (key == "section2_blocks") {
@@ -297,6 +300,21 @@ void read_memory(const Node& n, slave::EncoderParams& p) {
 
 void read_encoder(const Node& n, slave::EncoderParams& p) {
   Object o(n);
+  // A profile first; the keys below refine it. A bare name is a bundled profile (profiles/),
+  // anything with a slash or ".json" a file relative to the scenario.
+  if (auto v = o.opt("profile")) {
+    const std::string name = v->as_string();
+    std::filesystem::path path = std::filesystem::path(n.file()).parent_path() / name;
+    if (name.find('/') == std::string::npos && !name.ends_with(".json")) {
+      const char* dir = std::getenv("ENDATSIM_PROFILES");
+      path = std::filesystem::path(dir != nullptr ? dir : ENDATSIM_PROFILES_DIR) / (name + ".json");
+    }
+    try {
+      slave::load_profile(path.string()).apply(p);
+    } catch (const slave::ProfileError& e) {
+      v->fail_raw(std::string("cannot use the profile: ") + e.what());
+    }
+  }
   using slave::EncoderKind;
   if (auto v = o.opt("kind"))
     p.kind = v->as_enum<EncoderKind>(

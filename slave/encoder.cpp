@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "protocol/parameters.hpp"
+
 namespace endatsim::slave {
 namespace {
 
@@ -90,17 +92,30 @@ std::uint64_t EncoderParams::position_at(Time t) const {
 
 MemoryImage default_memory_image(const EncoderParams& p) {
   using A = MemoryArea;
+  namespace pm = protocol::parameters;
+  const bool v22 = p.version == EndatVersion::V2_2;
+  const auto type = p.kind == EncoderKind::Linear      ? pm::EncoderType::AbsoluteLinear
+                    : p.kind == EncoderKind::Multiturn ? pm::EncoderType::MultiturnBattery
+                                                       : pm::EncoderType::Singleturn;
   MemoryImage img;
   // 3.4.3: the encoder manufacturer's areas and the compensation values are factory protected.
   const std::uint16_t function_init = p.short_t_m_selected ? kShortRecoveryTimeOn : kShortRecoveryTimeOff;
   img.areas[A::OperatingStatus] = {0, 0, 0x0039, function_init};
   std::vector<std::uint16_t> m(48, 0);
-  m[word::kVersion] = 0x8000;                                      // * = 1 for NVM checking (3.5.4)
+  m[word::kVersion] = pm::encode_version(2);                       // 3.5.4
   m[word::kOemPartition] = 0x2020;                                 // OEM areas 1 and 2: addresses 0 .. 63
   m[word::kOemPartition + 1] = 0xFFFF;                             // OEM areas 3 and 4: not available
   m[word::kCompensationPartition] = m[word::kCompensationPartition + 1] = 0xFFFF;
   m[word::kPositionFormat] = static_cast<std::uint16_t>(0x8000 | p.position_bits);  // 3.5.6
-  m[word::kEncoderType] = 0x0001;                                  // bit 0 = 1 for NVM checking (3.5.7)
+  m[word::kEncoderType] = pm::encode_encoder_type(type);           // 3.5.7
+  m[word::kCommandSet] = pm::encode_command_set({v22, false, v22 && p.communication_command_permitted});  // 3.5.22
+  try {
+    m[word::kCalculationTime] = pm::encode_calculation_time(
+        pm::calculation_time_from(std::chrono::duration_cast<std::chrono::nanoseconds>(p.t_cal)));  // 3.5.24
+  } catch (const std::invalid_argument&) {
+    m[word::kCalculationTime] = 0;  // not representable in 13 bits of one unit: "not supported"
+  }
+  m[40] = pm::encode_ordering_designation(v22 ? "EnDat22" : "EnDat01");  // 3.5.25
   m[word::kSupportedErrors] = 0x007F;
   m[word::kSupportedWarnings] = 0x01FF;
   m[word::kManufacturerChecksum] = word_sum(m, 4, 46);            // 3.5.26
@@ -110,7 +125,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   img.areas[A::OperatingParameters].assign(16, 0);
   img.areas[A::Oem1].assign(64, 0);
   img.areas[A::Oem2].assign(64, 0);
-  if (p.version == EndatVersion::V2_2) {
+  if (v22) {
     std::vector<std::uint16_t> e(64, 0);
     e[word::kAdditionalData1Support] = 0x001F;  // 3.9.2: all additional data 1
     e[word::kAdditionalData2Support] = 0x009F;  // 3.9.3: all but "position value 2" in additional data 2

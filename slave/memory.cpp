@@ -101,6 +101,11 @@ Memory::Memory(MemoryImage image) : image_(std::move(image)) {
                                     std::to_string(p->first) + "), got " + std::to_string(w.size()));
     }
   }
+  for (Area a : {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4, Area::Compensation1, Area::Compensation2,
+                 Area::Compensation3, Area::Compensation4})
+    if (address_range({a, 0}) && !image_.areas.contains(a))
+      throw std::invalid_argument("memory area " + area_key(a) + " is available per word " +
+                                  std::to_string(partition_of(a)->first) + " (3.5.5) but has no words");
   const unsigned blocks = image_.areas.contains(Area::ManufacturerEndat22) ? endat22_word(word::kSection2Blocks) : 0;
   if (image_.section2_blocks.size() != blocks)
     throw std::invalid_argument("section 2 memory has " + std::to_string(image_.section2_blocks.size()) +

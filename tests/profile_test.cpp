@@ -338,7 +338,7 @@ TEST(Profile, ErrorsNameFileJsonPathAndExpectation) {
   auto without_oem1 = slave::build_profile(bundled_parameters().at(0));
   without_oem1.memory.areas.erase(protocol::MemoryArea::Oem1);
   EXPECT_EQ(error_of(slave::profile_text(without_oem1)),
-            "bad.json: at /memory: expected area oem_1, which word 9 makes available (3.5.5)");
+            "bad.json: at /memory: memory area oem_1 is available per word 9 (3.5.5) but has no words");
   try {
     slave::load_profile(kProfiles + "does_not_exist.json");
     ADD_FAILURE();
