@@ -76,16 +76,29 @@ class Axis {
     bool broken;
   };
 
-  Axis(T64 from, T64 to, std::vector<T64> edges, T64 max_gap, double x0, double width) : x0_(x0) {
+  // `forced`: stretches drawn as breaks even though edges (a running clock) lie inside them.
+  Axis(T64 from, T64 to, std::vector<T64> edges, const std::vector<std::pair<T64, T64>>& forced, T64 max_gap, double x0,
+       double width)
+      : x0_(x0) {
     edges.push_back(from);
     edges.push_back(to);
+    for (const auto& [a, b] : forced) {
+      edges.push_back(a);
+      edges.push_back(b);
+    }
+    // Edges inside a forced break do not split it.
+    std::erase_if(edges, [&](T64 t) {
+      return std::any_of(forced.begin(), forced.end(), [&](const auto& f) { return t > f.first && t < f.second; });
+    });
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     double virtual_length = 0;
     for (std::size_t i = 1; i < edges.size(); ++i) {
       const T64 a = std::max(edges[i - 1], from), b = std::min(edges[i], to);
       if (b <= a) continue;
-      const bool broken = b - a > max_gap;
+      const bool inside_forced =
+          std::any_of(forced.begin(), forced.end(), [&](const auto& f) { return a >= f.first && b <= f.second; });
+      const bool broken = b - a > max_gap || inside_forced;
       const double length = static_cast<double>(broken ? max_gap / 2 : b - a);
       segments_.push_back({a, b, virtual_length, length, broken});
       virtual_length += length;
@@ -286,7 +299,19 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     const auto e = w->edges(from, to, -1);
     all_edges.insert(all_edges.end(), e.begin(), e.end());
   }
-  const Axis axis(from, to, all_edges, 8 * f_period, kLeft, kWidth);
+  // A clock that runs on while DATA and the drivers stay as they are (memory access, polling)
+  // is broken too when that lasts more than 64 periods, keeping two periods at each side.
+  std::vector<T64> data_edges{from, to};
+  for (const Wave* w : {&m_data, &m_en, &e_data, &e_en}) {
+    const auto e = w->edges(from, to, -1);
+    data_edges.insert(data_edges.end(), e.begin(), e.end());
+  }
+  std::sort(data_edges.begin(), data_edges.end());
+  std::vector<std::pair<T64, T64>> forced;
+  for (std::size_t i = 1; i < data_edges.size(); ++i)
+    if (data_edges[i] - data_edges[i - 1] > 64 * f_period)
+      forced.emplace_back(data_edges[i - 1] + 2 * f_period, data_edges[i] - 2 * f_period);
+  const Axis axis(from, to, all_edges, forced, 8 * f_period, kLeft, kWidth);
 
   const std::vector<Row> rows{
       {"master.clock", "CLOCK (master pins)", 80, false},
@@ -373,9 +398,18 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     for (int b = 5; b >= 0; --b) bits += ((frame->mode_bits >> b) & 1U) != 0 ? '1' : '0';
     svg.field(axis.x(m_fe[2]), axis.x(m_fe[8]), row_y("master.data") - 22, "mode bits " + bits, bits);
     svg.field(axis.x(m_fe[0]), axis.x(m_fe[2]), row_y("master.data") - 22, "turnaround", "");
+    // 2.1 parameter frames: 8 bits of address / MRS code / port and 16 bits after the mode bits.
+    if (frame->payload && m_fe.size() >= 33) {
+      char text[48];
+      std::snprintf(text, sizeof text, "address 0x%02X", static_cast<unsigned>(*frame->payload >> 16 & 0xFFU));
+      svg.field(axis.x(m_fe[8]), axis.x(m_fe[16]), row_y("master.data") - 22, text, "address");
+      std::snprintf(text, sizeof text, "parameter 0x%04X", static_cast<unsigned>(*frame->payload & 0xFFFFU));
+      svg.field(axis.x(m_fe[16]), axis.x(m_fe[32]), row_y("master.data") - 22, text, "parameter");
+    }
   }
   if (e_start != kNone && frame != nullptr && launch >= 1) {
-    const auto layout = protocol::position_frame_layout(protocol::info(frame->command).version, scenario.master.position_bits);
+    // The answer as the master expects it for this command (position, parameter or test values).
+    const auto layout = protocol::answer_layout(protocol::info(frame->command), scenario.master.position_bits);
     std::size_t slot = launch - 1;  // index into e_re of the rising edge that launched the bit
     for (const auto& spec : layout.fields()) {
       const std::size_t last = slot + spec.width;  // edge after the field

@@ -188,3 +188,16 @@ TEST(TransactionLog, ParameterFramesAndAdditionalDataAreFields) {
   }
   EXPECT_GT(with_data, 0U);
 }
+
+TEST(Diagram, ParameterFrameShowsThePayloadAndBreaksTheMemoryAccessWait) {
+  const auto s = scenarios::load_scenario_file(kBundled + "parameters_endat21_write_read.json");
+  scenarios::DiagramOptions o;
+  o.frame = 1;  // encoder_receive_parameters: address 0x0B, 0xA5B4, then about 2 ms of polling
+  const auto d = scenarios::frame_diagram(s, o);
+  EXPECT_NE(d.svg.find(">address 0x0B</text>"), std::string::npos);
+  EXPECT_NE(d.svg.find(">parameter 0xA5B4</text>"), std::string::npos);
+  EXPECT_NE(d.svg.find(">S</text>"), std::string::npos);
+  EXPECT_EQ(d.svg.find(">position"), std::string::npos);  // the answer is an echo, not a position
+  // The polling while the encoder writes its memory is one axis break of about 2 ms.
+  EXPECT_NE(d.svg.find(">// 1.99"), std::string::npos) << d.caption;
+}
