@@ -199,7 +199,7 @@ void Encoder::begin_frame() {
   next_bit_ = 0;
   EncoderFrame f;
   f.start = kernel_.now();
-  f.position = params_.position_at(kernel_.now());
+  f.position = output_position(params_.position_at(kernel_.now()));
   frames_.push_back(f);
   latch_errors();
   release();
@@ -226,7 +226,7 @@ void Encoder::on_falling_edge() {
       // 2.3.1: a continuous clock is only possible with "Encoder send position values";
       // the next position is saved with the falling edge after the HIGH bit.
       if (f.command == MC::EncoderSendPositionValues) {
-        f.continuous_positions.push_back(params_.position_at(kernel_.now()));
+        f.continuous_positions.push_back(output_position(params_.position_at(kernel_.now())));
         ++f.continuous_words;
         state_ = State::ContinuousGap;
         gap_low_bits_ = 0;
@@ -313,6 +313,24 @@ void Encoder::abort_type1(ErrorCause cause) {
   f.type1_error = true;  // appendix A2, type I: mode command disrupted or not supported
   f.error = cause;
   state_ = State::Type1;
+}
+
+// The position as sent: the measured value in the direction word 30 chooses (3.5.16), plus the
+// datum shift of operating parameters words 0..2 as activated by the last reset (3.6.2: "the
+// value must be added"; 3.5.13: words 22/23 have no effect on the output), modulo 2^n ("after
+// the zero position follows 2^x - 1").
+std::uint64_t Encoder::output_position(std::uint64_t measured) const {
+  const unsigned n = params_.position_bits;
+  const std::uint64_t mask = n >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1;
+  // UNCERTAIN (3.5.16, its table lost a column): bit 0 = 0, the default, is taken as positions
+  // rising in the documented direction of measurement, bit 0 = 1 as falling.
+  const bool falling = (memory_.manufacturer_word(word::kDirection) & 1U) != 0;
+  std::uint64_t p = falling ? (0 - measured) & mask : measured;
+  const auto& op = memory_.active_operating_parameters();
+  std::uint64_t shift = std::uint64_t{op[word::kDatumShift]} | std::uint64_t{op[word::kDatumShift + 1]} << 16;
+  if (n > 32) shift |= std::uint64_t{op[word::kDatumShift + 2]} << 32;
+  else if ((shift & 0x8000'0000ULL) != 0) shift |= 0xFFFF'FFFF'0000'0000ULL;  // two's complement in 32 bits
+  return (p + shift) & mask;
 }
 
 bool Encoder::error_message_1() const {

@@ -171,6 +171,7 @@ class Encoder {
   void reset();
   void latch_errors();
   bool error_message_1() const;
+  std::uint64_t output_position(std::uint64_t measured) const;
   bool error_message_2() const;
   bool drives_bus() const;
   std::uint8_t status_byte(Information i) const;

@@ -408,7 +408,7 @@ TEST(ModeCommandCommunicationCommand, HighImpedanceBroadcastSilencesTheEncoder) 
   ASSERT_TRUE(b.last().error.has_value());
   EXPECT_EQ(*b.last().error, ErrorCause::DataDriverHighImpedanceBroadcast);
   b.frame(30, ScriptedFrame::header(0b000111));
-  EXPECT_EQ(b.last().start_bit_clock, 11U);
+  EXPECT_EQ(b.last().start_bit_clock, 11U) << int(b.last().mode_bits) << " t1 " << b.last().type1_error << " clocks " << b.last().clocks << " n " << b.encoder.frames().size();
   EXPECT_EQ(b.slots(1, 10, 20), "11111111111") << "fail-safe HIGH: nobody drives";
 }
 
@@ -485,4 +485,60 @@ TEST(AppendixA2, EveryCauseHasItsType) {
                  ErrorCause::DuplicateAdditionalData})
     EXPECT_EQ(protocol::error_type(c), T::III) << protocol::describe(c);
   EXPECT_EQ(protocol::error_type(ErrorCause::AdditionalDataNotUpdated), T::IV);
+}
+
+// ---- what the encoder outputs: datum shift (3.6.2) and direction (3.5.16) ----------------
+
+namespace {
+
+slave::EncoderParams rotary_13bit(std::uint64_t measured) {
+  auto p = params();
+  p.position_bits = 13;  // 8192 measuring steps per revolution
+  p.motion.start = measured;
+  p.memory = slave::default_memory_image(p);
+  return p;
+}
+
+std::uint64_t position_sent(Bench& b) { return b.last().position; }
+
+}  // namespace
+
+TEST(DatumShift, RotaryExampleOf362ShiftsBy568StepsAfterTheReset) {
+  // 3.6.2: +20 deg (+5 deg from the manufacturer) at 8192 steps/rev -> 569 steps, EnDat-compliant
+  // 568 = 238h; stored as the two's complement FFFFFDC8h and added to the position.
+  auto p = rotary_13bit(1000);
+  Bench b(p);
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA7, 0)));
+  b.frame(65, ScriptedFrame::header(0b011100, payload(0x00, 0xFDC8)));
+  b.frame(65, ScriptedFrame::header(0b011100, payload(0x01, 0xFFFF)));
+  b.frame(27, ScriptedFrame::header(0b000111));
+  EXPECT_EQ(position_sent(b), 1000U) << "operating parameters become valid with the reset (3.6)";
+  b.frame(65, ScriptedFrame::header(0b101010, payload(0, 0)));
+  b.frame(31, ScriptedFrame::header(0b000111));
+  EXPECT_EQ(position_sent(b), 1000U - 568U);
+  EXPECT_EQ(b.slots(5, 9, 30),
+            "00" "1" "0" + bits_lsb(432, 13) + bits_msb(protocol::make_crc_pos(13, false, true, false, 432), 5));
+}
+
+TEST(DatumShift, BelowZeroWrapsToTheTopOfTheRange) {
+  // 3.5.13 note: "directly after the zero position follows the position value 2^x - 1".
+  auto p = rotary_13bit(100);
+  p.memory->areas[protocol::MemoryArea::OperatingParameters][0] = 0xFF38;  // -200
+  p.memory->areas[protocol::MemoryArea::OperatingParameters][1] = 0xFFFF;
+  Bench b(p);
+  b.frame(27, ScriptedFrame::header(0b000111));
+  EXPECT_EQ(position_sent(b), 8192U - 100U);
+}
+
+TEST(DirectionOfRotation, Word30Bit0TurnsTheCountingDirection) {
+  auto p = rotary_13bit(100);
+  auto& m2 = p.memory->areas[protocol::MemoryArea::Manufacturer2];
+  m2[30 - 16] |= 0x0001;
+  auto& m3 = p.memory->areas[protocol::MemoryArea::Manufacturer3];
+  std::vector<std::uint16_t> all(48, 0);
+  for (unsigned i = 4; i < 48; ++i) all[i] = i < 16 ? p.memory->areas[protocol::MemoryArea::Manufacturer1][i] : i < 32 ? m2[i - 16] : m3[i - 32];
+  m3[15] = slave::word_sum(all, 4, 46);
+  Bench b(p);
+  b.frame(27, ScriptedFrame::header(0b000111));
+  EXPECT_EQ(position_sent(b), 8192U - 100U);
 }
