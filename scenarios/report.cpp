@@ -1,5 +1,7 @@
 #include "scenarios/report.hpp"
 
+#include "protocol/parameters.hpp"
+
 #include <map>
 
 namespace endatsim::scenarios {
@@ -34,6 +36,25 @@ std::string frame_line(const ScenarioResult& r, const master::FrameResult& f) {
 
 }  // namespace
 
+std::string hex4(std::uint16_t v) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  std::string s;
+  for (int i = 3; i >= 0; --i) s += kDigits[(v >> (4 * i)) & 0xF];
+  return s + "h";
+}
+
+// What the master's start-up routine (seed 002) read, decoded (3.4, 3.5.6, 3.5.22).
+void write_startup(std::ostream& out, const master::StartupInfo& s) {
+  namespace pm = protocol::parameters;
+  if (!s.completed && s.failed_frames == 0 && !s.word13) return;
+  out << "  start-up routine: " << (s.completed ? "completed" : std::to_string(s.failed_frames) + " frames failed");
+  if (s.errors) out << "; alarms " << hex4(*s.errors);
+  if (s.warnings) out << ", warnings " << hex4(*s.warnings);
+  if (s.word13) out << "; word 13 " << hex4(*s.word13) << " (" << pm::decode_position_bits(*s.word13) << " position bits)";
+  if (s.word37) out << "; word 37 " << hex4(*s.word37) << " (" << pm::command_set_string(*s.word37) << ")";
+  out << "\n";
+}
+
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
   if (!r.description.empty()) out << "  " << r.description << "\n";
@@ -65,9 +86,12 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     if (!verbose && ++shown > 5) break;
     out << frame_line(r, f) << "\n";
   }
+  write_startup(out, r.startup);
   if (!verbose) {
     for (const auto& f : r.frames) {
-      if (f.measurement || f.outcome != master::FrameOutcome::Ok) continue;
+      if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
+          protocol::info(f.command).answer != protocol::AnswerFormat::Position)
+        continue;
       out << "  first position read: " << f.position << " (frame #" << f.index << ")\n";
       break;
     }
@@ -140,6 +164,18 @@ nlohmann::json to_json(const ScenarioResult& r) {
     ms.push_back(jm);
   }
   j["delay_measurements"] = ms;
+  if (r.startup.completed || r.startup.failed_frames != 0) {
+    json st;
+    st["completed"] = r.startup.completed;
+    const auto word = [&](const char* key, const std::optional<std::uint16_t>& v) {
+      if (v) st[key] = *v;
+    };
+    word("errors", r.startup.errors);
+    word("warnings", r.startup.warnings);
+    word("word13", r.startup.word13);
+    word("word37", r.startup.word37);
+    j["startup"] = st;
+  }
   json vs = json::array();
   for (const auto& v : r.violations) {
     json jv{{"check", v.check},     {"spec", v.spec},       {"where", line::to_string(v.where)},
