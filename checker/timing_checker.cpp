@@ -340,7 +340,9 @@ void TimingChecker::finish() {
       if (start <= c.start) frame = index;
     report({std::string(check::kContention), "2.3 (collision between the data drivers)", c.where, c.start,
             frame, std::nullopt, format_time(end - c.start), "0 ps (one driver at a time)", Severity::Error,
-            "master and encoder drove DATA at the same time"}, frame ? "inside a frame" : "between frames");
+            c.between_encoders ? "two encoders on the bus drove DATA at the same time (2.10)"
+                               : "master and encoder drove DATA at the same time"},
+           frame ? "inside a frame" : "between frames");
   }
   std::stable_sort(violations_.begin(), violations_.end(),
                    [](const Violation& a, const Violation& b) { return a.time < b.time; });

@@ -1,7 +1,9 @@
 #include "line/line.hpp"
 
 #include <cmath>
+#include <deque>
 #include <stdexcept>
+#include <string>
 
 namespace endatsim::line {
 
@@ -77,6 +79,59 @@ class PinResolver {
   bool& failsafe_;
 };
 
+// The encoder end of DATA with several encoders on the bus (2.10): their drivers, after their
+// driver delays, resolve into the one driver the cable and the master see.
+class EncoderBus {
+ public:
+  EncoderBus(Signal& drive_en, Signal& drive_level, std::vector<Contention>& log, sim::Kernel& kernel)
+      : drive_en_(drive_en), drive_level_(drive_level), log_(log), kernel_(kernel) {}
+  void add(Signal& en, Signal& level) {
+    taps_.emplace_back(&en, &level);
+    en.on_change(sim::bind<&EncoderBus::resolve>(this));
+    level.on_change(sim::bind<&EncoderBus::resolve>(this));
+    resolve();
+  }
+  void resolve() {
+    unsigned enabled = 0;
+    bool level = true;  // two drivers that disagree: the LOW one wins (wired, undefined in RS-485)
+    for (const auto& [en, lv] : taps_) {
+      if (!en->read()) continue;
+      ++enabled;
+      level = level && lv->read();
+    }
+    if (enabled > 1 && !open_) {
+      log_.push_back(Contention{ObservationPoint::EncoderPins, kernel_.now(), Time::max(), true});
+      open_index_ = log_.size() - 1;
+      open_ = true;
+    } else if (enabled <= 1 && open_) {
+      log_[open_index_].end = kernel_.now();
+      open_ = false;
+    }
+    drive_en_.write(enabled > 0);
+    drive_level_.write(enabled > 0 && level);
+  }
+
+ private:
+  Signal& drive_en_;
+  Signal& drive_level_;
+  std::vector<Contention>& log_;
+  sim::Kernel& kernel_;
+  std::vector<std::pair<Signal*, Signal*>> taps_;
+  bool open_ = false;
+  std::size_t open_index_ = 0;
+};
+
+// One encoder's transceiver on the bus.
+struct EncoderTap {
+  EncoderTap(sim::Kernel& k, const LineParams& p, const std::string& n)
+      : data_out(k, "e_data_out_" + n, false), data_enable(k, "e_data_enable_" + n, false),
+        level(k, "e_tap_level_" + n, false), en(k, "e_tap_en_" + n, false),
+        level_driver(k, data_out, level, p.encoder.driver_delay),
+        en_driver(k, data_enable, en, p.encoder.enable_delay, p.encoder.disable_delay) {}
+  Signal data_out, data_enable, level, en;
+  TransportDelay level_driver, en_driver;
+};
+
 struct Line::Impl {
   Impl(sim::Kernel& k, const LineParams& p, std::vector<Contention>& log)
       : failsafe(p.failsafe_level),
@@ -97,8 +152,10 @@ struct Line::Impl {
         clock_receiver(k, e_clock, e_clock_in, p.encoder.receiver_delay),
         m_level_driver(k, m_data_out, m_drive_level, p.master.driver_delay),
         m_en_driver(k, m_data_enable, m_drive_en, p.master.enable_delay, p.master.disable_delay),
-        e_level_driver(k, e_data_out, e_drive_level, p.encoder.driver_delay),
-        e_en_driver(k, e_data_enable, e_drive_en, p.encoder.enable_delay, p.encoder.disable_delay),
+        e_tap_level(k, "e_tap_level_0", false), e_tap_en(k, "e_tap_en_0", true),
+        e_level_driver(k, e_data_out, e_tap_level, p.encoder.driver_delay),
+        e_en_driver(k, e_data_enable, e_tap_en, p.encoder.enable_delay, p.encoder.disable_delay),
+        bus(e_drive_en, e_drive_level, log, k),
         m_level_cable(k, m_drive_level, m_level_at_e, p.cable_delay()),
         m_en_cable(k, m_drive_en, m_en_at_e, p.cable_delay()),
         e_level_cable(k, e_drive_level, e_level_at_m, p.cable_delay()),
@@ -108,7 +165,9 @@ struct Line::Impl {
         encoder_pin(ObservationPoint::EncoderPins, e_drive_en, e_drive_level, m_en_at_e, m_level_at_e,
                     e_data, e_driven, log, k, failsafe),
         m_receiver(k, m_data, m_data_in, p.master.receiver_delay),
-        e_receiver(k, e_data, e_data_in, p.encoder.receiver_delay) {}
+        e_receiver(k, e_data, e_data_in, p.encoder.receiver_delay) {
+    bus.add(e_tap_en, e_tap_level);
+  }
 
   bool failsafe;
   Signal m_clock_out, m_data_out, m_data_enable, m_data_in;
@@ -119,7 +178,11 @@ struct Line::Impl {
   Signal m_data, e_data;
   Signal m_driven, e_driven;
   TransportDelay clock_driver, clock_cable, clock_receiver;
-  TransportDelay m_level_driver, m_en_driver, e_level_driver, e_en_driver;
+  TransportDelay m_level_driver, m_en_driver;
+  Signal e_tap_level, e_tap_en;
+  TransportDelay e_level_driver, e_en_driver;
+  EncoderBus bus;
+  std::deque<EncoderTap> taps;
   TransportDelay m_level_cable, m_en_cable, e_level_cable, e_en_cable;
   PinResolver master_pin, encoder_pin;
   TransportDelay m_receiver, e_receiver;
@@ -138,6 +201,12 @@ Line::MasterSide Line::master() {
 
 Line::EncoderSide Line::encoder() {
   return {impl_->e_clock_in, impl_->e_data_out, impl_->e_data_enable, impl_->e_data_in};
+}
+
+Line::EncoderSide Line::add_encoder() {
+  auto& tap = impl_->taps.emplace_back(kernel_, params_, std::to_string(impl_->taps.size() + 1));
+  impl_->bus.add(tap.en, tap.level);
+  return {impl_->e_clock_in, tap.data_out, tap.data_enable, impl_->e_data_in};
 }
 
 Line::Pins Line::pins(ObservationPoint where) {

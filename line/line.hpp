@@ -49,11 +49,13 @@ struct LineParams {
 enum class ObservationPoint : std::uint8_t { MasterPins, EncoderPins };
 std::string_view to_string(ObservationPoint p);
 
-// Both ends driving DATA at once, as seen at one end's pins.
+// Two drivers on DATA at once, as seen at one end's pins: both ends, or (several encoders on
+// one bus, 2.10) two encoders at the encoder end.
 struct Contention {
   ObservationPoint where;
   Time start;
   Time end;  // Time::max() while still going on
+  bool between_encoders = false;
 };
 
 class Line {
@@ -87,6 +89,10 @@ class Line {
 
   MasterSide master();
   EncoderSide encoder();
+  // Another encoder on the same bus (2.10), at the encoder end of the cable with its own
+  // transceiver (the line's encoder_transceiver delays); their drivers meet at the encoder pins.
+  // Its driver starts off; the encoder turns it on if it drives the bus.
+  EncoderSide add_encoder();
   Pins pins(ObservationPoint where);
 
   const LineParams& params() const { return params_; }

@@ -704,6 +704,7 @@ void read_expect(const Node& n, Expectations& e) {
       const Node item(v->raw()[i], v->path() + "/" + std::to_string(i), n.file());
       Object m(item);
       MemoryExpectation me;
+      if (auto x = m.opt("encoder")) me.encoder = static_cast<std::size_t>(x->as_uint(0, 31));
       const Node area = m.req("area");
       const auto a = protocol::memory_area_from_key(area.as_string());
       if (!a) area.fail("a memory area name such as \"oem_1\"");
@@ -732,6 +733,14 @@ Scenario read_scenario(const json& root, const std::string& file) {
   if (auto v = o.opt("max_time")) s.max_time = v->as_duration(sim::us(1), sim::ms(60'000));
   read_line(o.req("line"), s.line);
   if (auto v = o.opt("encoder")) read_encoder(*v, s.encoder);
+  if (auto v = o.opt("bus")) {
+    if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > 31)
+      v->fail("an array of 1 .. 31 further encoders on the bus (2.10)");
+    for (std::size_t i = 0; i < v->raw().size(); ++i) {
+      s.bus.emplace_back();
+      read_encoder(Node(v->raw()[i], v->path() + "/" + std::to_string(i), file), s.bus.back());
+    }
+  }
   read_master(o.req("master"), s.master);
   s.master.seed = s.seed;
   if (auto v = o.opt("checker")) read_checker(*v, s.checker);

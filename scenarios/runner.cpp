@@ -141,14 +141,20 @@ void judge_operation(std::size_t index, const FrameExpectation& e, ScenarioResul
 
 void judge_memory(const Scenario& s, ScenarioResult& r) {
   for (const auto& m : s.expect.memory) {
-    const auto& areas = r.encoder_memory.areas;
+    std::string name = "memory." + std::string(protocol::info(m.area).key) + "/" + hex(m.address, 2);
+    if (m.encoder > 0) name = "bus/" + std::to_string(m.encoder - 1) + "/" + name;
+    if (m.encoder > r.bus_memory.size()) {
+      r.expectations.push_back({name, false, "there is no such encoder on the bus"});
+      continue;
+    }
+    const slave::MemoryImage& image = m.encoder == 0 ? r.encoder_memory : r.bus_memory[m.encoder - 1];
+    const auto& areas = image.areas;
     const std::vector<std::uint16_t>* words = nullptr;
     if (m.area == protocol::MemoryArea::Section2) {
-      if (m.block < r.encoder_memory.section2_blocks.size()) words = &r.encoder_memory.section2_blocks[m.block];
+      if (m.block < image.section2_blocks.size()) words = &image.section2_blocks[m.block];
     } else if (const auto it = areas.find(m.area); it != areas.end()) {
       words = &it->second;
     }
-    const std::string name = "memory." + std::string(protocol::info(m.area).key) + "/" + hex(m.address, 2);
     if (words == nullptr || m.address >= words->size()) {
       r.expectations.push_back({name, false, "the encoder has no such word"});
       continue;
@@ -234,6 +240,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   sim::Kernel kernel;
   line::Line line(kernel, scenario.line);
   slave::Encoder encoder(kernel, line, scenario.encoder);
+  std::vector<std::unique_ptr<slave::Encoder>> bus;
+  for (const auto& p : scenario.bus) bus.push_back(std::make_unique<slave::Encoder>(kernel, line.add_encoder(), p));
   master::Master master(kernel, line, master_params);
   checker::TimingChecker checker(kernel, line, scenario.encoder, master_params, scenario.checker);
   master.add_observer(&checker);
@@ -282,6 +290,10 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.busy_timeouts = master.busy_timeouts();
   r.startup = master.startup();
   r.encoder_memory = encoder.memory().image();
+  for (const auto& e : bus) {
+    r.bus_memory.push_back(e->memory().image());
+    r.bus_frames.push_back(e->frames());
+  }
   judge(scenario, r);
   return r;
 }

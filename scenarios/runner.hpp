@@ -38,6 +38,8 @@ struct ScenarioResult {
   std::uint64_t cycle_overruns = 0;
   std::uint64_t busy_timeouts = 0;     // await_not_busy operations that gave up
   slave::MemoryImage encoder_memory;   // at the end of the run
+  std::vector<slave::MemoryImage> bus_memory;  // of the further encoders on the bus
+  std::vector<std::vector<slave::EncoderFrame>> bus_frames;
   master::StartupInfo startup;
   std::vector<ExpectationResult> expectations;
   bool passed() const;

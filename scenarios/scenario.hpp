@@ -48,6 +48,7 @@ struct FrameExpectation {
 
 // A word of the encoder's memory at the end of the run (ground truth, not what the master read).
 struct MemoryExpectation {
+  std::size_t encoder = 0;  // 0: "encoder"; k: the k-th of "bus"
   protocol::MemoryArea area = protocol::MemoryArea::OperatingStatus;
   std::uint8_t block = 0;
   std::uint8_t address = 0;
@@ -87,6 +88,7 @@ struct Scenario {
   Time max_time = sim::ms(1000);
   line::LineParams line;
   slave::EncoderParams encoder;
+  std::vector<slave::EncoderParams> bus;  // further encoders on the same DATA/CLOCK bus (2.10)
   master::MasterParams master;
   checker::CheckerParams checker;
   std::vector<master::Operation> script;

@@ -140,7 +140,10 @@ MemoryImage default_memory_image(const EncoderParams& p) {
 }
 
 Encoder::Encoder(sim::Kernel& kernel, line::Line& line, const EncoderParams& params)
-    : kernel_(kernel), pins_(line.encoder()), params_(params),
+    : Encoder(kernel, line.encoder(), params) {}
+
+Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const EncoderParams& params)
+    : kernel_(kernel), pins_(pins), params_(params),
       memory_((params.validate(), params.memory.value_or(default_memory_image(params)))),
       data_logic_(kernel, "encoder_data_logic", false), enable_logic_(kernel, "encoder_enable_logic", true),
       data_out_delay_(kernel, data_logic_, pins_.data_out, params.output_delay),
@@ -150,6 +153,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line& line, const EncoderParams& par
       end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
       startup_timer_(kernel, sim::bind<&Encoder::on_started>(this)) {
   pins_.clock_in.on_change(sim::bind<&Encoder::on_clock>(this));
+  enable();  // idle: DATA driven LOW, unless word 5 puts the driver at high impedance (2.10)
   if (params_.startup_time > Time::zero()) go_offline(params_.startup_time);
 }
 
@@ -415,8 +419,12 @@ void Encoder::answer_parameter_frame() {
           state_ = State::Type1;  // not addressed: stays silent
           return;
         }
-        pending_ = {Pending::Kind::Write, {MemoryArea::OperatingParameters, 0}, word::kInstructions, parameter};
-        if (address != 0 && address != own) pending_ = {};
+        // The addressed encoder takes its instruction at once and acknowledges with it; a
+        // broadcast is acknowledged by the encoder active before it, then carried out (2.10).
+        if (address == own && address != 0)
+          memory_.write({MemoryArea::OperatingParameters, 0}, word::kInstructions, parameter);
+        else if (address == 0)
+          pending_ = {Pending::Kind::Write, {MemoryArea::OperatingParameters, 0}, word::kInstructions, parameter};
         break;
       }
       default:

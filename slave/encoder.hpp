@@ -122,6 +122,8 @@ struct EncoderFrame {
 class Encoder {
  public:
   Encoder(sim::Kernel& kernel, line::Line& line, const EncoderParams& params);
+  // An encoder on a bus tap of the line (line::Line::add_encoder(), 2.10).
+  Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const EncoderParams& params);
   Encoder(const Encoder&) = delete;
   Encoder& operator=(const Encoder&) = delete;
 

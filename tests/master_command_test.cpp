@@ -150,3 +150,31 @@ TEST(MasterReset, ResetAndErrorReset) {
   EXPECT_TRUE(last_of(r, 2).additional_data.empty()) << "2.4.2.2: none after a reset";
   EXPECT_TRUE(r.violations.empty()) << violations(r);
 }
+
+TEST(MasterBus, TwoActiveEncodersOnOneBusCollide) {
+  // 2.10: without the high-impedance instruction both encoders drive DATA (idle LOW, then their
+  // answers): the checker reports the collision at the encoder end.
+  auto s = scenario(10, MHz(1), false, {op(MC::EncoderSendPositionValuesWithAdditionalData)});
+  s.bus.push_back(s.encoder);
+  s.bus.back().motion.start = 5;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_GE(r.violations.size(), 1U);
+  bool between_encoders = false;
+  for (const auto& v : r.violations)
+    between_encoders = between_encoders || (v.check == checker::check::kContention &&
+                                            v.message.find("two encoders") != std::string::npos);
+  EXPECT_TRUE(between_encoders) << violations(r);
+  EXPECT_NE(last_of(r, 0).outcome, master::FrameOutcome::Ok) << "the answers garble each other";
+}
+
+TEST(MasterBus, AHighImpedanceEncoderStaysOffTheBus) {
+  auto s = scenario(10, MHz(1), false, {op(MC::EncoderSendPositionValuesWithAdditionalData)});
+  s.bus.push_back(s.encoder);
+  s.bus.back().memory = slave::default_memory_image(s.bus.back());
+  s.bus.back().memory->areas[protocol::MemoryArea::OperatingParameters][slave::word::kInstructions] = 0x0002;
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(last_of(r, 0).outcome, master::FrameOutcome::Ok);
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+  ASSERT_EQ(r.bus_frames.size(), 1U);
+  EXPECT_EQ(r.bus_frames[0].size(), 1U) << "it sees the frame, but keeps silent";
+}
