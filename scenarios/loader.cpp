@@ -348,6 +348,13 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     p.supplement_end_marker_delay = v->as_duration(Time::zero(), sim::us(1));
   if (auto v = o.opt("supplement_ignore_clocks")) p.supplement_ignore_clocks = static_cast<unsigned>(v->as_uint(0, 16));
   if (auto v = o.opt("communication_command_permitted")) p.communication_command_permitted = v->as_bool();
+  if (auto v = o.opt("reference_marks")) {
+    if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > 1024) v->fail("an array of 1 .. 1024 positions");
+    p.reference_marks.clear();
+    for (std::size_t i = 0; i < v->raw().size(); ++i)
+      p.reference_marks.push_back(
+          Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file()).as_uint(0, (std::uint64_t{1} << 48) - 1));
+  }
   if (auto v = o.opt("sensors")) read_sensors(*v, p.sensors);
   if (auto v = o.opt("motion")) {
     Object m(*v);

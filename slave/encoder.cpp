@@ -153,6 +153,16 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
       end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
       startup_timer_(kernel, sim::bind<&Encoder::on_started>(this)) {
   pins_.clock_in.on_change(sim::bind<&Encoder::on_clock>(this));
+  namespace pm = protocol::parameters;
+  const auto type = pm::decode_encoder_type(memory_.manufacturer_word(word::kEncoderType));
+  incremental_ = type <= pm::EncoderType::IncrementalLinearBatteryDistanceCoded ||
+                 (type >= pm::EncoderType::IncrementalRotary && type <= pm::EncoderType::IncrementalRotaryBatteryDistanceCoded);
+  const bool distance_coded = type == pm::EncoderType::IncrementalLinearDistanceCoded ||
+                              type == pm::EncoderType::IncrementalLinearBatteryDistanceCoded ||
+                              type == pm::EncoderType::IncrementalRotaryDistanceCoded ||
+                              type == pm::EncoderType::IncrementalRotaryBatteryDistanceCoded;
+  marks_to_reference_ = distance_coded ? 2 : 1;
+  referenced_ = !incremental_;
   enable();  // idle: DATA driven LOW, unless word 5 puts the driver at high impedance (2.10)
   if (params_.startup_time > Time::zero()) go_offline(params_.startup_time);
 }
@@ -203,7 +213,11 @@ void Encoder::begin_frame() {
   next_bit_ = 0;
   EncoderFrame f;
   f.start = kernel_.now();
+  update_reference();
   f.position = output_position(params_.position_at(kernel_.now()));
+  // 2.3.4.3: incremental encoders send relative positions, counted from switching on.
+  if (incremental_) f.position = output_position(
+      static_cast<std::uint64_t>(unwrapped_position(kernel_.now()) - unwrapped_position(reference_origin_)));
   frames_.push_back(f);
   latch_errors();
   release();
@@ -335,6 +349,26 @@ std::uint64_t Encoder::output_position(std::uint64_t measured) const {
   if (n > 32) shift |= std::uint64_t{op[word::kDatumShift + 2]} << 32;
   else if ((shift & 0x8000'0000ULL) != 0) shift |= 0xFFFF'FFFF'0000'0000ULL;  // two's complement in 32 bits
   return (p + shift) & mask;
+}
+
+__int128 Encoder::unwrapped_position(Time t) const {
+  return static_cast<__int128>(params_.motion.start) +
+         static_cast<__int128>(params_.motion.counts_per_s) * t.count() / 1'000'000'000'000;
+}
+
+// 2.3.4.3: RM is set once the axis has crossed a reference mark (two with distance-coded
+// marks) since switching on; until then word 1 bit 4 warns "reference point not reached".
+void Encoder::update_reference() {
+  if (referenced_) return;
+  const __int128 range = __int128{1} << params_.position_bits;
+  const __int128 a = unwrapped_position(reference_search_from_), b = unwrapped_position(kernel_.now());
+  const __int128 lo = std::min(a, b), hi = std::max(a, b);
+  __int128 crossed = 0;
+  const auto floor_div = [](__int128 x, __int128 d) { return x >= 0 ? x / d : -((-x + d - 1) / d); };
+  for (std::uint64_t m : params_.reference_marks)  // marks at m + k * 2^n in (lo, hi]
+    crossed += floor_div(hi - static_cast<__int128>(m), range) - floor_div(lo - static_cast<__int128>(m), range);
+  if (crossed >= marks_to_reference_) referenced_ = true;
+  else memory_.latch_errors(0, 0x0010);
 }
 
 bool Encoder::error_message_1() const {
@@ -611,6 +645,7 @@ std::uint8_t Encoder::status_byte(Information i) const {
   if ((memory_.operating_status(word::kWarnings) & memory_.manufacturer_word(word::kSupportedWarnings)) != 0)
     s |= S::kWarning;
   if (busy()) s |= S::kBusy;
+  if (incremental_ && referenced_) s |= S::kReferenceMark;
   return s;
 }
 
@@ -621,7 +656,9 @@ void Encoder::append_additional_datum(Information selected, unsigned which) {
   const auto& stale = params_.sensors.not_updatable;
   if (type3_[which]) {
     code = which == 0 ? I::Type3Error1 : I::Type3Error2;  // A2 type III
-  } else if (std::find(stale.begin(), stale.end(), selected) != stale.end()) {
+  } else if (std::find(stale.begin(), stale.end(), selected) != stale.end() ||
+             (incremental_ && !referenced_ && selected >= I::PositionValue2Word1 && selected <= I::PositionValue2Word3)) {
+    // Type IV; an incremental encoder has no absolute position value 2 before its reference run.
     code = which == 0 ? I::Nop1 : I::Nop2;  // A2 type IV
   } else {
     data = additional_data_content(selected);
@@ -646,8 +683,11 @@ std::uint16_t Encoder::additional_data_content(Information i) {
     }
     // 2.3.5.1: "position value 2 or test values are always updated by querying the first word".
     case I::PositionValue2Word1:
-      position2_latched_ = static_cast<std::uint64_t>(static_cast<std::int64_t>(f.position) + s.position2_offset) &
-                           0xFFFF'FFFF'FFFFULL;
+      // Incremental encoders: the absolute position, available after the reference run.
+      position2_latched_ = incremental_ ? output_position(params_.position_at(f.start))
+                                        : static_cast<std::uint64_t>(static_cast<std::int64_t>(f.position) +
+                                                                     s.position2_offset) &
+                                              0xFFFF'FFFF'FFFFULL;
       return word_of(position2_latched_, 0);
     case I::PositionValue2Word2: return word_of(position2_latched_, 1);
     case I::PositionValue2Word3: return word_of(position2_latched_, 2);
@@ -743,6 +783,10 @@ void Encoder::reset() {
   type3_[0].reset();
   type3_[1].reset();
   area_selected_ = false;
+  // 2.7: "this bit is set to 0 via Encoder receive reset ... Position value 1 and position
+  // value 2 are not influenced by this."
+  referenced_ = !incremental_;
+  reference_search_from_ = kernel_.now();
   test_port_21_ = test_port_22_ = 0;
   sensor_address_ = 0;
   diagnosis_index_ = 0;

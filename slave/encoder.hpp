@@ -85,6 +85,9 @@ struct EncoderParams {
   Type1Handling type1 = Type1Handling::AbortHigh;
   bool communication_command_permitted = true;  // A2 cause 4 when false
   MotionProfile motion;
+  // Incremental encoders (word 14, 3.5.7): positions of the reference marks within the range, in
+  // measuring steps; one crossing (two with distance-coded marks) sets RM (2.3.4.3).
+  std::vector<std::uint64_t> reference_marks{0};
   bool error1 = false;              // F1 = 1 / F2 = 0 regardless of word 0
   std::uint16_t error_sources = 0;  // word 0 bits (3.4.1) that a fault keeps setting
   std::uint16_t warning_sources = 0;  // word 1 bits (3.4.2)
@@ -174,6 +177,8 @@ class Encoder {
   void latch_errors();
   bool error_message_1() const;
   std::uint64_t output_position(std::uint64_t measured) const;
+  void update_reference();
+  __int128 unwrapped_position(Time t) const;
   bool error_message_2() const;
   bool drives_bus() const;
   std::uint8_t status_byte(Information i) const;
@@ -237,6 +242,11 @@ class Encoder {
   bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command
   std::optional<bool> bus_selection_after_frame_;
   bool offline_ = false;                        // running up after power-on or reset (2.3.3)
+  bool incremental_ = false;                    // word 14: an incremental encoder
+  unsigned marks_to_reference_ = 1;             // 2 with distance-coded reference marks
+  bool referenced_ = false;                     // RM (2.3.4.3)
+  Time reference_origin_{0};                    // switch-on: where relative positions start
+  Time reference_search_from_{0};               // since when crossings count (switch-on, reset)
 
   std::vector<EncoderFrame> frames_;
   std::uint64_t ignored_edges_ = 0;

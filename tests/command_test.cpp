@@ -3,6 +3,7 @@
 // values come from protocol::make_crc_*, which crc_test checks against the examples of A4.
 #include <gtest/gtest.h>
 
+#include "protocol/parameters.hpp"
 #include "slave/encoder.hpp"
 #include "test_support.hpp"
 
@@ -541,4 +542,58 @@ TEST(DirectionOfRotation, Word30Bit0TurnsTheCountingDirection) {
   Bench b(p);
   b.frame(27, ScriptedFrame::header(0b000111));
   EXPECT_EQ(position_sent(b), 8192U - 100U);
+}
+
+// ---- incremental encoders: relative position, RM and position value 2 (2.3.4.3) -----------
+
+namespace {
+
+slave::EncoderParams incremental(protocol::parameters::EncoderType type, std::int64_t counts_per_s) {
+  auto p = params();
+  p.position_bits = 16;
+  p.motion.start = 30000;
+  p.motion.counts_per_s = counts_per_s;
+  p.reference_marks = {31000, 33000};
+  p.memory = slave::default_memory_image(p);
+  auto& m1 = p.memory->areas[protocol::MemoryArea::Manufacturer1];
+  m1[slave::word::kEncoderType] = protocol::parameters::encode_encoder_type(type);
+  return p;
+}
+
+}  // namespace
+
+// 16-bit position: the answer ends with the CRC on slots 30..34, the additional datum on 35..64.
+std::string select_position_value_2_16bit() {
+  return ScriptedFrame::header(0b001001) + std::string(27, '-') + "0000000" "1" + payload(0x42, 0);
+}
+
+void frame_at(Bench& b, Time at) {
+  b.starts.push_back(at);
+  b.frames.push_back(std::make_unique<ScriptedFrame>(b.k, b.line, us(1), 65, ScriptedFrame::header(0b111000), at));
+  b.k.run(at + ms(1));
+}
+
+TEST(IncrementalEncoder, RelativePositionThenRmAfterTheReferenceMark) {
+  // 10 000 steps/s from 30 000: the mark at 31 000 is crossed after 100 ms.
+  using T = protocol::parameters::EncoderType;
+  Bench b(incremental(T::IncrementalRotary, 10'000));
+  b.frame(67, select_position_value_2_16bit());
+  b.frame(65, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.last().position, 2U) << "relative: 200 us x 10 000/s";
+  // WRN: word 1 bit 4 "reference point not reached" (3.4.2), latched until cleared.
+  EXPECT_EQ(b.slots(1, 36, 43), bits_msb(0x80, 8)) << "RM = 0, position value 2 not yet available (NOP)";
+  frame_at(b, ms(150));
+  EXPECT_EQ(b.last().position, 1500U);
+  EXPECT_EQ(b.slots(2, 36, 59), bits_msb(0xC0 | 2, 8) + bits_msb(31500, 16)) << "RM = 1, absolute position value 2";
+}
+
+TEST(IncrementalEncoder, DistanceCodedMarksNeedTwoCrossings) {
+  using T = protocol::parameters::EncoderType;
+  Bench b(incremental(T::IncrementalRotaryDistanceCoded, 10'000));
+  b.frame(67, select_position_value_2_16bit());
+  frame_at(b, ms(150));
+  EXPECT_EQ(b.slots(1, 36, 43), bits_msb(0x80, 8)) << "one mark crossed: not yet referenced";
+  EXPECT_NE(b.encoder.memory().operating_status(slave::word::kWarnings) & 0x0010, 0) << "reference point not reached";
+  frame_at(b, ms(350));
+  EXPECT_EQ(b.slots(2, 36, 43), bits_msb(0xC0 | 2, 8)) << "second mark at 33 000 crossed at 300 ms";
 }
