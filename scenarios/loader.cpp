@@ -247,16 +247,11 @@ void read_sensors(const Node& n, slave::Sensors& s) {
   if (auto v = o.opt("limit_position_2")) s.limit_position_2 = v->as_bool();
   if (auto v = o.opt("operating_status_error_sources"))
     s.operating_status_error_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
-  if (auto v = o.opt("diagnosis")) {
-    if (!v->raw().is_array()) v->fail("an array of {\"address\", \"value\"}");
-    s.diagnosis.clear();
-    for (std::size_t i = 0; i < v->raw().size(); ++i) {
-      const Node item(v->raw()[i], v->path() + "/" + std::to_string(i), n.file());
-      Object d(item);
-      const auto address = static_cast<std::uint8_t>(d.req("address").as_word(0xFF));
-      s.diagnosis.emplace_back(address, static_cast<std::uint8_t>(d.req("value").as_word(0xFF)));
-      d.done();
-    }
+  if (auto v = o.opt("valuation_numbers")) {
+    if (!v->raw().is_array() || v->raw().size() != 6) v->fail("an array of the 6 valuation numbers (A3)");
+    for (std::size_t i = 0; i < 6; ++i)
+      s.valuation_numbers[i] =
+          static_cast<std::uint8_t>(Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file()).as_word(0xFF));
   }
   if (auto v = o.opt("test_values")) {
     if (!v->raw().is_object()) v->fail("an object of port address -> 40-bit test value");

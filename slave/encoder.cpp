@@ -657,6 +657,8 @@ void Encoder::append_additional_datum(Information selected, unsigned which) {
   if (type3_[which]) {
     code = which == 0 ? I::Type3Error1 : I::Type3Error2;  // A2 type III
   } else if (std::find(stale.begin(), stale.end(), selected) != stale.end() ||
+             (selected == I::Diagnosis &&
+              (memory_.active_operating_parameters()[word::kDiagnosticsConfiguration] & 0x3F) == 0) ||
              (incremental_ && !referenced_ && selected >= I::PositionValue2Word1 && selected <= I::PositionValue2Word3)) {
     // Type IV; an incremental encoder has no absolute position value 2 before its reference run.
     code = which == 0 ? I::Nop1 : I::Nop2;  // A2 type IV
@@ -676,10 +678,13 @@ std::uint16_t Encoder::additional_data_content(Information i) {
   const auto uvw = static_cast<std::uint16_t>((s.commutation & 0x7) << 13);
   const auto limits = static_cast<std::uint16_t>((s.limit_position_1 ? 0x8000 : 0) | (s.limit_position_2 ? 0x4000 : 0));
   switch (i) {
-    case I::Diagnosis: {  // A3: valuation numbers in turn
-      if (s.diagnosis.empty()) return 0;
-      const auto& [address, value] = s.diagnosis[diagnosis_index_++ % s.diagnosis.size()];
-      return static_cast<std::uint16_t>(address << 8 | value);
+    case I::Diagnosis: {  // A3 / 3.6.3: the activated valuation numbers in turn, address | value
+      const unsigned enabled = memory_.active_operating_parameters()[word::kDiagnosticsConfiguration] & 0x3F;
+      for (unsigned tried = 0; tried < s.valuation_numbers.size(); ++tried) {
+        const std::size_t k = diagnosis_index_++ % s.valuation_numbers.size();
+        if (((enabled >> k) & 1U) != 0) return static_cast<std::uint16_t>((k + 1) << 8 | s.valuation_numbers[k]);
+      }
+      return 0;
     }
     // 2.3.5.1: "position value 2 or test values are always updated by querying the first word".
     case I::PositionValue2Word1:

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -48,7 +49,9 @@ struct Sensors {
   bool limit_position_1 = false;
   bool limit_position_2 = false;
   std::uint16_t operating_status_error_sources = 0;  // 2.3.5.3
-  std::vector<std::pair<std::uint8_t, std::uint8_t>> diagnosis{{0, 100}};  // address, valuation number (A3)
+  // A3: valuation numbers 1 .. 6 (addresses 1 .. 6), sent in turn as far as operating
+  // parameters word 3 activates them (3.6.3).
+  std::array<std::uint8_t, 6> valuation_numbers{100, 100, 100, 100, 100, 100};
   std::map<std::uint8_t, std::uint64_t> test_values;  // port address -> 40-bit test value
   Time timestamp_unit = sim::us(1);
   std::vector<Information> not_updatable;    // A2 cause 16: answered with NOP (type IV)

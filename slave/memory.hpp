@@ -34,6 +34,7 @@ constexpr unsigned kAdditionalData1Support = 0, kAdditionalData2Support = 1, kSe
                    kMaxClockFrequency = 25, kEndat22Checksum = 63;  // BD, 3.9.1
 constexpr unsigned kEncoderAddress = 4, kInstructions = 5;       // A7, 3.6.4 / 3.6.5
 constexpr unsigned kDatumShift = 0;                              // A7 words 0..2, 3.6.2
+constexpr unsigned kDiagnosticsConfiguration = 3;                // A7, 3.6.3
 constexpr unsigned kDirection = 30;                              // encoder manufacturer, 3.5.16
 }  // namespace word
 

@@ -597,3 +597,24 @@ TEST(IncrementalEncoder, DistanceCodedMarksNeedTwoCrossings) {
   frame_at(b, ms(350));
   EXPECT_EQ(b.slots(2, 36, 43), bits_msb(0xC0 | 2, 8)) << "second mark at 33 000 crossed at 300 ms";
 }
+
+TEST(AdditionalData, DiagnosisSendsTheActivatedValuationNumbersInTurn) {
+  // 3.6.3 / A3: word 3 of the operating parameters activates valuation numbers 1 and 3.
+  auto p = params();
+  p.sensors.valuation_numbers = {91, 92, 93, 94, 95, 96};
+  p.memory = slave::default_memory_image(p);
+  p.memory->areas[protocol::MemoryArea::OperatingParameters][slave::word::kDiagnosticsConfiguration] = 0x0005;
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x41, 0));
+  for (int i = 0; i < 3; ++i) b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(1, 28, 51), bits_msb(0x01, 8) + bits_msb(0x01, 8) + bits_msb(91, 8));
+  EXPECT_EQ(b.slots(2, 28, 51), bits_msb(0x01, 8) + bits_msb(0x03, 8) + bits_msb(93, 8));
+  EXPECT_EQ(b.slots(3, 28, 51), bits_msb(0x01, 8) + bits_msb(0x01, 8) + bits_msb(91, 8));
+}
+
+TEST(AdditionalData, DiagnosisWithoutActivatedValuationNumbersIsNop) {
+  Bench b(params());
+  b.frame(59, supplement_frame(0b001001, 0x41, 0));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(1, 28, 35), bits_msb(0x00, 8));
+}
