@@ -71,6 +71,8 @@ void MasterParams::validate() const {
           "master power_on t1_t2 and t3 must be 0 .. 10 s");
   require(power_on.pulse > Time::zero() && power_on.pulse <= sim::ms(1),
           "master power_on pulse must be > 0 and <= 1 ms, got " + sim::format_time(power_on.pulse));
+  require(startup_f_c >= kMinFc && startup_f_c <= kMaxFc,
+          "master startup_f_c must be 100 kHz .. 16 MHz, got " + sim::format_frequency(startup_f_c));
   require(memory_access_timeout > Time::zero() && memory_access_timeout <= sim::ms(100),
           "master memory_access_timeout must be > 0 and <= 100 ms, got " + sim::format_time(memory_access_timeout));
   require(supplement_lead_bits >= 1 && supplement_lead_bits <= 32,
@@ -179,6 +181,12 @@ void Master::expand_startup_routine() {
       frame(MC::SelectionOfMemoryArea, 0xA5),
       frame(MC::EncoderSendParameters, 37 - 32, 0, P::Word37),
   };
+  if (params_.delay_compensation) {  // seed 002 / 2.1.2: then the propagation delay is measured
+    Operation measure;
+    measure.kind = Operation::Kind::MeasureDelay;
+    measure.script_index = index;
+    operations_.push_front(measure);
+  }
   startup_ = {};
   startup_.completed = true;
   for (auto it = routine.rbegin(); it != routine.rend(); ++it) operations_.push_front(*it);
@@ -241,7 +249,9 @@ void Master::start_frame(std::uint64_t) {
   frame_.measurement = measurement;
   frame_.command = measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
   frame_.mode_bits = measurement || !current_->mode_bits ? protocol::info(frame_.command).bits : *current_->mode_bits;
-  frame_.f_c = measurement ? params_.measurement.f_c : params_.f_c;
+  frame_.f_c = measurement                                        ? params_.measurement.f_c
+               : current_->purpose != Operation::Purpose::None ? params_.startup_f_c
+                                                               : params_.f_c;
   frame_.compensated = !measurement && params_.delay_compensation && t_d_.has_value();
   frame_.t_d_used = frame_.compensated ? *t_d_ : Time::zero();
 

@@ -68,6 +68,9 @@ struct MasterParams {
   } power_on;
   // The start-up routine reads word 13 and from then on clocks that many position bits.
   bool adopt_word13 = true;
+  // ... and runs at this clock: before t_D is known only a slow clock is safe on a long cable
+  // (TI's firmware runs the routine at 200 kHz).
+  Hertz startup_f_c = sim::kHz(200);
   Time start_bit_timeout = sim::ms(1);  // t_cal max (2.3.2); polling gives up after this
   // 2.1 parameter frames: polling after the 24 bits gives up after t_ac max (12 ms, 2.3.2) + 1 ms.
   Time memory_access_timeout = sim::ms(13);

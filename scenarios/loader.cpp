@@ -343,6 +343,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     p.supplement_end_marker_delay = v->as_duration(Time::zero(), sim::us(1));
   if (auto v = o.opt("supplement_ignore_clocks")) p.supplement_ignore_clocks = static_cast<unsigned>(v->as_uint(0, 16));
   if (auto v = o.opt("communication_command_permitted")) p.communication_command_permitted = v->as_bool();
+  if (auto v = o.opt("eib_initialisation_time")) p.eib_initialisation_time = v->as_duration(Time::zero(), sim::ms(10'000));
   if (auto v = o.opt("reference_marks")) {
     if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > 1024) v->fail("an array of 1 .. 1024 positions");
     p.reference_marks.clear();
@@ -382,6 +383,7 @@ void read_master(const Node& n, master::MasterParams& p) {
   if (auto v = o.opt("error_wait")) p.error_wait = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("reset_wait")) p.reset_wait = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("adopt_word13")) p.adopt_word13 = v->as_bool();
+  if (auto v = o.opt("startup_f_c")) p.startup_f_c = v->as_frequency(master::MasterParams::kMinFc, master::MasterParams::kMaxFc);
   if (auto v = o.opt("power_on")) {
     Object m(*v);
     if (auto s = m.opt("t1_t2")) p.power_on.t1_t2 = s->as_duration(Time::zero(), sim::ms(10'000));

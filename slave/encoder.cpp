@@ -56,6 +56,8 @@ void EncoderParams::validate() const {
   require(supplement_end_marker_delay >= Time::zero() && supplement_end_marker_delay <= sim::us(1),
           "encoder supplement_end_marker_delay must be 0 .. 1 us (below the shortest t_m), got " +
               sim::format_time(supplement_end_marker_delay));
+  require(eib_initialisation_time >= Time::zero() && eib_initialisation_time <= sim::ms(10'000),
+          "encoder eib_initialisation_time must be 0 .. 10 s, got " + sim::format_time(eib_initialisation_time));
   require(supplement_ignore_clocks <= 16,
           "encoder supplement_ignore_clocks must be 0 .. 16, got " + std::to_string(supplement_ignore_clocks));
   require(output_delay >= Time::zero() && output_delay <= sim::us(1),
@@ -163,6 +165,8 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
                               type == pm::EncoderType::IncrementalRotaryBatteryDistanceCoded;
   marks_to_reference_ = distance_coded ? 2 : 1;
   referenced_ = !incremental_;
+  if (type == pm::EncoderType::ExternalInterfaceBox)
+    eib_ready_at_ = params_.startup_time + params_.eib_initialisation_time;
   enable();  // idle: DATA driven LOW, unless word 5 puts the driver at high impedance (2.10)
   if (params_.startup_time > Time::zero()) go_offline(params_.startup_time);
 }
@@ -411,7 +415,9 @@ void Encoder::answer_parameter_frame() {
   Time t_ac{0};
   const bool memory_access = command_->command != MC::EncoderReceiveTestCommand &&
                              command_->command != MC::EncoderReceiveCommunicationCommand;
-  if (memory_access && busy()) {
+  if (memory_access && kernel_.now() < eib_ready_at_) {
+    error = ErrorCause::EibNotInitialised;  // A2 cause 5
+  } else if (memory_access && busy()) {
     error = ErrorCause::Busy;  // 2.3.1 note 1: a 2.1 access with Busy = 1 gets type II
   } else {
     switch (command_->command) {

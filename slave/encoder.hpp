@@ -87,6 +87,9 @@ struct EncoderParams {
   unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (timing-model §1.2)
   Type1Handling type1 = Type1Handling::AbortHigh;
   bool communication_command_permitted = true;  // A2 cause 4 when false
+  // An encoder behind an External Interface Box (word 14 type Fh) is "not yet initiated" for
+  // this long after switching on; parameter accesses meanwhile get type II (A2 cause 5; guess).
+  Time eib_initialisation_time = sim::ms(100);
   MotionProfile motion;
   // Incremental encoders (word 14, 3.5.7): positions of the reference marks within the range, in
   // measuring steps; one crossing (two with distance-coded marks) sets RM (2.3.4.3).
@@ -248,6 +251,7 @@ class Encoder {
   bool incremental_ = false;                    // word 14: an incremental encoder
   unsigned marks_to_reference_ = 1;             // 2 with distance-coded reference marks
   bool referenced_ = false;                     // RM (2.3.4.3)
+  Time eib_ready_at_{0};                        // A2 cause 5 before this time
   Time reference_origin_{0};                    // switch-on: where relative positions start
   Time reference_search_from_{0};               // since when crossings count (switch-on, reset)
 

@@ -178,3 +178,25 @@ TEST(MasterBus, AHighImpedanceEncoderStaysOffTheBus) {
   ASSERT_EQ(r.bus_frames.size(), 1U);
   EXPECT_EQ(r.bus_frames[0].size(), 1U) << "it sees the frame, but keeps silent";
 }
+
+TEST(MasterStartup, RoutineReadsWord13AndMeasuresTheDelayWhenCompensating) {
+  // Seed 002: reset, 50 ms, alarms and warnings read and cleared, words 13 and 37; then (2.1.2)
+  // the delay measurement. The master was configured for 13 bits and takes word 13's 25.
+  auto s = test_support::make_scenario(50, MHz(8), true, 2);
+  s.script.erase(s.script.begin());  // no measure_delay of its own
+  master::Operation routine;
+  routine.kind = Kind::StartupRoutine;
+  s.script.insert(s.script.begin(), routine);
+  s.master.position_bits = 13;
+  s.encoder.warning_sources = 0x0004;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.finished);
+  EXPECT_TRUE(r.startup.completed);
+  EXPECT_EQ(r.startup.word13, 0x8019);
+  EXPECT_EQ(r.startup.warnings, 0x0004);
+  ASSERT_EQ(r.measurements.size(), 1U);
+  EXPECT_TRUE(r.measurements[0].accepted);
+  EXPECT_EQ(last_of(r, 1).position, 104462U);
+  EXPECT_TRUE(last_of(r, 1).compensated);
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
