@@ -733,6 +733,7 @@ Scenario read_scenario(const json& root, const std::string& file) {
       std::any_of(s.name.begin(), s.name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
     o.req("name").fail("a non-empty name without spaces, slashes or control characters");
   if (auto v = o.opt("description")) s.description = v->as_string();
+  if (auto v = o.opt("$schema")) v->as_string();  // for editors (schema/scenario.schema.json); not used
   if (auto v = o.opt("seed")) s.seed = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_time")) s.max_time = v->as_duration(sim::us(1), sim::ms(60'000));
   read_line(o.req("line"), s.line);

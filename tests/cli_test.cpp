@@ -7,6 +7,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "scenario_support.hpp"
+
 namespace {
 
 struct Run {
@@ -95,6 +97,10 @@ TEST(Cli, WritesJsonResultsAndVcd) {
   ss << j.rdbuf();
   EXPECT_NE(ss.str().find("\"passed\": true"), std::string::npos);
   EXPECT_GT(std::filesystem::file_size(vcd), 1000U);
+  std::ifstream v(vcd);
+  std::stringstream vs;
+  vs << v.rdbuf();
+  endatsim::test_support::expect_clean_vcd(vs.str(), vcd);
 }
 
 TEST(Cli, SeedMustBeANonNegativeInteger) {

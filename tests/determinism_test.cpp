@@ -20,6 +20,7 @@ std::string run_to_vcd(const scenarios::Scenario& s, std::uint64_t seed, const s
   std::stringstream ss;
   ss << in.rdbuf();
   std::filesystem::remove(path);
+  test_support::expect_clean_vcd(ss.str(), name);
   return ss.str();
 }
 

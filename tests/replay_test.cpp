@@ -13,6 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "scenario_support.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -70,6 +72,7 @@ TEST_F(Replay, SameScenarioAndSeedGiveByteIdenticalVcdAndJson) {
     ASSERT_LE(cli("run " + scenario + " --quiet --vcd " + path("a.vcd").string() + " --json " + path("a.json").string()), 1);
     ASSERT_LE(cli("run " + scenario + " --quiet --vcd " + path("b.vcd").string() + " --json " + path("b.json").string()), 1);
     const std::string vcd = slurp(path("a.vcd")), json = slurp(path("a.json"));
+    endatsim::test_support::expect_clean_vcd(vcd, scenario);
     ASSERT_GT(vcd.size(), 10'000U) << scenario;
     ASSERT_GT(json.size(), 1'000U) << scenario;
     EXPECT_TRUE(vcd == slurp(path("b.vcd"))) << scenario << ": VCD differs between two runs";
@@ -92,6 +95,7 @@ TEST_F(Replay, JsonResultsNameFileAndSeedAndReplayTheRun) {
                 path("replay.vcd").string() + " --json " + path("replay.json").string()),
             1);
   EXPECT_TRUE(slurp(path("first.vcd")) == slurp(path("replay.vcd")));
+  endatsim::test_support::expect_clean_vcd(slurp(path("replay.vcd")), "replay.vcd");
   EXPECT_TRUE(slurp(path("first.json")) == slurp(path("replay.json")));
   // The seed matters: another one gives another trace, so the comparison above can fail.
   ASSERT_LE(cli("run " + scenario.string() + " --seed 987654322 --quiet --vcd " + path("other.vcd").string()), 1);

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include "scenarios/runner.hpp"
+#include "scenarios/vcd_reader.hpp"
 
 namespace endatsim::test_support {
 
@@ -30,6 +33,14 @@ inline void prepend_disturbed_read(scenarios::Scenario& s, std::uint8_t mode_bit
   bad.mode_bits = mode_bits;
   bad.count = 1;
   s.script.insert(s.script.begin(), bad);
+}
+
+// Every VCD a test writes goes through the lint, with sigrok's restrictions (issue 6).
+inline void expect_clean_vcd(const std::string& text, const std::string& what) {
+  const auto f = scenarios::parse_vcd(text, {.sigrok = true});
+  EXPECT_TRUE(f.issues.empty()) << what << ": line " << (f.issues.empty() ? 0 : f.issues[0].line) << ": "
+                                << (f.issues.empty() ? "" : f.issues[0].message);
+  EXPECT_FALSE(f.variables.empty()) << what << ": no variables";
 }
 
 inline std::size_t count_ok(const scenarios::ScenarioResult& r) {

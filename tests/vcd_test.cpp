@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "sim/sim.hpp"
+#include "scenario_support.hpp"
 
 using namespace endatsim::sim;
 
@@ -59,6 +60,7 @@ TEST(VcdWriter, WritesOnlyCommittedChangesAtTheEndOfEachTimeStep) {
   // b rose and fell inside the step at 2 ns: nothing is written for it; finish() closes at 2 ns.
   const auto body = text.substr(text.find("$end\n", text.find("$dumpvars")) + 5);
   EXPECT_EQ(body, "#1000\n1!\n#2000\n");
+  endatsim::test_support::expect_clean_vcd(text, path);
   std::filesystem::remove(path);
 }
 
@@ -87,5 +89,6 @@ TEST(VcdWriter, ChangesAtTimeZeroAreStampedZero) {
   const std::string text = read_file(path);
   const auto body = text.substr(text.find("$end\n", text.find("$dumpvars")) + 5);
   EXPECT_EQ(body, "1!\n#3000\n0!\n");
+  endatsim::test_support::expect_clean_vcd(text, path);
   std::filesystem::remove(path);
 }
