@@ -1,5 +1,7 @@
 #include "scenarios/diagram.hpp"
 
+#include "scenarios/xml.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -24,17 +26,6 @@ std::string num(double v) {
   return buf;
 }
 
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '&') out += "&amp;";
-    else if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
 
 // A 1-bit waveform read back from the VCD.
 struct Wave {
@@ -155,7 +146,7 @@ class Svg {
            "/>\n";
   }
   void text(double x, double y, const std::string& t, const std::string& style = "") {
-    out += "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\"" + (style.empty() ? "" : " " + style) + ">" + escape(t) +
+    out += "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\"" + (style.empty() ? "" : " " + style) + ">" + xml_escape(t) +
            "</text>\n";
   }
   void rect(double x, double y, double w, double h, const std::string& style) {

@@ -1,5 +1,7 @@
 #include "scenarios/sweep.hpp"
 
+#include "scenarios/xml.hpp"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -556,17 +558,6 @@ std::string label(const GridAxis& axis, double v) {
   }
 }
 
-std::string xml(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '&') out += "&amp;";
-    else if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
 
 constexpr double kHeight = 460;
 constexpr double kLeft = 90, kRight = 580, kTop = 50, kBottom = 400;
@@ -580,17 +571,17 @@ void draw_axes(std::ostream& out, const Sweep& sweep, const MaximumTable& m, std
   for (double v : ticks(x))
     out << "<line x1=\"" << px(x(v)) << "\" y1=\"" << kTop << "\" x2=\"" << px(x(v)) << "\" y2=\"" << kBottom
         << "\" stroke=\"#ddd\"/><text x=\"" << px(x(v)) << "\" y=\"" << kBottom + 18
-        << "\" text-anchor=\"middle\">" << xml(number_text(v)) << "</text>\n";
+        << "\" text-anchor=\"middle\">" << xml_escape(number_text(v)) << "</text>\n";
   for (double v : ticks(y))
     out << "<line x1=\"" << kLeft << "\" y1=\"" << px(y(v)) << "\" x2=\"" << kRight << "\" y2=\"" << px(y(v))
         << "\" stroke=\"#ddd\"/><text x=\"" << kLeft - 6 << "\" y=\"" << px(y(v) + 4) << "\" text-anchor=\"end\">"
-        << xml(label(sweep.grid[m.axis], v)) << "</text>\n";
+        << xml_escape(label(sweep.grid[m.axis], v)) << "</text>\n";
   out << "<text x=\"" << (kLeft + kRight) / 2 << "\" y=\"" << kBottom + 42 << "\" text-anchor=\"middle\">"
-      << xml(sweep.grid[x_axis].pointer) << "</text>\n";
+      << xml_escape(sweep.grid[x_axis].pointer) << "</text>\n";
   out << "<text transform=\"translate(20 " << (kTop + kBottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-      << xml("largest clean " + sweep.grid[m.axis].pointer + (y.log ? " (log scale)" : "")) << "</text>\n";
+      << xml_escape("largest clean " + sweep.grid[m.axis].pointer + (y.log ? " (log scale)" : "")) << "</text>\n";
   out << "<text x=\"" << (kLeft + kRight) / 2 << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\">"
-      << xml(sweep.name + ": largest " + sweep.grid[m.axis].pointer + " with clean reads") << "</text>\n";
+      << xml_escape(sweep.name + ": largest " + sweep.grid[m.axis].pointer + " with clean reads") << "</text>\n";
 }
 
 // A cross: where a line has no clean point.
@@ -631,13 +622,13 @@ Legend legend_of(const Sweep& sweep, const MaximumTable& m, const ChartShape& sh
 void draw_legend(std::ostream& out, const Legend& legend) {
   double y = kTop + 10;
   if (!legend.heading.empty()) {
-    out << "<text x=\"" << kRight + 15 << "\" y=\"" << px(y + 4) << "\">" << xml(legend.heading) << "</text>\n";
+    out << "<text x=\"" << kRight + 15 << "\" y=\"" << px(y + 4) << "\">" << xml_escape(legend.heading) << "</text>\n";
     y += 22;
   }
   for (std::size_t k = 0; k < legend.entries.size(); ++k, y += 22)
     out << "<line x1=\"" << kRight + 15 << "\" y1=\"" << px(y) << "\" x2=\"" << kRight + 40 << "\" y2=\"" << px(y)
         << "\" stroke=\"" << kColours[k % kColours.size()] << "\" stroke-width=\"2\"/><text x=\"" << kRight + 46
-        << "\" y=\"" << px(y + 4) << "\">" << xml(legend.entries[k]) << "</text>\n";
+        << "\" y=\"" << px(y + 4) << "\">" << xml_escape(legend.entries[k]) << "</text>\n";
   if (!legend.gaps) return;
   draw_cross(out, kRight + 27.5, y, "#555");
   out << "<text x=\"" << kRight + 46 << "\" y=\"" << px(y + 4) << "\">" << kNoCleanText << "</text>\n";
@@ -703,7 +694,7 @@ std::string maximum_svg(const Sweep& sweep, const MaximumTable& maximum) {
   std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << kHeight
       << "\" viewBox=\"0 0 " << width << " " << kHeight << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
-      << "<title>" << xml(sweep.name) << "</title>\n"
+      << "<title>" << xml_escape(sweep.name) << "</title>\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   draw_axes(out, sweep, maximum, shape.x, x, y);
   draw_series(out, sweep, maximum, shape, x, y);

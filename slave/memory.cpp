@@ -1,5 +1,7 @@
 #include "slave/memory.hpp"
 
+#include "protocol/parameters.hpp"
+
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -11,18 +13,6 @@ using Area = MemoryArea;
 
 std::string area_key(Area a) { return std::string(protocol::info(a).key); }
 
-// 3.5.5: four bits per start or end address.
-std::optional<unsigned> partition_address(unsigned code) {
-  switch (code) {
-    case 0x0: return 0;
-    case 0x1: return 31;
-    case 0x2: return 63;
-    case 0x3: return 64;
-    case 0x4: return 127;
-    case 0x5: return 255;
-    default: return std::nullopt;  // 1111 = not available; others are not defined
-  }
-}
 
 // Which partition word and byte describes an OEM or compensation area (3.5.5: words 9..12,
 // low byte the first area of the pair).
@@ -135,8 +125,9 @@ std::uint16_t Memory::operating_parameter(unsigned n) const {
 std::optional<std::pair<unsigned, unsigned>> Memory::address_range(const Selection& s) const {
   if (const auto p = partition_of(s.area)) {
     const unsigned w = manufacturer_word(p->first) >> p->second;
-    const auto start = partition_address(w & 0xF);
-    const auto end = partition_address((w >> 4) & 0xF);
+    // 3.5.5: four bits per start or end address.
+    const auto start = protocol::parameters::partition_address(w & 0xF);
+    const auto end = protocol::parameters::partition_address((w >> 4) & 0xF);
     if (!start || !end || *start > *end) return std::nullopt;
     return std::pair{*start, *end};
   }
