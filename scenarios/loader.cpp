@@ -301,8 +301,12 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     const std::string name = v->as_string();
     std::filesystem::path path = std::filesystem::path(n.file()).parent_path() / name;
     if (name.find('/') == std::string::npos && !name.ends_with(".json")) {
+      // ENDATSIM_PROFILES, else the source tree's profiles/, else the installed ones.
       const char* dir = std::getenv("ENDATSIM_PROFILES");
-      path = std::filesystem::path(dir != nullptr ? dir : ENDATSIM_PROFILES_DIR) / (name + ".json");
+      std::filesystem::path base = dir != nullptr ? dir : ENDATSIM_PROFILES_DIR;
+      std::error_code ec;
+      if (dir == nullptr && !std::filesystem::is_directory(base, ec)) base = ENDATSIM_INSTALLED_PROFILES_DIR;
+      path = base / (name + ".json");
     }
     try {
       slave::load_profile(path.string()).apply(p);
