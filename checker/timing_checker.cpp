@@ -72,7 +72,7 @@ std::span<const std::string_view> check::all() {
                                     kPulseLow,       kSamplingWindow,   kRecovery,             kContention,
                                     kDriverOff,      kDriverOn,         kCalculationTime,      kDataDelay,
                                     kShortRecoveryClock, kStartDelay,   kFloatingData,         kErrorRecovery,
-                                    kDataDelayTolerance, kClockCount,  kMemoryAccess};
+                                    kDataDelayTolerance, kClockCount,  kMemoryAccess, kPowerOn};
   return names;
 }
 
@@ -119,7 +119,38 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
             "fewer than three measurements averaged"});
 }
 
+// 2.3.3 (seed 002 figure, TI's reading, timing-model §3.3), judged when the run models switching
+// on (encoder startup_time > 0): CLOCK at a valid level for t1 >= 800 ms and HIGH for t2 =
+// 80 .. 120 ms, so the pulse comes no earlier than 880 ms; at least one LOW pulse > 125 ns; then
+// HIGH for t3 = 380 .. 420 ms before the first request.
+void TimingChecker::check_power_on(const master::FrameResult& first) {
+  const std::string spec = "2.3.3 power-on conditions (t1, t2, pulse > 125 ns, t3)";
+  const auto fail = [&](Time at, const std::string& measured, const std::string& limit, const std::string& message) {
+    report({std::string(check::kPowerOn), spec, ObservationPoint::MasterPins, at, first.index, std::nullopt, measured,
+            limit, Severity::Error, message}, "before the first frame");
+  };
+  std::optional<std::pair<Time, Time>> pulse;  // the last LOW pulse: falling, rising
+  for (std::size_t i = 0; i + 1 < power_on_edges_.size(); ++i)
+    if (!power_on_edges_[i].second && power_on_edges_[i + 1].second)
+      pulse = std::pair{power_on_edges_[i].first, power_on_edges_[i + 1].first};
+  if (!pulse) {
+    fail(first.start, "no pulse", "one LOW pulse > 125 ns, then t3",
+         "the master requested data after switching on without the power-on clock sequence");
+    return;
+  }
+  const Time width = pulse->second - pulse->first;
+  if (width <= sim::ns(125))
+    fail(pulse->first, format_time(width), "> 125 ns", "the power-on pulse is too short");
+  if (pulse->first < sim::ms(880))
+    fail(pulse->first, format_time(pulse->first), ">= t1 + t2 = 800 ms + 80 ms",
+         "the power-on pulse came before t1 and t2 had passed");
+  const Time t3 = first.start - pulse->second;
+  if (t3 < sim::ms(380) || t3 > sim::ms(420))
+    fail(first.start, format_time(t3), "t3 = 380 .. 420 ms", "the first request does not follow the pulse after t3");
+}
+
 void TimingChecker::on_frame_start(const master::FrameResult& frame) {
+  if (frame_starts_.empty() && encoder_.startup_time > Time::zero()) check_power_on(frame);
   if (frame.measurement && !last_frame_was_measurement_) check_measurement_procedure(frame);
   if (frame.measurement) {
     t_d_stale_ = false;
@@ -156,6 +187,7 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
 }
 
 void TimingChecker::on_master_clock(std::uint64_t level) {
+  if (frame_starts_.empty()) power_on_edges_.emplace_back(kernel_.now(), level != 0);
   if (level == 0) ++master_falling_edges_;
   else master_rising_.push_back(kernel_.now());
 }

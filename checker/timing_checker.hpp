@@ -40,6 +40,7 @@ inline constexpr std::string_view kErrorRecovery = "error_recovery";
 inline constexpr std::string_view kDataDelayTolerance = "t_d_tolerance";
 inline constexpr std::string_view kClockCount = "clock_count";
 inline constexpr std::string_view kMemoryAccess = "t_ac";
+inline constexpr std::string_view kPowerOn = "power_on";
 // Every check name above, for loaders and reports.
 std::span<const std::string_view> all();
 }  // namespace check
@@ -128,6 +129,7 @@ class TimingChecker final : public master::MasterObserver {
   void check_start_delay(const PinFrame& f);
   void check_delay_tolerance(Time t_d);
   void check_memory_access_time();
+  void check_power_on(const master::FrameResult& first);
   void check_clock_count(const PinFrame& f);
   std::string field_of(const master::FrameResult& frame, unsigned clock) const;
   unsigned bits_of(const master::FrameResult& frame) const;
@@ -163,6 +165,7 @@ class TimingChecker final : public master::MasterObserver {
   std::vector<std::pair<Time, bool>> master_driven_;
   bool floating_reported_ = false;
   std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
+  std::vector<std::pair<Time, bool>> power_on_edges_;  // CLOCK at the master logic before the first frame
   bool sampling_reported_ = false;
   bool last_frame_was_measurement_ = false;
   bool t_d_stale_ = false;

@@ -2,6 +2,8 @@
 // timing checker on the way (no violation may appear on a clean line).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "scenario_support.hpp"
 
 using namespace endatsim;
@@ -199,4 +201,45 @@ TEST(MasterStartup, RoutineReadsWord13AndMeasuresTheDelayWhenCompensating) {
   EXPECT_EQ(last_of(r, 1).position, 104462U);
   EXPECT_TRUE(last_of(r, 1).compensated);
   EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
+
+namespace {
+
+scenarios::ScenarioResult switched_on(Time t1_t2, Time pulse, Time t3, bool sequence = true) {
+  auto s = scenario(10, MHz(1), false, {op(MC::EncoderSendPositionValuesWithAdditionalData)});
+  s.encoder.startup_time = sim::ms(1000);
+  s.master.power_on = {t1_t2, pulse, t3};
+  s.max_time = sim::ms(5000);
+  if (sequence) {
+    master::Operation on;
+    on.kind = Kind::PowerOnSequence;
+    s.script.insert(s.script.begin(), on);
+  } else {
+    s.script.front().at = sim::ms(1500);
+  }
+  return scenarios::run_scenario(s);
+}
+
+std::size_t power_on_findings(const scenarios::ScenarioResult& r) {
+  return static_cast<std::size_t>(std::count_if(r.violations.begin(), r.violations.end(), [](const auto& v) {
+    return v.check == checker::check::kPowerOn;
+  }));
+}
+
+}  // namespace
+
+TEST(CheckerPowerOn, TheSequenceOfTheFigureIsClean) {
+  const auto r = switched_on(sim::ms(900), sim::us(1), sim::ms(400));
+  EXPECT_EQ(last_of(r, 1).outcome, master::FrameOutcome::Ok);
+  EXPECT_TRUE(r.violations.empty()) << violations(r);
+}
+
+TEST(CheckerPowerOn, EachLimitOfTheSequenceIsJudged) {
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::ns(125), sim::ms(400))), 1U) << "pulse not > 125 ns";
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::ns(126), sim::ms(400))), 0U);
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(879), sim::us(1), sim::ms(400))), 1U) << "before t1 + t2";
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(379))), 1U) << "t3 too short";
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(421))), 1U) << "t3 too long";
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(420))), 0U);
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(400), false)), 1U) << "no sequence";
 }
