@@ -324,6 +324,48 @@ std::string command_set_string(std::uint16_t word) {
   return s;
 }
 
+// 3.4.4
+namespace {
+using F = EncoderFunction;
+constexpr std::array<FunctionBits, 9> kFunctionBits{{
+    {F::ShortRecoveryTime, "short recovery time I", 0x0003, 0x0001},
+    {F::ReferencePulseInitialization, "reference pulse initialization", 0x000C, 0x0004},
+    {F::Oversampling, "oversampling", 0x0030, 0x0010},
+    {F::CyclicOperation, "EnDat 2.2 cyclic operation", 0x00C0, 0x0040},
+    {F::MultiturnOverflowErrorMessage, "multiturn overflow error message", 0x0100, 0x0100},
+    {F::MultiturnOverflowLatch, "multiturn overflow latch", 0x0200, 0x0200},
+    {F::MultiturnErrorMessages, "multiturn error messages", 0x0400, 0x0400},
+    {F::MultiturnCounterReset, "multiturn counter reset", 0x1800, 0x0800},
+    {F::DiagnosticsReset, "diagnostics reset", 0x2000, 0x2000},
+}};
+}  // namespace
+
+std::span<const FunctionBits> function_initialization_bits() { return kFunctionBits; }
+
+bool function_activated(std::uint16_t word3, EncoderFunction f) {
+  const auto& b = kFunctionBits[static_cast<std::size_t>(f)];
+  return (word3 & b.mask) == b.activated;
+}
+
+std::uint16_t encode_function_initialization(std::span<const EncoderFunction> activated) {
+  std::uint16_t w = 0;
+  for (const auto& b : kFunctionBits) {
+    const bool on = std::find(activated.begin(), activated.end(), b.function) != activated.end();
+    w = u16(w | (on ? b.activated : b.mask & ~b.activated));
+  }
+  return w;
+}
+
+std::string function_initialization_string(std::uint16_t word3) {
+  std::string s;
+  for (const auto& b : kFunctionBits) {
+    if (!function_activated(word3, b.function)) continue;
+    if (!s.empty()) s += ", ";
+    s += b.name;
+  }
+  return s.empty() ? "none activated" : s;
+}
+
 // 3.5.24
 std::uint16_t encode_calculation_time(const CalculationTime& t) {
   if (t.value > 0x1FFF) throw std::invalid_argument("word 39 (3.5.24): the calculation time must be 0 .. 8191 units");

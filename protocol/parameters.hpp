@@ -34,6 +34,33 @@ constexpr std::uint32_t join32(std::uint16_t low, std::uint16_t high) {
   return static_cast<std::uint32_t>(high) << 16 | low;
 }
 
+// ---- 3.4.4 operating status word 3: function initialization ------------------------------------
+// Each function is a bit pair stored inversely (or a single bit); the value activates it only
+// after "Encoder receive reset" or power-on. A pair stored equally leaves the function at its
+// factory state (the spec gives no meaning to 00 or 11): short recovery time off, every other
+// function deactivated.
+enum class EncoderFunction : std::uint8_t {
+  ShortRecoveryTime,             // bits 0/1: 1.25 .. 3.75 us for 2.2 mode commands
+  ReferencePulseInitialization,  // bits 2/3
+  Oversampling,                  // bits 4/5
+  CyclicOperation,               // bits 6/7: EnDat 2.2 cyclic operation
+  MultiturnOverflowErrorMessage, // bit 8
+  MultiturnOverflowLatch,        // bit 9
+  MultiturnErrorMessages,        // bit 10: all but the overflow message
+  MultiturnCounterReset,         // bits 11/12
+  DiagnosticsReset,              // bit 13
+};
+struct FunctionBits {
+  EncoderFunction function;
+  std::string_view name;
+  std::uint16_t mask;       // the bits of the function
+  std::uint16_t activated;  // their value when activated
+};
+std::span<const FunctionBits> function_initialization_bits();
+bool function_activated(std::uint16_t word3, EncoderFunction f);
+std::uint16_t encode_function_initialization(std::span<const EncoderFunction> activated);  // others deactivated
+std::string function_initialization_string(std::uint16_t word3);  // "short recovery time I, oversampling"
+
 // ---- 3.5.4 word 8: version of the EnDat interface ----------------------------------------------
 // Example "Version 4" = 8004h. Only the integer part of the version is stored.
 std::uint16_t encode_version(unsigned version);  // throws std::invalid_argument above 7FFFh

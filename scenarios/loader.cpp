@@ -348,6 +348,10 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("supplement_ignore_clocks")) p.supplement_ignore_clocks = static_cast<unsigned>(v->as_uint(0, 16));
   if (auto v = o.opt("communication_command_permitted")) p.communication_command_permitted = v->as_bool();
   if (auto v = o.opt("eib_initialisation_time")) p.eib_initialisation_time = v->as_duration(Time::zero(), sim::ms(10'000));
+  if (auto v = o.opt("asynchronous_time_delay_step"))
+    p.asynchronous_time_delay_step = v->as_duration(Time::zero(), sim::ms(1));
+  if (auto v = o.opt("multiturn_overflow_error_bit"))
+    p.multiturn_overflow_error_bit = static_cast<unsigned>(v->as_uint(0, 15));
   if (auto v = o.opt("reference_marks")) {
     if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > 1024) v->fail("an array of 1 .. 1024 positions");
     p.reference_marks.clear();

@@ -20,6 +20,10 @@ constexpr unsigned kFirstStartBitClock = 11;  // timing-model §1.2: start bit n
 constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see README)
 constexpr std::uint16_t kInstructionHighImpedance = 0x0002;                    // 2.10: word 5 bit 1
 
+using protocol::parameters::EncoderFunction;
+
+__int128 floor_div(__int128 x, __int128 d) { return x >= 0 ? x / d : -((-x + d - 1) / d); }
+
 std::uint16_t word_of(std::uint64_t value, unsigned index) {  // 16-bit word `index` (0 = LSB word)
   return static_cast<std::uint16_t>(value >> (16 * index));
 }
@@ -62,6 +66,10 @@ void EncoderParams::validate() const {
           "encoder supplement_ignore_clocks must be 0 .. 16, got " + std::to_string(supplement_ignore_clocks));
   require(output_delay >= Time::zero() && output_delay <= sim::us(1),
           "encoder output_delay must be 0 .. 1 us, got " + sim::format_time(output_delay));
+  require(asynchronous_time_delay_step >= Time::zero() && asynchronous_time_delay_step <= sim::ms(1),
+          "encoder asynchronous_time_delay_step must be 0 .. 1 ms, got " + sim::format_time(asynchronous_time_delay_step));
+  require(multiturn_overflow_error_bit <= 15, "encoder multiturn_overflow_error_bit must be a word 0 bit, 0 .. 15, got " +
+                                                  std::to_string(multiturn_overflow_error_bit));
   require(continuous_low_bits >= 1 && continuous_low_bits <= 7,
           "continuous_low_bits must be 1 .. 7 (2.3.1.1: at most 7 low bits), got " +
               std::to_string(continuous_low_bits));
@@ -165,6 +173,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
                               type == pm::EncoderType::IncrementalRotaryBatteryDistanceCoded;
   marks_to_reference_ = distance_coded ? 2 : 1;
   referenced_ = !incremental_;
+  activate_functions();
   if (type == pm::EncoderType::ExternalInterfaceBox)
     eib_ready_at_ = params_.startup_time + params_.eib_initialisation_time;
   enable();  // idle: DATA driven LOW, unless word 5 puts the driver at high impedance (2.10)
@@ -218,10 +227,8 @@ void Encoder::begin_frame() {
   EncoderFrame f;
   f.start = kernel_.now();
   update_reference();
-  f.position = output_position(params_.position_at(kernel_.now()));
-  // 2.3.4.3: incremental encoders send relative positions, counted from switching on.
-  if (incremental_) f.position = output_position(
-      static_cast<std::uint64_t>(unwrapped_position(kernel_.now()) - unwrapped_position(reference_origin_)));
+  check_multiturn_overflow();
+  f.position = latched_position(kernel_.now());
   frames_.push_back(f);
   latch_errors();
   release();
@@ -248,7 +255,7 @@ void Encoder::on_falling_edge() {
       // 2.3.1: a continuous clock is only possible with "Encoder send position values";
       // the next position is saved with the falling edge after the HIGH bit.
       if (f.command == MC::EncoderSendPositionValues) {
-        f.continuous_positions.push_back(output_position(params_.position_at(kernel_.now())));
+        f.continuous_positions.push_back(latched_position(kernel_.now()));
         ++f.continuous_words;
         state_ = State::ContinuousGap;
         gap_low_bits_ = 0;
@@ -368,22 +375,27 @@ void Encoder::update_reference() {
   const __int128 a = unwrapped_position(reference_search_from_), b = unwrapped_position(kernel_.now());
   const __int128 lo = std::min(a, b), hi = std::max(a, b);
   __int128 crossed = 0;
-  const auto floor_div = [](__int128 x, __int128 d) { return x >= 0 ? x / d : -((-x + d - 1) / d); };
   for (std::uint64_t m : params_.reference_marks)  // marks at m + k * 2^n in (lo, hi]
     crossed += floor_div(hi - static_cast<__int128>(m), range) - floor_div(lo - static_cast<__int128>(m), range);
   if (crossed >= marks_to_reference_) referenced_ = true;
   else memory_.latch_errors(0, 0x0010);
 }
 
+// Word 0 as the error messages see it: the stored bits and an unlatched multiturn overflow.
+std::uint16_t Encoder::error_word() const {
+  const auto overflow = multiturn_overflow_ ? 1U << params_.multiturn_overflow_error_bit : 0U;
+  return static_cast<std::uint16_t>(memory_.operating_status(word::kErrors) | overflow);
+}
+
 bool Encoder::error_message_1() const {
   const bool forced = test_port_22_ >= kForcedError1First && test_port_22_ < kForcedError1First + 7;
   return params_.error1 || forced ||
-         (memory_.operating_status(word::kErrors) & memory_.manufacturer_word(word::kSupportedErrors)) != 0;
+         (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0;
 }
 
 bool Encoder::error_message_2() const {
   const bool forced = test_port_22_ >= kForcedError2First && test_port_22_ < kForcedError2First + 7;
-  return params_.error1 || forced || (memory_.operating_status(word::kErrors) & memory_.endat22_word(6)) != 0;
+  return params_.error1 || forced || (error_word() & memory_.endat22_word(6)) != 0;
 }
 
 void Encoder::answer_position() {
@@ -609,8 +621,7 @@ void Encoder::on_memory_access_done() {
   // 2.5.1 / 2.6.1: the result appears in additional data 1 once the busy bit is reset.
   switch (in_progress_.kind) {
     case Pending::Kind::Select:
-      selection_area_ = in_progress_.selection;
-      area_selected_ = true;
+      select(in_progress_.selection);
       return;
     case Pending::Kind::Write:
       memory_.write(in_progress_.selection, in_progress_.address, in_progress_.value);
@@ -695,7 +706,7 @@ std::uint16_t Encoder::additional_data_content(Information i) {
     // 2.3.5.1: "position value 2 or test values are always updated by querying the first word".
     case I::PositionValue2Word1:
       // Incremental encoders: the absolute position, available after the reference run.
-      position2_latched_ = incremental_ ? output_position(params_.position_at(f.start))
+      position2_latched_ = incremental_ ? output_position(measured_position(f.start))
                                         : static_cast<std::uint64_t>(static_cast<std::int64_t>(f.position) +
                                                                      s.position2_offset) &
                                               0xFFFF'FFFF'FFFFULL;
@@ -727,9 +738,12 @@ std::uint16_t Encoder::additional_data_content(Information i) {
     case I::CommutationAndAcceleration: return static_cast<std::uint16_t>(uvw | (acceleration & 0x1FFF));
     case I::LimitPositionSignals: return limits;
     case I::LimitPositionSignalsAndAcceleration: return static_cast<std::uint16_t>(limits | (acceleration & 0x3FFF));
-    case I::AsynchronousPositionWord1:
-      async_latched_ = f.position;  // time delay 0 (2.4.2.3); oversampling is not modelled
+    case I::AsynchronousPositionWord1: {
+      // 2.4.2.3: the position "time delay k" before the latch; without oversampling only delay 0.
+      const unsigned k = function_activated(EncoderFunction::Oversampling) ? async_time_delay_ : 0;
+      async_latched_ = latched_position(f.start - std::min(f.start, params_.asynchronous_time_delay_step * k));
       return word_of(async_latched_, 0);
+    }
     case I::AsynchronousPositionWord2: return word_of(async_latched_, 1);
     case I::AsynchronousPositionWord3: return word_of(async_latched_, 2);
     case I::OperatingStatusErrorSources: return s.operating_status_error_sources;
@@ -744,8 +758,7 @@ Time Encoder::recovery_time() const {
   const bool v22 = state_ != State::Idle && command_ != nullptr && command_->version == EndatVersion::V2_2;
   // 3.4.4: word 3 bits 0/1 choose the short recovery time, for 2.2 mode commands only, and only
   // after the reset that activates word 3.
-  const bool short_selected = (memory_.active_function_initialization() & 0x3) == kShortRecoveryTimeOn;
-  return v22 && short_selected && params_.t_m_short ? *params_.t_m_short : params_.t_m;
+  return v22 && function_activated(EncoderFunction::ShortRecoveryTime) && params_.t_m_short ? *params_.t_m_short : params_.t_m;
 }
 
 void Encoder::on_recovery_time_elapsed() {
@@ -770,8 +783,7 @@ void Encoder::finish_frame() {
   }
   switch (pending_.kind) {
     case Pending::Kind::Select:
-      selection_area_ = pending_.selection;
-      area_selected_ = true;
+      select(pending_.selection);
       break;
     case Pending::Kind::Write:
       memory_.write(pending_.selection, pending_.address, pending_.value);
@@ -789,6 +801,8 @@ void Encoder::reset() {
   // 2.7 ("same reaction as from switching power on and off", seed 001): additional data
   // deselected (2.4.2.2), word 2, word 3 and the operating parameters activated (3.4.3, 3.4.4, 3.6).
   memory_.activate_on_reset();
+  activate_functions();
+  async_time_delay_ = 0;
   selection_[0].reset();
   selection_[1].reset();
   type3_[0].reset();
@@ -807,6 +821,64 @@ void Encoder::reset() {
   if (params_.reset_time > Time::zero()) go_offline(params_.reset_time);
 }
 
-void Encoder::latch_errors() { memory_.latch_errors(params_.error_sources, params_.warning_sources); }
+// 3.4.2: word 1 bit 5 reports cyclic mode while word 3 activates it.
+void Encoder::latch_errors() {
+  const bool cyclic = function_activated(EncoderFunction::CyclicOperation);
+  memory_.latch_errors(params_.error_sources, static_cast<std::uint16_t>(params_.warning_sources | (cyclic ? 0x0020 : 0)));
+}
+
+// ---- word 3: function initialization (3.4.4) ----------------------------------------------------
+// Reference pulse initialization, multiturn error messages and diagnostics reset are decoded but
+// change nothing the model shows: "functions are initialized encoder-specifically".
+
+bool Encoder::function_activated(EncoderFunction f) const {
+  return protocol::parameters::function_activated(memory_.active_function_initialization(), f);
+}
+
+// Power-on and "Encoder receive reset": a multiturn counter reset zeroes the revolutions here
+// and keeps the position within the revolution; the count goes on from there.
+void Encoder::activate_functions() {
+  if (params_.multiturn_bits == 0 || !function_activated(EncoderFunction::MultiturnCounterReset)) return;
+  const __int128 steps_per_revolution = __int128{1} << (params_.position_bits - params_.multiturn_bits);
+  counter_origin_ = floor_div(unwrapped_position(kernel_.now()), steps_per_revolution) * steps_per_revolution;
+}
+
+void Encoder::select(const Selection& s) {
+  selection_area_ = s;
+  area_selected_ = true;
+  if (s.area == MemoryArea::AsynchronousPosition) async_time_delay_ = s.block;  // 2.4.2.3
+}
+
+std::uint64_t Encoder::measured_position(Time t) const {
+  const __int128 range = __int128{1} << params_.position_bits;
+  __int128 p = (unwrapped_position(t) - counter_origin_) % range;
+  if (p < 0) p += range;
+  return static_cast<std::uint64_t>(p);
+}
+
+// 2.3.4.3: incremental encoders send relative positions, counted from switching on.
+std::uint64_t Encoder::latched_position(Time t) const {
+  if (incremental_)
+    return output_position(static_cast<std::uint64_t>(unwrapped_position(t) - unwrapped_position(reference_origin_)));
+  return output_position(measured_position(t));
+}
+
+// The revolution counter has left 0 .. 2^M - 1 (counting up past the top or down past 0).
+bool Encoder::multiturn_overflowed(Time t) const {
+  const __int128 p = unwrapped_position(t) - counter_origin_;
+  return params_.multiturn_bits > 0 && (p < 0 || p >= (__int128{1} << params_.position_bits));
+}
+
+// UNCERTAIN reading of 3.4.4: the overflow error message sets F1/F2 in the frames that latch an
+// overflowed count; with the overflow latch, the error goes into word 0 (bit
+// multiturn_overflow_error_bit) and stays until cleared as 3.4.1 says.
+void Encoder::check_multiturn_overflow() {
+  multiturn_overflow_ = false;
+  if (!function_activated(EncoderFunction::MultiturnOverflowErrorMessage) || !multiturn_overflowed(kernel_.now()))
+    return;
+  const auto bit = static_cast<std::uint16_t>(1U << params_.multiturn_overflow_error_bit);
+  if (function_activated(EncoderFunction::MultiturnOverflowLatch)) memory_.latch_errors(bit, 0);
+  else multiturn_overflow_ = true;
+}
 
 }  // namespace endatsim::slave

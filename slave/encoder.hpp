@@ -83,6 +83,13 @@ struct EncoderParams {
   // while its own last bit fades (guess; the master's lead bits must be more).
   unsigned supplement_ignore_clocks = 3;
   Time output_delay = sim::ns(60);             // clock input -> data output inside the encoder
+  // 2.4.2.3 / 3.4.4 (guess: "the exact evaluation of the oversampling is described in the
+  // specifications"): with oversampling activated, "time delay k" selects the position sampled
+  // k steps of this length before the frame's latch.
+  Time asynchronous_time_delay_step = sim::us(1);
+  // 3.4.4 (guess): the word 0 bit (3.4.1) that a latched multiturn overflow sets; the spec names
+  // none, 2^2 "position faulty" is the closest.
+  unsigned multiturn_overflow_error_bit = 2;
   unsigned continuous_low_bits = 1;            // 2.3.1.1: "a maximum of 7 Low Bits" between words
   unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (timing-model §1.2)
   Type1Handling type1 = Type1Handling::AbortHigh;
@@ -181,6 +188,14 @@ class Encoder {
   void finish_frame();
   void reset();
   void latch_errors();
+  bool function_activated(protocol::parameters::EncoderFunction f) const;
+  void activate_functions();
+  void select(const Selection& s);
+  std::uint64_t measured_position(Time t) const;
+  std::uint64_t latched_position(Time t) const;
+  std::uint16_t error_word() const;
+  bool multiturn_overflowed(Time t) const;
+  void check_multiturn_overflow();
   bool error_message_1() const;
   std::uint64_t output_position(std::uint64_t measured) const;
   void update_reference();
@@ -243,6 +258,9 @@ class Encoder {
   std::uint64_t position2_latched_ = 0;
   std::uint64_t test_value_latched_ = 0;
   std::uint64_t async_latched_ = 0;
+  std::uint8_t async_time_delay_ = 0;           // 2.4.2.3: 0 after switch-on or reset
+  __int128 counter_origin_ = 0;                 // 3.4.4: measuring steps where a counter reset zeroed the multiturn count
+  bool multiturn_overflow_ = false;             // 3.4.4: overflow message (unlatched) in this frame
   std::size_t diagnosis_index_ = 0;
   unsigned sensor_address_ = 0;
   bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command

@@ -299,6 +299,7 @@ std::vector<std::pair<std::string, std::string>> describe_profile(const EncoderP
   d.emplace_back("command set (word 37)", pm::command_set_string(m[37]));
   d.emplace_back("t_cal (word 39)", pm::calculation_time_string(pm::decode_calculation_time(m[39])));
   d.emplace_back("ordering designation (word 40)", pm::decode_ordering_designation(m[40]).value_or("not supported"));
+  d.emplace_back("functions (operating status word 3)", pm::function_initialization_string(p.memory.areas.at(Area::OperatingStatus).at(word::kFunctionInitialization)));
   const auto e = p.endat22_words();
   if (!e.empty()) {
     d.emplace_back("additional data 1 (2.2 word 0)", pm::additional_data_string(pm::decode_additional_data_1(e[0])));

@@ -154,6 +154,7 @@ const std::map<std::string, std::map<std::string, std::string>> kDocumented{
       {"command set (word 37)", "2.2, communication command"},
       {"t_cal (word 39)", "5 us"},
       {"ordering designation (word 40)", "EnDat22"},
+      {"functions (operating status word 3)", "none activated"},
       {"additional data 1 (2.2 word 0)",
        "position_value_2, test_values, temperature_1, temperature_2, additional_sensors"},
       {"additional data 2 (2.2 word 1)",
@@ -170,6 +171,7 @@ const std::map<std::string, std::map<std::string, std::string>> kDocumented{
       {"command set (word 37)", "2.2, communication command"},
       {"t_cal (word 39)", "5 us"},
       {"ordering designation (word 40)", "EnDat22"},
+      {"functions (operating status word 3)", "none activated"},
       {"additional data 1 (2.2 word 0)", "temperature_1, temperature_2, additional_sensors"},
       {"additional data 2 (2.2 word 1)", "commutation, acceleration, operating_status_error_sources, timestamp"},
       {"maximum clock frequency (2.2 word 25)", "8 MHz"}}},
@@ -182,6 +184,7 @@ const std::map<std::string, std::map<std::string, std::string>> kDocumented{
       {"command set (word 37)", "2.2"},
       {"t_cal (word 39)", "5 us"},
       {"ordering designation (word 40)", "EnDat22"},
+      {"functions (operating status word 3)", "none activated"},
       {"additional data 1 (2.2 word 0)", "test_values, temperature_1, temperature_2"},
       {"additional data 2 (2.2 word 1)",
        "commutation, limit_position_signals, operating_status_error_sources, timestamp"},
@@ -194,7 +197,8 @@ const std::map<std::string, std::map<std::string, std::string>> kDocumented{
       {"serial number (words 27..29)", "22001234"},
       {"command set (word 37)", "2.1"},
       {"t_cal (word 39)", "5 us"},
-      {"ordering designation (word 40)", "EnDat01"}}},
+      {"ordering designation (word 40)", "EnDat01"},
+      {"functions (operating status word 3)", "none activated"}}},
 };
 
 std::string read_text(const std::string& path) {

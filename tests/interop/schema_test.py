@@ -31,6 +31,7 @@ REQUIRED = {("name",), ("line",), ("master",), ("script",), ("line", "cable_leng
 FREE_TEXT = {"name", "description", "$schema"}  # any string is right for these
 
 BEYOND_SCHEMA = {
+    "asynchronous_time_delay_step_too_long.json": "range inside a duration string",
     "cable_delay_too_large.json": "range inside a duration string",
     "duplicate_key.json": "duplicate keys: JSON parsers keep the last",
     "duplicate_nested_key.json": "duplicate keys: JSON parsers keep the last",
