@@ -1,6 +1,7 @@
 #include "line/line.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <deque>
 #include <stdexcept>
 #include <string>
@@ -79,6 +80,37 @@ class PinResolver {
   bool& failsafe_;
 };
 
+// Faults at one end's pins (issue 5): the level there is the line's level, inverted while a
+// glitch lasts, or stuck at a level. The fault stays at that end (noise coupled into one
+// connector): the cable carries the undisturbed level.
+class PinFault {
+ public:
+  PinFault(sim::Kernel& kernel, Signal& line_level, Signal& pin) : kernel_(kernel), in_(line_level), out_(pin) {
+    line_level.on_change(sim::bind<&PinFault::resolve>(this));
+  }
+  void invert_for(Time width) {
+    inverted_until_ = std::max(inverted_until_, kernel_.now() + width);
+    resolve();
+    kernel_.schedule(width, sim::bind<&PinFault::resolve>(this));
+  }
+  void stick(std::optional<bool> level) {
+    stuck_ = level;
+    resolve();
+  }
+  void resolve() {
+    bool v = in_.read() != (kernel_.now() < inverted_until_);
+    if (stuck_) v = *stuck_;
+    out_.write(v);
+  }
+
+ private:
+  sim::Kernel& kernel_;
+  Signal& in_;
+  Signal& out_;
+  Time inverted_until_{0};
+  std::optional<bool> stuck_;
+};
+
 // The encoder end of DATA with several encoders on the bus (2.10): their drivers, after their
 // driver delays, resolve into the one driver the cable and the master see.
 class EncoderBus {
@@ -141,14 +173,16 @@ struct Line::Impl {
         e_clock_in(k, "e_clock_in", true), e_data_out(k, "e_data_out", false),
         e_data_enable(k, "e_data_enable", true), e_data_in(k, "e_data_in", false),
         m_clock(k, "m_clock", true), e_clock(k, "e_clock", true),
+        m_clock_line(k, "m_clock_line", true), e_clock_line(k, "e_clock_line", true),
+        m_data_line(k, "m_data_line", false), e_data_line(k, "e_data_line", false),
         m_drive_level(k, "m_drive_level", false), m_drive_en(k, "m_drive_en", false),
         e_drive_level(k, "e_drive_level", false), e_drive_en(k, "e_drive_en", true),
         m_level_at_e(k, "m_level_at_e", false), m_en_at_e(k, "m_en_at_e", false),
         e_level_at_m(k, "e_level_at_m", false), e_en_at_m(k, "e_en_at_m", true),
         m_data(k, "m_data", false), e_data(k, "e_data", false),
         m_driven(k, "m_driven", true), e_driven(k, "e_driven", true),
-        clock_driver(k, m_clock_out, m_clock, p.master.driver_delay),
-        clock_cable(k, m_clock, e_clock, p.cable_delay()),
+        clock_driver(k, m_clock_out, m_clock_line, p.master.driver_delay),
+        clock_cable(k, m_clock_line, e_clock_line, p.cable_delay()),
         clock_receiver(k, e_clock, e_clock_in, p.encoder.receiver_delay),
         m_level_driver(k, m_data_out, m_drive_level, p.master.driver_delay),
         m_en_driver(k, m_data_enable, m_drive_en, p.master.enable_delay, p.master.disable_delay),
@@ -160,10 +194,12 @@ struct Line::Impl {
         m_en_cable(k, m_drive_en, m_en_at_e, p.cable_delay()),
         e_level_cable(k, e_drive_level, e_level_at_m, p.cable_delay()),
         e_en_cable(k, e_drive_en, e_en_at_m, p.cable_delay()),
-        master_pin(ObservationPoint::MasterPins, m_drive_en, m_drive_level, e_en_at_m, e_level_at_m, m_data,
+        master_pin(ObservationPoint::MasterPins, m_drive_en, m_drive_level, e_en_at_m, e_level_at_m, m_data_line,
                    m_driven, log, k, failsafe),
         encoder_pin(ObservationPoint::EncoderPins, e_drive_en, e_drive_level, m_en_at_e, m_level_at_e,
-                    e_data, e_driven, log, k, failsafe),
+                    e_data_line, e_driven, log, k, failsafe),
+        m_clock_fault(k, m_clock_line, m_clock), e_clock_fault(k, e_clock_line, e_clock),
+        m_data_fault(k, m_data_line, m_data), e_data_fault(k, e_data_line, e_data),
         m_receiver(k, m_data, m_data_in, p.master.receiver_delay),
         e_receiver(k, e_data, e_data_in, p.encoder.receiver_delay) {
     bus.add(e_tap_en, e_tap_level);
@@ -173,6 +209,7 @@ struct Line::Impl {
   Signal m_clock_out, m_data_out, m_data_enable, m_data_in;
   Signal e_clock_in, e_data_out, e_data_enable, e_data_in;
   Signal m_clock, e_clock;
+  Signal m_clock_line, e_clock_line, m_data_line, e_data_line;  // before the pin faults
   Signal m_drive_level, m_drive_en, e_drive_level, e_drive_en;
   Signal m_level_at_e, m_en_at_e, e_level_at_m, e_en_at_m;
   Signal m_data, e_data;
@@ -185,6 +222,7 @@ struct Line::Impl {
   std::deque<EncoderTap> taps;
   TransportDelay m_level_cable, m_en_cable, e_level_cable, e_en_cable;
   PinResolver master_pin, encoder_pin;
+  PinFault m_clock_fault, e_clock_fault, m_data_fault, e_data_fault;
   TransportDelay m_receiver, e_receiver;
 };
 
@@ -234,6 +272,29 @@ void Line::set_cable(double length_m, Time delay_per_m) {
   for (TransportDelay* t : {&impl_->clock_cable, &impl_->m_level_cable, &impl_->m_en_cable, &impl_->e_level_cable,
                             &impl_->e_en_cable})
     t->set_delays(d, d);
+}
+
+PinFault& Line::fault(Wire wire, ObservationPoint end) {
+  const bool master = end == ObservationPoint::MasterPins;
+  if (wire == Wire::Clock) return master ? impl_->m_clock_fault : impl_->e_clock_fault;
+  return master ? impl_->m_data_fault : impl_->e_data_fault;
+}
+
+void Line::invert(Wire wire, ObservationPoint end, Time width) {
+  if (width <= Time::zero()) throw std::invalid_argument("a glitch must be longer than 0, got " + sim::format_time(width));
+  fault(wire, end).invert_for(width);
+}
+
+void Line::stick(Wire wire, ObservationPoint end, std::optional<bool> level) { fault(wire, end).stick(level); }
+
+void Line::set_driver_disable_delay(ObservationPoint end, Time delay) {
+  if (delay < Time::zero() || delay > kMaxLateRelease)
+    throw std::invalid_argument("driver disable delay must be 0 .. " + sim::format_time(kMaxLateRelease) + ", got " +
+                                sim::format_time(delay));
+  auto& t = end == ObservationPoint::MasterPins ? params_.master : params_.encoder;
+  t.disable_delay = delay;
+  if (end == ObservationPoint::MasterPins) impl_->m_en_driver.set_delays(t.enable_delay, delay);
+  else impl_->e_en_driver.set_delays(t.enable_delay, delay);
 }
 
 void Line::set_failsafe_level(bool level) {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,7 @@ struct LineParams {
 };
 
 enum class ObservationPoint : std::uint8_t { MasterPins, EncoderPins };
+enum class Wire : std::uint8_t { Clock, Data };
 std::string_view to_string(ObservationPoint p);
 
 // Two drivers on DATA at once, as seen at one end's pins: both ends, or (several encoders on
@@ -57,6 +59,8 @@ struct Contention {
   Time end;  // Time::max() while still going on
   bool between_encoders = false;
 };
+
+class PinFault;
 
 class Line {
  public:
@@ -106,10 +110,20 @@ class Line {
   void set_cable(double length_m, Time delay_per_m);
   void set_failsafe_level(bool level);
 
+  // Faults (issue 5), at one end's pins only: what that end's receiver and the checker there
+  // see. invert: the level is inverted for `width` (a glitch; one clock period flips a bit);
+  // stick: held at a level until stick(nullopt).
+  void invert(Wire wire, ObservationPoint end, Time width);
+  void stick(Wire wire, ObservationPoint end, std::optional<bool> level);
+  // A driver that releases DATA late (turnaround collision): its disable delay from now on.
+  void set_driver_disable_delay(ObservationPoint end, Time delay);
+  static constexpr Time kMaxLateRelease = sim::us(100);
+
   const std::vector<Contention>& contentions() const { return contentions_; }
 
  private:
   struct Impl;
+  PinFault& fault(Wire wire, ObservationPoint end);
   sim::Kernel& kernel_;
   LineParams params_;
   std::unique_ptr<Impl> impl_;

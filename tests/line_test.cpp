@@ -138,3 +138,107 @@ TEST(LineCable, ChangingTheCableChangesLaterEdgesOnly) {
   EXPECT_EQ(l.round_trip(ns(60)), ns(300));
   EXPECT_THROW(l.set_cable(301, ns(5)), std::invalid_argument);
 }
+
+// ---- faults at one end's pins (issue 5) -----------------------------------------------------
+
+namespace {
+
+struct Glitch {
+  line::Line* l;
+  line::Wire wire;
+  ObservationPoint end;
+  Time width;
+  void go() { l->invert(wire, end, width); }
+};
+
+struct Stick {
+  line::Line* l;
+  line::Wire wire;
+  ObservationPoint end;
+  std::optional<bool> level;
+  void go() { l->stick(wire, end, level); }
+};
+
+}  // namespace
+
+TEST(LineFault, AGlitchOnDataAtTheMasterEndInvertsOnlyWhatTheMasterSees) {
+  Kernel k;
+  line::Line l(k, line::LineParams{});  // the encoder drives DATA LOW at idle
+  EdgeTimes master_logic{&k, {}}, encoder_pins{&k, {}};
+  l.master().data_in.on_change(bind<&EdgeTimes::on>(&master_logic));
+  l.pins(ObservationPoint::EncoderPins).data.on_change(bind<&EdgeTimes::on>(&encoder_pins));
+  Glitch g{&l, line::Wire::Data, ObservationPoint::MasterPins, ns(40)};
+  k.schedule(us(1), bind<&Glitch::go>(&g));
+  k.run();
+  ASSERT_EQ(master_logic.times.size(), 2U);
+  EXPECT_EQ(master_logic.times[0], us(1) + ns(50));  // + the master's receiver delay
+  EXPECT_EQ(master_logic.times[1], us(1) + ns(90));
+  EXPECT_FALSE(l.master().data_in.read());
+  EXPECT_TRUE(encoder_pins.times.empty()) << "the glitch stays at its end";
+}
+
+TEST(LineFault, AGlitchOnClockAtTheEncoderEndIsTwoExtraEdgesThere) {
+  Kernel k;
+  line::Line l(k, line::LineParams{});
+  EdgeTimes encoder_logic{&k, {}}, master_pins{&k, {}};
+  l.encoder().clock_in.on_change(bind<&EdgeTimes::on>(&encoder_logic));
+  l.pins(ObservationPoint::MasterPins).clock.on_change(bind<&EdgeTimes::on>(&master_pins));
+  Glitch g{&l, line::Wire::Clock, ObservationPoint::EncoderPins, ns(30)};
+  k.schedule(us(1), bind<&Glitch::go>(&g));
+  k.run();
+  ASSERT_EQ(encoder_logic.times.size(), 2U);
+  EXPECT_EQ(encoder_logic.times[1] - encoder_logic.times[0], ns(30));
+  EXPECT_TRUE(master_pins.times.empty());
+  EXPECT_THROW(l.invert(line::Wire::Clock, ObservationPoint::EncoderPins, Time::zero()), std::invalid_argument);
+}
+
+TEST(LineFault, OverlappingGlitchesEndWithTheLaterOne) {
+  Kernel k;
+  line::Line l(k, line::LineParams{});
+  EdgeTimes seen{&k, {}};
+  l.pins(ObservationPoint::MasterPins).data.on_change(bind<&EdgeTimes::on>(&seen));
+  Glitch a{&l, line::Wire::Data, ObservationPoint::MasterPins, ns(100)};
+  Glitch b{&l, line::Wire::Data, ObservationPoint::MasterPins, ns(100)};
+  k.schedule(us(1), bind<&Glitch::go>(&a));
+  k.schedule(us(1) + ns(50), bind<&Glitch::go>(&b));
+  k.run();
+  ASSERT_EQ(seen.times.size(), 2U);
+  EXPECT_EQ(seen.times[1], us(1) + ns(150));
+}
+
+TEST(LineFault, StuckDataIgnoresTheDriverUntilReleased) {
+  Kernel k;
+  line::Line l(k, line::LineParams{});
+  Stick stuck{&l, line::Wire::Data, ObservationPoint::EncoderPins, true};
+  Stick free{&l, line::Wire::Data, ObservationPoint::EncoderPins, std::nullopt};
+  Poke low{&l.master().data_enable, false};
+  k.schedule(us(1), bind<&Stick::go>(&stuck));
+  k.schedule(us(2), bind<&Poke::go>(&low));
+  k.run(us(3));
+  EXPECT_TRUE(l.encoder().data_in.read()) << "stuck HIGH although the encoder drives LOW";
+  EXPECT_FALSE(l.master().data_in.read()) << "the master end is not affected";
+  k.schedule(us(1), bind<&Stick::go>(&free));
+  k.run();
+  EXPECT_FALSE(l.encoder().data_in.read());
+}
+
+TEST(LineFault, AMasterDriverThatReleasesLateCollidesWithTheEncoder) {
+  Kernel k;
+  line::LineParams p;
+  p.cable_length_m = 0;
+  line::Line l(k, p);
+  Poke release{&l.encoder().data_enable, false};
+  Poke on{&l.master().data_enable, true};
+  Poke off{&l.master().data_enable, false};
+  Poke encoder_on{&l.encoder().data_enable, true};
+  k.schedule(us(1), bind<&Poke::go>(&release));
+  k.schedule(us(2), bind<&Poke::go>(&on));
+  k.schedule(us(3), bind<&Poke::go>(&off));
+  k.schedule(us(4), bind<&Poke::go>(&encoder_on));
+  l.set_driver_disable_delay(ObservationPoint::MasterPins, us(2));
+  k.run();
+  ASSERT_FALSE(l.contentions().empty());
+  EXPECT_EQ(l.contentions()[0].start, us(4) + ns(30));
+  EXPECT_EQ(l.contentions()[0].end, us(5));
+  EXPECT_THROW(l.set_driver_disable_delay(ObservationPoint::MasterPins, ms(1)), std::invalid_argument);
+}
