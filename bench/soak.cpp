@@ -97,16 +97,39 @@ scenarios::Scenario soak_scenario(std::uint64_t seed) {
     }
     if (pick(0, 4) == 0) s.script.push_back(measure);  // re-measure t_D now and then
   }
-  // Cable changes at random times within the expected run (a frame per cycle).
+  // Faults at random times within the expected run (a frame per cycle): glitches on either wire
+  // at either end, power interruptions, cable changes; random bit errors throughout.
   const std::int64_t span = (cycle * kFramesPerChunk).count();
   std::vector<std::int64_t> at;
   for (std::uint64_t n = pick(5, 20); n > 0; --n) at.push_back(static_cast<std::int64_t>(pick(0, static_cast<std::uint64_t>(span))));
   std::sort(at.begin(), at.end());
+  using K = scenarios::Event::Kind;
+  scenarios::Event noise;  // random bit errors on DATA at the master end for the whole chunk
+  noise.kind = K::RandomBitErrors;
+  noise.at = Time::zero();
+  noise.end = endatsim::line::ObservationPoint::MasterPins;
+  noise.rate = 1e-4;
+  s.events.push_back(noise);
   for (const auto t : at) {
-    scenarios::LineEvent e;
+    scenarios::Event e;
     e.at = Time{t};
-    e.cable_length_m = static_cast<double>(pick(0, 150));
-    e.cable_delay_per_m = sim::ns(5);
+    switch (pick(0, 3)) {
+      case 0:
+        e.kind = K::Glitch;
+        e.wire = pick(0, 1) == 0 ? endatsim::line::Wire::Clock : endatsim::line::Wire::Data;
+        e.end = pick(0, 1) == 0 ? endatsim::line::ObservationPoint::MasterPins : endatsim::line::ObservationPoint::EncoderPins;
+        e.width = sim::ns(static_cast<std::int64_t>(pick(5, 200)));
+        break;
+      case 1:
+        e.kind = K::PowerInterruption;
+        e.duration = sim::us(static_cast<std::int64_t>(pick(10, 2000)));
+        break;
+      default:
+        e.kind = K::SetCable;
+        e.cable_length_m = static_cast<double>(pick(0, 150));
+        e.cable_delay_per_m = sim::ns(5);
+        break;
+    }
     s.events.push_back(e);
   }
   return s;

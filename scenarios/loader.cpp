@@ -343,6 +343,9 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("t_ac_placement"))
     p.t_ac_placement = v->as_enum<slave::MemoryAccessPlacement>(
         {{"in_frame", slave::MemoryAccessPlacement::InFrame}, {"after_frame", slave::MemoryAccessPlacement::AfterFrame}});
+  if (auto v = o.opt("interrupted_nvm_write"))
+    p.interrupted_nvm_write = v->as_enum<slave::InterruptedNvmWrite>(
+        {{"keep_old", slave::InterruptedNvmWrite::KeepOld}, {"torn", slave::InterruptedNvmWrite::Torn}});
   if (auto v = o.opt("supplement_end_marker_delay"))
     p.supplement_end_marker_delay = v->as_duration(Time::zero(), sim::us(1));
   if (auto v = o.opt("supplement_ignore_clocks")) p.supplement_ignore_clocks = static_cast<unsigned>(v->as_uint(0, 16));
@@ -637,22 +640,147 @@ void read_script(const Node& n, std::vector<master::Operation>& script,
   }
 }
 
-void read_events(const Node& n, const line::LineParams& line, std::vector<LineEvent>& events) {
-  if (!n.raw().is_array()) n.fail("an array of events");
-  for (std::size_t i = 0; i < n.raw().size(); ++i) {
-    const Node item(n.raw()[i], n.path() + "/" + std::to_string(i), n.file());
-    Object o(item);
-    LineEvent e;
-    e.at = o.req("at").as_duration(Time::zero(), sim::ms(60'000));
-    if (!events.empty() && e.at < events.back().at)
-      o.req("at").fail("a time not before the previous event's (" + sim::format_time(events.back().at) + ")");
-    const Node change = o.req("set_cable");
-    Object c(change);
+// ---- events (issue 5) ----------------------------------------------------------------------
+
+constexpr std::string_view kEventKinds =
+    "set_cable, bit_flip, glitch, stuck, random_bit_errors, late_driver_release, loss_of_failsafe, error_sources, "
+    "memory_access_time, t_cal, power_interruption or corrupt_word";
+
+line::ObservationPoint read_end(Object& o) {
+  return o.req("end").as_enum<line::ObservationPoint>(
+      {{"master", line::ObservationPoint::MasterPins}, {"encoder", line::ObservationPoint::EncoderPins}});
+}
+
+line::Wire read_wire(Object& o) {
+  return o.req("wire").as_enum<line::Wire>({{"clock", line::Wire::Clock}, {"data", line::Wire::Data}});
+}
+
+void read_line_fault(Object& f, Event& e) {
+  using K = Event::Kind;
+  switch (e.kind) {
+    case K::BitFlip:
+      e.wire = read_wire(f);
+      e.end = read_end(f);
+      if (auto v = f.opt("width")) e.width = v->as_duration(sim::ps(1), sim::ms(1));
+      break;
+    case K::Glitch:
+      e.wire = read_wire(f);
+      e.end = read_end(f);
+      e.width = f.req("width").as_duration(sim::ps(1), sim::ms(1));
+      break;
+    case K::Stuck:
+      e.wire = read_wire(f);
+      e.end = read_end(f);
+      e.level = f.req("level").as_uint(0, 1) == 1;
+      if (auto v = f.opt("duration")) e.duration = v->as_duration(sim::ps(1), sim::ms(60'000));
+      break;
+    case K::RandomBitErrors:
+      e.end = read_end(f);
+      e.rate = f.req("rate").as_number(0.0, 1.0, " (probability per clock period)");
+      if (auto v = f.opt("duration")) e.duration = v->as_duration(sim::ps(1), sim::ms(60'000));
+      break;
+    case K::LateDriverRelease:
+      e.end = read_end(f);
+      e.width = f.req("disable_delay").as_duration(Time::zero(), line::Line::kMaxLateRelease);
+      break;
+    case K::LossOfFailsafe:
+      e.level = f.req("level").as_uint(0, 1) == 1;
+      break;
+    default:
+      break;
+  }
+}
+
+void read_encoder_fault(Object& f, Event& e) {
+  using K = Event::Kind;
+  const Time max = slave::Encoder::kMaxFaultTime;
+  switch (e.kind) {
+    case K::ErrorSources:
+      if (auto v = f.opt("errors")) e.errors = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+      if (auto v = f.opt("warnings")) e.warnings = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+      break;
+    case K::MemoryAccessTime:
+      e.t_ac_read = f.req("read").as_duration(Time::zero(), max);
+      e.t_ac_write = f.req("write").as_duration(Time::zero(), max);
+      break;
+    case K::TCal:
+      e.t_cal = f.req("t_cal").as_duration(Time::zero(), sim::ms(100));
+      break;
+    case K::PowerInterruption:
+      e.duration = f.req("duration").as_duration(sim::ps(1), max);
+      break;
+    case K::CorruptWord: {
+      const Node area = f.req("area");
+      const auto a = protocol::memory_area_from_key(area.as_string());
+      if (!a || *a == protocol::MemoryArea::AsynchronousPosition) area.fail("a memory area key such as \"manufacturer_3\"");
+      e.selection.area = *a;
+      if (auto v = f.opt("block")) e.selection.block = static_cast<std::uint8_t>(v->as_word(0xFF));
+      e.address = static_cast<std::uint8_t>(f.req("address").as_word(0xFF));
+      e.xor_mask = static_cast<std::uint16_t>(f.req("xor").as_word(0xFFFF));
+      if (e.xor_mask == 0) f.req("xor").fail("a mask with at least one bit set");
+      break;
+    }
+    default:
+      break;
+  }
+}
+
+Event read_event(const Node& item, const line::LineParams& line) {
+  using K = Event::Kind;
+  static const std::pair<std::string_view, K> kKinds[] = {
+      {"set_cable", K::SetCable},         {"bit_flip", K::BitFlip},
+      {"glitch", K::Glitch},              {"stuck", K::Stuck},
+      {"random_bit_errors", K::RandomBitErrors}, {"late_driver_release", K::LateDriverRelease},
+      {"loss_of_failsafe", K::LossOfFailsafe},   {"error_sources", K::ErrorSources},
+      {"memory_access_time", K::MemoryAccessTime}, {"t_cal", K::TCal},
+      {"power_interruption", K::PowerInterruption}, {"corrupt_word", K::CorruptWord}};
+  Object o(item);
+  Event e;
+  if (auto v = o.opt("at")) e.at = v->as_duration(Time::zero(), sim::ms(60'000));
+  if (auto v = o.opt("frame")) e.frame = v->as_uint(0, UINT32_MAX);
+  if (e.at.has_value() == e.frame.has_value()) item.fail_raw("expected exactly one of \"at\" and \"frame\"");
+  if (auto v = o.opt("clock")) {
+    if (!e.frame) v->fail_raw("\"clock\" needs \"frame\"");
+    e.clock = static_cast<unsigned>(v->as_uint(1, 10'000));
+  }
+  if (auto v = o.opt("offset")) e.offset = v->as_duration(Time::zero(), sim::ms(1000));
+  std::optional<Node> body;
+  for (const auto& [key, kind] : kKinds) {
+    auto v = o.opt(std::string(key));
+    if (!v) continue;
+    if (body) v->fail_raw("one event does one thing: \"" + std::string(key) + "\" after another kind");
+    body.emplace(*v);
+    e.kind = kind;
+  }
+  if (!body) item.fail_raw("expected one of " + std::string(kEventKinds));
+  if (e.kind == K::SetCable) {
+    Object c(*body);
     e.cable_length_m = c.req("cable_length_m").as_number(0.0, line::LineParams::kMaxCableLengthM, " m");
     e.cable_delay_per_m = line.cable_delay_per_m;
     if (auto v = c.opt("cable_delay_per_m")) e.cable_delay_per_m = v->as_duration(Time::zero(), sim::ns(20));
     c.done();
-    o.done();
+  } else if (e.kind == K::TCal) {
+    e.t_cal = body->as_duration(Time::zero(), sim::ms(100));
+  } else {
+    Object f(*body);
+    if (e.kind < K::ErrorSources) read_line_fault(f, e);
+    else read_encoder_fault(f, e);
+    f.done();
+  }
+  o.done();
+  return e;
+}
+
+void read_events(const Node& n, const line::LineParams& line, std::vector<Event>& events) {
+  if (!n.raw().is_array()) n.fail("an array of events");
+  std::optional<Time> last_at;
+  for (std::size_t i = 0; i < n.raw().size(); ++i) {
+    const Node item(n.raw()[i], n.path() + "/" + std::to_string(i), n.file());
+    Event e = read_event(item, line);
+    if (e.at && last_at && *e.at < *last_at)
+      Node(item.raw()["at"], item.path() + "/at", n.file())
+          .fail("a time not before the previous event's (" + sim::format_time(*last_at) + ")");
+    if (e.at) last_at = e.at;
     events.push_back(e);
   }
 }

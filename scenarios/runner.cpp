@@ -1,5 +1,7 @@
 #include "scenarios/runner.hpp"
 
+#include "scenarios/events.hpp"
+
 #include <algorithm>
 #include <memory>
 
@@ -216,19 +218,6 @@ void judge(const Scenario& s, ScenarioResult& r) {
 
 }  // namespace
 
-// Applies a scripted line event at its time and tells the checker (2.1.2: a change of the
-// transmission path calls for a new delay measurement).
-struct LineEventDriver {
-  line::Line* line;
-  checker::TimingChecker* checker;
-  const std::vector<LineEvent>* events;
-  void apply(std::uint64_t i) {
-    const LineEvent& e = (*events)[i];
-    line->set_cable(e.cable_length_m, e.cable_delay_per_m);
-    checker->on_line_change();
-  }
-};
-
 bool ScenarioResult::passed() const {
   return std::all_of(expectations.begin(), expectations.end(), [](const auto& e) { return e.passed; });
 }
@@ -262,9 +251,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   }
 
   for (const auto& op : scenario.script) master.enqueue(op);
-  LineEventDriver events{&line, &checker, &scenario.events};
-  for (std::size_t i = 0; i < scenario.events.size(); ++i)
-    kernel.schedule_at(scenario.events[i].at, sim::bind<&LineEventDriver::apply>(&events, i));
+  EventDriver events(kernel, line, encoder, master, checker, scenario.events, master_params.seed);
   master.start();
   kernel.run(scenario.max_time);
   checker.finish();

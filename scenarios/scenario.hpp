@@ -73,12 +73,45 @@ struct Expectations {
   std::optional<StartupExpectation> startup;
 };
 
-// Something that happens to the line while the script runs (a connector swap, a cable change).
-struct LineEvent {
-  Time at{0};
+// Something that happens while the script runs (issue 5): a change of the line or a fault of
+// line or encoder. It happens at a time, or at frame k (the master's FE1 of its k-th frame,
+// delay-measurement frames included, counted from 0), optionally at the n-th rising CLOCK
+// edge of that frame at `end`'s pins, plus `offset`.
+struct Event {
+  enum class Kind : std::uint8_t {
+    SetCable, BitFlip, Glitch, Stuck, RandomBitErrors, LateDriverRelease, LossOfFailsafe,  // line
+    ErrorSources, MemoryAccessTime, TCal, PowerInterruption, CorruptWord,                  // encoder
+  };
+  Kind kind = Kind::SetCable;
+  std::optional<Time> at;
+  std::optional<std::uint64_t> frame;
+  unsigned clock = 0;  // 0: at FE1 of the frame
+  Time offset{0};
+  // set_cable
   double cable_length_m = 0;
   Time cable_delay_per_m{0};
+  // line faults
+  line::Wire wire = line::Wire::Data;
+  line::ObservationPoint end = line::ObservationPoint::MasterPins;
+  Time width{0};                  // bit_flip: one period of the master's f_c unless given
+  bool level = false;             // stuck, loss_of_failsafe
+  std::optional<Time> duration;   // stuck, random_bit_errors: none = to the end; power_interruption
+  double rate = 0;                // random_bit_errors: probability per clock period
+  // encoder faults
+  std::uint16_t errors = 0, warnings = 0;
+  Time t_ac_read{0}, t_ac_write{0}, t_cal{0};
+  slave::Selection selection;
+  std::uint8_t address = 0;
+  std::uint16_t xor_mask = 0;
 };
+
+inline Event cable_change(Time at, double length_m, Time delay_per_m) {
+  Event e;
+  e.at = at;
+  e.cable_length_m = length_m;
+  e.cable_delay_per_m = delay_per_m;
+  return e;
+}
 
 struct Scenario {
   std::string file;
@@ -93,7 +126,7 @@ struct Scenario {
   checker::CheckerParams checker;
   std::vector<master::Operation> script;
   std::vector<std::optional<FrameExpectation>> operation_expectations;  // one per script entry
-  std::vector<LineEvent> events;
+  std::vector<Event> events;
   Expectations expect;
 };
 

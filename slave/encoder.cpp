@@ -494,6 +494,8 @@ void Encoder::answer_parameter_frame() {
   }
   state_ = State::Answer;
   first_answer_clock_ = kFirstStartBitClock + protocol::kPayloadBits;
+  if (!error && pending_.kind == Pending::Kind::Write)
+    note_nvm_write(pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
   const bool in_frame = params_.t_ac_placement == MemoryAccessPlacement::InFrame;
   answer_not_before_ = kernel_.now() + (in_frame && !error ? t_ac : Time::zero());
   if (!in_frame && !error && memory_access) busy_until_ = std::max(busy_until_, kernel_.now() + t_ac);
@@ -589,6 +591,7 @@ void Encoder::process_supplement() {
       in_progress_ = {error ? Pending::Kind::None : Pending::Kind::Write, selection_area_, address, parameter};
       memory_error_ = error.has_value();
       start_memory_access(params_.t_ac_write);
+      if (!error) note_nvm_write(selection_area_, address, parameter, busy_until_);
       break;
     }
     case MC::EncoderSendPositionValuesAndSendParameter: {  // 2.5.1
@@ -625,6 +628,7 @@ void Encoder::on_memory_access_done() {
       return;
     case Pending::Kind::Write:
       memory_.write(in_progress_.selection, in_progress_.address, in_progress_.value);
+      if (nvm_write_) nvm_write_->applied = true;
       break;
     default:
       break;
@@ -779,6 +783,7 @@ void Encoder::finish_frame() {
   ready_at_ = kernel_.now() + params_.t_r;
   if (f.too_many_clocks && pending_.kind != Pending::Kind::None) {
     f.error = ErrorCause::MrsFrameDisrupted;  // the access is discarded
+    nvm_write_.reset();
     return;
   }
   switch (pending_.kind) {
@@ -787,6 +792,7 @@ void Encoder::finish_frame() {
       break;
     case Pending::Kind::Write:
       memory_.write(pending_.selection, pending_.address, pending_.value);
+      if (nvm_write_) nvm_write_->applied = true;
       break;
     case Pending::Kind::Reset:
       reset();
@@ -798,6 +804,11 @@ void Encoder::finish_frame() {
 }
 
 void Encoder::reset() {
+  restart_state();
+  if (params_.reset_time > Time::zero()) go_offline(params_.reset_time);
+}
+
+void Encoder::restart_state() {
   // 2.7 ("same reaction as from switching power on and off", seed 001): additional data
   // deselected (2.4.2.2), word 2, word 3 and the operating parameters activated (3.4.3, 3.4.4, 3.6).
   memory_.activate_on_reset();
@@ -818,7 +829,61 @@ void Encoder::reset() {
   memory_timer_.cancel();
   busy_until_ = kernel_.now();
   in_progress_ = {};
-  if (params_.reset_time > Time::zero()) go_offline(params_.reset_time);
+}
+
+// ---- faults (issue 5) ------------------------------------------------------------------------
+
+void Encoder::set_error_sources(std::uint16_t errors, std::uint16_t warnings) {
+  params_.error_sources = errors;
+  params_.warning_sources = warnings;
+}
+
+void Encoder::set_memory_access_times(Time read, Time write) {
+  require(read >= Time::zero() && read <= kMaxFaultTime && write >= Time::zero() && write <= kMaxFaultTime,
+          "memory access times must be 0 .. 10 s");
+  params_.t_ac_read = read;
+  params_.t_ac_write = write;
+}
+
+void Encoder::set_t_cal(Time t_cal) {
+  require(t_cal >= Time::zero() && t_cal <= sim::ms(100), "t_cal must be 0 .. 100 ms (the model's limit)");
+  params_.t_cal = t_cal;
+}
+
+void Encoder::power_interruption(Time duration) {
+  require(duration > Time::zero() && duration <= kMaxFaultTime, "a power interruption lasts 0 .. 10 s");
+  interrupt_nvm_write();
+  state_ = State::Idle;
+  recovery_timer_.cancel();
+  end_marker_timer_.cancel();
+  pending_ = {};
+  restart_state();  // 2.7: a reset is "the same reaction as switching the power off and on"
+  go_offline(duration + params_.startup_time);
+}
+
+void Encoder::corrupt_word(const Selection& s, std::uint8_t address, std::uint16_t xor_mask) {
+  memory_.force(s, address, static_cast<std::uint16_t>(memory_.word(s, address) ^ xor_mask));
+}
+
+void Encoder::note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at) {
+  std::uint16_t old = 0;
+  if (memory_.read(s, address, old)) return;
+  nvm_write_ = NvmWrite{s, address, old, value, done_at, false};
+}
+
+// A write cut short keeps the old word or is torn (InterruptedNvmWrite); one whose t_ac had
+// run out is programmed even if its frame had not ended yet.
+void Encoder::interrupt_nvm_write() {
+  if (!nvm_write_) return;
+  const NvmWrite w = *nvm_write_;
+  nvm_write_.reset();
+  if (kernel_.now() >= w.done_at) {
+    if (!w.applied) memory_.force(w.selection, w.address, w.new_value);
+    return;
+  }
+  const bool torn = params_.interrupted_nvm_write == InterruptedNvmWrite::Torn;
+  memory_.force(w.selection, w.address,
+                torn ? static_cast<std::uint16_t>((w.new_value & 0xFF00) | (w.old_value & 0x00FF)) : w.old_value);
 }
 
 // 3.4.2: word 1 bit 5 reports cyclic mode while word 3 activates it.

@@ -32,6 +32,12 @@ enum class Type1Handling : std::uint8_t { AbortHigh, NoStartBit };
 // the frame; a 2.1 memory access meanwhile is answered with type II (2.3.1 note 1).
 enum class MemoryAccessPlacement : std::uint8_t { InFrame, AfterFrame };
 
+// What a word holds when the supply fails while the encoder programs it (issue 5; the spec says
+// nothing). KeepOld: the NVM programs a word at once at the end of t_ac, before that the old
+// value stays. Torn: the high byte is programmed, the low byte is not. Either way write
+// protection bits already stored survive (3.4.3: irreversible).
+enum class InterruptedNvmWrite : std::uint8_t { KeepOld, Torn };
+
 // Position source: fixed (counts_per_s = 0) or constant velocity, wrapping at 2^position_bits.
 struct MotionProfile {
   std::uint64_t start = 0;
@@ -76,6 +82,7 @@ struct EncoderParams {
   Time t_ac_read = sim::us(500);               // 2.3.2: memory access time t_ac (0 .. 12 ms) for reads, selections
   Time t_ac_write = sim::ms(3);                // ... and for writes
   MemoryAccessPlacement t_ac_placement = MemoryAccessPlacement::InFrame;
+  InterruptedNvmWrite interrupted_nvm_write = InterruptedNvmWrite::KeepOld;
   // Timing-model §1.6 (guess): after the master's supplement the encoder drives the HIGH end
   // marker this long after the last supplement bit (the master has released DATA by then).
   Time supplement_end_marker_delay = sim::us(1);
@@ -153,6 +160,15 @@ class Encoder {
   std::optional<Information> additional_data_1() const { return selection_[0]; }
   std::optional<Information> additional_data_2() const { return selection_[1]; }
 
+  // Faults (issue 5), while running.
+  void set_error_sources(std::uint16_t errors, std::uint16_t warnings);  // words 0 and 1 (3.4.1, 3.4.2)
+  void set_memory_access_times(Time read, Time write);                  // t_ac, also beyond 12 ms
+  void set_t_cal(Time t_cal);                                           // also beyond 1 ms
+  // The supply fails for `duration`; then the encoder runs up for its startup_time (2.3.3).
+  void power_interruption(Time duration);
+  void corrupt_word(const Selection& s, std::uint8_t address, std::uint16_t xor_mask);
+  static constexpr Time kMaxFaultTime = sim::ms(10'000);
+
   // Internal signals worth tracing: what the encoder logic drives before its output delay.
   sim::Signal& data_logic() { return data_logic_; }
   sim::Signal& enable_logic() { return enable_logic_; }
@@ -187,6 +203,9 @@ class Encoder {
   void abort_type1(protocol::ErrorCause cause);
   void finish_frame();
   void reset();
+  void restart_state();
+  void note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at);
+  void interrupt_nvm_write();
   void latch_errors();
   bool function_activated(protocol::parameters::EncoderFunction f) const;
   void activate_functions();
@@ -261,6 +280,15 @@ class Encoder {
   std::uint8_t async_time_delay_ = 0;           // 2.4.2.3: 0 after switch-on or reset
   __int128 counter_origin_ = 0;                 // 3.4.4: measuring steps where a counter reset zeroed the multiturn count
   bool multiturn_overflow_ = false;             // 3.4.4: overflow message (unlatched) in this frame
+  // The word the NVM is programming (issue 5: what a power interruption leaves).
+  struct NvmWrite {
+    Selection selection;
+    std::uint8_t address = 0;
+    std::uint16_t old_value = 0, new_value = 0;
+    Time done_at{0};
+    bool applied = false;
+  };
+  std::optional<NvmWrite> nvm_write_;
   std::size_t diagnosis_index_ = 0;
   unsigned sensor_address_ = 0;
   bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command

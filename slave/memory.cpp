@@ -216,6 +216,21 @@ std::optional<ErrorCause> Memory::check_write(const Selection& s, std::uint8_t a
   return std::nullopt;
 }
 
+std::uint16_t Memory::word(const Selection& s, std::uint8_t address) const {
+  const auto* w = words(s);
+  if (w == nullptr || address >= w->size())
+    throw std::invalid_argument("memory area " + std::string(protocol::info(s.area).key) + " holds no word at address " +
+                                std::to_string(address));
+  return (*w)[address];
+}
+
+void Memory::force(const Selection& s, std::uint8_t address, std::uint16_t value) {
+  (void)word(s, address);
+  auto* w = words(s);
+  if (s.area == Area::OperatingStatus && address == word::kWriteProtection) value |= (*w)[address];
+  (*w)[address] = value;
+}
+
 void Memory::latch_errors(std::uint16_t errors, std::uint16_t warnings) {
   auto& status = image_.areas.at(Area::OperatingStatus);
   status[word::kErrors] |= errors;

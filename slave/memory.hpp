@@ -72,6 +72,11 @@ class Memory {
   std::optional<ErrorCause> write(const Selection& s, std::uint8_t address, std::uint16_t value);
   std::optional<ErrorCause> check_write(const Selection& s, std::uint8_t address, std::uint16_t value) const;
 
+  // Faults (issue 5): a word changed past the access rules, by an interrupted NVM write or a
+  // corruption. Write protection bits already stored survive (3.4.3: irreversible). Throws
+  // std::invalid_argument for a word the area does not hold.
+  void force(const Selection& s, std::uint8_t address, std::uint16_t value);
+  std::uint16_t word(const Selection& s, std::uint8_t address) const;  // any stored word; throws as force()
   // Error and warning sources set their bits in words 0 and 1; they stay until cleared.
   void latch_errors(std::uint16_t errors, std::uint16_t warnings);
   void clear_errors_and_warnings();  // 2.7.1: "Encoder send position values and receive error reset"

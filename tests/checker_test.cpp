@@ -363,7 +363,7 @@ TEST(CheckerLineChange, CompensatingWithADelayFromTheOldLineIsReported) {
   // Measured on 10 m (t_D 300 ns); at 2 ms the cable becomes 60 m (800 ns) while reads go on.
   auto s = make_scenario(10, MHz(8), true, 10);
   s.script.back().cycle = us(200);
-  s.events.push_back({ms(2), 60, ns(5)});
+  s.events.push_back(scenarios::cable_change(ms(2), 60, ns(5)));
   auto r = scenarios::run_scenario(s);
   EXPECT_EQ(count_violations(r, checker::check::kMeasurementProcedure), 1U);
   EXPECT_GE(count_violations(r, checker::check::kDataDelayTolerance), 1U);

@@ -1,0 +1,128 @@
+#include "scenarios/events.hpp"
+
+#include <algorithm>
+
+namespace endatsim::scenarios {
+namespace {
+
+using K = Event::Kind;
+using line::ObservationPoint;
+
+std::size_t side(ObservationPoint end) { return end == ObservationPoint::MasterPins ? 0 : 1; }
+
+bool counts_clock_edges(const Event& e) { return (e.frame && e.clock > 0) || e.kind == K::RandomBitErrors; }
+
+ObservationPoint edge_end(const Event& e) {
+  const bool line_fault = e.kind == K::BitFlip || e.kind == K::Glitch || e.kind == K::Stuck ||
+                          e.kind == K::RandomBitErrors || e.kind == K::LateDriverRelease;
+  return line_fault ? e.end : ObservationPoint::MasterPins;
+}
+
+}  // namespace
+
+EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& encoder, master::Master& master,
+                         checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed)
+    : kernel_(kernel), line_(line), encoder_(encoder), master_(master), checker_(checker), events_(events),
+      period_(sim::period_of(master.params().f_c)), rng_(seed ^ 0x5EED'FA17'0000'0005ULL) {
+  bool listen[2] = {false, false};
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    if (events[i].at) kernel.schedule_at(*events[i].at, sim::bind<&EventDriver::apply>(this, i));
+    if (counts_clock_edges(events[i])) listen[side(edge_end(events[i]))] = true;
+  }
+  if (listen[0]) line.pins(ObservationPoint::MasterPins).clock.on_change(sim::bind<&EventDriver::on_master_clock>(this));
+  if (listen[1]) line.pins(ObservationPoint::EncoderPins).clock.on_change(sim::bind<&EventDriver::on_encoder_clock>(this));
+  master.add_observer(this);
+}
+
+void EventDriver::on_frame_start(const master::FrameResult& frame) {
+  for (std::size_t i = 0; i < events_.size(); ++i) {
+    const Event& e = events_[i];
+    if (!e.frame || *e.frame != frame.index) continue;
+    if (e.clock == 0) kernel_.schedule(e.offset, sim::bind<&EventDriver::apply>(this, i));
+    else armed_[side(edge_end(e))].push_back({i});
+  }
+}
+
+void EventDriver::on_rising_edge(ObservationPoint end, std::uint64_t level) {
+  if (level == 0) return;
+  auto& armed = armed_[side(end)];
+  for (auto& a : armed)
+    if (++a.edges == events_[a.event].clock) kernel_.schedule(events_[a.event].offset, sim::bind<&EventDriver::apply>(this, a.event));
+  std::erase_if(armed, [this](const Armed& a) { return a.edges >= events_[a.event].clock; });
+  // A bit error: DATA inverted for one clock period covers exactly one sampling instant.
+  for (std::size_t i : random_[side(end)]) {
+    const double rate = events_[i].rate;
+    const auto threshold = rate >= 1.0 ? UINT64_MAX : static_cast<std::uint64_t>(rate * 18446744073709551616.0);
+    if (rng_() >= threshold) continue;
+    line_.invert(line::Wire::Data, end, period_);
+    ++random_bit_errors_;
+  }
+}
+
+void EventDriver::apply(std::uint64_t index) {
+  const Event& e = events_[index];
+  if (e.kind >= K::ErrorSources) apply_to_encoder(e);
+  else apply_to_line(e, index);
+}
+
+void EventDriver::apply_to_line(const Event& e, std::uint64_t index) {
+  switch (e.kind) {
+    case K::SetCable:
+      line_.set_cable(e.cable_length_m, e.cable_delay_per_m);
+      checker_.on_line_change();
+      break;
+    case K::BitFlip:
+      line_.invert(e.wire, e.end, e.width > Time::zero() ? e.width : period_);
+      break;
+    case K::Glitch:
+      line_.invert(e.wire, e.end, e.width);
+      break;
+    case K::Stuck:
+      line_.stick(e.wire, e.end, e.level);
+      if (e.duration) kernel_.schedule(*e.duration, sim::bind<&EventDriver::end_of>(this, index));
+      break;
+    case K::RandomBitErrors:
+      random_[side(e.end)].push_back(index);
+      if (e.duration) kernel_.schedule(*e.duration, sim::bind<&EventDriver::end_of>(this, index));
+      break;
+    case K::LateDriverRelease:
+      line_.set_driver_disable_delay(e.end, e.width);
+      break;
+    case K::LossOfFailsafe:
+      line_.set_failsafe_level(e.level);
+      break;
+    default:
+      break;
+  }
+}
+
+void EventDriver::apply_to_encoder(const Event& e) {
+  switch (e.kind) {
+    case K::ErrorSources:
+      encoder_.set_error_sources(e.errors, e.warnings);
+      break;
+    case K::MemoryAccessTime:
+      encoder_.set_memory_access_times(e.t_ac_read, e.t_ac_write);
+      break;
+    case K::TCal:
+      encoder_.set_t_cal(e.t_cal);
+      break;
+    case K::PowerInterruption:
+      encoder_.power_interruption(*e.duration);
+      checker_.on_line_change();  // 2.1.2: "after power interruption" as after a change of the line
+      break;
+    case K::CorruptWord:
+      encoder_.corrupt_word(e.selection, e.address, e.xor_mask);
+      break;
+    default:
+      break;
+  }
+}
+
+void EventDriver::end_of(std::uint64_t index) {
+  const Event& e = events_[index];
+  if (e.kind == K::Stuck) line_.stick(e.wire, e.end, std::nullopt);
+  if (e.kind == K::RandomBitErrors) std::erase(random_[side(e.end)], index);
+}
+
+}  // namespace endatsim::scenarios

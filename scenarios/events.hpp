@@ -1,0 +1,52 @@
+// Carries out a scenario's events (issue 5): changes and faults of the line and the encoder at a
+// time, at a frame or at a clock edge of a frame. It tells the master and the checker what the
+// installation would tell them (2.1.2: a new delay measurement is due after a change of the
+// transmission path or a power interruption).
+#pragma once
+
+#include <boost/random/mersenne_twister.hpp>
+
+#include "scenarios/scenario.hpp"
+
+namespace endatsim::scenarios {
+
+class EventDriver final : public master::MasterObserver {
+ public:
+  EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& encoder, master::Master& master,
+              checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed);
+  EventDriver(const EventDriver&) = delete;
+  EventDriver& operator=(const EventDriver&) = delete;
+
+  void on_frame_start(const master::FrameResult& frame) override;
+  void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
+  void on_frame_end(const master::FrameResult&) override {}
+
+  std::uint64_t random_bit_errors() const { return random_bit_errors_; }  // bits flipped at random
+
+ private:
+  struct Armed {
+    std::size_t event;
+    unsigned edges = 0;
+  };
+  void apply(std::uint64_t index);
+  void end_of(std::uint64_t index);
+  void on_master_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::MasterPins, level); }
+  void on_encoder_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::EncoderPins, level); }
+  void on_rising_edge(line::ObservationPoint end, std::uint64_t level);
+  void apply_to_line(const Event& e, std::uint64_t index);
+  void apply_to_encoder(const Event& e);
+
+  sim::Kernel& kernel_;
+  line::Line& line_;
+  slave::Encoder& encoder_;
+  master::Master& master_;
+  checker::TimingChecker& checker_;
+  const std::vector<Event>& events_;
+  Time period_;
+  boost::random::mt19937_64 rng_;
+  std::vector<Armed> armed_[2];                 // frame events waiting for their clock edge, per end
+  std::vector<std::size_t> random_[2];          // random_bit_errors events in force, per end
+  std::uint64_t random_bit_errors_ = 0;
+};
+
+}  // namespace endatsim::scenarios
