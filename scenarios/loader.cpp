@@ -870,6 +870,17 @@ Scenario read_scenario(const json& root, const std::string& file) {
     o.req("name").fail("a non-empty name without spaces, slashes or control characters");
   if (auto v = o.opt("description")) s.description = v->as_string();
   if (auto v = o.opt("$schema")) v->as_string();  // for editors (schema/scenario.schema.json); not used
+  if (auto v = o.opt("field")) {
+    Object f(*v);
+    const auto text = [&f](const char* key) {
+      const Node n = f.req(key);
+      const std::string t = n.as_string();
+      if (t.empty()) n.fail("a non-empty text");
+      return t;
+    };
+    s.field = FieldNote{text("symptom"), text("cause"), text("spec"), text("asserts")};
+    f.done();
+  }
   if (auto v = o.opt("seed")) s.seed = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_time")) s.max_time = v->as_duration(sim::us(1), sim::ms(60'000));
   read_line(o.req("line"), s.line);

@@ -58,6 +58,10 @@ void write_startup(std::ostream& out, const master::StartupInfo& s) {
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
   if (!r.description.empty()) out << "  " << r.description << "\n";
+  if (r.field) {
+    out << "  field symptom: " << r.field->symptom << "\n  cause: " << r.field->cause << "\n  spec: " << r.field->spec
+        << "\n  asserts: " << r.field->asserts << "\n";
+  }
   std::map<std::string, unsigned> outcomes;
   unsigned measurement_frames = 0;
   for (const auto& f : r.frames) {
@@ -121,6 +125,9 @@ nlohmann::json to_json(const ScenarioResult& r) {
   j["name"] = r.name;
   j["file"] = r.file;
   j["seed"] = r.seed;
+  if (r.field)
+    j["field"] = {{"symptom", r.field->symptom}, {"cause", r.field->cause}, {"spec", r.field->spec},
+                  {"asserts", r.field->asserts}};
   j["passed"] = r.passed();
   j["simulated_ps"] = r.simulated.count();
   j["events"] = r.events;

@@ -17,25 +17,42 @@ std::uint64_t count_outcome(const ScenarioResult& r, std::string_view name) {
 }
 
 // The encoder frame that began with the master's FE1: FE1 reaches the encoder logic after
-// the master's clock driver, the cable and the encoder's receiver.
-const slave::EncoderFrame* encoder_frame_for(const ScenarioResult& r, const master::FrameResult& f, Time clock_path) {
+// the master's clock driver, the cable and the encoder's receiver; the cable is the scenario's
+// or one that an event put in.
+const slave::EncoderFrame* encoder_frame_for(const ScenarioResult& r, const master::FrameResult& f,
+                                             const std::vector<Time>& clock_paths) {
   for (const auto& e : r.encoder_frames)
-    if (e.start == f.start + clock_path) return &e;
+    for (const Time path : clock_paths)
+      if (e.start == f.start + path) return &e;
   return nullptr;
+}
+
+std::vector<Time> clock_paths(const Scenario& s) {
+  const auto path = [&s](const line::LineParams& lp) {
+    return lp.master.driver_delay + lp.cable_delay() + lp.encoder.receiver_delay;
+  };
+  std::vector<Time> paths{path(s.line)};
+  for (const auto& e : s.events) {
+    if (e.kind != Event::Kind::SetCable) continue;
+    line::LineParams lp = s.line;
+    lp.cable_length_m = e.cable_length_m;
+    lp.cable_delay_per_m = e.cable_delay_per_m;
+    paths.push_back(path(lp));
+  }
+  return paths;
 }
 
 }  // namespace
 
 PositionComparison compare_positions_with_encoder(const Scenario& s, const ScenarioResult& r) {
-  const auto& lp = s.line;
-  const Time clock_path = lp.master.driver_delay + lp.cable_delay() + lp.encoder.receiver_delay;
+  const auto paths = clock_paths(s);
   std::string detail;
   std::uint64_t compared = 0;
   for (const auto& f : r.frames) {
     if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
         protocol::info(f.command).answer != protocol::AnswerFormat::Position)
       continue;
-    const auto* ef = encoder_frame_for(r, f, clock_path);
+    const auto* ef = encoder_frame_for(r, f, paths);
     ++compared;
     // Word k > 0 of a continuous clock was latched at the falling edge after the HIGH bit.
     const bool latched = ef != nullptr && (f.word == 0 || f.word <= ef->continuous_positions.size());
@@ -261,6 +278,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.file = scenario.file;
   r.name = scenario.name;
   r.description = scenario.description;
+  r.field = scenario.field;
   r.seed = master_params.seed;
   r.simulated = kernel.now();
   r.events = kernel.events_processed();

@@ -23,6 +23,7 @@ struct ScenarioResult {
   std::string file;
   std::string name;
   std::string description;
+  std::optional<FieldNote> field;
   std::uint64_t seed = 0;
   Time simulated{0};
   std::uint64_t events = 0;

@@ -113,10 +113,17 @@ inline Event cable_change(Time at, double length_m, Time delay_per_m) {
   return e;
 }
 
+// The header of a field-bug scenario (scenarios/field/): what went wrong in the field, why,
+// which spec rule is involved and what the scenario asserts.
+struct FieldNote {
+  std::string symptom, cause, spec, asserts;
+};
+
 struct Scenario {
   std::string file;
   std::string name;
   std::string description;
+  std::optional<FieldNote> field;
   std::uint64_t seed = 1;
   Time max_time = sim::ms(1000);
   line::LineParams line;
