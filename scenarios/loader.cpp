@@ -827,6 +827,7 @@ void read_expect(const Node& n, Expectations& e) {
   if (auto v = o.opt("violations")) read_count_map(*v, e.violations, checker::check::all());
   if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_busy_timeouts")) e.max_busy_timeouts = v->as_uint(0, UINT64_MAX);
+  if (auto v = o.opt("busy_timeouts")) e.busy_timeouts = v->as_count();
   if (auto v = o.opt("startup")) {
     Object st(*v);
     StartupExpectation se;

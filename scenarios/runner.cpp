@@ -224,6 +224,9 @@ void judge(const Scenario& s, ScenarioResult& r) {
     if (s.operation_expectations[i]) judge_operation(i, *s.operation_expectations[i], r);
   judge_memory(s, r);
   if (s.expect.startup) judge_startup(*s.expect.startup, r);
+  if (s.expect.busy_timeouts)
+    r.expectations.push_back({"busy_timeouts", s.expect.busy_timeouts->matches(r.busy_timeouts),
+                              std::to_string(r.busy_timeouts) + " (expected " + s.expect.busy_timeouts->text + ")"});
   if (s.expect.max_busy_timeouts)
     r.expectations.push_back({"max_busy_timeouts", r.busy_timeouts <= *s.expect.max_busy_timeouts,
                               std::to_string(r.busy_timeouts)});

@@ -70,6 +70,7 @@ struct Expectations {
   std::optional<std::uint64_t> max_cycle_overruns;
   std::vector<MemoryExpectation> memory;
   std::optional<std::uint64_t> max_busy_timeouts;
+  std::optional<CountMatcher> busy_timeouts;  // await_not_busy operations that gave up
   std::optional<StartupExpectation> startup;
 };
 
