@@ -291,10 +291,9 @@ void Line::set_driver_disable_delay(ObservationPoint end, Time delay) {
   if (delay < Time::zero() || delay > kMaxLateRelease)
     throw std::invalid_argument("driver disable delay must be 0 .. " + sim::format_time(kMaxLateRelease) + ", got " +
                                 sim::format_time(delay));
-  auto& t = end == ObservationPoint::MasterPins ? params_.master : params_.encoder;
-  t.disable_delay = delay;
-  if (end == ObservationPoint::MasterPins) impl_->m_en_driver.set_delays(t.enable_delay, delay);
-  else impl_->e_en_driver.set_delays(t.enable_delay, delay);
+  // A fault, not a configuration: params() keep the transceiver as configured.
+  if (end == ObservationPoint::MasterPins) impl_->m_en_driver.set_delays(params_.master.enable_delay, delay);
+  else impl_->e_en_driver.set_delays(params_.encoder.enable_delay, delay);
 }
 
 void Line::set_failsafe_level(bool level) {

@@ -242,3 +242,11 @@ TEST(LineFault, AMasterDriverThatReleasesLateCollidesWithTheEncoder) {
   EXPECT_EQ(l.contentions()[0].end, us(5));
   EXPECT_THROW(l.set_driver_disable_delay(ObservationPoint::MasterPins, ms(1)), std::invalid_argument);
 }
+
+TEST(LineFault, ALateReleaseBeyondTheTransceiverLimitSurvivesACableChange) {
+  Kernel k;
+  line::Line l(k, line::LineParams{});
+  l.set_driver_disable_delay(ObservationPoint::EncoderPins, us(5));
+  EXPECT_NO_THROW(l.set_cable(60, ns(5)));
+  EXPECT_EQ(l.params().encoder.disable_delay, ns(30)) << "the configured transceiver is unchanged";
+}
