@@ -28,7 +28,7 @@ const slave::EncoderFrame* encoder_frame_for(const ScenarioResult& r, const mast
 }
 
 std::vector<Time> clock_paths(const Scenario& s) {
-  const auto path = [&s](const line::LineParams& lp) {
+  const auto path = [](const line::LineParams& lp) {
     return lp.master.driver_delay + lp.cable_delay() + lp.encoder.receiver_delay;
   };
   std::vector<Time> paths{path(s.line)};
