@@ -22,7 +22,7 @@ ObservationPoint edge_end(const Event& e) {
 
 EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& encoder, master::Master& master,
                          checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed)
-    : kernel_(kernel), line_(line), encoder_(encoder), master_(master), checker_(checker), events_(events),
+    : kernel_(kernel), line_(line), encoder_(encoder), checker_(checker), events_(events),
       period_(sim::period_of(master.params().f_c)), rng_(seed ^ 0x5EED'FA17'0000'0005ULL) {
   bool listen[2] = {false, false};
   for (std::size_t i = 0; i < events.size(); ++i) {

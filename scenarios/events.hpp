@@ -39,7 +39,6 @@ class EventDriver final : public master::MasterObserver {
   sim::Kernel& kernel_;
   line::Line& line_;
   slave::Encoder& encoder_;
-  master::Master& master_;
   checker::TimingChecker& checker_;
   const std::vector<Event>& events_;
   Time period_;
