@@ -305,3 +305,22 @@ TEST(FaultEvents, ASetCableEventAtAFrameChangesTheLineThere) {
   EXPECT_EQ(r.frames[0].outcome, master::FrameOutcome::Ok);
   EXPECT_GE(count_violations(r, checker::check::kSamplingWindow), 1U) << "1 MHz over 120 m uncompensated";
 }
+
+TEST(FaultLossOfFailsafe, AnUnpoweredEncoderThenLooksLikeNoStartBitInsteadOfTypeI) {
+  // With the bias the undriven line reads HIGH (the master reports an error handling); without
+  // it, LOW: the master polls in vain for the start bit.
+  const auto outcome_during_power_cut = [](bool lose_failsafe) {
+    auto s = reads(6);
+    auto cut = at(us(150), K::PowerInterruption);
+    cut.duration = ms(3);  // longer than the master's start-bit polling (1 ms)
+    s.events.push_back(cut);
+    if (lose_failsafe) {
+      auto e = at(us(100), K::LossOfFailsafe);
+      e.level = false;
+      s.events.insert(s.events.begin(), e);
+    }
+    return outcomes(scenarios::run_scenario(s)).at(2);
+  };
+  EXPECT_EQ(outcome_during_power_cut(false), master::FrameOutcome::Type1Error);
+  EXPECT_EQ(outcome_during_power_cut(true), master::FrameOutcome::NoStartBit);
+}
