@@ -470,4 +470,30 @@ std::string clock_frequency_string(std::uint16_t khz) {
   return s + " MHz";
 }
 
+// 3.9.32
+std::uint16_t encode_timestamp_unit(TimestampUnit unit) { return u16(static_cast<unsigned>(unit) << 13); }
+
+TimestampUnit decode_timestamp_unit(std::uint16_t word) {
+  const unsigned code = word >> 13U;
+  return code <= 4 ? static_cast<TimestampUnit>(code) : TimestampUnit::NotSupported;
+}
+
+std::optional<std::chrono::nanoseconds> timestamp_unit_duration(TimestampUnit unit) {
+  using std::chrono::nanoseconds;
+  switch (unit) {
+    case TimestampUnit::Us2: return nanoseconds(2000);
+    case TimestampUnit::Us1: return nanoseconds(1000);
+    case TimestampUnit::Ns500: return nanoseconds(500);
+    case TimestampUnit::Ns125: return nanoseconds(125);
+    case TimestampUnit::NotSupported: break;
+  }
+  return std::nullopt;
+}
+
+std::string timestamp_unit_string(TimestampUnit unit) {
+  const auto d = timestamp_unit_duration(unit);
+  if (!d) return "not supported";
+  return d->count() >= 1000 ? std::to_string(d->count() / 1000) + " us" : std::to_string(d->count()) + " ns";
+}
+
 }  // namespace endatsim::protocol::parameters

@@ -273,4 +273,14 @@ std::string additional_data_string(const std::vector<std::string_view>& names); 
 std::uint16_t encode_max_clock_frequency_khz(std::uint32_t khz);  // throws above 65535
 std::string clock_frequency_string(std::uint16_t khz);           // "8 MHz", "500 kHz", "2.5 MHz"
 
+// ---- 3.9.31 / 3.9.32 EnDat 2.2 words 44 and 45: touch probes ------------------------------------
+// Word 44: the touch probe functions supported (the table of its bits is not in the text; kept
+// as a raw word). Word 45 bits 15..13: the unit of the timestamp that gives the switching time:
+// 000 not supported, 001 2 us, 010 1 us (example 4000h), 011 500 ns, 100 125 ns.
+enum class TimestampUnit : std::uint8_t { NotSupported = 0, Us2 = 1, Us1 = 2, Ns500 = 3, Ns125 = 4 };
+std::uint16_t encode_timestamp_unit(TimestampUnit unit);
+TimestampUnit decode_timestamp_unit(std::uint16_t word);  // codes 5..7 decode as NotSupported
+std::optional<std::chrono::nanoseconds> timestamp_unit_duration(TimestampUnit unit);
+std::string timestamp_unit_string(TimestampUnit unit);    // "1 us", "not supported"
+
 }  // namespace endatsim::protocol::parameters

@@ -114,6 +114,10 @@ void EventDriver::apply_to_encoder(const Event& e) {
     case K::CorruptWord:
       encoder_.corrupt_word(e.selection, e.address, e.xor_mask);
       break;
+    case K::ProbeTrigger:
+      encoder_.set_probe_deflected(true);
+      kernel_.schedule(*e.duration, sim::bind<&EventDriver::release_probe>(this));
+      break;
     default:
       break;
   }

@@ -30,6 +30,7 @@ class EventDriver final : public master::MasterObserver {
   };
   void apply(std::uint64_t index);
   void end_of(std::uint64_t index);
+  void release_probe() { encoder_.set_probe_deflected(false); }
   void on_master_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::MasterPins, level); }
   void on_encoder_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::EncoderPins, level); }
   void on_rising_edge(line::ObservationPoint end, std::uint64_t level);

@@ -317,7 +317,8 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   using slave::EncoderKind;
   if (auto v = o.opt("kind"))
     p.kind = v->as_enum<EncoderKind>(
-        {{"singleturn", EncoderKind::Singleturn}, {"multiturn", EncoderKind::Multiturn}, {"linear", EncoderKind::Linear}});
+        {{"singleturn", EncoderKind::Singleturn}, {"multiturn", EncoderKind::Multiturn}, {"linear", EncoderKind::Linear},
+         {"touch_probe", EncoderKind::TouchProbe}});
   if (auto v = o.opt("version"))
     p.version = v->as_enum<protocol::EndatVersion>({{"2.1", protocol::EndatVersion::V2_1}, {"2.2", protocol::EndatVersion::V2_2}});
   if (auto v = o.opt("position_bits")) p.position_bits = static_cast<unsigned>(v->as_uint(1, 48));
@@ -644,7 +645,7 @@ void read_script(const Node& n, std::vector<master::Operation>& script,
 
 constexpr std::string_view kEventKinds =
     "set_cable, bit_flip, glitch, stuck, random_bit_errors, late_driver_release, loss_of_failsafe, error_sources, "
-    "memory_access_time, t_cal, power_interruption or corrupt_word";
+    "memory_access_time, t_cal, power_interruption, corrupt_word or probe_trigger";
 
 line::ObservationPoint read_end(Object& o) {
   return o.req("end").as_enum<line::ObservationPoint>(
@@ -707,6 +708,7 @@ void read_encoder_fault(Object& f, Event& e) {
       e.t_cal = f.req("t_cal").as_duration(Time::zero(), sim::ms(100));
       break;
     case K::PowerInterruption:
+    case K::ProbeTrigger:
       e.duration = f.req("duration").as_duration(sim::ps(1), max);
       break;
     case K::CorruptWord: {
@@ -733,7 +735,8 @@ Event read_event(const Node& item, const line::LineParams& line) {
       {"random_bit_errors", K::RandomBitErrors}, {"late_driver_release", K::LateDriverRelease},
       {"loss_of_failsafe", K::LossOfFailsafe},   {"error_sources", K::ErrorSources},
       {"memory_access_time", K::MemoryAccessTime}, {"t_cal", K::TCal},
-      {"power_interruption", K::PowerInterruption}, {"corrupt_word", K::CorruptWord}};
+      {"power_interruption", K::PowerInterruption}, {"corrupt_word", K::CorruptWord},
+      {"probe_trigger", K::ProbeTrigger}};
   Object o(item);
   Event e;
   if (auto v = o.opt("at")) e.at = v->as_duration(Time::zero(), sim::ms(60'000));
@@ -898,7 +901,13 @@ Scenario read_scenario(const json& root, const std::string& file) {
   s.master.seed = s.seed;
   if (auto v = o.opt("checker")) read_checker(*v, s.checker);
   read_script(o.req("script"), s.script, s.operation_expectations);
-  if (auto v = o.opt("events")) read_events(*v, s.line, s.events);
+  if (auto v = o.opt("events")) {
+    read_events(*v, s.line, s.events);
+    for (std::size_t i = 0; i < s.events.size(); ++i)
+      if (s.events[i].kind == Event::Kind::ProbeTrigger && s.encoder.kind != slave::EncoderKind::TouchProbe)
+        Node(v->raw()[i], v->path() + "/" + std::to_string(i), top.file())
+            .fail_raw("probe_trigger needs an encoder of kind \"touch_probe\" (word 14 type 5)");
+  }
   if (auto v = o.opt("expect")) read_expect(*v, s.expect);
   o.done();
   return s;

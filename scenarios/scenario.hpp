@@ -81,7 +81,7 @@ struct Expectations {
 struct Event {
   enum class Kind : std::uint8_t {
     SetCable, BitFlip, Glitch, Stuck, RandomBitErrors, LateDriverRelease, LossOfFailsafe,  // line
-    ErrorSources, MemoryAccessTime, TCal, PowerInterruption, CorruptWord,                  // encoder
+    ErrorSources, MemoryAccessTime, TCal, PowerInterruption, CorruptWord, ProbeTrigger,    // encoder
   };
   Kind kind = Kind::SetCable;
   std::optional<Time> at;
@@ -96,7 +96,7 @@ struct Event {
   line::ObservationPoint end = line::ObservationPoint::MasterPins;
   Time width{0};                  // bit_flip: one period of the master's f_c unless given
   bool level = false;             // stuck, loss_of_failsafe
-  std::optional<Time> duration;   // stuck, random_bit_errors: none = to the end; power_interruption
+  std::optional<Time> duration;   // stuck, random_bit_errors: none = to the end; power_interruption, probe_trigger
   double rate = 0;                // random_bit_errors: probability per clock period
   // encoder faults
   std::uint16_t errors = 0, warnings = 0;

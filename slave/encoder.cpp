@@ -19,6 +19,8 @@ void require(bool ok, const std::string& message) {
 constexpr unsigned kFirstStartBitClock = 11;  // timing-model §1.2: start bit no earlier than RE11
 constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see README)
 constexpr std::uint16_t kInstructionHighImpedance = 0x0002;                    // 2.10: word 5 bit 1
+constexpr unsigned kTouchProbeBits = 16;                                       // 2.3.4.4
+constexpr std::uint8_t kTouchProbeStatusWord = 2;                              // operating parameters 2 (3.10.1)
 
 using protocol::parameters::EncoderFunction;
 
@@ -39,6 +41,8 @@ void EncoderParams::validate() const {
   require(kind == EncoderKind::Multiturn || multiturn_bits == 0,
           "multiturn_bits (" + std::to_string(multiturn_bits) + ") needs kind \"multiturn\"");
   require(kind != EncoderKind::Multiturn || multiturn_bits > 0, "kind \"multiturn\" needs multiturn_bits > 0");
+  require(kind != EncoderKind::TouchProbe || position_bits == kTouchProbeBits,
+          "kind \"touch_probe\" sends 16 bits (2.3.4.4), got position_bits " + std::to_string(position_bits));
   // 2.3.2 allows at most 1 ms; longer ones are accepted so that an overrun can be shown, and
   // the checker reports them (t_cal).
   require(t_cal >= Time::zero() && t_cal <= sim::ms(100),
@@ -104,9 +108,10 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   using A = MemoryArea;
   namespace pm = protocol::parameters;
   const bool v22 = p.version == EndatVersion::V2_2;
-  const auto type = p.kind == EncoderKind::Linear      ? pm::EncoderType::AbsoluteLinear
-                    : p.kind == EncoderKind::Multiturn ? pm::EncoderType::MultiturnBattery
-                                                       : pm::EncoderType::Singleturn;
+  const auto type = p.kind == EncoderKind::Linear       ? pm::EncoderType::AbsoluteLinear
+                    : p.kind == EncoderKind::Multiturn  ? pm::EncoderType::MultiturnBattery
+                    : p.kind == EncoderKind::TouchProbe ? pm::EncoderType::TouchProbe
+                                                        : pm::EncoderType::Singleturn;
   MemoryImage img;
   // 3.4.3: the encoder manufacturer's areas and the compensation values are factory protected.
   const std::uint16_t function_init = p.short_t_m_selected ? kShortRecoveryTimeOn : kShortRecoveryTimeOff;
@@ -142,6 +147,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     e[2] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
     e[6] = 0x007F;                              // 3.9.8: support of error message 2
     e[word::kMaxClockFrequency] = 16000;        // 3.9.19: kHz
+    if (type == pm::EncoderType::TouchProbe) e[45] = pm::encode_timestamp_unit(pm::TimestampUnit::Us1);  // 3.9.32
     e[word::kEndat22Checksum] = word_sum(e, 0, 62);
     img.areas[A::ManufacturerEndat22] = e;
     img.areas[A::OperatingParameters2].assign(16, 0);
@@ -172,6 +178,10 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
                               type == pm::EncoderType::IncrementalRotaryDistanceCoded ||
                               type == pm::EncoderType::IncrementalRotaryBatteryDistanceCoded;
   marks_to_reference_ = distance_coded ? 2 : 1;
+  touch_probe_ = type == pm::EncoderType::TouchProbe;
+  require(!touch_probe_ || params_.position_bits == kTouchProbeBits,
+          "a touch probe (word 14 type 5) sends 16 bits (2.3.4.4), but position_bits is " +
+              std::to_string(params_.position_bits));
   referenced_ = !incremental_;
   activate_functions();
   if (type == pm::EncoderType::ExternalInterfaceBox)
@@ -751,7 +761,7 @@ std::uint16_t Encoder::additional_data_content(Information i) {
     case I::AsynchronousPositionWord2: return word_of(async_latched_, 1);
     case I::AsynchronousPositionWord3: return word_of(async_latched_, 2);
     case I::OperatingStatusErrorSources: return s.operating_status_error_sources;
-    case I::Timestamp: return static_cast<std::uint16_t>(f.start / s.timestamp_unit);
+    case I::Timestamp: return timestamp(f.start);
     default: return 0;
   }
 }
@@ -865,6 +875,28 @@ void Encoder::corrupt_word(const Selection& s, std::uint8_t address, std::uint16
   memory_.force(s, address, static_cast<std::uint16_t>(memory_.word(s, address) ^ xor_mask));
 }
 
+// 3.9.32: a touch probe's timestamp gives its switching time in the unit of word 45.
+std::uint16_t Encoder::timestamp(Time frame_start) const {
+  namespace pm = protocol::parameters;
+  if (touch_probe_ && probe_switched_at_) {
+    if (const auto unit = pm::timestamp_unit_duration(pm::decode_timestamp_unit(memory_.endat22_word(45))))
+      return static_cast<std::uint16_t>(*probe_switched_at_ / *unit);
+  }
+  return static_cast<std::uint16_t>(frame_start / params_.sensors.timestamp_unit);
+}
+
+void Encoder::set_probe_deflected(bool deflected) {
+  require(touch_probe_, "only a touch probe (word 14 type 5) can be deflected");
+  if (deflected && !probe_deflected_) probe_switched_at_ = kernel_.now();
+  probe_deflected_ = deflected;
+  // UNCERTAIN (3.10.1 names operating parameters 2 word 2 "status of touch probes", no bits):
+  // bit 0 follows the trigger status.
+  const Selection status{MemoryArea::OperatingParameters2, 0};
+  std::uint16_t word = 0;
+  if (!memory_.read(status, kTouchProbeStatusWord, word))
+    memory_.force(status, kTouchProbeStatusWord, static_cast<std::uint16_t>((word & ~1U) | (deflected ? 1U : 0U)));
+}
+
 void Encoder::note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at) {
   std::uint16_t old = 0;
   if (memory_.read(s, address, old)) return;
@@ -921,8 +953,10 @@ std::uint64_t Encoder::measured_position(Time t) const {
   return static_cast<std::uint64_t>(p);
 }
 
-// 2.3.4.3: incremental encoders send relative positions, counted from switching on.
+// 2.3.4.3: incremental encoders send relative positions, counted from switching on. 2.3.4.4: a
+// touch probe sends 16 bits, the LSB its trigger status; the other 15 are "TBD" and sent as 0.
 std::uint64_t Encoder::latched_position(Time t) const {
+  if (touch_probe_) return probe_deflected_ ? 1 : 0;
   if (incremental_)
     return output_position(static_cast<std::uint64_t>(unwrapped_position(t) - unwrapped_position(reference_origin_)));
   return output_position(measured_position(t));

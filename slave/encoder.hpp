@@ -18,7 +18,7 @@ using protocol::Information;
 using protocol::ModeCommand;
 using sim::Time;
 
-enum class EncoderKind : std::uint8_t { Singleturn, Multiturn, Linear };
+enum class EncoderKind : std::uint8_t { Singleturn, Multiturn, Linear, TouchProbe };
 
 // What the encoder puts on DATA after a mode command with a broken redundancy or one it does
 // not support (type I, appendix A2). The wire behaviour is not documented in any readable
@@ -167,6 +167,8 @@ class Encoder {
   // The supply fails for `duration`; then the encoder runs up for its startup_time (2.3.3).
   void power_interruption(Time duration);
   void corrupt_word(const Selection& s, std::uint8_t address, std::uint16_t xor_mask);
+  // A touch probe (word 14 type 5) deflected or released (2.3.4.4: the trigger status).
+  void set_probe_deflected(bool deflected);
   static constexpr Time kMaxFaultTime = sim::ms(10'000);
 
   // Internal signals worth tracing: what the encoder logic drives before its output delay.
@@ -213,6 +215,7 @@ class Encoder {
   std::uint64_t measured_position(Time t) const;
   std::uint64_t latched_position(Time t) const;
   std::uint16_t error_word() const;
+  std::uint16_t timestamp(Time frame_start) const;
   bool multiturn_overflowed(Time t) const;
   void check_multiturn_overflow();
   bool error_message_1() const;
@@ -295,6 +298,9 @@ class Encoder {
   std::optional<bool> bus_selection_after_frame_;
   bool offline_ = false;                        // running up after power-on or reset (2.3.3)
   bool incremental_ = false;                    // word 14: an incremental encoder
+  bool touch_probe_ = false;                    // word 14: a touch probe (2.3.4.4)
+  bool probe_deflected_ = false;
+  std::optional<Time> probe_switched_at_;       // the last trigger, for the timestamp (3.9.32)
   unsigned marks_to_reference_ = 1;             // 2 with distance-coded reference marks
   bool referenced_ = false;                     // RM (2.3.4.3)
   Time eib_ready_at_{0};                        // A2 cause 5 before this time

@@ -30,6 +30,7 @@ std::string kind_key(EncoderKind k) {
     case EncoderKind::Singleturn: return "singleturn";
     case EncoderKind::Multiturn: return "multiturn";
     case EncoderKind::Linear: return "linear";
+    case EncoderKind::TouchProbe: return "touch_probe";
   }
   return "singleturn";
 }
@@ -137,7 +138,8 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
   if (kind == "singleturn") p.kind = EncoderKind::Singleturn;
   else if (kind == "multiturn") p.kind = EncoderKind::Multiturn;
   else if (kind == "linear") p.kind = EncoderKind::Linear;
-  else r.child("kind").fail("one of \"singleturn\", \"multiturn\", \"linear\"");
+  else if (kind == "touch_probe") p.kind = EncoderKind::TouchProbe;
+  else r.child("kind").fail("one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\"");
   p.position_bits = r.child("position_bits").as_uint(1, 48);
   if (root.contains("multiturn_bits")) p.multiturn_bits = r.child("multiturn_bits").as_uint(0, p.position_bits - 1);
 
@@ -247,9 +249,11 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
          "position_bits " + std::to_string(p.position_bits) + " in bits 0..5 (3.5.6)", m[13]);
   const auto type = pm::decode_encoder_type(m[14]);
   const bool multiturn_type = type == pm::EncoderType::MultiturnBattery || type == pm::EncoderType::MultiturnGears;
-  const bool type_ok = p.kind == EncoderKind::Linear       ? pm::is_linear(type)
-                       : p.kind == EncoderKind::Multiturn ? multiturn_type
-                                                          : !pm::is_linear(type) && !multiturn_type;
+  const bool probe_type = type == pm::EncoderType::TouchProbe;
+  const bool type_ok = p.kind == EncoderKind::Linear       ? pm::is_linear(type) && !probe_type
+                       : p.kind == EncoderKind::Multiturn  ? multiturn_type
+                       : p.kind == EncoderKind::TouchProbe ? probe_type
+                                                           : !pm::is_linear(type) && !multiturn_type && !probe_type;
   expect(type_ok, manufacturer_path(14), "an encoder type of kind " + kind_key(p.kind) + " (3.5.7)", m[14]);
   const std::uint16_t revolutions =
       p.kind == EncoderKind::Multiturn ? pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U)) : 0;
@@ -305,6 +309,8 @@ std::vector<std::pair<std::string, std::string>> describe_profile(const EncoderP
     d.emplace_back("additional data 1 (2.2 word 0)", pm::additional_data_string(pm::decode_additional_data_1(e[0])));
     d.emplace_back("additional data 2 (2.2 word 1)", pm::additional_data_string(pm::decode_additional_data_2(e[1])));
     d.emplace_back("maximum clock frequency (2.2 word 25)", pm::clock_frequency_string(e[25]));
+    if (p.kind == EncoderKind::TouchProbe)
+      d.emplace_back("timestamp unit (2.2 word 45)", pm::timestamp_unit_string(pm::decode_timestamp_unit(e[45])));
   }
   return d;
 }
@@ -400,7 +406,8 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   if (p.kind == EncoderKind::Multiturn) m[17] = pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U));
   m[18] = p.reference_mark_increment;
   std::uint32_t steps = p.measuring_steps;
-  if (steps == 0 && p.kind != EncoderKind::Linear) steps = std::uint32_t{1} << (p.position_bits - p.multiturn_bits);
+  // 2.3.4.4: a touch probe sends a trigger status, not measuring steps.
+  if (steps == 0 && p.kind != EncoderKind::Linear && p.kind != EncoderKind::TouchProbe) steps = std::uint32_t{1} << (p.position_bits - p.multiturn_bits);
   const auto s = pm::encode_measuring_steps(steps);
   m[20] = s[0];
   m[21] = s[1];
@@ -446,6 +453,8 @@ EncoderProfile build_profile(const ProfileParameters& p) {
     e[2] = p.additional_functions;
     e[6] = p.supported_errors_2;
     e[25] = pm::encode_max_clock_frequency_khz(p.max_clock_khz);
+    e[44] = p.touch_probe_support;
+    e[45] = pm::encode_timestamp_unit(p.timestamp_unit);
     e[63] = pm::endat22_checksum(e);
     areas[Area::ManufacturerEndat22] = e;
     areas[Area::OperatingParameters2].assign(16, 0);

@@ -104,6 +104,8 @@ struct ProfileParameters {
   std::uint16_t additional_functions = 0;               // BD word 2
   std::uint16_t supported_errors_2 = 0;                 // BD word 6
   std::uint32_t max_clock_khz = 0;                      // BD word 25
+  std::uint16_t touch_probe_support = 0;                // BD word 44 (3.9.31)
+  protocol::parameters::TimestampUnit timestamp_unit = protocol::parameters::TimestampUnit::NotSupported;  // BD word 45
   std::uint16_t write_protection = 0x0039;              // operating status word 2
   std::uint16_t function_initialization = kShortRecoveryTimeOff;  // operating status word 3
 };

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "scenario_support.hpp"
+#include "scenarios/loader.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;
@@ -323,4 +324,35 @@ TEST(FaultLossOfFailsafe, AnUnpoweredEncoderThenLooksLikeNoStartBitInsteadOfType
   };
   EXPECT_EQ(outcome_during_power_cut(false), master::FrameOutcome::Type1Error);
   EXPECT_EQ(outcome_during_power_cut(true), master::FrameOutcome::NoStartBit);
+}
+
+TEST(FaultEvents, AProbeTriggerShowsInTheTriggerStatusAndTheTimestamp) {
+  auto s = test_support::make_scenario(5, MHz(1), false, 4);
+  s.encoder.kind = slave::EncoderKind::TouchProbe;
+  s.encoder.position_bits = 16;
+  s.master.position_bits = 16;
+  s.encoder.motion.start = 0;
+  s.script.back().command = MC::EncoderSendPositionValues;
+  auto e = at(us(150), K::ProbeTrigger);
+  e.duration = us(100);
+  s.events.push_back(e);
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(r.frames.size(), 4U);
+  EXPECT_EQ(r.frames[1].position, 0U);
+  EXPECT_EQ(r.frames[2].position, 1U) << "deflected from 150 to 250 us";
+  EXPECT_EQ(r.frames[3].position, 0U);
+}
+
+TEST(FaultEvents, AProbeTriggerNeedsATouchProbe) {
+  const std::string text = R"({"name": "x", "line": {"cable_length_m": 1}, "master": {"f_c": "1 MHz"},
+    "script": [{"op": "read_position"}],
+    "events": [{"at": "1 ms", "probe_trigger": {"duration": "1 ms"}}]})";
+  try {
+    scenarios::load_scenario_text(text, "probe.json");
+    FAIL() << "accepted";
+  } catch (const scenarios::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("probe.json: at /events/0: probe_trigger needs an encoder of kind"),
+              std::string::npos)
+        << e.what();
+  }
 }

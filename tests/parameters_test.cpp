@@ -300,3 +300,19 @@ TEST(Parameters, Endat22Word25MaxClockFrequencyExample) {
   EXPECT_EQ(clock_frequency_string(500), "500 kHz");
   EXPECT_THROW(encode_max_clock_frequency_khz(70000), std::invalid_argument);
 }
+
+TEST(Parameters, Endat22Word45TimestampUnitExample) {
+  // 3.9.32: "touch probes with a timestamp with a time unit of 1 us" = 010x xxxx xxxx xxxxb.
+  EXPECT_EQ(encode_timestamp_unit(TimestampUnit::Us1), 0x4000);
+  EXPECT_EQ(decode_timestamp_unit(0x4000), TimestampUnit::Us1);
+  EXPECT_EQ(decode_timestamp_unit(0x5FFF), TimestampUnit::Us1) << "bits 12..0 are not the unit";
+  EXPECT_EQ(decode_timestamp_unit(0x2000), TimestampUnit::Us2);
+  EXPECT_EQ(decode_timestamp_unit(0x6000), TimestampUnit::Ns500);
+  EXPECT_EQ(decode_timestamp_unit(0x8000), TimestampUnit::Ns125);
+  EXPECT_EQ(decode_timestamp_unit(0x0000), TimestampUnit::NotSupported);
+  EXPECT_EQ(decode_timestamp_unit(0xA000), TimestampUnit::NotSupported) << "code 101b is not assigned";
+  EXPECT_EQ(timestamp_unit_duration(TimestampUnit::Ns125), std::chrono::nanoseconds(125));
+  EXPECT_FALSE(timestamp_unit_duration(TimestampUnit::NotSupported));
+  EXPECT_EQ(timestamp_unit_string(TimestampUnit::Us2), "2 us");
+  EXPECT_EQ(timestamp_unit_string(TimestampUnit::Ns500), "500 ns");
+}

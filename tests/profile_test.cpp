@@ -119,6 +119,33 @@ std::vector<ProfileParameters> bundled_parameters() {
   }
   {
     ProfileParameters p;
+    p.name = "touch_probe";
+    p.description = "Touch probe with EnDat 2.2: 16-bit transfer format whose LSB is the trigger status "
+                    "(2.3.4.4), the switching time as timestamp additional data in units of 1 us (3.9.32). "
+                    "Illustrative values, not a real product.";
+    p.version = protocol::EndatVersion::V2_2;
+    p.kind = EncoderKind::TouchProbe;
+    p.type = pm::EncoderType::TouchProbe;
+    p.position_bits = 16;
+    p.measuring_steps = 0;
+    p.oem[0] = pm::AddressRange{0, 63};
+    p.id = pm::parse_id_number("1264001 01");
+    p.serial = {' ', 60012345, ' '};
+    p.supported_errors = 0x0019;
+    p.supported_warnings = 0x0083;
+    p.communication_command = true;
+    p.t_cal = pm::calculation_time_from(5us);
+    p.ordering_designation = "EnDat22";
+    p.additional_data_1 = {"temperature_1"};
+    p.additional_data_2 = {"operating_status_error_sources", "timestamp"};
+    p.supported_errors_2 = 0x0019;
+    p.max_clock_khz = 8000;
+    p.touch_probe_support = 0x0001;  // 3.9.31: the bit table is not in the text (guess: bit 0 = trigger status)
+    p.timestamp_unit = pm::TimestampUnit::Us1;  // 3.9.32 example
+    all.push_back(p);
+  }
+  {
+    ProfileParameters p;
     p.name = "incremental_distance_coded";
     p.description = "Incremental linear encoder with distance-coded reference marks and 1 Vpp signals "
                     "(EnDat01, command set 2.1): 20 um signal period, 20 mm nominal increment (3.5.8, 3.5.10 "
@@ -189,6 +216,20 @@ const std::map<std::string, std::map<std::string, std::string>> kDocumented{
       {"additional data 2 (2.2 word 1)",
        "commutation, limit_position_signals, operating_status_error_sources, timestamp"},
       {"maximum clock frequency (2.2 word 25)", "16 MHz"}}},
+    {"touch_probe",
+     {{"encoder type (word 14)", "touch probe (note D1 - D11)"},
+      {"position bits (word 13)", "16"},
+      {"measuring step (words 20/21)", "0 (see EnDat 2.2 words 27 .. 29)"},
+      {"ID number (words 24..26)", "1264001 01"},
+      {"serial number (words 27..29)", "60012345"},
+      {"command set (word 37)", "2.2, communication command"},
+      {"t_cal (word 39)", "5 us"},
+      {"ordering designation (word 40)", "EnDat22"},
+      {"functions (operating status word 3)", "none activated"},
+      {"additional data 1 (2.2 word 0)", "temperature_1"},
+      {"additional data 2 (2.2 word 1)", "operating_status_error_sources, timestamp"},
+      {"maximum clock frequency (2.2 word 25)", "8 MHz"},
+      {"timestamp unit (2.2 word 45)", "1 us"}}},
     {"incremental_distance_coded",
      {{"encoder type (word 14)", "incremental linear encoder with distance-coded reference marks"},
       {"position bits (word 13)", "32"},
@@ -316,7 +357,8 @@ TEST(Profile, ErrorsNameFileJsonPathAndExpectation) {
             "string \"8019\"");
   EXPECT_EQ(error_of(replace(good, "\"0x8019\"", "\"0x18019\"")).substr(0, 42), "bad.json: at /memory/manufacturer_1/13: ex");
   EXPECT_EQ(error_of(replace(good, "\"kind\": \"singleturn\"", "\"kind\": \"rotary\"")),
-            "bad.json: at /kind: expected one of \"singleturn\", \"multiturn\", \"linear\", got string \"rotary\"");
+            "bad.json: at /kind: expected one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", got string "
+            "\"rotary\"");
   EXPECT_EQ(error_of(replace(good, "\"kind\": \"singleturn\"", "\"kind\": \"linear\"")),
             "bad.json: at /memory/manufacturer_1/14: expected an encoder type of kind linear (3.5.7), got C001h");
   EXPECT_EQ(error_of(replace(good, "\"version\": \"2.2\"", "\"version\": \"2.1\"")),
