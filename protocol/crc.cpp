@@ -8,7 +8,9 @@ namespace endatsim::protocol {
 namespace {
 
 // A4.4.1: "Preload flip-flops via Set with a logical 1", shift, output the inverted register.
-boost::crc_basic<5> make_generator() { return boost::crc_basic<5>(0x0B, 0x1F, 0x1F, false, false); }
+boost::crc_basic<5> make_generator(const CrcConfig& c = {}) {
+  return boost::crc_basic<5>(0x0B, c.preset & 0x1FU, c.final_inversion ? 0x1F : 0x00, false, false);
+}
 
 }  // namespace
 
@@ -18,16 +20,17 @@ std::uint8_t crc5(std::span<const std::uint8_t> bits) {
   return static_cast<std::uint8_t>(gen.checksum());
 }
 
-std::uint8_t make_crc_norm(std::uint8_t param8, std::uint16_t param16) {
-  auto gen = make_generator();
+std::uint8_t make_crc_norm(std::uint8_t param8, std::uint16_t param16, const CrcConfig& config) {
+  auto gen = make_generator(config);
   for (int i = 7; i >= 0; --i) gen.process_bit(((param8 >> i) & 1U) != 0);
   for (int i = 15; i >= 0; --i) gen.process_bit(((param16 >> i) & 1U) != 0);
   return static_cast<std::uint8_t>(gen.checksum());
 }
 
-std::uint8_t make_crc_pos(unsigned clocks, bool error1, bool error2, bool endat22, std::uint64_t position) {
+std::uint8_t make_crc_pos(unsigned clocks, bool error1, bool error2, bool endat22, std::uint64_t position,
+                          const CrcConfig& config) {
   if (clocks > 64) throw std::invalid_argument("make_crc_pos: at most 64 position bits");
-  auto gen = make_generator();
+  auto gen = make_generator(config);
   gen.process_bit(error1);
   if (endat22) gen.process_bit(error2);
   for (unsigned i = 0; i < clocks; ++i) gen.process_bit(((position >> i) & 1U) != 0);

@@ -31,3 +31,23 @@ TEST(Crc, EverySingleBitErrorChangesTheCrc) {
   EXPECT_NE(make_crc_pos(25, true, true, true, 104462), good);
   EXPECT_NE(make_crc_pos(25, false, false, true, 104462), good);
 }
+
+TEST(Crc, PresetZeroWithoutInversionReproducesTheMisconfiguredMastersLog) {
+  // Reference notes, masters-in-the-field §4.2 / §6.6: an HPM SDK sample's log of 2.1 frames,
+  // 25 bits, F1 = 0, where the spec's CRC is 06h, 0Ch, 19h.
+  const CrcConfig wrong{0x00, false};
+  EXPECT_EQ(make_crc_pos(25, false, true, false, 0xA5A5), 0x06);
+  EXPECT_EQ(make_crc_pos(25, false, true, false, 0xA5A5, wrong), 0x05);
+  EXPECT_EQ(make_crc_pos(25, false, true, false, 0xA5A6, wrong), 0x0F);
+  EXPECT_EQ(make_crc_pos(25, false, true, false, 0xA5A7, wrong), 0x1A);
+  EXPECT_EQ(make_crc_pos(25, false, true, false, 0xA5A5, CrcConfig{}), 0x06) << "the default is the spec's";
+}
+
+TEST(Crc, NotesVectorsForOtherWidths) {
+  // masters-in-the-field §4.2 (TI's make_crc_* and an independent LFSR agree).
+  EXPECT_EQ(make_crc_pos(31, false, false, true, 0x7FFFFFFF), 22);
+  EXPECT_EQ(make_crc_pos(36, false, false, true, 0x512345678ULL), 13);
+  EXPECT_EQ(make_crc_pos(48, false, false, true, 0xABCD12345678ULL), 11);
+  EXPECT_EQ(make_crc_norm(0xB9, 0x1234), 10);
+  EXPECT_EQ(make_crc_norm(100, 10000), 30);
+}
