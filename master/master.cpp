@@ -32,6 +32,7 @@ std::string_view to_string(FrameOutcome o) {
     case FrameOutcome::NoStartBit: return "no_start_bit";
     case FrameOutcome::Type1Error: return "type1_error";
     case FrameOutcome::Type2Error: return "type2_error";
+    case FrameOutcome::EchoMismatch: return "echo_mismatch";
   }
   return "?";
 }
@@ -80,6 +81,11 @@ void MasterParams::validate() const {
   require(supplement_driven_lead_bits >= 1 && supplement_driven_lead_bits <= supplement_lead_bits,
           "master supplement_driven_lead_bits must be 1 .. supplement_lead_bits (" +
               std::to_string(supplement_lead_bits) + "), got " + std::to_string(supplement_driven_lead_bits));
+  require(crc.table_fault_width <= 48,
+          "master crc table_fault_width must be 0 .. 48 (0: none), got " + std::to_string(crc.table_fault_width));
+  require(careful.retries <= 10, "master retries must be 0 .. 10, got " + std::to_string(careful.retries));
+  require(careful.remeasure_after_crc_errors <= 1000,
+          "master remeasure_after_crc_errors must be 0 .. 1000, got " + std::to_string(careful.remeasure_after_crc_errors));
   require(type1_detect_samples >= 1 && type1_detect_samples <= 64,
           "master type1_detect_samples must be 1 .. 64, got " + std::to_string(type1_detect_samples));
 }
@@ -123,6 +129,10 @@ void Master::next_operation() {
       expand_startup_routine();
       next_operation();
       return;
+    case Operation::Kind::VerifyChecksum:
+      expand_checksum_check();
+      next_operation();
+      return;
     case Operation::Kind::MeasureDelay:
       measuring_ = true;
       rounds_ = 1;
@@ -135,6 +145,7 @@ void Master::next_operation() {
       break;
     case Operation::Kind::ReadPosition:
       frames_left_ = current_->count;
+      retries_left_ = params_.careful.retries;
       break;
   }
   next_due_ = begin;
@@ -194,7 +205,7 @@ void Master::expand_startup_routine() {
 
 void Master::note_startup(const FrameResult& f) {
   using P = Operation::Purpose;
-  if (current_->purpose == P::None) return;
+  if (current_->purpose == P::None || current_->purpose == P::ChecksumWord) return;
   if (f.outcome != FrameOutcome::Ok) {
     ++startup_.failed_frames;
     startup_.completed = false;
@@ -209,8 +220,115 @@ void Master::note_startup(const FrameResult& f) {
       break;
     case P::Word37: startup_.word37 = f.echo_parameter; break;
     case P::None:
-    case P::Step: break;
+    case P::Step:
+    case P::ChecksumWord: break;
   }
+}
+
+// 3.5.26: words 4 .. 47 of the encoder manufacturer's areas A1 (addresses 4 .. 15), A3 and A5
+// (addresses 0 .. 15 each) with 2.1 frames; then word 47 against the sum of words 4 .. 46.
+void Master::expand_checksum_check() {
+  using MC = ModeCommand;
+  std::vector<Operation> frames;
+  const auto add = [&](MC c, std::uint8_t address, unsigned word = 0) {
+    Operation o;
+    o.script_index = current_->script_index;
+    o.command = c;
+    o.address = address;
+    o.purpose = word != 0 ? Operation::Purpose::ChecksumWord : Operation::Purpose::None;
+    o.manufacturer_word = word;
+    frames.push_back(o);
+  };
+  for (const auto& [mrs, first] : {std::pair{0xA1, 4U}, {0xA3, 16U}, {0xA5, 32U}}) {
+    add(MC::SelectionOfMemoryArea, static_cast<std::uint8_t>(mrs));
+    for (unsigned w = first; w < (first == 4 ? 16U : first + 16); ++w)
+      add(MC::EncoderSendParameters, static_cast<std::uint8_t>(w % 16), w);
+  }
+  checksum_ = ChecksumCheck{};
+  checksum_words_.assign(48, 0);
+  checksum_read_ = 0;
+  for (auto it = frames.rbegin(); it != frames.rend(); ++it) operations_.push_front(*it);
+}
+
+void Master::note_checksum_word(const FrameResult& f) {
+  if (current_->purpose != Operation::Purpose::ChecksumWord || f.outcome != FrameOutcome::Ok) return;
+  checksum_words_.at(current_->manufacturer_word) = f.echo_parameter;
+  if (++checksum_read_ < 44 || current_->manufacturer_word != 47) return;
+  checksum_->complete = true;
+  checksum_->stored = checksum_words_[47];
+  std::uint16_t sum = 0;
+  for (unsigned w = 4; w <= 46; ++w) sum = static_cast<std::uint16_t>(sum + checksum_words_[w]);
+  checksum_->computed = sum;
+}
+
+// ---- a careful master (issue 5) -----------------------------------------------------------
+
+void Master::line_changed() {
+  if (params_.careful.remeasure_after_line_change && params_.delay_compensation) remeasure_due_ = true;
+}
+
+void Master::encoder_power_interrupted() {
+  if (params_.careful.remeasure_after_power_interruption && params_.delay_compensation) remeasure_due_ = true;
+  if (params_.careful.reselect_after_power_interruption && (selected_[0] || selected_[1])) reselect_due_ = true;
+}
+
+void Master::note_failures() {
+  if (frames_.back().measurement) return;
+  const auto o = frames_.back().outcome;
+  const bool failed = o == FrameOutcome::CrcError || o == FrameOutcome::NoStartBit || o == FrameOutcome::Type1Error ||
+                      o == FrameOutcome::EchoMismatch;
+  failures_in_a_row_ = failed ? failures_in_a_row_ + 1 : 0;
+  const unsigned k = params_.careful.remeasure_after_crc_errors;
+  if (k != 0 && failures_in_a_row_ >= k && params_.delay_compensation) {
+    remeasure_due_ = true;
+    failures_in_a_row_ = 0;
+  }
+}
+
+bool Master::retry_frame() {
+  const auto o = frames_.back().outcome;
+  const bool failed = o != FrameOutcome::Ok && o != FrameOutcome::Type2Error;
+  if (current_->kind != Operation::Kind::ReadPosition || frames_.back().measurement || !failed ||
+      retries_left_ == 0) {
+    retries_left_ = params_.careful.retries;
+    return false;
+  }
+  --retries_left_;
+  ++retries_done_;
+  kernel_.schedule(std::max(ready_at_, kernel_.now()) - kernel_.now(), sim::bind<&Master::start_frame>(this));
+  return true;
+}
+
+// Before the next frame: select the additional data again (the encoder lost them) and measure
+// t_D again (2.1.2); then the operation goes on where it was.
+void Master::interrupt_for_measurement() {
+  Operation rest = *current_;
+  rest.count = frames_left_;
+  rest.at.reset();
+  operations_.push_front(rest);
+  if (remeasure_due_) {
+    Operation m;
+    m.kind = Operation::Kind::MeasureDelay;
+    m.script_index = current_->script_index;
+    operations_.push_front(m);
+    ++remeasurements_;
+  }
+  if (reselect_due_) {
+    for (unsigned i : {1U, 0U}) {
+      if (!selected_[i]) continue;
+      Operation s = rest;
+      s.count = 1;
+      s.kind = Operation::Kind::ReadPosition;
+      s.command = ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+      s.address = selection_mrs_[i];
+      s.parameter = 0;
+      s.purpose = Operation::Purpose::None;
+      operations_.push_front(s);
+      selected_[i] = false;
+    }
+  }
+  remeasure_due_ = reselect_due_ = false;
+  next_operation();
 }
 
 void Master::operation_frame_done() {
@@ -224,6 +342,8 @@ void Master::operation_frame_done() {
     if (ready) frames_left_ = 1;
     else if (frames_left_ == 1) ++busy_timeouts_;
   }
+  note_failures();
+  if (retry_frame()) return;
   if (--frames_left_ > 0) {
     next_due_ += current_->kind != Operation::Kind::MeasureDelay ? current_->cycle : Time::zero();
     if (ready_at_ > next_due_ && current_->cycle > Time::zero()) ++cycle_overruns_;
@@ -241,6 +361,10 @@ void Master::operation_frame_done() {
 // ---- one frame ----------------------------------------------------------------------------
 
 void Master::start_frame(std::uint64_t) {
+  if ((remeasure_due_ || reselect_due_) && !measuring_) {
+    interrupt_for_measurement();
+    return;
+  }
   const bool measurement = measuring_;
   frame_ = FrameResult{};
   frame_.index = frames_.size();
@@ -250,7 +374,8 @@ void Master::start_frame(std::uint64_t) {
   frame_.command = measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
   frame_.mode_bits = measurement || !current_->mode_bits ? protocol::info(frame_.command).bits : *current_->mode_bits;
   frame_.f_c = measurement                                        ? params_.measurement.f_c
-               : current_->purpose != Operation::Purpose::None ? params_.startup_f_c
+               : current_->purpose != Operation::Purpose::None &&
+                       current_->purpose != Operation::Purpose::ChecksumWord ? params_.startup_f_c
                                                                : params_.f_c;
   frame_.compensated = !measurement && params_.delay_compensation && t_d_.has_value();
   frame_.t_d_used = frame_.compensated ? *t_d_ : Time::zero();
@@ -358,11 +483,19 @@ void Master::rising_edge() {
       const Time at = high_ + frame_.t_d_used;
       kernel_.schedule(at, sim::bind<&Master::sample>(this, sample_tag(epoch_, clock_)));
     }
+    // Too few pulses (a fault): the answer stays incomplete once the last sample is due.
+    if (rx_ == Rx::Receiving)
+      kernel_.schedule(high_ + frame_.t_d_used + low_, sim::bind<&Master::incomplete>(this, sample_tag(epoch_, 0)));
     maybe_complete_frame();
     return;
   }
   nominal_ += high_;
   edge_timer_.start(jittered(nominal_) - kernel_.now());
+}
+
+void Master::incomplete(std::uint64_t tag) {
+  if ((tag >> 32) != epoch_ || rx_ != Rx::Receiving) return;
+  end_reception(FrameOutcome::CrcError);
 }
 
 void Master::sample(std::uint64_t tag) {
@@ -391,7 +524,11 @@ void Master::sample_now(unsigned clock) {
         frame_.start_bit_clock = clock;
         const unsigned last_bit_clock = clock + answer_width() - 1;
         // A frame with a supplement clocks on until the master has checked the answer.
-        if (!command_->supplement) last_clock_ = last_bit_clock + (params_.extra_clock_after_last_bit ? 1 : 0);
+        if (!command_->supplement) {
+          const int adjust = frame_.measurement ? 0 : current_->clock_adjust;  // a fault: too many or too few
+          const int last = static_cast<int>(last_bit_clock + (params_.extra_clock_after_last_bit ? 1 : 0)) + adjust;
+          last_clock_ = static_cast<unsigned>(std::max(last, static_cast<int>(clock)));
+        }
       }
       break;
     case Rx::Receiving:
@@ -423,15 +560,14 @@ void Master::decode_answer() {
       frame_.error1 = field(Field::Error1) != 0;
       frame_.error2 = v22 ? field(Field::Error2) != 0 : true;
       frame_.position = field(Field::Position);
-      frame_.crc_expected =
-          protocol::make_crc_pos(position_bits_, frame_.error1, frame_.error2, v22, frame_.position);
+      frame_.crc_expected = expected_crc_pos(position_bits_, frame_.error1, frame_.error2, v22, frame_.position);
       const auto ai_layout = protocol::additional_datum_layout();
       for (std::size_t at = layout_.width(); at < rx_bits_.size(); at += protocol::kAdditionalDatumBits) {
         const auto v = ai_layout.decode(std::span(rx_bits_).subspan(at));
         AdditionalDatum d;
         d.status = static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Status)]);
         d.data = static_cast<std::uint16_t>(v[static_cast<std::size_t>(Field::AdditionalData)]);
-        d.crc_ok = v[static_cast<std::size_t>(Field::Crc)] == protocol::make_crc_norm(d.status, d.data) &&
+        d.crc_ok = v[static_cast<std::size_t>(Field::Crc)] == protocol::make_crc_norm(d.status, d.data, params_.crc.generator) &&
                    v[static_cast<std::size_t>(Field::LeadingLow)] == 0;
         ok = ok && d.crc_ok;
         frame_.additional_data.push_back(d);
@@ -441,12 +577,12 @@ void Master::decode_answer() {
     case protocol::AnswerFormat::TestValues:
       frame_.error1 = field(Field::Error1) != 0;
       frame_.test_value = field(Field::TestValue);
-      frame_.crc_expected = protocol::make_crc_pos(protocol::kTestValueBits, frame_.error1, true, false, frame_.test_value);
+      frame_.crc_expected = expected_crc_pos(protocol::kTestValueBits, frame_.error1, true, false, frame_.test_value);
       break;
     case protocol::AnswerFormat::Parameter:
       frame_.echo_address = static_cast<std::uint8_t>(field(Field::Address));
       frame_.echo_parameter = static_cast<std::uint16_t>(field(Field::Parameter));
-      frame_.crc_expected = protocol::make_crc_norm(frame_.echo_address, frame_.echo_parameter);
+      frame_.crc_expected = protocol::make_crc_norm(frame_.echo_address, frame_.echo_parameter, params_.crc.generator);
       break;
   }
   ok = ok && frame_.crc_received == frame_.crc_expected;
@@ -455,6 +591,7 @@ void Master::decode_answer() {
   if (ok && command_->answer == protocol::AnswerFormat::Parameter &&
       frame_.echo_address == static_cast<std::uint8_t>(~(payload_ >> 16)))
     outcome = FrameOutcome::Type2Error;
+  outcome = check_echo(outcome);
   // 2.4.2 ff.: "following transmission of the position value and CRC it must be monitored if an
   // error has occurred": the supplement only follows a clean answer.
   if (outcome == FrameOutcome::Ok && command_->supplement) {
@@ -463,6 +600,25 @@ void Master::decode_answer() {
   }
   if (outcome == FrameOutcome::Ok) note_selection();
   word_received(outcome);
+}
+
+// The CRC the master expects, as its CrcCheck computes it (the spec's by default, A4).
+std::uint8_t Master::expected_crc_pos(unsigned bits, bool error1, bool error2, bool v22, std::uint64_t position) const {
+  const auto& c = params_.crc;
+  const bool with_f2 = v22 || c.endat22_rule_for_21;
+  // A table loop one step short at its faulty width leaves the last position bit out.
+  const unsigned fed = bits == c.table_fault_width ? bits - 1 : bits;
+  return protocol::make_crc_pos(fed, error1, error2, with_f2, position, c.generator);
+}
+
+// 2.1 parameter frames echo the address (MRS code, port) and, except for a read, the parameter.
+FrameOutcome Master::check_echo(FrameOutcome outcome) const {
+  if (!params_.careful.verify_echo || outcome != FrameOutcome::Ok || command_->answer != protocol::AnswerFormat::Parameter)
+    return outcome;
+  const bool address_ok = frame_.echo_address == static_cast<std::uint8_t>(payload_ >> 16);
+  const bool parameter_ok = frame_.command == ModeCommand::EncoderSendParameters ||
+                            frame_.echo_parameter == static_cast<std::uint16_t>(payload_);
+  return address_ok && parameter_ok ? outcome : FrameOutcome::EchoMismatch;
 }
 
 void Master::drive_supplement_bit() {
@@ -491,6 +647,7 @@ void Master::note_selection() {
   if (!protocol::selects_additional_data(mrs)) return;
   const unsigned which = (mrs & 0x10) != 0 ? 1 : 0;
   selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
+  selection_mrs_[which] = mrs;
 }
 
 void Master::word_received(FrameOutcome outcome) {
@@ -545,7 +702,10 @@ void Master::maybe_complete_frame() {
     counts_.push_back(*captured_count_);
   }
   frames_.push_back(frame_);
-  if (!frame_.measurement) note_startup(frame_);
+  if (!frame_.measurement) {
+    note_startup(frame_);
+    note_checksum_word(frame_);
+  }
   for (auto* o : observers_) o->on_frame_end(frame_);
   operation_frame_done();
 }

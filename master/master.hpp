@@ -40,6 +40,31 @@ struct DelayMeasurementParams {
 // then wait 1"); a simple one takes the first HIGH sample after the mode bits.
 enum class StartBitDetection : std::uint8_t { WaitLowThenHigh, FirstHigh };
 
+// How the master checks CRCs (issue 5: masters in the field got each of these wrong). The
+// defaults are the spec's (appendix A4).
+struct CrcCheck {
+  protocol::CrcConfig generator;     // preset and final inversion
+  bool endat22_rule_for_21 = false;  // 2.1 frames checked with F2 included, as 2.2 frames are
+  // A table-driven CRC whose loop ends one bit early at this position width (0 = none):
+  // masters-in-the-field §6.4, a library wrong only for 31 position clocks.
+  unsigned table_fault_width = 0;
+};
+
+// What a careful master does when things go wrong (issue 5). Each reaction can be switched off
+// to reproduce a careless master.
+struct CarefulMaster {
+  unsigned retries = 0;            // a failed frame of a script operation is repeated up to this often
+  bool verify_echo = true;         // 2.1 parameter frames: an echo other than what was sent fails
+  // 2.1.2: "a new measurement is necessary after power interruption or a change of the
+  // transmission path" (with delay compensation).
+  bool remeasure_after_line_change = true;
+  bool remeasure_after_power_interruption = true;
+  unsigned remeasure_after_crc_errors = 3;  // consecutive failed frames; 0 = never
+  // After a power interruption the encoder has forgotten its additional data (2.4.2.2): select
+  // them again before reading on.
+  bool reselect_after_power_interruption = true;
+};
+
 struct MasterParams {
   Hertz f_c = sim::MHz(1);
   unsigned high_permille = 500;  // duty cycle: HIGH share of the period
@@ -82,6 +107,8 @@ struct MasterParams {
   unsigned supplement_driven_lead_bits = 2;
   unsigned type1_detect_samples = 8;    // HIGH samples after the turnaround, no LOW: type I (A2, hypothesis A)
   StartBitDetection start_bit_detection = StartBitDetection::WaitLowThenHigh;
+  CrcCheck crc;
+  CarefulMaster careful;
 
   static constexpr Hertz kMinFc = sim::kHz(100);
   static constexpr Hertz kMaxFc = sim::MHz(16);
@@ -89,8 +116,9 @@ struct MasterParams {
   void validate() const;
 };
 
-// Type2Error: a 2.1 parameter frame whose echo came back inverted (A2 type II).
-enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error, Type2Error };
+// Type2Error: a 2.1 parameter frame whose echo came back inverted (A2 type II). EchoMismatch:
+// one whose echo differs from what was sent otherwise (CarefulMaster::verify_echo).
+enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error, Type2Error, EchoMismatch };
 std::string_view to_string(FrameOutcome o);
 
 // One additional datum as received (2.3.5).
@@ -162,9 +190,13 @@ struct Operation {
   // PowerOnSequence drives CLOCK as 2.3.3 asks after switching on; StartupRoutine is the
   // switch-on routine of seed 002 with EnDat 2.1 commands only (reset, wait 50 ms, read and clear
   // alarms and warnings, read words 13 and 37).
-  enum class Kind : std::uint8_t { MeasureDelay, ReadPosition, Wait, AwaitNotBusy, PowerOnSequence, StartupRoutine };
-  // What a frame of the start-up routine reads, for Master::startup().
-  enum class Purpose : std::uint8_t { None, Step, Errors, Warnings, Word13, Word37 };
+  // VerifyChecksum reads the encoder manufacturer's words 4 .. 47 with 2.1 frames and compares
+  // word 47 with their sum (3.5.26).
+  enum class Kind : std::uint8_t {
+    MeasureDelay, ReadPosition, Wait, AwaitNotBusy, PowerOnSequence, StartupRoutine, VerifyChecksum
+  };
+  // What a frame of the start-up routine or the checksum check reads.
+  enum class Purpose : std::uint8_t { None, Step, Errors, Warnings, Word13, Word37, ChecksumWord };
   Kind kind = Kind::ReadPosition;
   std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
   ModeCommand command = ModeCommand::EncoderSendPositionValues;
@@ -177,8 +209,18 @@ struct Operation {
   unsigned continuous_words = 0;
   std::uint8_t address = 0;     // address, MRS code or port address
   std::uint16_t parameter = 0;  // parameter, instruction or block address (low byte)
+  int clock_adjust = 0;         // clock pulses more (+) or fewer (-) than the frame needs (a fault)
   Purpose purpose = Purpose::None;
+  unsigned manufacturer_word = 0;  // Purpose::ChecksumWord: which of words 4 .. 47
   std::size_t script_index = 0;  // set by enqueue(); the frames' FrameResult::operation
+};
+
+// What VerifyChecksum found (3.5.26).
+struct ChecksumCheck {
+  bool complete = false;  // every word was read
+  std::uint16_t stored = 0;    // word 47
+  std::uint16_t computed = 0;  // word 4 + ... + word 46, overflow ignored
+  bool ok() const { return complete && stored == computed; }
 };
 
 // What the start-up routine found (seed 002).
@@ -212,6 +254,13 @@ class Master {
   std::uint64_t cycle_overruns() const { return cycle_overruns_; }
   std::uint64_t busy_timeouts() const { return busy_timeouts_; }
   const StartupInfo& startup() const { return startup_; }
+  const std::optional<ChecksumCheck>& checksum() const { return checksum_; }
+  std::uint64_t retries() const { return retries_done_; }
+  std::uint64_t remeasurements() const { return remeasurements_; }
+  // What the installation tells the master (the runner's events): another cable, and the
+  // encoder's supply back after an interruption (CarefulMaster says what the master does then).
+  void line_changed();
+  void encoder_power_interrupted();
   unsigned position_bits() const { return position_bits_; }
   // What the master has selected with 2.4.2.2 MRS codes: it expects this many additional data.
   unsigned expected_additional_data() const { return (selected_[0] ? 1U : 0U) + (selected_[1] ? 1U : 0U); }
@@ -237,6 +286,14 @@ class Master {
   void power_on_pulse(std::uint64_t phase);
   void expand_startup_routine();
   void note_startup(const FrameResult& f);
+  void expand_checksum_check();
+  void note_checksum_word(const FrameResult& f);
+  bool retry_frame();
+  void note_failures();
+  void interrupt_for_measurement();
+  std::uint8_t expected_crc_pos(unsigned bits, bool error1, bool error2, bool v22, std::uint64_t position) const;
+  FrameOutcome check_echo(FrameOutcome outcome) const;
+  void incomplete(std::uint64_t tag);
   void decode_answer();
   void drive_supplement_bit();
   void note_selection();
@@ -266,6 +323,16 @@ class Master {
   std::uint64_t cycle_overruns_ = 0;
   std::uint64_t busy_timeouts_ = 0;
   StartupInfo startup_;
+  std::optional<ChecksumCheck> checksum_;
+  std::vector<std::uint16_t> checksum_words_;
+  unsigned checksum_read_ = 0;
+  bool reselect_due_ = false;
+  unsigned retries_left_ = 0;
+  std::uint64_t retries_done_ = 0;
+  unsigned failures_in_a_row_ = 0;
+  bool remeasure_due_ = false;
+  std::uint64_t remeasurements_ = 0;
+  std::uint8_t selection_mrs_[2] = {0, 0};  // the MRS codes behind selected_
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
   bool selected_[2] = {false, false};
 

@@ -22,7 +22,7 @@ ObservationPoint edge_end(const Event& e) {
 
 EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& encoder, master::Master& master,
                          checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed)
-    : kernel_(kernel), line_(line), encoder_(encoder), checker_(checker), events_(events),
+    : kernel_(kernel), line_(line), encoder_(encoder), master_(master), checker_(checker), events_(events),
       period_(sim::period_of(master.params().f_c)), rng_(seed ^ 0x5EED'FA17'0000'0005ULL) {
   bool listen[2] = {false, false};
   for (std::size_t i = 0; i < events.size(); ++i) {
@@ -70,6 +70,7 @@ void EventDriver::apply_to_line(const Event& e, std::uint64_t index) {
     case K::SetCable:
       line_.set_cable(e.cable_length_m, e.cable_delay_per_m);
       checker_.on_line_change();
+      master_.line_changed();
       break;
     case K::BitFlip:
       line_.invert(e.wire, e.end, e.width > Time::zero() ? e.width : period_);
@@ -110,6 +111,8 @@ void EventDriver::apply_to_encoder(const Event& e) {
     case K::PowerInterruption:
       encoder_.power_interruption(*e.duration);
       checker_.on_line_change();  // 2.1.2: "after power interruption" as after a change of the line
+      // The drive's supply monitor: the encoder is back after the dip and its run-up.
+      kernel_.schedule(*e.duration + encoder_.params().startup_time, sim::bind<&EventDriver::power_back>(this));
       break;
     case K::CorruptWord:
       encoder_.corrupt_word(e.selection, e.address, e.xor_mask);

@@ -31,6 +31,7 @@ class EventDriver final : public master::MasterObserver {
   void apply(std::uint64_t index);
   void end_of(std::uint64_t index);
   void release_probe() { encoder_.set_probe_deflected(false); }
+  void power_back() { master_.encoder_power_interrupted(); }
   void on_master_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::MasterPins, level); }
   void on_encoder_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::EncoderPins, level); }
   void on_rising_edge(line::ObservationPoint end, std::uint64_t level);
@@ -40,6 +41,7 @@ class EventDriver final : public master::MasterObserver {
   sim::Kernel& kernel_;
   line::Line& line_;
   slave::Encoder& encoder_;
+  master::Master& master_;
   checker::TimingChecker& checker_;
   const std::vector<Event>& events_;
   Time period_;

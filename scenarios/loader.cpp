@@ -413,6 +413,26 @@ void read_master(const Node& n, master::MasterParams& p) {
     p.start_bit_detection = v->as_enum<master::StartBitDetection>(
         {{"wait_low_then_high", master::StartBitDetection::WaitLowThenHigh},
          {"first_high", master::StartBitDetection::FirstHigh}});
+  if (auto v = o.opt("crc")) {
+    Object c(*v);
+    if (auto s = c.opt("preset")) p.crc.generator.preset = static_cast<std::uint8_t>(s->as_word(0x1F));
+    if (auto s = c.opt("final_inversion")) p.crc.generator.final_inversion = s->as_bool();
+    if (auto s = c.opt("endat22_rule_for_21")) p.crc.endat22_rule_for_21 = s->as_bool();
+    if (auto s = c.opt("table_fault_width")) p.crc.table_fault_width = static_cast<unsigned>(s->as_uint(0, 48));
+    c.done();
+  }
+  if (auto v = o.opt("careful")) {
+    Object c(*v);
+    auto& k = p.careful;
+    if (auto s = c.opt("retries")) k.retries = static_cast<unsigned>(s->as_uint(0, 10));
+    if (auto s = c.opt("verify_echo")) k.verify_echo = s->as_bool();
+    if (auto s = c.opt("remeasure_after_line_change")) k.remeasure_after_line_change = s->as_bool();
+    if (auto s = c.opt("remeasure_after_power_interruption")) k.remeasure_after_power_interruption = s->as_bool();
+    if (auto s = c.opt("remeasure_after_crc_errors"))
+      k.remeasure_after_crc_errors = static_cast<unsigned>(s->as_uint(0, 1000));
+    if (auto s = c.opt("reselect_after_power_interruption")) k.reselect_after_power_interruption = s->as_bool();
+    c.done();
+  }
   if (auto v = o.opt("delay_measurement")) {
     Object m(*v);
     if (auto s = m.opt("f_c")) p.measurement.f_c = s->as_frequency(sim::kHz(10), master::MasterParams::kMaxFc);
@@ -502,7 +522,8 @@ FrameExpectation read_frame_expectation(const Node& n) {
                                                           {"crc_error", "crc_error"},
                                                           {"no_start_bit", "no_start_bit"},
                                                           {"type1_error", "type1_error"},
-                                                          {"type2_error", "type2_error"}}));
+                                                          {"type2_error", "type2_error"},
+                                                          {"echo_mismatch", "echo_mismatch"}}));
   if (auto v = o.opt("position")) e.position = v->as_uint(0, (std::uint64_t{1} << 48) - 1);
   if (auto v = o.opt("error1")) e.error1 = v->as_bool();
   if (auto v = o.opt("echo_address")) e.echo_address = read_byte(*v);
@@ -574,6 +595,7 @@ void read_frame_operation(Object& o, const std::string& name, master::Operation&
     if (auto v = o.opt("parameter")) op.parameter = read_word16(*v);
   }
   if (auto v = o.opt("mode_bits")) op.mode_bits = read_mode_bits(*v);
+  if (auto v = o.opt("clock_adjust")) op.clock_adjust = static_cast<int>(v->as_int(-64, 64));
   if (auto v = o.opt("count")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
   if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
   if (auto v = o.opt("continuous_words")) {
@@ -595,12 +617,13 @@ master::Operation read_operation(const Node& n, std::optional<FrameExpectation>&
        {"test_command", "test_command"}, {"select_additional_data", "select_additional_data"},
        {"communication_command", "communication_command"}, {"reset", "reset"}, {"error_reset", "error_reset"},
        {"send_test_values", "send_test_values"}, {"power_on_sequence", "power_on_sequence"},
-       {"startup_routine", "startup_routine"}}));
+       {"startup_routine", "startup_routine"}, {"verify_checksum", "verify_checksum"}}));
   op.kind = name == "measure_delay"       ? Kind::MeasureDelay
             : name == "wait"              ? Kind::Wait
             : name == "await_not_busy"    ? Kind::AwaitNotBusy
             : name == "power_on_sequence" ? Kind::PowerOnSequence
             : name == "startup_routine"   ? Kind::StartupRoutine
+            : name == "verify_checksum"   ? Kind::VerifyChecksum
                                           : Kind::ReadPosition;
   if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), sim::ms(60'000));
   if (auto v = o.opt("expect")) {
@@ -805,8 +828,8 @@ void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std
 
 void read_expect(const Node& n, Expectations& e) {
   Object o(n);
-  static constexpr std::array<std::string_view, 5> kOutcomes{"ok", "crc_error", "no_start_bit", "type1_error",
-                                                             "type2_error"};
+  static constexpr std::array<std::string_view, 6> kOutcomes{"ok",          "crc_error",   "no_start_bit",
+                                                             "type1_error", "type2_error", "echo_mismatch"};
   if (auto v = o.opt("outcomes")) read_count_map(*v, e.outcomes, kOutcomes);
   if (auto v = o.opt("positions_match_encoder")) e.positions_match_encoder = v->as_bool();
   if (auto v = o.opt("positions")) {
@@ -831,6 +854,10 @@ void read_expect(const Node& n, Expectations& e) {
   if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_busy_timeouts")) e.max_busy_timeouts = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("busy_timeouts")) e.busy_timeouts = v->as_count();
+  if (auto v = o.opt("checksum"))
+    e.checksum_ok = v->as_enum<bool>({{"ok", true}, {"mismatch", false}});
+  if (auto v = o.opt("retries")) e.retries = v->as_count();
+  if (auto v = o.opt("remeasurements")) e.remeasurements = v->as_count();
   if (auto v = o.opt("startup")) {
     Object st(*v);
     StartupExpectation se;

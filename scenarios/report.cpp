@@ -55,6 +55,18 @@ void write_startup(std::ostream& out, const master::StartupInfo& s) {
   out << "\n";
 }
 
+// What the careful master did (issue 5) and what its checksum check found (3.5.26).
+void write_careful_master(std::ostream& out, const ScenarioResult& r) {
+  if (r.retries != 0 || r.remeasurements != 0)
+    out << "  careful master: " << r.retries << " frame(s) repeated, " << r.remeasurements
+        << " delay measurement(s) added\n";
+  if (!r.checksum) return;
+  out << "  checksum (word 47): ";
+  if (!r.checksum->complete) out << "not every word could be read\n";
+  else out << (r.checksum->ok() ? "ok" : "MISMATCH") << ", stored " << hex4(r.checksum->stored) << "h, words 4 .. 46 sum to "
+           << hex4(r.checksum->computed) << "h\n";
+}
+
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
   if (!r.description.empty()) out << "  " << r.description << "\n";
@@ -91,6 +103,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     out << frame_line(r, f) << "\n";
   }
   write_startup(out, r.startup);
+  write_careful_master(out, r);
   if (!verbose) {
     for (const auto& f : r.frames) {
       if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
@@ -171,6 +184,11 @@ nlohmann::json to_json(const ScenarioResult& r) {
     ms.push_back(jm);
   }
   j["delay_measurements"] = ms;
+  j["retries"] = r.retries;
+  j["remeasurements"] = r.remeasurements;
+  if (r.checksum)
+    j["checksum"] = {{"complete", r.checksum->complete}, {"ok", r.checksum->ok()}, {"stored", r.checksum->stored},
+                     {"computed", r.checksum->computed}};
   if (r.startup.completed || r.startup.failed_frames != 0) {
     json st;
     st["completed"] = r.startup.completed;

@@ -224,6 +224,18 @@ void judge(const Scenario& s, ScenarioResult& r) {
     if (s.operation_expectations[i]) judge_operation(i, *s.operation_expectations[i], r);
   judge_memory(s, r);
   if (s.expect.startup) judge_startup(*s.expect.startup, r);
+  if (s.expect.checksum_ok) {
+    const bool got = r.checksum && r.checksum->ok();
+    r.expectations.push_back({"checksum", r.checksum.has_value() && got == *s.expect.checksum_ok,
+                              !r.checksum ? "no verify_checksum ran"
+                              : !r.checksum->complete ? "not every word was read"
+                                                      : (got ? "ok" : "mismatch") + std::string(": word 47 ") +
+                                                            std::to_string(r.checksum->stored) + ", sum " +
+                                                            std::to_string(r.checksum->computed)});
+  }
+  for (const auto& [name, want, got] : {std::tuple{"retries", &s.expect.retries, r.retries},
+                                        {"remeasurements", &s.expect.remeasurements, r.remeasurements}})
+    if (*want) r.expectations.push_back({name, (*want)->matches(got), std::to_string(got) + " (expected " + (*want)->text + ")"});
   if (s.expect.busy_timeouts)
     r.expectations.push_back({"busy_timeouts", s.expect.busy_timeouts->matches(r.busy_timeouts),
                               std::to_string(r.busy_timeouts) + " (expected " + s.expect.busy_timeouts->text + ")"});
@@ -297,6 +309,9 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.cycle_overruns = master.cycle_overruns();
   r.busy_timeouts = master.busy_timeouts();
   r.startup = master.startup();
+  r.checksum = master.checksum();
+  r.retries = master.retries();
+  r.remeasurements = master.remeasurements();
   r.encoder_memory = encoder.memory().image();
   for (const auto& e : bus) {
     r.bus_memory.push_back(e->memory().image());

@@ -42,6 +42,9 @@ struct ScenarioResult {
   std::vector<slave::MemoryImage> bus_memory;  // of the further encoders on the bus
   std::vector<std::vector<slave::EncoderFrame>> bus_frames;
   master::StartupInfo startup;
+  std::optional<master::ChecksumCheck> checksum;
+  std::uint64_t retries = 0;
+  std::uint64_t remeasurements = 0;
   std::vector<ExpectationResult> expectations;
   bool passed() const;
 };

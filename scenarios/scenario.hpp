@@ -71,6 +71,9 @@ struct Expectations {
   std::vector<MemoryExpectation> memory;
   std::optional<std::uint64_t> max_busy_timeouts;
   std::optional<CountMatcher> busy_timeouts;  // await_not_busy operations that gave up
+  std::optional<bool> checksum_ok;            // the last verify_checksum (3.5.26)
+  std::optional<CountMatcher> retries;        // frames the careful master repeated
+  std::optional<CountMatcher> remeasurements; // delay measurements the careful master added
   std::optional<StartupExpectation> startup;
 };
 
