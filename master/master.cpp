@@ -476,7 +476,8 @@ void Master::rising_edge() {
     end_reception(FrameOutcome::NoStartBit);
   }
   if (supplement_start_ != 0 && clock_ == last_clock_) pins_.data_enable.write(false);
-  if ((rx_ == Rx::Done && !supplement_due_) || (last_clock_ != 0 && clock_ >= last_clock_ && words_left_ == 0)) {
+  const bool answered = rx_ == Rx::Done && !supplement_due_ && (last_clock_ == 0 || clock_ >= last_clock_);
+  if (answered || (last_clock_ != 0 && clock_ >= last_clock_ && words_left_ == 0)) {
     clocking_done_ = true;
     if (!params_.extra_clock_after_last_bit && rx_ == Rx::Receiving) {
       // No further pulse: the last bit is taken where the next falling edge would be.
@@ -652,7 +653,7 @@ void Master::note_selection() {
 
 void Master::word_received(FrameOutcome outcome) {
   if (words_left_ == 0) {
-    end_reception(outcome);
+    end_reception(outcome, true);
     return;
   }
   // Continuous clock (2.3.1): keep clocking; after the HIGH bit and the LOW bits the next word
@@ -673,12 +674,12 @@ void Master::word_received(FrameOutcome outcome) {
   poll_start_ = kernel_.now();
 }
 
-void Master::end_reception(FrameOutcome outcome) {
+void Master::end_reception(FrameOutcome outcome, bool answer_complete) {
   rx_ = Rx::Done;
   frame_.outcome = outcome;
   counter_running_ = false;
   if (supplement_due_) return;  // clocking goes on through the supplement
-  if (last_clock_ == 0 || last_clock_ > clock_) {
+  if (last_clock_ == 0 || (last_clock_ > clock_ && !answer_complete)) {
     // Aborted: finish the current clock period and leave CLOCK HIGH (A2: wait t_m).
     last_clock_ = clock_;
     if (!clock_low_) {

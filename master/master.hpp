@@ -280,7 +280,7 @@ class Master {
   void sample(std::uint64_t tag);
   void sample_now(unsigned clock);
   void word_received(FrameOutcome outcome);
-  void end_reception(FrameOutcome outcome);
+  void end_reception(FrameOutcome outcome, bool answer_complete = false);
   void maybe_complete_frame();
   void on_data_in(std::uint64_t level);
   void power_on_pulse(std::uint64_t phase);

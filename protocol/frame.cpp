@@ -73,7 +73,7 @@ Layout position_frame_layout(EndatVersion command_type, unsigned position_bits) 
 }
 
 std::vector<std::uint8_t> encode_position_frame(EndatVersion command_type, unsigned position_bits,
-                                                const PositionWord& word) {
+                                                const PositionWord& word, const CrcConfig& crc) {
   const bool v22 = command_type == EndatVersion::V2_2;
   FieldValues values{};
   values[static_cast<std::size_t>(Field::StartBit)] = 1;
@@ -81,7 +81,7 @@ std::vector<std::uint8_t> encode_position_frame(EndatVersion command_type, unsig
   values[static_cast<std::size_t>(Field::Error2)] = word.error2;
   values[static_cast<std::size_t>(Field::Position)] = word.position;
   values[static_cast<std::size_t>(Field::Crc)] =
-      make_crc_pos(position_bits, word.error1, word.error2, v22, word.position);
+      make_crc_pos(position_bits, word.error1, word.error2, v22, word.position, crc);
   std::vector<std::uint8_t> bits;
   bits.reserve(position_bits + 8);
   position_frame_layout(command_type, position_bits).encode(values, bits);
@@ -110,12 +110,12 @@ Layout parameter_frame_layout() { return Layout({kStart, kAddress, kParameter, k
 
 Layout payload_layout() { return Layout({kAddress, kParameter}); }
 
-std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint16_t parameter) {
+std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint16_t parameter, const CrcConfig& crc) {
   FieldValues v{};
   v[at(Field::StartBit)] = 1;
   v[at(Field::Address)] = address;
   v[at(Field::Parameter)] = parameter;
-  v[at(Field::Crc)] = make_crc_norm(address, parameter);
+  v[at(Field::Crc)] = make_crc_norm(address, parameter, crc);
   return encode(parameter_frame_layout(), v);
 }
 
@@ -124,12 +124,12 @@ Layout test_values_layout() {
                  kCrc});
 }
 
-std::vector<std::uint8_t> encode_test_values(bool error1, std::uint64_t test_value) {
+std::vector<std::uint8_t> encode_test_values(bool error1, std::uint64_t test_value, const CrcConfig& crc) {
   FieldValues v{};
   v[at(Field::StartBit)] = 1;
   v[at(Field::Error1)] = error1;
   v[at(Field::TestValue)] = test_value;
-  v[at(Field::Crc)] = make_crc_pos(kTestValueBits, error1, true, false, test_value);
+  v[at(Field::Crc)] = make_crc_pos(kTestValueBits, error1, true, false, test_value, crc);
   return encode(test_values_layout(), v);
 }
 
@@ -140,11 +140,11 @@ Layout additional_datum_layout() {
                  kCrc});
 }
 
-std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data) {
+std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data, const CrcConfig& crc) {
   FieldValues v{};
   v[at(Field::Status)] = status;
   v[at(Field::AdditionalData)] = data;
-  v[at(Field::Crc)] = make_crc_norm(status, data);
+  v[at(Field::Crc)] = make_crc_norm(status, data, crc);
   return encode(additional_datum_layout(), v);
 }
 

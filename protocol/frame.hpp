@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "protocol/crc.hpp"
 #include "protocol/mode_command.hpp"
 
 namespace endatsim::protocol {
@@ -65,24 +66,25 @@ struct PositionWord {
 };
 
 // The answer bits in wire order, start bit first, CRC computed per appendix A4.
+// `crc`: the generator's setup (the spec's by default; an emulator built wrong, issue 5).
 std::vector<std::uint8_t> encode_position_frame(EndatVersion command_type, unsigned position_bits,
-                                                const PositionWord& word);
+                                                const PositionWord& word, const CrcConfig& crc = {});
 
 // 2.4 .. 2.10, timing-model §1.4: S, address/MRS/port (8), parameter (16), CRC = MakeCrcNorm.
 // The same 8 + 16 bits (without S and CRC) are what the master sends after a 2.1 mode command.
 Layout parameter_frame_layout();
 Layout payload_layout();  // master -> encoder: address (8), parameter (16)
-std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint16_t parameter);
+std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint16_t parameter, const CrcConfig& crc = {});
 
 // 2.9: S F1 test value (40 bits, LSB first) CRC = MakeCrcPos over 40 bits (A4.4.2).
 constexpr unsigned kTestValueBits = 40;
 Layout test_values_layout();
-std::vector<std::uint8_t> encode_test_values(bool error1, std::uint64_t test_value);
+std::vector<std::uint8_t> encode_test_values(bool error1, std::uint64_t test_value, const CrcConfig& crc = {});
 
 // 2.3.5: a LOW bit, byte 0 (status), bytes 1 and 2, CRC over the 24 bits = MakeCrcNorm.
 constexpr unsigned kAdditionalDatumBits = 30;
 Layout additional_datum_layout();
-std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data);
+std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data, const CrcConfig& crc = {});
 
 // The encoder's answer to `command` without additional data: position, test-value or parameter frame.
 Layout answer_layout(const ModeCommandInfo& command, unsigned position_bits);

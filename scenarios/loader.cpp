@@ -293,6 +293,19 @@ void read_memory(const Node& n, slave::EncoderParams& p) {
   p.memory = image;
 }
 
+void read_crc_generator(Object& c, protocol::CrcConfig& g) {
+  if (auto s = c.opt("preset")) g.preset = static_cast<std::uint8_t>(s->as_word(0x1F));
+  if (auto s = c.opt("final_inversion")) g.final_inversion = s->as_bool();
+}
+
+protocol::CrcConfig read_crc_config(const Node& n) {
+  Object c(n);
+  protocol::CrcConfig g;
+  read_crc_generator(c, g);
+  c.done();
+  return g;
+}
+
 void read_encoder(const Node& n, slave::EncoderParams& p) {
   Object o(n);
   // A profile first; the keys below refine it. A bare name is a bundled profile (profiles/),
@@ -344,6 +357,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("t_ac_placement"))
     p.t_ac_placement = v->as_enum<slave::MemoryAccessPlacement>(
         {{"in_frame", slave::MemoryAccessPlacement::InFrame}, {"after_frame", slave::MemoryAccessPlacement::AfterFrame}});
+  if (auto v = o.opt("crc")) p.crc = read_crc_config(*v);
   if (auto v = o.opt("interrupted_nvm_write"))
     p.interrupted_nvm_write = v->as_enum<slave::InterruptedNvmWrite>(
         {{"keep_old", slave::InterruptedNvmWrite::KeepOld}, {"torn", slave::InterruptedNvmWrite::Torn}});
@@ -415,8 +429,7 @@ void read_master(const Node& n, master::MasterParams& p) {
          {"first_high", master::StartBitDetection::FirstHigh}});
   if (auto v = o.opt("crc")) {
     Object c(*v);
-    if (auto s = c.opt("preset")) p.crc.generator.preset = static_cast<std::uint8_t>(s->as_word(0x1F));
-    if (auto s = c.opt("final_inversion")) p.crc.generator.final_inversion = s->as_bool();
+    read_crc_generator(c, p.crc.generator);
     if (auto s = c.opt("endat22_rule_for_21")) p.crc.endat22_rule_for_21 = s->as_bool();
     if (auto s = c.opt("table_fault_width")) p.crc.table_fault_width = static_cast<unsigned>(s->as_uint(0, 48));
     c.done();

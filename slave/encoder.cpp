@@ -415,12 +415,13 @@ void Encoder::answer_position() {
   answer_not_before_ = f.start + params_.t_cal;  // 2.3.2: t_cal runs from FE1
   if (command_->answer == protocol::AnswerFormat::TestValues) {
     const auto it = params_.sensors.test_values.find(test_port_21_);
-    answer_ = protocol::encode_test_values(error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second);
+    answer_ = protocol::encode_test_values(error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second,
+                                           params_.crc);
     return;
   }
   // 2.3.1: F2 is low-active; it is only sent with 2.2 mode commands.
   answer_ = protocol::encode_position_frame(command_->version, params_.position_bits,
-                                            {error_message_1(), !error_message_2(), f.position});
+                                            {error_message_1(), !error_message_2(), f.position}, params_.crc);
   if (command_->version != EndatVersion::V2_2) return;
   // Timing-model §1.3: additional data 2 comes before additional data 1.
   if (selection_[1]) append_additional_datum(*selection_[1], 1);
@@ -498,9 +499,10 @@ void Encoder::answer_parameter_frame() {
     // (cause 6) is still carried out: that is what it is for (2.10).
     f.error = error;
     if (error != ErrorCause::DataDriverHighImpedanceBroadcast) pending_ = {};
-    answer_ = protocol::encode_parameter_frame(static_cast<std::uint8_t>(~address), static_cast<std::uint16_t>(~echo));
+    answer_ = protocol::encode_parameter_frame(static_cast<std::uint8_t>(~address), static_cast<std::uint16_t>(~echo),
+                                               params_.crc);
   } else {
-    answer_ = protocol::encode_parameter_frame(address, echo);
+    answer_ = protocol::encode_parameter_frame(address, echo, params_.crc);
   }
   state_ = State::Answer;
   first_answer_clock_ = kFirstStartBitClock + protocol::kPayloadBits;
@@ -542,7 +544,7 @@ void Encoder::emit_answer_bit() {
 void Encoder::load_continuous_word() {
   EncoderFrame& f = frames_.back();
   answer_ = protocol::encode_position_frame(EndatVersion::V2_1, params_.position_bits,
-                                            {error_message_1(), true, f.continuous_positions.back()});
+                                            {error_message_1(), true, f.continuous_positions.back()}, params_.crc);
   next_bit_ = 0;
   state_ = State::Answer;
 }
@@ -698,7 +700,7 @@ void Encoder::append_additional_datum(Information selected, unsigned which) {
   }
   const std::uint8_t status = status_byte(code);
   f.additional_data_status.push_back(status);
-  const auto bits = protocol::encode_additional_datum(status, data);
+  const auto bits = protocol::encode_additional_datum(status, data, params_.crc);
   answer_.insert(answer_.end(), bits.begin(), bits.end());
 }
 

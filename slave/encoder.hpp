@@ -97,6 +97,9 @@ struct EncoderParams {
   // 3.4.4 (guess): the word 0 bit (3.4.1) that a latched multiturn overflow sets; the spec names
   // none, 2^2 "position faulty" is the closest.
   unsigned multiturn_overflow_error_bit = 2;
+  // The CRC generator's setup: the spec's (A4) for an encoder; an emulator built with a master's
+  // wrong settings (issue 5) agrees with that master and with no real encoder.
+  protocol::CrcConfig crc;
   unsigned continuous_low_bits = 1;            // 2.3.1.1: "a maximum of 7 Low Bits" between words
   unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (timing-model §1.2)
   Type1Handling type1 = Type1Handling::AbortHigh;
