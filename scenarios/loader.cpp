@@ -810,6 +810,25 @@ Event read_event(const Node& item, const line::LineParams& line) {
   return e;
 }
 
+// What only the encoder's memory image can tell: the kind of encoder, the size of an area.
+void check_event_against_encoder(const Event& e, const slave::EncoderParams& encoder, const Node& item) {
+  if (e.kind == Event::Kind::ProbeTrigger && encoder.kind != slave::EncoderKind::TouchProbe)
+    item.fail_raw("probe_trigger needs an encoder of kind \"touch_probe\" (word 14 type 5)");
+  if (e.kind != Event::Kind::CorruptWord) return;
+  const slave::MemoryImage image = encoder.memory.value_or(slave::default_memory_image(encoder));
+  const std::vector<std::uint16_t>* words = nullptr;
+  if (e.selection.area == protocol::MemoryArea::Section2) {
+    if (e.selection.block < image.section2_blocks.size()) words = &image.section2_blocks[e.selection.block];
+  } else if (const auto it = image.areas.find(e.selection.area); it != image.areas.end()) {
+    words = &it->second;
+  }
+  const Node at(item.raw()["corrupt_word"], item.path() + "/corrupt_word", item.file());
+  if (words == nullptr) at.fail_raw("the encoder has no memory area \"" + std::string(protocol::info(e.selection.area).key) + "\"" +
+                                    (e.selection.area == protocol::MemoryArea::Section2 ? " block " + std::to_string(e.selection.block) : ""));
+  if (e.address >= words->size())
+    at.fail_raw("address " + std::to_string(e.address) + " is beyond the area's " + std::to_string(words->size()) + " words");
+}
+
 void read_events(const Node& n, const line::LineParams& line, std::vector<Event>& events) {
   if (!n.raw().is_array()) n.fail("an array of events");
   std::optional<Time> last_at;
@@ -944,9 +963,7 @@ Scenario read_scenario(const json& root, const std::string& file) {
   if (auto v = o.opt("events")) {
     read_events(*v, s.line, s.events);
     for (std::size_t i = 0; i < s.events.size(); ++i)
-      if (s.events[i].kind == Event::Kind::ProbeTrigger && s.encoder.kind != slave::EncoderKind::TouchProbe)
-        Node(v->raw()[i], v->path() + "/" + std::to_string(i), top.file())
-            .fail_raw("probe_trigger needs an encoder of kind \"touch_probe\" (word 14 type 5)");
+      check_event_against_encoder(s.events[i], s.encoder, Node(v->raw()[i], v->path() + "/" + std::to_string(i), top.file()));
   }
   if (auto v = o.opt("expect")) read_expect(*v, s.expect);
   o.done();
