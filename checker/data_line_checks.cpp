@@ -87,6 +87,7 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
     check_memory_access_time();
     return;
   }
+  check_calculation_time_minimum();
   const Time t_cal = current_.rising[start_clock_ - 1] - current_.fe1;
   const Time limit = kCalculationTimeMax + sim::period_of(current_.header.f_c);
   if (t_cal > limit)
@@ -94,6 +95,18 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
             kernel_.now(), current_.header.index, start_clock_, format_time(t_cal),
             "<= 1 ms + T = " + format_time(limit), Severity::Error,
             "the start bit came later than the longest calculation time allows"}, "start bit");
+}
+
+// 2.3.2 t_cal minimum 10.5/f_c: with the clock's first LOW half a period, RE11 comes 10.5 periods
+// after FE1, so the row is read as a count (the start bit on RE11 or later) and holds for any
+// duty cycle or t_ST (timing-model §1.2).
+void TimingChecker::check_calculation_time_minimum() {
+  constexpr unsigned kEarliestStartBitClock = 11;
+  if (start_clock_ >= kEarliestStartBitClock) return;
+  report({std::string(check::kCalculationTime), "2.3.2 t_cal minimum 10.5/f_c", ObservationPoint::EncoderPins,
+          kernel_.now(), current_.header.index, start_clock_, "RE" + std::to_string(start_clock_),
+          "RE" + std::to_string(kEarliestStartBitClock) + " or later (10.5 periods after FE1)", Severity::Error,
+          "the start bit came before the shortest calculation time"}, "start bit");
 }
 
 // 2.1 parameter frames: the acknowledgment's start bit waits for the memory access, which

@@ -12,6 +12,7 @@ using sim::format_time;
 
 constexpr Time kPulseMinWithoutCompensation = sim::ns(200);  // 2.3.2 t_HI, t_LO minimum
 constexpr Time kPulseHighMax = sim::us(10);                  // 2.3.2 t_HI maximum
+constexpr Time kTimeBetweenCyclesMin = sim::ms(1);           // 2.3.2 t_b (EnDat 2.1 commands)
 constexpr sim::Hertz kMinFc = sim::kHz(100);
 constexpr sim::Hertz kMaxFcWithout = sim::MHz(2);
 constexpr sim::Hertz kMaxFcWith = sim::MHz(8);
@@ -72,7 +73,8 @@ std::span<const std::string_view> check::all() {
                                     kPulseLow,       kSamplingWindow,   kRecovery,             kContention,
                                     kDriverOff,      kDriverOn,         kCalculationTime,      kDataDelay,
                                     kShortRecoveryClock, kStartDelay,   kFloatingData,         kErrorRecovery,
-                                    kDataDelayTolerance, kClockCount,  kMemoryAccess, kPowerOn};
+                                    kDataDelayTolerance, kClockCount,  kMemoryAccess, kPowerOn,
+                                    kTimeBetweenCycles};
   return names;
 }
 
@@ -296,6 +298,21 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   }
 }
 
+// 2.3.2 "time between cycle t_b, EnDat 2.1 commands: t_b > 1 ms". UNCERTAIN (timing-model §7):
+// read as the gap from the previous frame's last rising edge to FE1 of a 2.1 memory or parameter
+// frame (mode commands with 8 + 16 bits). The alternatives (start to start; every 2.1 command,
+// position reads too) are named in the report: the latter would forbid the 2.1 continuous clock.
+void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_rise) {
+  if (next.header.command_type != protocol::EndatVersion::V2_1 || next.header.payload_bits == 0) return;
+  const Time gap = next.fe1 - last_rise;
+  if (gap > kTimeBetweenCyclesMin) return;
+  report({std::string(check::kTimeBetweenCycles), "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
+          ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(gap), "> 1 ms", Severity::Error,
+          "a 2.1 memory or parameter frame followed the previous frame too soon (read here: last rising edge to FE1 "
+          "of 2.1 frames with 8 + 16 bits; other readings: start to start, or every 2.1 command)"},
+         "between frames");
+}
+
 void TimingChecker::check_recovery(const PinFrame& next) {
   if (!previous_end_) return;
   const auto [last_rise, type, index] = *previous_end_;
@@ -306,6 +323,7 @@ void TimingChecker::check_recovery(const PinFrame& next) {
             ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(next.fe1 - last_rise),
             ">= 30 us", Severity::Error, "the next frame followed an error handling too soon"},
            "between frames");
+  check_time_between_cycles(next, last_rise);
   const bool short_tm = type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected;
   const Time t_m = short_tm ? *encoder_.t_m_short : encoder_.t_m;
   const Time gap = next.fe1 - last_rise;

@@ -41,6 +41,7 @@ inline constexpr std::string_view kDataDelayTolerance = "t_d_tolerance";
 inline constexpr std::string_view kClockCount = "clock_count";
 inline constexpr std::string_view kMemoryAccess = "t_ac";
 inline constexpr std::string_view kPowerOn = "power_on";
+inline constexpr std::string_view kTimeBetweenCycles = "t_b";
 // Every check name above, for loaders and reports.
 std::span<const std::string_view> all();
 }  // namespace check
@@ -129,8 +130,10 @@ class TimingChecker final : public master::MasterObserver {
   void check_start_delay(const PinFrame& f);
   void check_delay_tolerance(Time t_d);
   void check_memory_access_time();
+  void check_calculation_time_minimum();
   void check_power_on(const master::FrameResult& first);
   void check_clock_count(const PinFrame& f);
+  void check_time_between_cycles(const PinFrame& next, Time last_rise);
   std::string field_of(const master::FrameResult& frame, unsigned clock) const;
   unsigned bits_of(const master::FrameResult& frame) const;
   void check_encoder_sample(unsigned clock);

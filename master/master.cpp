@@ -60,7 +60,7 @@ void MasterParams::validate() const {
   require(position_bits >= 1 && position_bits <= 48,
           "master position_bits must be 1 .. 48, got " + std::to_string(position_bits));
   for (auto [name, t] : {std::pair{"t_m_wait", t_m_wait}, {"t_r_wait", t_r_wait}, {"error_wait", error_wait},
-                         {"reset_wait", reset_wait}})
+                         {"reset_wait", reset_wait}, {"t_b_wait", t_b_wait}})
     require(t >= Time::zero() && t <= sim::ms(100),
             std::string("master ") + name + " must be 0 .. 100 ms, got " + sim::format_time(t));
   require(start_bit_timeout > Time::zero() && start_bit_timeout <= sim::ms(100),
@@ -301,6 +301,13 @@ bool Master::retry_frame() {
 
 // Before the next frame: select the additional data again (the encoder lost them) and measure
 // t_D again (2.1.2); then the operation goes on where it was.
+// 2.3.2 t_b: a 2.1 memory or parameter frame waits t_b_wait after the previous frame's end.
+Time Master::time_between_cycles_left() const {
+  const auto& c = protocol::info(current_->command);
+  if (measuring_ || frames_.empty() || c.version != protocol::EndatVersion::V2_1 || c.payload_bits == 0) return Time::zero();
+  return std::max(Time::zero(), frames_.back().end + params_.t_b_wait - kernel_.now());
+}
+
 void Master::interrupt_for_measurement() {
   Operation rest = *current_;
   rest.count = frames_left_;
@@ -363,6 +370,10 @@ void Master::operation_frame_done() {
 void Master::start_frame(std::uint64_t) {
   if ((remeasure_due_ || reselect_due_) && !measuring_) {
     interrupt_for_measurement();
+    return;
+  }
+  if (const Time wait = time_between_cycles_left(); wait > Time::zero()) {
+    kernel_.schedule(wait, sim::bind<&Master::start_frame>(this));
     return;
   }
   const bool measurement = measuring_;

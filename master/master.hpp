@@ -83,6 +83,9 @@ struct MasterParams {
   Time t_r_wait = sim::ns(500);  // then t_R before the next FE1 (2.3.2)
   Time error_wait = sim::us(30); // A2: "after an error handling, the maximum t_m of 30 us must be waited"
   Time reset_wait = sim::ms(50); // seed 002 start-up routine: "50 ms warten" after "Encoder receive reset"
+  // 2.3.2 t_b > 1 ms before a 2.1 memory or parameter frame (read as end of the previous frame
+  // to FE1; see the checker's t_b row).
+  Time t_b_wait = sim::us(1100);
   // 2.3.3, seed 002 figure (TI's reading, timing-model §3.3): after switching on, CLOCK stays at
   // a valid level for t1 >= 800 ms and HIGH for t2 = 80 .. 120 ms, then at least one LOW pulse
   // > 125 ns, then HIGH for t3 = 380 .. 420 ms before the first request.
@@ -291,6 +294,7 @@ class Master {
   bool retry_frame();
   void note_failures();
   void interrupt_for_measurement();
+  Time time_between_cycles_left() const;
   std::uint8_t expected_crc_pos(unsigned bits, bool error1, bool error2, bool v22, std::uint64_t position) const;
   FrameOutcome check_echo(FrameOutcome outcome) const;
   void incomplete(std::uint64_t tag);

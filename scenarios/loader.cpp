@@ -366,6 +366,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("supplement_ignore_clocks")) p.supplement_ignore_clocks = static_cast<unsigned>(v->as_uint(0, 16));
   if (auto v = o.opt("communication_command_permitted")) p.communication_command_permitted = v->as_bool();
   if (auto v = o.opt("eib_initialisation_time")) p.eib_initialisation_time = v->as_duration(Time::zero(), sim::ms(10'000));
+  if (auto v = o.opt("earliest_start_bit_clock")) p.earliest_start_bit_clock = static_cast<unsigned>(v->as_uint(10, 32));
   if (auto v = o.opt("asynchronous_time_delay_step"))
     p.asynchronous_time_delay_step = v->as_duration(Time::zero(), sim::ms(1));
   if (auto v = o.opt("multiturn_overflow_error_bit"))
@@ -408,6 +409,7 @@ void read_master(const Node& n, master::MasterParams& p) {
   if (auto v = o.opt("t_r_wait")) p.t_r_wait = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("error_wait")) p.error_wait = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("reset_wait")) p.reset_wait = v->as_duration(Time::zero(), sim::ms(100));
+  if (auto v = o.opt("t_b_wait")) p.t_b_wait = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("adopt_word13")) p.adopt_word13 = v->as_bool();
   if (auto v = o.opt("startup_f_c")) p.startup_f_c = v->as_frequency(master::MasterParams::kMinFc, master::MasterParams::kMaxFc);
   if (auto v = o.opt("power_on")) {

@@ -16,7 +16,6 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-constexpr unsigned kFirstStartBitClock = 11;  // timing-model §1.2: start bit no earlier than RE11
 constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see README)
 constexpr std::uint16_t kInstructionHighImpedance = 0x0002;                    // 2.10: word 5 bit 1
 constexpr unsigned kTouchProbeBits = 16;                                       // 2.3.4.4
@@ -77,6 +76,9 @@ void EncoderParams::validate() const {
   require(continuous_low_bits >= 1 && continuous_low_bits <= 7,
           "continuous_low_bits must be 1 .. 7 (2.3.1.1: at most 7 low bits), got " +
               std::to_string(continuous_low_bits));
+  require(earliest_start_bit_clock > driver_enable_edge && earliest_start_bit_clock <= 32,
+          "encoder earliest_start_bit_clock must be after the driver is on (driver_enable_edge " +
+              std::to_string(driver_enable_edge) + ") and at most 32, got " + std::to_string(earliest_start_bit_clock));
   require(driver_enable_edge == 9 || driver_enable_edge == 10,
           "driver_enable_edge must be 9 or 10 (the turnaround clocks), got " + std::to_string(driver_enable_edge));
   require(motion.start < (std::uint64_t{1} << position_bits),
@@ -411,7 +413,7 @@ bool Encoder::error_message_2() const {
 void Encoder::answer_position() {
   EncoderFrame& f = frames_.back();
   state_ = State::Answer;
-  first_answer_clock_ = kFirstStartBitClock;
+  first_answer_clock_ = params_.earliest_start_bit_clock;
   answer_not_before_ = f.start + params_.t_cal;  // 2.3.2: t_cal runs from FE1
   if (command_->answer == protocol::AnswerFormat::TestValues) {
     const auto it = params_.sensors.test_values.find(test_port_21_);
@@ -505,7 +507,7 @@ void Encoder::answer_parameter_frame() {
     answer_ = protocol::encode_parameter_frame(address, echo, params_.crc);
   }
   state_ = State::Answer;
-  first_answer_clock_ = kFirstStartBitClock + protocol::kPayloadBits;
+  first_answer_clock_ = params_.earliest_start_bit_clock + protocol::kPayloadBits;
   if (!error && pending_.kind == Pending::Kind::Write)
     note_nvm_write(pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
   const bool in_frame = params_.t_ac_placement == MemoryAccessPlacement::InFrame;

@@ -102,6 +102,9 @@ struct EncoderParams {
   protocol::CrcConfig crc;
   unsigned continuous_low_bits = 1;            // 2.3.1.1: "a maximum of 7 Low Bits" between words
   unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (timing-model §1.2)
+  // Timing-model §1.2 (likely): the start bit comes no earlier than RE11 (2.3.2: t_cal >= 10.5/f_c);
+  // encoders in the field differ (an emulator sends it after five zeros). RE11 + 24 after a payload.
+  unsigned earliest_start_bit_clock = 11;
   Type1Handling type1 = Type1Handling::AbortHigh;
   bool communication_command_permitted = true;  // A2 cause 4 when false
   // An encoder behind an External Interface Box (word 14 type Fh) is "not yet initiated" for

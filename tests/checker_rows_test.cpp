@@ -1,0 +1,104 @@
+// Rows of table 2.3.2 judged at their limits: t_b, the t_cal minimum, the delay measurement's
+// clock and counter (2.1.2) and t_HI maximum, each just inside (no violation) and just outside
+// (a violation) by one picosecond, one count or one hertz, whichever is the quantity's step.
+#include <gtest/gtest.h>
+
+#include "scenario_support.hpp"
+
+using namespace endatsim;
+using namespace endatsim::sim;
+using MC = protocol::ModeCommand;
+using test_support::count_violations;
+using test_support::make_scenario;
+
+namespace {
+
+master::Operation op(MC command, std::uint8_t address = 0, std::uint16_t parameter = 0) {
+  master::Operation o;
+  o.command = command;
+  o.address = address;
+  o.parameter = parameter;
+  return o;
+}
+
+std::size_t count(const scenarios::ScenarioResult& r, std::string_view check) { return count_violations(r, check); }
+
+}  // namespace
+
+TEST(CheckerTimeBetweenCycles, OneMillisecondIsTooShortOnePicosecondMoreIsEnough) {
+  // 2.3.2 "t_b > 1 ms" between EnDat 2.1 memory frames; the master starts the next one
+  // t_b_wait after the previous frame's last rising edge, the same gap at the encoder's pins.
+  auto s = make_scenario(5, MHz(1), false, 1);
+  s.encoder.t_ac_read = us(100);
+  s.script = {op(MC::SelectionOfMemoryArea, 0xA1), op(MC::EncoderSendParameters, 0x0D)};
+  s.master.t_b_wait = ms(1);
+  const auto at_limit = scenarios::run_scenario(s);
+  ASSERT_EQ(count(at_limit, checker::check::kTimeBetweenCycles), 1U);
+  const auto& v = *std::find_if(at_limit.violations.begin(), at_limit.violations.end(),
+                                [](const auto& x) { return x.check == checker::check::kTimeBetweenCycles; });
+  EXPECT_EQ(v.measured, "1 ms");
+  EXPECT_NE(v.message.find("other readings"), std::string::npos) << "the uncertain row names its alternatives";
+  s.master.t_b_wait = ms(1) + ps(1);
+  EXPECT_EQ(count(scenarios::run_scenario(s), checker::check::kTimeBetweenCycles), 0U);
+}
+
+TEST(CheckerTimeBetweenCycles, PositionReadsAndEnDat22FramesAreNotConcerned) {
+  auto s = make_scenario(5, MHz(1), false, 5);
+  s.script.back().command = MC::EncoderSendPositionValues;  // 2.1, every 100 us
+  EXPECT_EQ(count(scenarios::run_scenario(s), checker::check::kTimeBetweenCycles), 0U);
+  auto s22 = make_scenario(5, MHz(1), false, 1);
+  s22.master.t_b_wait = Time::zero();
+  s22.script = {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x45),
+                op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0xA1)};
+  EXPECT_EQ(count(scenarios::run_scenario(s22), checker::check::kTimeBetweenCycles), 0U);
+}
+
+TEST(CheckerCalculationTime, AStartBitBeforeRe11BreaksTheMinimumByOneCount) {
+  // 2.3.2 t_cal >= 10.5/f_c: RE11 comes 10.5 periods after FE1.
+  auto s = make_scenario(5, MHz(1), false, 2);
+  s.encoder.t_cal = Time::zero();
+  s.encoder.earliest_start_bit_clock = 11;
+  EXPECT_EQ(count(scenarios::run_scenario(s), checker::check::kCalculationTime), 0U);
+  s.encoder.earliest_start_bit_clock = 10;
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count(r, checker::check::kCalculationTime), 2U);
+  EXPECT_EQ(r.frames.front().outcome, master::FrameOutcome::Ok) << "the master still finds the start bit";
+}
+
+TEST(CheckerBoundaries, MeasurementClockAt100And200KilohertzByOneHertz) {
+  // 2.1.2: the delay is measured at 100 .. 200 kHz.
+  const auto violations = [](Hertz measurement_f_c) {
+    auto s = make_scenario(10, MHz(2), true, 1);
+    s.checker.f_c_tolerance_ppm = 0;
+    s.master.measurement.f_c = measurement_f_c;
+    return count(scenarios::run_scenario(s), checker::check::kMeasurementClock);
+  };
+  EXPECT_EQ(violations(kHz(100)), 0U);
+  EXPECT_EQ(violations(kHz(200)), 0U);
+  EXPECT_EQ(violations(kHz(100) - 1), 3U);
+  EXPECT_EQ(violations(kHz(200) + 1), 3U);
+}
+
+TEST(CheckerBoundaries, CounterClockAtEightTimesFcLessTenPercentByOneHertz) {
+  // 2.1.2: f_e at least eight times f_c, within +/-10 %: 7.2 x 2 MHz = 14.4 MHz.
+  const auto violations = [](Hertz f_e) {
+    auto s = make_scenario(10, MHz(2), true, 1);
+    s.master.measurement.f_e = f_e;
+    return count(scenarios::run_scenario(s), checker::check::kMeasurementProcedure);
+  };
+  EXPECT_EQ(violations(Hertz{14'400'000}), 0U);
+  EXPECT_EQ(violations(Hertz{14'399'999}), 1U);
+}
+
+TEST(CheckerBoundaries, HighPhaseOfTenMicrosecondsAtTheClocksResolution) {
+  // 2.3.2 t_HI maximum 10 us. The clock generator's step is one hertz: 50 kHz gives a HIGH phase
+  // of exactly 10 us, 49 999 Hz one 0.2 ns longer (the nearest settable value above the limit).
+  const auto violations = [](Hertz measurement_f_c) {
+    auto s = make_scenario(1, MHz(1), true, 1);
+    s.master.measurement.f_c = measurement_f_c;
+    s.master.measurement.count = 3;
+    return count(scenarios::run_scenario(s), checker::check::kPulseHigh);
+  };
+  EXPECT_EQ(violations(kHz(50)), 0U);
+  EXPECT_EQ(violations(Hertz{49'999}), 3U);
+}
