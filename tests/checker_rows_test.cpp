@@ -102,3 +102,49 @@ TEST(CheckerBoundaries, HighPhaseOfTenMicrosecondsAtTheClocksResolution) {
   EXPECT_EQ(violations(kHz(50)), 0U);
   EXPECT_EQ(violations(Hertz{49'999}), 3U);
 }
+
+TEST(CheckerBoundaries, MemoryAccessTimeOfTwelveMillisecondsByOneClockPeriod) {
+  // 2.3.2 t_ac maximum 12 ms: the acknowledgment's start bit rides on a clock edge, so the
+  // measured time moves in whole periods (1 us here) and the checker allows 12 ms + T; an access
+  // one period longer is caught.
+  const auto violations = [](Time t_ac) {
+    auto s = make_scenario(5, MHz(1), false, 1);
+    s.encoder.t_ac_read = us(100);
+    s.script = {op(MC::SelectionOfMemoryArea, 0xA9), op(MC::EncoderReceiveParameters, 0x01, 0x1234)};
+    scenarios::Event slow;
+    slow.kind = scenarios::Event::Kind::MemoryAccessTime;
+    slow.at = Time::zero();
+    slow.t_ac_read = us(100);
+    slow.t_ac_write = t_ac;
+    s.events.push_back(slow);
+    const auto r = scenarios::run_scenario(s);
+    EXPECT_EQ(r.frames.back().outcome, master::FrameOutcome::Ok);
+    return count(r, checker::check::kMemoryAccess);
+  };
+  EXPECT_EQ(violations(ms(12) + us(1)), 0U);
+  EXPECT_EQ(violations(ms(12) + us(2)), 1U);
+}
+
+TEST(CheckerBoundaries, OnOffRatioWithCompensationByOnePermille) {
+  // 2.3.2 on-off ratio error +/-10 % with delay compensation: HIGH 40 .. 60 % of the period.
+  const auto violations = [](unsigned high_permille) {
+    auto s = make_scenario(10, MHz(4), true, 2);
+    s.master.high_permille = high_permille;
+    const auto r = scenarios::run_scenario(s);
+    return count(r, checker::check::kPulseHigh) + count(r, checker::check::kPulseLow);
+  };
+  EXPECT_EQ(violations(400), 0U);
+  EXPECT_EQ(violations(600), 0U);
+  EXPECT_EQ(violations(399), 2U);
+  EXPECT_EQ(violations(601), 2U);
+}
+
+TEST(CheckerBoundaries, ShortRecoveryTimeNeedsOneMegahertzByOneHertz) {
+  auto s = make_scenario(1, MHz(1), false, 1);
+  s.encoder.t_m_short = us(2);
+  s.encoder.short_t_m_selected = true;
+  s.checker.f_c_tolerance_ppm = 0;
+  EXPECT_EQ(count(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 0U);
+  s.master.f_c = MHz(1) - 1;
+  EXPECT_EQ(count(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 1U);
+}
