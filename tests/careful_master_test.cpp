@@ -7,6 +7,7 @@
 
 using namespace endatsim;
 using namespace endatsim::sim;
+using endatsim::test_support::op;
 using K = scenarios::Event::Kind;
 using MC = protocol::ModeCommand;
 using O = master::FrameOutcome;
@@ -25,14 +26,6 @@ std::size_t count(const scenarios::ScenarioResult& r, O outcome) {
   std::size_t n = 0;
   for (const auto& f : r.frames) n += !f.measurement && f.outcome == outcome;
   return n;
-}
-
-master::Operation op(MC command, std::uint8_t address = 0, std::uint16_t parameter = 0) {
-  master::Operation o;
-  o.command = command;
-  o.address = address;
-  o.parameter = parameter;
-  return o;
 }
 
 }  // namespace

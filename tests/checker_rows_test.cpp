@@ -7,19 +7,12 @@
 
 using namespace endatsim;
 using namespace endatsim::sim;
+using endatsim::test_support::op;
 using MC = protocol::ModeCommand;
 using test_support::count_violations;
 using test_support::make_scenario;
 
 namespace {
-
-master::Operation op(MC command, std::uint8_t address = 0, std::uint16_t parameter = 0) {
-  master::Operation o;
-  o.command = command;
-  o.address = address;
-  o.parameter = parameter;
-  return o;
-}
 
 std::size_t count(const scenarios::ScenarioResult& r, std::string_view check) { return count_violations(r, check); }
 

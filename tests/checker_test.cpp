@@ -175,16 +175,6 @@ TEST(CheckerCalculationTime, StartBitWithinOneMillisecondAndOnePeriod) {
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kCalculationTime), 1U);
 }
 
-TEST(CheckerShortRecoveryTime, NeedsAClockOfAtLeastOneMegahertz) {
-  auto s = make_scenario(1, MHz(1), false, 1);
-  s.encoder.t_m_short = us(2);
-  s.encoder.short_t_m_selected = true;
-  s.checker.f_c_tolerance_ppm = 0;
-  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 0U);
-  s.master.f_c = Hertz{999'000};
-  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 1U);
-}
-
 TEST(CheckerStartDelay, FirstLowPhaseAgainstNote8) {
   auto s = make_scenario(100, MHz(8), true, 1);  // 2 us at 100 m for 2 .. 8 MHz
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kStartDelay), 0U);

@@ -8,6 +8,7 @@
 
 using namespace endatsim;
 using namespace endatsim::sim;
+using endatsim::test_support::op;
 using K = scenarios::Event::Kind;
 using line::ObservationPoint;
 using MC = protocol::ModeCommand;
@@ -38,14 +39,6 @@ std::vector<master::FrameOutcome> outcomes(const scenarios::ScenarioResult& r) {
   for (const auto& f : r.frames)
     if (!f.measurement) v.push_back(f.outcome);
   return v;
-}
-
-master::Operation op(MC command, std::uint8_t address = 0, std::uint16_t parameter = 0) {
-  master::Operation o;
-  o.command = command;
-  o.address = address;
-  o.parameter = parameter;
-  return o;
 }
 
 }  // namespace

@@ -9,19 +9,12 @@
 
 using namespace endatsim;
 using namespace endatsim::sim;
+using endatsim::test_support::op;
 using MC = protocol::ModeCommand;
 using F = protocol::parameters::EncoderFunction;
 namespace pm = protocol::parameters;
 
 namespace {
-
-master::Operation op(MC command, std::uint8_t address = 0, std::uint16_t parameter = 0) {
-  master::Operation o;
-  o.command = command;
-  o.address = address;
-  o.parameter = parameter;
-  return o;
-}
 
 master::Operation read_position() { return op(MC::EncoderSendPositionValues); }
 

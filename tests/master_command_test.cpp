@@ -8,18 +8,11 @@
 
 using namespace endatsim;
 using namespace endatsim::sim;
+using endatsim::test_support::op;
 using MC = protocol::ModeCommand;
 using Kind = master::Operation::Kind;
 
 namespace {
-
-master::Operation op(MC command, std::uint8_t address = 0, std::uint16_t parameter = 0) {
-  master::Operation o;
-  o.command = command;
-  o.address = address;
-  o.parameter = parameter;
-  return o;
-}
 
 master::Operation await_not_busy(unsigned max_polls = 100) {
   master::Operation o;

@@ -27,6 +27,16 @@ inline scenarios::Scenario make_scenario(double cable_m, sim::Hertz f_c, bool co
   return s;
 }
 
+// A script operation that sends `command` with its 8 + 16 bits (address / MRS code / port and
+// parameter / instruction / block address).
+inline master::Operation op(protocol::ModeCommand command, std::uint8_t address = 0, std::uint16_t parameter = 0) {
+  master::Operation o;
+  o.command = command;
+  o.address = address;
+  o.parameter = parameter;
+  return o;
+}
+
 // Puts a read with disturbed mode bits (a type I error handling) before the scenario's reads.
 inline void prepend_disturbed_read(scenarios::Scenario& s, std::uint8_t mode_bits) {
   master::Operation bad = s.script.back();
