@@ -375,6 +375,42 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
 void TimingChecker::on_frame_end(const master::FrameResult& frame) {
   if (frame.outcome == master::FrameOutcome::Type1Error || frame.outcome == master::FrameOutcome::NoStartBit)
     error_handling_frame_ = frame.index;
+  check_busy_time(frame);
+}
+
+// 2.3.2 t_ac maximum 12 ms with EnDat 2.2 commands: the access runs after the command supplement
+// and additional data 1 shows Busy until it is done (2.5.1, 2.6.1). A frame that begins more than
+// 12 ms + T after the supplement and still shows Busy = 1 is reported, once per access.
+void TimingChecker::check_busy_time(const master::FrameResult& frame) {
+  using MC = protocol::ModeCommand;
+  if (frame.supplement) {
+    const auto mrs = static_cast<std::uint8_t>(*frame.supplement >> 16);
+    const bool access = frame.command == MC::EncoderSendPositionValuesAndReceiveParameter ||
+                        frame.command == MC::EncoderSendPositionValuesAndSendParameter ||
+                        (frame.command == MC::EncoderSendPositionValuesAndSelectionOfMemoryArea &&
+                         !protocol::selects_additional_data(mrs));
+    if (access) {
+      busy_since_ = frame.end;
+      busy_reported_ = false;
+    }
+    return;
+  }
+  if (!busy_since_ || frame.outcome != master::FrameOutcome::Ok) return;
+  const auto ai1 = std::find_if(frame.additional_data.begin(), frame.additional_data.end(),
+                                [](const master::AdditionalDatum& d) { return !protocol::is_additional_data_2(d.information()); });
+  if (ai1 == frame.additional_data.end()) return;
+  if (!ai1->busy()) {
+    busy_since_.reset();
+    return;
+  }
+  const Time busy_for = frame.start - *busy_since_;
+  const Time limit = sim::ms(12) + sim::period_of(frame.f_c);
+  if (busy_for <= limit || busy_reported_) return;
+  busy_reported_ = true;
+  report({std::string(check::kMemoryAccess), "2.3.2 t_ac maximum 12 ms (EnDat 2.2: busy bit)", ObservationPoint::MasterPins,
+          frame.start, frame.index, std::nullopt, "busy after " + format_time(busy_for), "<= 12 ms + T = " + format_time(limit),
+          Severity::Error, "the encoder's memory access outlasts the longest access time: Busy is still set"},
+         "additional data 1");
 }
 
 void TimingChecker::finish() {

@@ -134,6 +134,7 @@ class TimingChecker final : public master::MasterObserver {
   void check_power_on(const master::FrameResult& first);
   void check_clock_count(const PinFrame& f);
   void check_time_between_cycles(const PinFrame& next, Time last_rise);
+  void check_busy_time(const master::FrameResult& frame);
   std::string field_of(const master::FrameResult& frame, unsigned clock) const;
   unsigned bits_of(const master::FrameResult& frame) const;
   void check_encoder_sample(unsigned clock);
@@ -164,6 +165,8 @@ class TimingChecker final : public master::MasterObserver {
   };
   std::optional<FrameEnd> previous_end_;
   std::optional<std::uint64_t> error_handling_frame_;  // the last master frame that ended in an error handling
+  std::optional<Time> busy_since_;  // a 2.2 memory access began with this frame's supplement (t_ac)
+  bool busy_reported_ = false;
   // Changes of "DATA driven" at the master pins during the current frame, to judge samples.
   std::vector<std::pair<Time, bool>> master_driven_;
   bool floating_reported_ = false;

@@ -141,3 +141,29 @@ TEST(CheckerBoundaries, ShortRecoveryTimeNeedsOneMegahertzByOneHertz) {
   s.master.f_c = MHz(1) - 1;
   EXPECT_EQ(count(scenarios::run_scenario(s), checker::check::kShortRecoveryClock), 1U);
 }
+
+TEST(CheckerBoundaries, EnDat22BusyLongerThanTwelveMilliseconds) {
+  // 2.3.2 t_ac maximum 12 ms, seen through the busy bit of additional data 1 (2.6.1): polls every
+  // 100 us after a 2.2 write; an access of 12 ms ends in time, one of 12.5 ms does not.
+  const auto violations = [](Time t_ac) {
+    auto s = make_scenario(5, MHz(1), false, 1);
+    master::Operation poll;
+    poll.kind = master::Operation::Kind::AwaitNotBusy;
+    poll.count = 200;
+    poll.cycle = us(100);
+    s.script = {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x45),
+                op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0xA9), poll,
+                op(MC::EncoderSendPositionValuesAndReceiveParameter, 0x01, 0x1234), poll};
+    scenarios::Event slow;
+    slow.kind = scenarios::Event::Kind::MemoryAccessTime;
+    slow.at = Time::zero();
+    slow.t_ac_read = us(200);
+    slow.t_ac_write = t_ac;
+    s.events.push_back(slow);
+    const auto r = scenarios::run_scenario(s);
+    EXPECT_EQ(r.busy_timeouts, 0U);
+    return count(r, checker::check::kMemoryAccess);
+  };
+  EXPECT_EQ(violations(ms(12)), 0U);
+  EXPECT_EQ(violations(us(12'500)), 1U);
+}
