@@ -1,6 +1,8 @@
 // Rows of table 2.3.2 seen on the DATA line: the encoder's driver turning off after FE1 (t_z)
-// and on again at the turnaround (t_OE), the start bit no later than t_cal allows, and the data
-// delay t_D of the whole round trip.
+// and on again at the turnaround (t_OE), the start bit no earlier and no later than t_cal allows,
+// and the data delay t_D of the whole round trip. With a continuous clock (2.3.1) t_D and the
+// start bit are judged for every word; t_z and t_OE belong to the mode command (see
+// on_encoder_driver).
 #include <algorithm>
 
 #include "checker/timing_checker.hpp"
@@ -23,7 +25,9 @@ void TimingChecker::start_data_line_checks() {
   driving_ = false;
   driven_low_ = false;
   start_clock_ = 0;
-  t_d_measured_ = false;
+  word_start_clock_ = 0;
+  word_ = 0;
+  low_clock_ = 0;
 }
 
 // The encoder's LOW after the turnaround, seen as a falling edge or, when DATA was LOW already
@@ -33,6 +37,12 @@ void TimingChecker::note_encoder_low() {
   if (driving_ && !line_.pins(ObservationPoint::EncoderPins).data.read()) driven_low_ = true;
 }
 
+// t_z and t_OE are the two turnarounds of DATA around the mode command: the encoder releases DATA
+// for the master's mode bits and takes it back after them (2.3). A continuous clock sends the mode
+// command once, "only with the first data query" (2.3.1), and the encoder drives on from word to
+// word (HIGH bit, LOW bits, the next start bit; 2.3.1.1 Figure 15, timing-model §2): later words
+// have no turnaround, so neither row applies to them. A driver that goes off between words leaves
+// DATA undriven while the master samples, which floating_data reports.
 void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
   if (!in_frame_) return;
   const Time now = kernel_.now();
@@ -70,24 +80,47 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
   if (!in_frame_) return;
   if (level == 0) {
     note_encoder_low();
+    low_clock_ = carrying_clock();
     return;
   }
-  if (!driving_ || !driven_low_ || start_clock_ != 0) return;
-  // The start bit: the first rising DATA edge the encoder drives after the turnaround. It left
-  // on the rising edge that reached the encoder logic one encoder-internal delay (receiver,
-  // logic, driver) before the edge showed on the pins. t_cal ends no later than that edge (the
-  // encoder answers on the first rising edge after its calculation), so that edge must come
-  // within t_cal max of FE1.
+  if (!driving_ || !driven_low_) return;
+  if (start_clock_ == 0) {
+    first_start_bit();
+    return;
+  }
+  // The HIGH bit after the CRC (slot start + answer) may rise as well; it is no start bit.
+  const unsigned clock = carrying_clock();
+  if (current_.header.continuous && clock > word_start_clock_ + current_.header.answer_bits) next_word_start_bit(clock);
+}
+
+// The rising clock edge whose bit slot an edge on DATA at the encoder pins belongs to: the encoder
+// puts its bits out on rising edges, which show on its pins one encoder-internal delay (receiver,
+// logic, driver) later.
+unsigned TimingChecker::carrying_clock() const {
   const auto& lp = line_.params();
   const Time launched = kernel_.now() - (lp.encoder.receiver_delay + encoder_.output_delay + lp.encoder.driver_delay);
   const auto carried_by = std::upper_bound(current_.rising.begin(), current_.rising.end(), launched);
-  start_clock_ = static_cast<unsigned>(carried_by - current_.rising.begin());
+  return static_cast<unsigned>(carried_by - current_.rising.begin());
+}
+
+// The start bit of the frame's first word: the first rising DATA edge the encoder drives after the
+// turnaround.
+void TimingChecker::first_start_bit() {
+  start_clock_ = carrying_clock();
   if (start_clock_ == 0) return;
+  word_start_clock_ = start_clock_;
+  note_start_bit_for_t_d();
   if (current_.header.payload_bits != 0) {
     check_memory_access_time();
     return;
   }
   check_calculation_time_minimum();
+  check_calculation_time_maximum();
+}
+
+// t_cal ends no later than the rising edge that carried the start bit (the encoder answers on the
+// first rising edge after its calculation), so that edge must come within t_cal max of FE1.
+void TimingChecker::check_calculation_time_maximum() {
   const Time t_cal = current_.rising[start_clock_ - 1] - current_.fe1;
   const Time limit = kCalculationTimeMax + sim::period_of(current_.header.f_c);
   if (t_cal > limit)
@@ -95,6 +128,30 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
             kernel_.now(), current_.header.index, start_clock_, format_time(t_cal),
             "<= 1 ms + T = " + format_time(limit), Severity::Error,
             "the start bit came later than the longest calculation time allows"}, "start bit");
+}
+
+// 2.3.1.1, continuous clock: after the CRC the encoder drives one HIGH bit, LOW bits and the next
+// word's start bit; "independently of the t_CAL, a maximum of 7 Low Bits (internal
+// synchronization) are inserted" (Figure 15). The t_cal row runs from FE1 of a mode command and
+// belongs to the first word: its minimum 10.5/f_c does not apply to later words, which follow
+// after as little as one LOW bit (the continuous clock "reduces the length of the clock-pulse
+// group by 10 periods per position value", timing-model §2), and this bound takes the place of
+// its maximum. Counted as the LOW run before the start bit, so that a HIGH bit of two clocks
+// (TI's reading, timing-model §2) is not counted as LOW.
+void TimingChecker::next_word_start_bit(unsigned clock) {
+  constexpr unsigned kMaxLowBits = 7;
+  ++word_;
+  word_start_clock_ = clock;
+  note_start_bit_for_t_d();
+  const unsigned low_bits = clock - low_clock_;
+  if (low_bits <= kMaxLowBits) return;
+  report({std::string(check::kCalculationTime),
+          "2.3.1.1 continuous clock: at most 7 LOW bits before the next word (in place of t_cal)",
+          ObservationPoint::EncoderPins, kernel_.now(), current_.header.index + word_, clock,
+          std::to_string(low_bits) + " LOW bits", "<= " + std::to_string(kMaxLowBits) + " LOW bits", Severity::Error,
+          "continuous word " + std::to_string(word_) +
+              ": the start bit came later than the encoder's internal synchronization allows"},
+         "start bit");
 }
 
 // 2.3.2 t_cal minimum 10.5/f_c: with the clock's first LOW half a period, RE11 comes 10.5 periods
@@ -122,32 +179,65 @@ void TimingChecker::check_memory_access_time() {
             Severity::Error, "the acknowledgment came later than the longest memory access time allows"}, "start bit");
 }
 
+// t_D ends where the start bit's edge reaches the master logic: one cable delay and one receiver
+// delay after it showed at the encoder pins. Noted with the rising clock edge that carried it, at
+// the master logic, for every word of a continuous clock.
+void TimingChecker::note_start_bit_for_t_d() {
+  const unsigned clock = word_start_clock_;
+  if (clock > master_rising_.size()) return;  // an edge the master never sent (a glitch at the encoder pins)
+  const auto& lp = line_.params();
+  start_bits_in_flight_.push_back({kernel_.now() + lp.cable_delay() + lp.master.receiver_delay,
+                                   master_rising_[clock - 1], current_.header.index + word_, clock,
+                                   current_.header.compensated, current_.header.t_d_used,
+                                   sim::period_of(current_.header.f_c)});
+}
+
+// The start bit's edge is the first rising edge at the master logic from half a slot before it is
+// due: the rising edge before a start bit on DATA is at least two slots earlier (the HIGH bit after
+// the previous word's CRC, or the fail-safe level before the turnaround) and may still be on the
+// cable. A start bit that comes late at the master (a disturbed one) makes t_D long, as the master
+// sees it. A start bit that never shows is given up once the next one is due, or once its frame
+// has ended.
 void TimingChecker::on_master_data(std::uint64_t level) {
-  // t_D (2.3.2, 2.1.2): from the rising clock edge that carried the start bit to the start
-  // bit's edge, both at the master logic; at most 0.2 us + 0.01 us/m x cable length.
-  if (level == 0 || start_clock_ == 0 || t_d_measured_ || start_clock_ > master_rising_.size()) return;
-  t_d_measured_ = true;
-  const Time t_d = kernel_.now() - master_rising_[start_clock_ - 1];
+  if (level == 0) return;
+  const Time now = kernel_.now();
+  auto& in_flight = start_bits_in_flight_;
+  const auto due = [&](const StartBitInFlight& s) { return now >= s.due - s.period / 2; };
+  const auto given_up = [&](const StartBitInFlight& s) {
+    const bool next_due = in_flight.size() > 1 && due(in_flight[1]);
+    return next_due || (s.frame < current_.header.index && now > s.due + s.period / 2);
+  };
+  while (!in_flight.empty() && given_up(in_flight.front())) in_flight.pop_front();
+  if (in_flight.empty() || !due(in_flight.front())) return;
+  const StartBitInFlight start = in_flight.front();
+  in_flight.pop_front();
+  const Time t_d = now - start.carried_at;
+  check_data_delay(start, t_d);
+  check_delay_tolerance(start, t_d);
+}
+
+// t_D (2.3.2, 2.1.2): from the rising clock edge that carried the start bit to the start bit's
+// edge, both at the master logic; at most 0.2 us + 0.01 us/m x cable length.
+void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
   const Time limit = sim::ns(200) + Time{static_cast<std::int64_t>(line_.params().cable_length_m * 10'000.0 + 0.5)};
   if (t_d > limit)
     report({std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,
-            kernel_.now(), current_.header.index, start_clock_, format_time(t_d), "<= " + format_time(limit),
-            Severity::Error, "the round trip of the line and the encoder is longer than the spec allows"}, "start bit");
-  check_delay_tolerance(t_d);
+            kernel_.now(), start.frame, start.clock, format_time(t_d), "<= " + format_time(limit), Severity::Error,
+            "the round trip of the line and the encoder is longer than the spec allows"}, "start bit");
 }
 
 // 2.3: "the set Data Delay Time with a tolerance of +/-10 % x f_c must not be exceeded": the t_D
 // a compensating master uses may differ from the real one by at most a tenth of the period.
-void TimingChecker::check_delay_tolerance(Time t_d) {
-  if (!current_.header.compensated) return;
-  const Time set = current_.header.t_d_used;
-  const Time error = set > t_d ? set - t_d : t_d - set;
-  const Time tenth = sim::period_of(current_.header.f_c) / 10;
+void TimingChecker::check_delay_tolerance(const StartBitInFlight& start, Time t_d) {
+  if (!start.compensated) return;
+  const Time error = start.t_d_used > t_d ? start.t_d_used - t_d : t_d - start.t_d_used;
+  const Time tenth = start.period / 10;
   if (error > tenth)
     report({std::string(check::kDataDelayTolerance), "2.3 (data delay time within +/-10 % of the period)",
-            ObservationPoint::MasterPins, kernel_.now(), current_.header.index, start_clock_, format_time(error),
+            ObservationPoint::MasterPins, kernel_.now(), start.frame, start.clock, format_time(error),
             "<= T/10 = " + format_time(tenth), Severity::Error,
-            "the master compensates with t_D = " + format_time(set) + " but the line's is " + format_time(t_d)}, "start bit");
+            "the master compensates with t_D = " + format_time(start.t_d_used) + " but the line's is " +
+                format_time(t_d)}, "start bit");
 }
 
 }  // namespace endatsim::checker

@@ -180,9 +180,11 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
   const unsigned master_width = protocol::answer_layout(command, bits_of(frame)).width();
   const unsigned additional = frame.answer_bits > master_width ? frame.answer_bits - master_width : 0;
   const unsigned answer = protocol::answer_layout(command, encoder_.position_bits).width() + additional;
+  // 2.3.1: only the mode bits 000111 allow a continuous clock (the encoder goes by what it got).
+  const bool continuous = frame.mode_bits == protocol::info(protocol::ModeCommand::EncoderSendPositionValues).bits;
   const FrameHeader h{frame.index,          frame.measurement, frame.compensated, command.version,
-                      command.payload_bits, answer,            command.supplement, frame.f_c,
-                      frame.t_d_used};
+                      command.payload_bits, answer,            command.supplement, continuous,
+                      frame.f_c,            frame.t_d_used};
   pending_.emplace_back(master_falling_edges_ + 1, h);
   master_rising_.clear();
   sampling_reported_ = false;

@@ -108,6 +108,7 @@ class TimingChecker final : public master::MasterObserver {
     unsigned payload_bits = 0;  // master bits after the mode bits (2.1 parameter frames)
     unsigned answer_bits = 0;   // the encoder's answer, start bit to the last CRC
     bool supplement = false;    // a 2.2 command supplement follows the answer
+    bool continuous = false;    // "Encoder send position values": clocks beyond the word are a continuous clock (2.3.1)
     sim::Hertz f_c = 0;
     Time t_d_used{0};
   };
@@ -123,12 +124,19 @@ class TimingChecker final : public master::MasterObserver {
   // Encoder-side rows of 2.3.2, at the encoder pins (data_line_checks.cpp).
   void on_encoder_driver(std::uint64_t enabled);
   void on_encoder_data(std::uint64_t level);
+  unsigned carrying_clock() const;
+  void first_start_bit();
+  void check_calculation_time_maximum();
+  void next_word_start_bit(unsigned clock);
+  void note_start_bit_for_t_d();
   void on_master_data(std::uint64_t level);
   void start_data_line_checks();
   void note_encoder_low();
   void on_master_driven(std::uint64_t driven);
   void check_start_delay(const PinFrame& f);
-  void check_delay_tolerance(Time t_d);
+  struct StartBitInFlight;
+  void check_data_delay(const StartBitInFlight& s, Time t_d);
+  void check_delay_tolerance(const StartBitInFlight& s, Time t_d);
   void check_memory_access_time();
   void check_calculation_time_minimum();
   void check_power_on(const master::FrameResult& first);
@@ -179,13 +187,28 @@ class TimingChecker final : public master::MasterObserver {
   bool unmeasured_reported_ = false;
   std::uint64_t sampled_frame_ = UINT64_MAX;
   std::vector<std::pair<Time, std::uint64_t>> frame_starts_;  // FE1 at the master logic, frame index
-  // Per frame, at the encoder pins: driver released (t_z), driver on again (t_OE), start bit seen
-  // on rising edge `start_clock_` (t_cal); t_D once the start bit reached the master logic.
+  // Per frame, at the encoder pins: driver released (t_z), driver on again (t_OE), the first
+  // word's start bit seen on rising edge `start_clock_` (t_cal, clock count), the current word's
+  // on `word_start_clock_` (with a continuous clock words count from 0); DATA last went LOW on
+  // rising edge `low_clock_`.
   bool released_ = false;
   bool driving_ = false;
   bool driven_low_ = false;
   unsigned start_clock_ = 0;
-  bool t_d_measured_ = false;   // one sampling-window violation per frame, the first bit
+  unsigned word_start_clock_ = 0;
+  unsigned word_ = 0;
+  unsigned low_clock_ = 0;
+  // A start bit seen at the encoder pins, on its way to the master logic, where t_D ends (2.3.2).
+  struct StartBitInFlight {
+    Time due;         // at the master logic: the encoder pins' time + cable + master receiver
+    Time carried_at;  // the rising clock edge that carried it, at the master logic
+    std::uint64_t frame;
+    unsigned clock;
+    bool compensated;
+    Time t_d_used;
+    Time period;
+  };
+  std::deque<StartBitInFlight> start_bits_in_flight_;
   std::vector<Violation> violations_;
 };
 
