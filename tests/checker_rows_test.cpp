@@ -1,7 +1,11 @@
 // Rows of table 2.3.2 judged at their limits: t_b, the t_cal minimum, the delay measurement's
 // clock and counter (2.1.2) and t_HI maximum, each just inside (no violation) and just outside
 // (a violation) by one picosecond, one count or one hertz, whichever is the quantity's step.
+// The clock's phases are set to the picosecond with a hand-driven clock (HandClock below).
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
 
 #include "scenario_support.hpp"
 
@@ -166,4 +170,89 @@ TEST(CheckerBoundaries, EnDat22BusyLongerThanTwelveMilliseconds) {
   };
   EXPECT_EQ(violations(ms(12)), 0U);
   EXPECT_EQ(violations(us(12'500)), 1U);
+}
+
+// ---- a clock driven by hand, to the picosecond ---------------------------------------------
+
+namespace {
+
+// CLOCK at the master logic edge by edge, for one frame announced to the checker as the master
+// announces its frames: phases to the picosecond, which the master's clock generator (a period
+// from whole hertz, a duty cycle in permille) cannot set.
+class HandClock {
+ public:
+  HandClock(Kernel& k, line::Line& line) : k_(k), clock_(line.master().clock_out) {}
+  // FE1 at `start`, then LOW and HIGH phases alternately (the last one HIGH).
+  void frame(Time start, const std::vector<Time>& phases) {
+    Time t = start;
+    std::uint64_t level = 0;
+    k_.schedule_at(t, bind<&HandClock::set>(this, level));
+    for (Time phase : phases) {
+      t += phase;
+      level ^= 1U;
+      k_.schedule_at(t, bind<&HandClock::set>(this, level));
+    }
+  }
+
+ private:
+  void set(std::uint64_t level) { clock_.write(level != 0); }
+  Kernel& k_;
+  Signal& clock_;
+};
+
+std::size_t hand_clocked(const master::FrameResult& frame, const std::vector<Time>& phases, std::string_view check) {
+  Kernel k;
+  line::Line line(k, line::LineParams{});
+  checker::CheckerParams params;
+  params.f_c_tolerance_ppm = 0;
+  checker::TimingChecker checker(k, line, slave::EncoderParams{}, master::MasterParams{}, params);
+  HandClock clock(k, line);
+  checker.on_frame_start(frame);
+  clock.frame(us(1), phases);
+  k.run();
+  checker.finish();
+  const auto& v = checker.violations();
+  return static_cast<std::size_t>(std::count_if(v.begin(), v.end(), [&](const auto& x) { return x.check == check; }));
+}
+
+// `n` clock pulses of `low` and `high`; pulse `odd` gets a HIGH phase of `odd_high`.
+std::vector<Time> pulses(unsigned n, Time low, Time high, unsigned odd = 0, Time odd_high = {}) {
+  std::vector<Time> phases;
+  for (unsigned k = 1; k <= n; ++k) {
+    phases.push_back(low);
+    phases.push_back(k == odd ? odd_high : high);
+  }
+  return phases;
+}
+
+master::FrameResult frame_at(Hertz f_c, bool measurement) {
+  master::FrameResult f;
+  f.f_c = f_c;
+  f.measurement = measurement;
+  f.command = MC::EncoderSendPositionValues;
+  f.mode_bits = protocol::info(f.command).bits;
+  return f;
+}
+
+}  // namespace
+
+TEST(CheckerBoundaries, HighPhaseOfTenMicrosecondsByOnePicosecond) {
+  // 2.3.2 t_HI maximum 10 us, on the fifth of twelve pulses of a 100 kHz clock.
+  const auto t_hi = [](Time high) {
+    return hand_clocked(frame_at(kHz(100), false), pulses(12, us(5), us(5), 5, high), checker::check::kPulseHigh);
+  };
+  EXPECT_EQ(t_hi(us(10)), 0U);
+  EXPECT_EQ(t_hi(us(10) + ps(1)), 1U);
+}
+
+TEST(CheckerBoundaries, MeasurementClockAt100And200KilohertzByOnePicosecondOfPeriod) {
+  // 2.1.2: the delay is measured at 100 .. 200 kHz; periods 10 us and 5 us, one picosecond longer
+  // and shorter respectively.
+  const auto outside = [](Hertz nominal, Time low, Time high) {
+    return hand_clocked(frame_at(nominal, true), pulses(12, low, high), checker::check::kMeasurementClock);
+  };
+  EXPECT_EQ(outside(kHz(100), us(5), us(5)), 0U);
+  EXPECT_EQ(outside(kHz(100), us(5), us(5) + ps(1)), 1U);
+  EXPECT_EQ(outside(kHz(200), ns(2500), ns(2500)), 0U);
+  EXPECT_EQ(outside(kHz(200), ns(2500), ns(2500) - ps(1)), 1U);
 }
