@@ -196,8 +196,8 @@ void TimingChecker::note_start_bit_for_t_d() {
 // due: the rising edge before a start bit on DATA is at least two slots earlier (the HIGH bit after
 // the previous word's CRC, or the fail-safe level before the turnaround) and may still be on the
 // cable. A start bit that comes late at the master (a disturbed one) makes t_D long, as the master
-// sees it. A start bit that never shows is given up once the next one is due, or once its frame
-// has ended.
+// sees it. A start bit that never shows (a fault at the master's pins) is given up once the next
+// one is due, or, half a slot overdue, once a later frame has begun at the encoder.
 void TimingChecker::on_master_data(std::uint64_t level) {
   if (level == 0) return;
   const Time now = kernel_.now();
