@@ -14,6 +14,11 @@ void require(bool ok, const std::string& message) {
 constexpr unsigned kFirstPolledClock = 9;       // the encoder drives DATA from the turnaround (timing-model §1.2)
 constexpr unsigned kFirstCounterClock = 11;     // 2.1.2: counter started at each RE after 10 periods
 
+bool of_startup_routine(Operation::Purpose p) {
+  using P = Operation::Purpose;
+  return p == P::Step || p == P::Errors || p == P::Warnings || p == P::Word13 || p == P::Word37;
+}
+
 // Sample tags carry the frame's epoch in the upper and the clock slot in the lower 32 bits.
 std::uint64_t sample_tag(std::uint64_t epoch, unsigned clock) { return epoch << 32 | clock; }
 
@@ -88,6 +93,7 @@ void MasterParams::validate() const {
           "master remeasure_after_crc_errors must be 0 .. 1000, got " + std::to_string(careful.remeasure_after_crc_errors));
   require(type1_detect_samples >= 1 && type1_detect_samples <= 64,
           "master type1_detect_samples must be 1 .. 64, got " + std::to_string(type1_detect_samples));
+  safety.validate();
 }
 
 Master::Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params)
@@ -133,6 +139,23 @@ void Master::next_operation() {
       expand_checksum_check();
       next_operation();
       return;
+    case Operation::Kind::SafetyStartup:
+      expand_safety_startup();
+      next_operation();
+      return;
+    case Operation::Kind::CrcSelfTest:
+      run_crc_self_test();
+      next_operation();
+      return;
+    case Operation::Kind::ReadEndat22Area:
+      expand_endat22_read();
+      next_operation();
+      return;
+    case Operation::Kind::StartupPositions:
+      frames_left_ = params_.safety.startup_positions ? params_.safety.startup_max_reads : 1;
+      startup_agreeing_ = 0;
+      safety_.startup_reads = 0;
+      break;
     case Operation::Kind::MeasureDelay:
       measuring_ = true;
       rounds_ = 1;
@@ -205,7 +228,7 @@ void Master::expand_startup_routine() {
 
 void Master::note_startup(const FrameResult& f) {
   using P = Operation::Purpose;
-  if (current_->purpose == P::None || current_->purpose == P::ChecksumWord) return;
+  if (!of_startup_routine(current_->purpose)) return;
   if (f.outcome != FrameOutcome::Ok) {
     ++startup_.failed_frames;
     startup_.completed = false;
@@ -219,9 +242,7 @@ void Master::note_startup(const FrameResult& f) {
       if (params_.adopt_word13 && (f.echo_parameter & 0x3F) != 0) position_bits_ = f.echo_parameter & 0x3F;
       break;
     case P::Word37: startup_.word37 = f.echo_parameter; break;
-    case P::None:
-    case P::Step:
-    case P::ChecksumWord: break;
+    default: break;
   }
 }
 
@@ -334,7 +355,20 @@ void Master::interrupt_for_measurement() {
       selected_[i] = false;
     }
   }
-  remeasure_due_ = reselect_due_ = false;
+  if (error_sources_due_) {  // 3.4.1: word 0 of the operating status says which error it was
+    Operation read = rest;
+    read.kind = Operation::Kind::ReadPosition;
+    read.count = 1;
+    read.command = ModeCommand::EncoderSendParameters;
+    read.address = 0;
+    read.purpose = Operation::Purpose::ErrorSources;
+    operations_.push_front(read);
+    read.command = ModeCommand::SelectionOfMemoryArea;
+    read.address = protocol::info(protocol::MemoryArea::OperatingStatus).mrs;
+    read.purpose = Operation::Purpose::None;
+    operations_.push_front(read);
+  }
+  remeasure_due_ = reselect_due_ = error_sources_due_ = false;
   next_operation();
 }
 
@@ -349,6 +383,7 @@ void Master::operation_frame_done() {
     if (ready) frames_left_ = 1;
     else if (frames_left_ == 1) ++busy_timeouts_;
   }
+  if (current_->kind == Operation::Kind::StartupPositions && startup_position_read(frames_.back())) frames_left_ = 1;
   note_failures();
   if (retry_frame()) return;
   if (--frames_left_ > 0) {
@@ -368,7 +403,7 @@ void Master::operation_frame_done() {
 // ---- one frame ----------------------------------------------------------------------------
 
 void Master::start_frame(std::uint64_t) {
-  if ((remeasure_due_ || reselect_due_) && !measuring_) {
+  if ((remeasure_due_ || reselect_due_ || error_sources_due_) && !measuring_) {
     interrupt_for_measurement();
     return;
   }
@@ -383,16 +418,17 @@ void Master::start_frame(std::uint64_t) {
   frame_.start = kernel_.now();
   frame_.measurement = measurement;
   frame_.command = measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
+  supplement_word_ = std::uint32_t{current_->address} << 16 | current_->parameter;
+  if (!measurement) roll_position_value_2();
   frame_.mode_bits = measurement || !current_->mode_bits ? protocol::info(frame_.command).bits : *current_->mode_bits;
-  frame_.f_c = measurement                                        ? params_.measurement.f_c
-               : current_->purpose != Operation::Purpose::None &&
-                       current_->purpose != Operation::Purpose::ChecksumWord ? params_.startup_f_c
-                                                               : params_.f_c;
+  frame_.f_c = measurement                            ? params_.measurement.f_c
+               : of_startup_routine(current_->purpose) ? params_.startup_f_c
+                                                       : params_.f_c;
   frame_.compensated = !measurement && params_.delay_compensation && t_d_.has_value();
   frame_.t_d_used = frame_.compensated ? *t_d_ : Time::zero();
 
   command_ = &protocol::info(frame_.command);
-  payload_ = measurement ? 0 : std::uint32_t{current_->address} << 16 | current_->parameter;
+  payload_ = measurement ? 0 : supplement_word_;
   if (command_->payload_bits != 0) frame_.payload = payload_;
   supplement_start_ = 0;
   supplement_due_ = false;
@@ -579,8 +615,9 @@ void Master::decode_answer() {
         AdditionalDatum d;
         d.status = static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Status)]);
         d.data = static_cast<std::uint16_t>(v[static_cast<std::size_t>(Field::AdditionalData)]);
-        d.crc_ok = v[static_cast<std::size_t>(Field::Crc)] == protocol::make_crc_norm(d.status, d.data, params_.crc.generator) &&
-                   v[static_cast<std::size_t>(Field::LeadingLow)] == 0;
+        d.crc_ok = crc_passes(static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Crc)]),
+                            protocol::make_crc_norm(d.status, d.data, params_.crc.generator)) &&
+                 v[static_cast<std::size_t>(Field::LeadingLow)] == 0;
         ok = ok && d.crc_ok;
         frame_.additional_data.push_back(d);
       }
@@ -597,7 +634,7 @@ void Master::decode_answer() {
       frame_.crc_expected = protocol::make_crc_norm(frame_.echo_address, frame_.echo_parameter, params_.crc.generator);
       break;
   }
-  ok = ok && frame_.crc_received == frame_.crc_expected;
+  ok = ok && crc_passes(frame_.crc_received, frame_.crc_expected);
   FrameOutcome outcome = ok ? FrameOutcome::Ok : FrameOutcome::CrcError;
   // A2 type II: "the address or parameter is returned inverted".
   if (ok && command_->answer == protocol::AnswerFormat::Parameter &&
@@ -608,7 +645,7 @@ void Master::decode_answer() {
   // error has occurred": the supplement only follows a clean answer.
   if (outcome == FrameOutcome::Ok && command_->supplement) {
     supplement_due_ = true;
-    frame_.supplement = std::uint32_t{current_->address} << 16 | current_->parameter;
+    frame_.supplement = supplement_word_;
   }
   if (outcome == FrameOutcome::Ok) note_selection();
   word_received(outcome);
@@ -655,7 +692,7 @@ void Master::note_selection() {
     return;
   }
   if (frame_.command != ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
-  const std::uint8_t mrs = current_->address;
+  const auto mrs = static_cast<std::uint8_t>(supplement_word_ >> 16);
   if (!protocol::selects_additional_data(mrs)) return;
   const unsigned which = (mrs & 0x10) != 0 ? 1 : 0;
   selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
@@ -715,6 +752,7 @@ void Master::maybe_complete_frame() {
   }
   frames_.push_back(frame_);
   if (!frame_.measurement) {
+    note_safety(frames_.back());
     note_startup(frame_);
     note_checksum_word(frame_);
   }

@@ -12,6 +12,7 @@
 #include <boost/random/mersenne_twister.hpp>
 
 #include "line/line.hpp"
+#include "master/safety.hpp"
 #include "protocol/protocol.hpp"
 
 namespace endatsim::master {
@@ -48,6 +49,8 @@ struct CrcCheck {
   // A table-driven CRC whose loop ends one bit early at this position width (0 = none):
   // masters-in-the-field §6.4, a library wrong only for 31 position clocks.
   unsigned table_fault_width = 0;
+  // A comparator stuck at "equal": every CRC passes (what the CRC self-test is for).
+  bool accept_any = false;
 };
 
 // What a careful master does when things go wrong (issue 5). Each reaction can be switched off
@@ -112,6 +115,7 @@ struct MasterParams {
   StartBitDetection start_bit_detection = StartBitDetection::WaitLowThenHigh;
   CrcCheck crc;
   CarefulMaster careful;
+  SafetyParams safety;
 
   static constexpr Hertz kMinFc = sim::kHz(100);
   static constexpr Hertz kMaxFc = sim::MHz(16);
@@ -154,6 +158,9 @@ struct FrameResult {
   FrameOutcome outcome = FrameOutcome::NoStartBit;
   bool error1 = false;
   bool error2 = true;
+  // An error message as the master evaluates it: F1, and with SafetyParams::error_messages also
+  // F2 of 2.2 frames (2.3.1: two independent error messages).
+  bool error_detected = false;
   std::uint64_t position = 0;
   std::uint64_t test_value = 0;        // "Encoder send test values"
   std::uint8_t echo_address = 0;       // parameter frames: address / MRS code / port as answered
@@ -195,11 +202,18 @@ struct Operation {
   // alarms and warnings, read words 13 and 37).
   // VerifyChecksum reads the encoder manufacturer's words 4 .. 47 with 2.1 frames and compares
   // word 47 with their sum (3.5.26).
+  // SafetyStartup runs the switched-on safety checks before the axis is released (safety.hpp):
+  // CrcSelfTest (no frames), the checksums, forced dynamic sampling and StartupPositions, which
+  // reads `command` until the position values agree.
   enum class Kind : std::uint8_t {
-    MeasureDelay, ReadPosition, Wait, AwaitNotBusy, PowerOnSequence, StartupRoutine, VerifyChecksum
+    MeasureDelay, ReadPosition, Wait, AwaitNotBusy, PowerOnSequence, StartupRoutine, VerifyChecksum,
+    SafetyStartup, CrcSelfTest, ReadEndat22Area, StartupPositions
   };
-  // What a frame of the start-up routine or the checksum check reads.
-  enum class Purpose : std::uint8_t { None, Step, Errors, Warnings, Word13, Word37, ChecksumWord };
+  // What a frame of the start-up routine, the checksum check or a safety check is for.
+  enum class Purpose : std::uint8_t {
+    None, Step, Errors, Warnings, Word13, Word37, ChecksumWord,
+    ErrorSources, Endat22Lsb, Endat22Msb, ForcedTest, ForcedError1, ForcedError2, ForcedOff
+  };
   Kind kind = Kind::ReadPosition;
   std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
   ModeCommand command = ModeCommand::EncoderSendPositionValues;
@@ -214,7 +228,7 @@ struct Operation {
   std::uint16_t parameter = 0;  // parameter, instruction or block address (low byte)
   int clock_adjust = 0;         // clock pulses more (+) or fewer (-) than the frame needs (a fault)
   Purpose purpose = Purpose::None;
-  unsigned manufacturer_word = 0;  // Purpose::ChecksumWord: which of words 4 .. 47
+  unsigned manufacturer_word = 0;  // Purpose::ChecksumWord: which of words 4 .. 47; Endat22*: of 0 .. 63
   std::size_t script_index = 0;  // set by enqueue(); the frames' FrameResult::operation
 };
 
@@ -260,6 +274,7 @@ class Master {
   const std::optional<ChecksumCheck>& checksum() const { return checksum_; }
   std::uint64_t retries() const { return retries_done_; }
   std::uint64_t remeasurements() const { return remeasurements_; }
+  const SafetyReport& safety() const { return safety_; }
   // What the installation tells the master (the runner's events): another cable, and the
   // encoder's supply back after an interruption (CarefulMaster says what the master does then).
   void line_changed();
@@ -294,6 +309,22 @@ class Master {
   bool retry_frame();
   void note_failures();
   void interrupt_for_measurement();
+  // Safety functions (safety.cpp).
+  void expand_safety_startup();
+  void expand_endat22_read();
+  void run_crc_self_test();
+  bool crc_passes(std::uint8_t received, std::uint8_t expected) const;
+  void note_safety(FrameResult& f);
+  void check_error_messages(FrameResult& f);
+  void check_forced_sampling(const FrameResult& f);
+  void check_following_error(const FrameResult& f);
+  void check_acknowledgement(const FrameResult& f);
+  void check_position_value_2(const FrameResult& f);
+  void collect_words(const FrameResult& f);
+  void finish_checksums(bool endat22);
+  bool startup_position_read(const FrameResult& f);
+  void find(SafetyFunction function, const FrameResult* f, std::string message);
+  void roll_position_value_2();
   Time time_between_cycles_left() const;
   std::uint8_t expected_crc_pos(unsigned bits, bool error1, bool error2, bool v22, std::uint64_t position) const;
   FrameOutcome check_echo(FrameOutcome outcome) const;
@@ -337,6 +368,32 @@ class Master {
   bool remeasure_due_ = false;
   std::uint64_t remeasurements_ = 0;
   std::uint8_t selection_mrs_[2] = {0, 0};  // the MRS codes behind selected_
+  // Safety functions.
+  SafetyReport safety_;
+  bool error_sources_due_ = false;
+  bool error_state_ = false, disagree_state_ = false, lag_state_ = false;
+  std::optional<Time> forced_sent_at_;
+  bool forcing_ = false;
+  std::vector<std::optional<std::uint16_t>> endat22_lsb_, endat22_msb_;
+  std::optional<std::pair<std::uint64_t, Time>> last_good_;  // position and FE1 of the last good read (velocity)
+  struct Position2Read {
+    std::uint64_t position1 = 0;
+    Time at{0};
+    std::uint64_t frame = 0;
+    double velocity = 0;
+    std::uint64_t value = 0;
+    unsigned words = 0;
+  };
+  std::optional<Position2Read> position2_;
+  std::optional<Position2Parameters> position2_parameters_;
+  unsigned position2_next_word_ = 1;
+  struct Written {
+    std::uint8_t address = 0;
+    std::uint16_t value = 0;
+  };
+  std::optional<Written> acknowledgement_due_;
+  unsigned startup_agreeing_ = 0;
+  std::uint64_t startup_previous_ = 0;
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
   bool selected_[2] = {false, false};
 
@@ -353,6 +410,7 @@ class Master {
   std::uint8_t mode_bits_ = 0;
   const protocol::ModeCommandInfo* command_ = nullptr;
   std::uint32_t payload_ = 0;
+  std::uint32_t supplement_word_ = 0;  // 8 + 16 bits of this frame's payload or supplement
   unsigned supplement_start_ = 0;  // FE of the first lead bit; 0 = not started
   bool supplement_due_ = false;
   protocol::Layout layout_;

@@ -84,6 +84,10 @@ void EncoderParams::validate() const {
   require(motion.start < (std::uint64_t{1} << position_bits),
           "motion.start must be below 2^position_bits = " + std::to_string(std::uint64_t{1} << position_bits) +
               ", got " + std::to_string(motion.start));
+  require(unsettled_positions <= 1000,
+          "encoder unsettled_positions must be 0 .. 1000, got " + std::to_string(unsettled_positions));
+  require(sensors.position2_offset >= -(std::int64_t{1} << 47) && sensors.position2_offset < (std::int64_t{1} << 47),
+          "sensors position2_offset must fit 48 bits (3.9.24)");
   require(sensors.additional_sensors.size() <= 16, "at most 16 additional sensors (4-bit address, 2.3.5.1)");
   require(sensors.timestamp_unit > Time::zero(), "sensors.timestamp_unit must be > 0");
   for (const auto& [port, value] : sensors.test_values)
@@ -133,6 +137,18 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     m[word::kCalculationTime] = 0;  // not representable in 13 bits of one unit: "not supported"
   }
   m[40] = pm::encode_ordering_designation(v22 ? "EnDat22" : "EnDat01");  // 3.5.25
+  // What the safety comparison of position value 2 needs (3.5.12, 3.5.18, 3.5.19): steps per
+  // revolution (rotary) or a 100 nm step (linear, a model default), 12 000 rpm or 120 m/min,
+  // and the accuracy ranges of the spec's example (c1 = 40, a1 = 16 LSB) plus c2 = 1, a2 = 64 LSB
+  // up to the maximum; a 2.2 encoder keeps them in words 11 .. 14 of its 2.2 area (65535 here).
+  const unsigned singleturn = p.position_bits - p.multiturn_bits;
+  const auto steps = pm::encode_measuring_steps(
+      p.kind == EncoderKind::Linear || singleturn > 31 ? 100 : std::uint32_t{1} << singleturn);
+  m[20] = steps[0];
+  m[21] = steps[1];
+  m[32] = p.kind == EncoderKind::Linear ? 120 : 12000;
+  m[33] = v22 ? 0xFFFF : 0x2810;
+  m[34] = v22 ? 0xFFFF : 0x0140;
   m[word::kSupportedErrors] = 0x007F;
   m[word::kSupportedWarnings] = 0x01FF;
   m[word::kManufacturerChecksum] = word_sum(m, 4, 46);            // 3.5.26
@@ -149,6 +165,15 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     e[2] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
     e[6] = 0x007F;                              // 3.9.8: support of error message 2
     e[word::kMaxClockFrequency] = 16000;        // 3.9.19: kHz
+    e[9] = m[20];                               // 3.9.10: position value 2 in the steps of position value 1
+    e[10] = m[21];
+    e[11] = 40;                                 // 3.9.11: c1 = 40, a1 = 16 LSB; c2 = 1, a2 = 64 LSB
+    e[12] = 16;
+    e[13] = 1;
+    e[14] = 64;
+    e[16] = p.sensors.position2_reversed ? 1 : 0;  // 3.9.13
+    const auto offset = static_cast<std::uint64_t>(p.sensors.position2_offset);
+    for (unsigned k = 0; k < 3; ++k) e[31 + k] = word_of(offset, k);  // 3.9.24
     if (type == pm::EncoderType::TouchProbe) e[45] = pm::encode_timestamp_unit(pm::TimestampUnit::Us1);  // 3.9.32
     e[word::kEndat22Checksum] = word_sum(e, 0, 62);
     img.areas[A::ManufacturerEndat22] = e;
@@ -185,6 +210,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
           "a touch probe (word 14 type 5) sends 16 bits (2.3.4.4), but position_bits is " +
               std::to_string(params_.position_bits));
   referenced_ = !incremental_;
+  unsettled_left_ = params_.unsettled_positions;
   activate_functions();
   if (type == pm::EncoderType::ExternalInterfaceBox)
     eib_ready_at_ = params_.startup_time + params_.eib_initialisation_time;
@@ -240,9 +266,10 @@ void Encoder::begin_frame() {
   f.start = kernel_.now();
   update_reference();
   check_multiturn_overflow();
-  f.position = latched_position(kernel_.now());
+  f.position = f.true_position = latched_position(kernel_.now());
   frames_.push_back(f);
   latch_errors();
+  frames_.back().error_present = error_present();
   release();
 }
 
@@ -375,7 +402,7 @@ std::uint64_t Encoder::output_position(std::uint64_t measured) const {
 }
 
 __int128 Encoder::unwrapped_position(Time t) const {
-  return static_cast<__int128>(params_.motion.start) +
+  return static_cast<__int128>(params_.motion.start) + slip_ +
          static_cast<__int128>(params_.motion.counts_per_s) * t.count() / 1'000'000'000'000;
 }
 
@@ -401,13 +428,18 @@ std::uint16_t Encoder::error_word() const {
 
 bool Encoder::error_message_1() const {
   const bool forced = test_port_22_ >= kForcedError1First && test_port_22_ < kForcedError1First + 7;
-  return params_.error1 || forced ||
-         (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0;
+  return !params_.error_message_1_stuck &&
+         (params_.error1 || forced || (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0);
 }
 
 bool Encoder::error_message_2() const {
   const bool forced = test_port_22_ >= kForcedError2First && test_port_22_ < kForcedError2First + 7;
-  return params_.error1 || forced || (error_word() & memory_.endat22_word(6)) != 0;
+  return !params_.error_message_2_stuck && (params_.error1 || forced || (error_word() & memory_.endat22_word(6)) != 0);
+}
+
+bool Encoder::error_present() const {
+  const auto supported = memory_.manufacturer_word(word::kSupportedErrors) | memory_.endat22_word(6);
+  return params_.error1 || (error_word() & supported) != 0;
 }
 
 void Encoder::answer_position() {
@@ -420,6 +452,13 @@ void Encoder::answer_position() {
     answer_ = protocol::encode_test_values(error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second,
                                            params_.crc);
     return;
+  }
+  if (unsettled_left_ > 0) {  // a fault: a value from before the position settled (seeded by the frame)
+    --unsettled_left_;
+    const std::uint64_t mask = (std::uint64_t{1} << params_.position_bits) - 1;
+    std::uint64_t z = (frames_.size() + 1) * 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    f.position = (z ^ (z >> 31)) & mask;
   }
   // 2.3.1: F2 is low-active; it is only sent with 2.2 mode commands.
   answer_ = protocol::encode_position_frame(command_->version, params_.position_bits,
@@ -725,9 +764,9 @@ std::uint16_t Encoder::additional_data_content(Information i) {
     case I::PositionValue2Word1:
       // Incremental encoders: the absolute position, available after the reference run.
       position2_latched_ = incremental_ ? output_position(measured_position(f.start))
-                                        : static_cast<std::uint64_t>(static_cast<std::int64_t>(f.position) +
-                                                                     s.position2_offset) &
-                                              0xFFFF'FFFF'FFFFULL;
+                                        : (s.position2_reversed ? static_cast<std::uint64_t>(s.position2_offset) - f.true_position
+                                                                : f.true_position + static_cast<std::uint64_t>(s.position2_offset));
+      position2_latched_ = (position2_latched_ + static_cast<std::uint64_t>(s.position2_fault)) & 0xFFFF'FFFF'FFFFULL;
       return word_of(position2_latched_, 0);
     case I::PositionValue2Word2: return word_of(position2_latched_, 1);
     case I::PositionValue2Word3: return word_of(position2_latched_, 2);
@@ -838,6 +877,7 @@ void Encoder::restart_state() {
   referenced_ = !incremental_;
   reference_search_from_ = kernel_.now();
   test_port_21_ = test_port_22_ = 0;
+  unsettled_left_ = params_.unsettled_positions;
   sensor_address_ = 0;
   diagnosis_index_ = 0;
   memory_timer_.cancel();
@@ -900,6 +940,15 @@ void Encoder::set_probe_deflected(bool deflected) {
   if (!memory_.read(status, kTouchProbeStatusWord, word))
     memory_.force(status, kTouchProbeStatusWord, static_cast<std::uint16_t>((word & ~1U) | (deflected ? 1U : 0U)));
 }
+
+void Encoder::set_stuck_error_messages(bool error1_stuck, bool error2_stuck) {
+  params_.error_message_1_stuck = error1_stuck;
+  params_.error_message_2_stuck = error2_stuck;
+}
+
+void Encoder::slip(std::int64_t steps) { slip_ += steps; }
+
+void Encoder::set_position2_fault(std::int64_t deviation) { params_.sensors.position2_fault = deviation; }
 
 void Encoder::note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at) {
   std::uint16_t old = 0;

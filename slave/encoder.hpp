@@ -46,7 +46,9 @@ struct MotionProfile {
 
 // The values behind the additional data (2.3.5).
 struct Sensors {
-  std::int64_t position2_offset = 0;         // position value 2 = position + offset (48 bits)
+  std::int64_t position2_offset = 0;         // position value 2 = position + offset (48 bits, 3.9.24)
+  bool position2_reversed = false;           // ... or offset - position (3.9.13, word 16 of the 2.2 area)
+  std::int64_t position2_fault = 0;          // a fault of the second position sensing: added to position value 2
   std::uint16_t temperature1 = 2982;         // 0.1 K steps (3.9.6): 25 degC
   std::uint16_t temperature2 = 2982;
   std::vector<std::uint16_t> additional_sensors{2982, 2982, 2982};  // 0.1 K; index = 4-bit address
@@ -115,6 +117,13 @@ struct EncoderParams {
   // measuring steps; one crossing (two with distance-coded marks) sets RM (2.3.4.3).
   std::vector<std::uint64_t> reference_marks{0};
   bool error1 = false;              // F1 = 1 / F2 = 0 regardless of word 0
+  // A failed error path (safety functions, issue 7): this error message stays at its inactive
+  // level (F1 LOW, F2 HIGH) whatever the error sources and forced dynamic sampling (3.5.3) say.
+  bool error_message_1_stuck = false;
+  bool error_message_2_stuck = false;
+  // The first this many position answers after switching on or a reset carry an unsettled value
+  // (a fault that multiple transmission at start-up catches; seed 001 "Safety Techniques").
+  unsigned unsettled_positions = 0;
   std::uint16_t error_sources = 0;  // word 0 bits (3.4.1) that a fault keeps setting
   std::uint16_t warning_sources = 0;  // word 1 bits (3.4.2)
   Sensors sensors;
@@ -136,7 +145,9 @@ struct EncoderFrame {
   std::optional<ModeCommand> command;  // none: redundancy broken
   bool type1_error = false;
   std::optional<protocol::ErrorCause> error;  // type I or II raised by this frame
-  std::uint64_t position = 0;          // latched at FE1
+  std::uint64_t position = 0;          // latched at FE1, as sent
+  std::uint64_t true_position = 0;     // what the encoder measured (differs while unsettled)
+  bool error_present = false;          // an error source or F1/F2 fault active (ground truth, 3.4.1)
   std::optional<std::uint32_t> payload;      // the 8 + 16 bits received after the mode bits
   std::optional<std::uint32_t> supplement;   // the 8 + 16 bits of a 2.2 command supplement
   bool supplement_ignored = false;           // 2.3.1 note 1: 2.2 access while busy
@@ -175,6 +186,11 @@ class Encoder {
   void corrupt_word(const Selection& s, std::uint8_t address, std::uint16_t xor_mask);
   // A touch probe (word 14 type 5) deflected or released (2.3.4.4: the trigger status).
   void set_probe_deflected(bool deflected);
+  // Error paths that fail (or recover) while running; a coupling that slips by `steps`; the second
+  // position sensing drifting by `deviation` (safety functions, issue 7).
+  void set_stuck_error_messages(bool error1_stuck, bool error2_stuck);
+  void slip(std::int64_t steps);
+  void set_position2_fault(std::int64_t deviation);
   static constexpr Time kMaxFaultTime = sim::ms(10'000);
 
   // Internal signals worth tracing: what the encoder logic drives before its output delay.
@@ -229,6 +245,7 @@ class Encoder {
   void update_reference();
   __int128 unwrapped_position(Time t) const;
   bool error_message_2() const;
+  bool error_present() const;
   bool drives_bus() const;
   std::uint8_t status_byte(Information i) const;
   void append_additional_datum(Information selected, unsigned which);
@@ -306,6 +323,8 @@ class Encoder {
   bool incremental_ = false;                    // word 14: an incremental encoder
   bool touch_probe_ = false;                    // word 14: a touch probe (2.3.4.4)
   bool probe_deflected_ = false;
+  std::int64_t slip_ = 0;                       // steps the coupling slipped
+  unsigned unsettled_left_ = 0;                 // position answers still unsettled after start-up
   std::optional<Time> probe_switched_at_;       // the last trigger, for the timestamp (3.9.32)
   unsigned marks_to_reference_ = 1;             // 2 with distance-coded reference marks
   bool referenced_ = false;                     // RM (2.3.4.3)

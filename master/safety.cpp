@@ -1,0 +1,526 @@
+// The safety functions of the master (safety.hpp): the start-up checks before the axis is
+// released and the checks of every frame read afterwards.
+#include "master/safety.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "master/master.hpp"
+#include "protocol/parameters.hpp"
+
+namespace endatsim::master {
+namespace {
+
+using MC = protocol::ModeCommand;
+using I = protocol::Information;
+using P = Operation::Purpose;
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw std::invalid_argument(message);
+}
+
+// a - b as a signed distance on a ring of 2^bits positions.
+std::int64_t ring_distance(std::uint64_t a, std::uint64_t b, unsigned bits) {
+  const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
+  const std::uint64_t d = (a - b) & mask;
+  const std::uint64_t half = std::uint64_t{1} << (bits - 1);
+  return d >= half ? static_cast<std::int64_t>(d) - static_cast<std::int64_t>(half) * 2 : static_cast<std::int64_t>(d);
+}
+
+std::uint64_t magnitude(std::int64_t v) { return v < 0 ? static_cast<std::uint64_t>(-v) : static_cast<std::uint64_t>(v); }
+
+// 3.9.11: bits 15..13 scale the value in bits 12..0 by 1 .. 32; 110 and 111 are not supported.
+std::optional<std::uint32_t> scaled(std::uint16_t word) {
+  const unsigned code = word >> 13;
+  if (code > 5) return std::nullopt;
+  return static_cast<std::uint32_t>(word & 0x1FFF) << code;
+}
+
+// Known results (A4 examples; masters-in-the-field §4.2, checked there against TI's code and an
+// independent LFSR).
+constexpr CrcVector kCrcVectors[] = {
+    {25, false, true, true, 104462, 3},  // A4.4.2 MakeCrcPos example
+    {31, false, false, true, 0x7FFFFFFF, 22},
+    {36, false, false, true, 0x512345678ULL, 13},
+    {48, false, false, true, 0xABCD12345678ULL, 11},
+};
+
+std::uint8_t mrs_of(protocol::MemoryArea a) { return protocol::info(a).mrs; }
+
+}  // namespace
+
+std::string_view to_string(SafetyFunction f) {
+  switch (f) {
+    case SafetyFunction::ErrorMessages: return "error_messages";
+    case SafetyFunction::PositionValue2: return "position_value_2";
+    case SafetyFunction::ForcedDynamicSampling: return "forced_dynamic_sampling";
+    case SafetyFunction::CrcSelfTest: return "crc_self_test";
+    case SafetyFunction::StartupPositions: return "startup_positions";
+    case SafetyFunction::Checksums: return "checksums";
+    case SafetyFunction::Acknowledgements: return "acknowledgements";
+    case SafetyFunction::FollowingError: return "following_error";
+  }
+  return "?";
+}
+
+std::uint64_t MotionSetpoint::at(Time t, unsigned position_bits) const {
+  const __int128 range = __int128{1} << position_bits;
+  __int128 p = static_cast<__int128>(start) + static_cast<__int128>(counts_per_s) * t.count() / 1'000'000'000'000;
+  p %= range;
+  if (p < 0) p += range;
+  return static_cast<std::uint64_t>(p);
+}
+
+bool SafetyParams::enabled(SafetyFunction f) const {
+  switch (f) {
+    case SafetyFunction::ErrorMessages: return error_messages;
+    case SafetyFunction::PositionValue2: return position_value_2;
+    case SafetyFunction::ForcedDynamicSampling: return forced_dynamic_sampling;
+    case SafetyFunction::CrcSelfTest: return crc_self_test;
+    case SafetyFunction::StartupPositions: return startup_positions;
+    case SafetyFunction::Checksums: return checksums;
+    case SafetyFunction::Acknowledgements: return acknowledgements;
+    case SafetyFunction::FollowingError: return following_error;
+  }
+  return false;
+}
+
+void SafetyParams::validate() const {
+  require(forced_error1_port != 0 && forced_error2_port != 0 && forced_error1_port != forced_error2_port,
+          "safety forced_error1_port and forced_error2_port must differ and not be 0 (0 switches forcing off, 3.5.3)");
+  require(forced_sampling_deadline > Time::zero() && forced_sampling_deadline <= sim::ms(100),
+          "safety forced_sampling_deadline must be > 0 and <= 100 ms, got " + sim::format_time(forced_sampling_deadline));
+  require(startup_repetitions >= 2 && startup_repetitions <= 100,
+          "safety startup_repetitions must be 2 .. 100 (a comparison needs two), got " + std::to_string(startup_repetitions));
+  require(startup_max_reads >= startup_repetitions && startup_max_reads <= 10'000,
+          "safety startup_max_reads must be startup_repetitions (" + std::to_string(startup_repetitions) +
+              ") .. 10000, got " + std::to_string(startup_max_reads));
+  require(following_error_limit >= 1, "safety following_error_limit must be at least 1 LSB");
+}
+
+std::size_t SafetyReport::count(SafetyFunction f) const {
+  return static_cast<std::size_t>(
+      std::count_if(findings.begin(), findings.end(), [f](const SafetyFinding& x) { return x.function == f; }));
+}
+
+std::span<const CrcVector> crc_known_results() { return kCrcVectors; }
+
+std::optional<std::uint32_t> Position2Parameters::accuracy_at(double steps_per_s) const {
+  if (measuring_steps == 0 || max_velocity == 0) return std::nullopt;
+  // rpm from steps per revolution; m/min from the measuring step in nm (3.5.12, 3.5.18).
+  const double speed = linear ? std::abs(steps_per_s) * measuring_steps * 1e-9 * 60
+                              : std::abs(steps_per_s) * 60 / measuring_steps;
+  for (const Range& r : ranges)
+    if (r.conversion_factor != 0 && speed <= static_cast<double>(max_velocity) / r.conversion_factor) return r.accuracy;
+  return std::nullopt;
+}
+
+Position2Parameters position2_parameters(const std::vector<std::uint16_t>& m, const std::vector<std::uint16_t>& e) {
+  Position2Parameters p;
+  const auto type = m[14] >> 12;
+  p.linear = type <= 0x7;  // 3.5.7: types 0 .. 7 are linear (5 the touch probe)
+  p.measuring_steps = static_cast<std::uint32_t>(m[21]) << 16 | m[20];
+  p.max_velocity = m[32];
+  if (m[33] != 0xFFFF || m[34] != 0xFFFF) {
+    // 3.5.19: high byte the conversion factor c_i, low byte the accuracy a_i in LSB.
+    for (unsigned w : {33U, 34U}) p.ranges.push_back({static_cast<std::uint32_t>(m[w] >> 8), m[w] & 0xFFU});
+  } else {
+    // 3.5.19: 65535 in both: words 11 .. 14 of the 2.2 area (3.9.11), each value scaled.
+    for (unsigned w : {11U, 13U}) {
+      const auto c = scaled(e[w]), a = scaled(e[w + 1]);
+      if (c && a) p.ranges.push_back({*c, *a});
+    }
+  }
+  p.reversed = (e[16] & 1U) != 0;
+  p.comparison_bits = e[26];
+  const std::uint64_t raw = std::uint64_t{e[33]} << 32 | std::uint64_t{e[32]} << 16 | e[31];
+  p.offset = (raw & 0x8000'0000'0000ULL) != 0 ? static_cast<std::int64_t>(raw | 0xFFFF'0000'0000'0000ULL)
+                                               : static_cast<std::int64_t>(raw);
+  return p;
+}
+
+// ---- the start-up checks -------------------------------------------------------------------
+
+// Everything switched on, in the order a safety-oriented start-up runs it: the master's own CRC
+// evaluation, the encoder's parameters (checksums; what the position comparison needs), the
+// error paths, then the position read several times; the axis is released only after all.
+void Master::expand_safety_startup() {
+  const SafetyParams& s = params_.safety;
+  const std::size_t index = current_->script_index;
+  std::vector<Operation> plan;
+  const auto frame = [&](MC c, std::uint8_t address = 0, P purpose = P::None) {
+    Operation o;
+    o.script_index = index;
+    o.command = c;
+    o.address = address;
+    o.purpose = purpose;
+    plan.push_back(o);
+  };
+  const auto kind = [&](Operation::Kind k) {
+    Operation o;
+    o.kind = k;
+    o.script_index = index;
+    o.command = current_->command;
+    plan.push_back(o);
+  };
+  if (s.crc_self_test) kind(Operation::Kind::CrcSelfTest);
+  if (s.checksums || s.position_value_2) {
+    kind(Operation::Kind::VerifyChecksum);
+    kind(Operation::Kind::ReadEndat22Area);
+  }
+  if (s.forced_dynamic_sampling) {
+    // 3.5.3: force each error message, see it active in the next 2.2 query, then port 0 again.
+    const auto query = MC::EncoderSendPositionValuesWithAdditionalData;
+    frame(MC::EncoderSendPositionValuesAndReceiveTestCommand, s.forced_error1_port, P::ForcedTest);
+    frame(query, 0, P::ForcedError1);
+    frame(MC::EncoderSendPositionValuesAndReceiveTestCommand, s.forced_error2_port, P::ForcedTest);
+    frame(query, 0, P::ForcedError2);
+    frame(MC::EncoderSendPositionValuesAndReceiveTestCommand, 0x00, P::ForcedTest);
+    frame(query, 0, P::ForcedOff);
+  }
+  kind(Operation::Kind::StartupPositions);
+  if (s.position_value_2)  // 2.3.5.1: additional data 1 = position value 2, word 1 (it latches words 2, 3)
+    frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::PositionValue2Word1));
+  safety_.axis_released = false;
+  for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
+}
+
+// 2.5.1: a word of the 2.2 area (MRS BD, selectable only with 2.2 mode commands) comes back in
+// additional data 1 as address | LSB (I = 5) and address | MSB (I = 6) once Busy is reset. An
+// encoder whose word 37 (read just before) lacks the 2.2 command set has no such area.
+void Master::expand_endat22_read() {
+  endat22_lsb_.assign(64, std::nullopt);
+  endat22_msb_.assign(64, std::nullopt);
+  if (checksum_words_.size() < 48 || !protocol::parameters::decode_command_set(checksum_words_[37]).endat22) {
+    finish_checksums(false);
+    return;
+  }
+  const std::size_t index = current_->script_index;
+  std::vector<Operation> plan;
+  const auto frame = [&](MC c, std::uint8_t address, P purpose = P::None, unsigned word = 0) {
+    Operation o;
+    o.script_index = index;
+    o.command = c;
+    o.address = address;
+    o.purpose = purpose;
+    o.manufacturer_word = word;
+    plan.push_back(o);
+  };
+  const auto await = [&](P purpose, unsigned word) {
+    Operation o;
+    o.kind = Operation::Kind::AwaitNotBusy;
+    o.script_index = index;
+    o.count = 300;  // 50 us apart: beyond t_ac max (12 ms, 2.3.2)
+    o.cycle = sim::us(50);
+    o.purpose = purpose;
+    o.manufacturer_word = word;
+    plan.push_back(o);
+  };
+  const auto select = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+  frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
+  frame(select, mrs_of(protocol::MemoryArea::ManufacturerEndat22));
+  await(P::None, 0);
+  for (unsigned w = 0; w < 64; ++w) {
+    frame(MC::EncoderSendPositionValuesAndSendParameter, static_cast<std::uint8_t>(w));
+    await(P::Endat22Lsb, w);
+    frame(select, protocol::selection_mrs(I::MemoryParameterMsb));
+    frame(MC::EncoderSendPositionValuesWithAdditionalData, 0, P::Endat22Msb, w);
+    frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
+  }
+  for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
+}
+
+// Seed 001: "the CRC generation in the receiver chip ... must be ensured through a targeted
+// execution of bit sequences with known result": each known sequence must pass, and with one bit
+// of its CRC inverted must fail. Vectors at the master's own width come from the A4 algorithm.
+void Master::run_crc_self_test() {
+  std::vector<CrcVector> vectors(crc_known_results().begin(), crc_known_results().end());
+  vectors.push_back({position_bits_, false, true, true, 0x5A5A5A5A5A5AULL & ((std::uint64_t{1} << position_bits_) - 1), 0});
+  vectors.back().crc = protocol::make_crc_pos(position_bits_, false, true, true, vectors.back().position);
+  for (const CrcVector& v : vectors) {
+    const std::uint8_t computed = expected_crc_pos(v.bits, v.error1, v.error2, v.endat22, v.position);
+    const bool good = crc_passes(v.crc, computed);
+    const bool bad_rejected = !crc_passes(static_cast<std::uint8_t>(v.crc ^ 0x01), computed);
+    if (good && bad_rejected) continue;
+    find(SafetyFunction::CrcSelfTest, nullptr,
+         std::to_string(v.bits) + "-bit sequence of known CRC " + std::to_string(v.crc) + ": " +
+             (!good ? "rejected (the evaluation computes " + std::to_string(computed) + ")"
+                    : "a CRC with one bit inverted was accepted"));
+  }
+  const bool norm_ok = crc_passes(10, protocol::make_crc_norm(0xB9, 0x1234, params_.crc.generator)) &&
+                       !crc_passes(11, protocol::make_crc_norm(0xB9, 0x1234, params_.crc.generator));
+  if (!norm_ok) find(SafetyFunction::CrcSelfTest, nullptr, "parameter CRC of B9h / 1234h (known 10) evaluated wrong");
+}
+
+bool Master::crc_passes(std::uint8_t received, std::uint8_t expected) const {
+  return params_.crc.accept_any || received == expected;
+}
+
+// Multiple transmission at start-up: `startup_repetitions` consecutive values within the
+// tolerance release the axis; a careless master releases it with its first value.
+bool Master::startup_position_read(const FrameResult& f) {
+  const SafetyParams& s = params_.safety;
+  ++safety_.startup_reads;
+  if (f.outcome != FrameOutcome::Ok || f.error_detected) {
+    startup_agreeing_ = 0;
+  } else if (startup_agreeing_ == 0 ||
+             magnitude(ring_distance(f.position, startup_previous_, position_bits_)) > s.startup_tolerance) {
+    if (startup_agreeing_ != 0)
+      find(SafetyFunction::StartupPositions, &f,
+           "position " + std::to_string(f.position) + " differs from the previous " + std::to_string(startup_previous_) +
+               " by more than " + std::to_string(s.startup_tolerance) + " LSB");
+    startup_agreeing_ = 1;
+  } else {
+    ++startup_agreeing_;
+  }
+  startup_previous_ = f.position;
+  const unsigned needed = s.startup_positions ? s.startup_repetitions : 1;
+  if (startup_agreeing_ >= needed) {
+    static constexpr SafetyFunction kBlocking[] = {SafetyFunction::CrcSelfTest, SafetyFunction::Checksums,
+                                                   SafetyFunction::ForcedDynamicSampling};
+    const bool blocked = std::any_of(std::begin(kBlocking), std::end(kBlocking),
+                                     [this](SafetyFunction x) { return safety_.count(x) != 0; });
+    safety_.axis_released = !blocked;
+    if (!blocked) {
+      safety_.released_at = f.end;
+      safety_.release_frame = f.index;
+      safety_.release_position = f.position;
+    }
+    return true;
+  }
+  if (frames_left_ == 1)
+    find(SafetyFunction::StartupPositions, &f,
+         "no " + std::to_string(needed) + " agreeing position values in " + std::to_string(safety_.startup_reads) +
+             " reads: the axis stays blocked");
+  return false;
+}
+
+// ---- the checks of every frame ---------------------------------------------------------------
+
+void Master::find(SafetyFunction function, const FrameResult* f, std::string message) {
+  SafetyFinding x;
+  x.function = function;
+  x.at = f != nullptr ? f->end : kernel_.now();
+  if (f != nullptr) x.frame = f->index;
+  x.message = std::move(message);
+  safety_.findings.push_back(std::move(x));
+}
+
+void Master::note_safety(FrameResult& f) {
+  const bool position_answer = protocol::info(f.command).answer == protocol::AnswerFormat::Position;
+  collect_words(f);
+  check_acknowledgement(f);
+  if (!position_answer || f.outcome != FrameOutcome::Ok) return;
+  check_error_messages(f);
+  check_forced_sampling(f);
+  if (current_->purpose == P::None || current_->purpose == P::Endat22Msb) {
+    check_following_error(f);
+    check_position_value_2(f);
+  }
+  last_good_ = {f.position, f.start};
+}
+
+// 2.3.1: F1 is high-active, F2 low-active and sent only with 2.2 mode commands; a master that
+// evaluates both catches an error whose one path has failed, and sees when they disagree.
+void Master::check_error_messages(FrameResult& f) {
+  const bool v22 = protocol::info(f.command).version == protocol::EndatVersion::V2_2;
+  const bool use_f2 = params_.safety.error_messages && v22;
+  f.error_detected = f.error1 || (use_f2 && !f.error2);
+  for (const auto& d : f.additional_data)
+    if (d.crc_ok && d.information() == I::OperatingStatusErrorSources) safety_.operating_status_error_sources = d.data;
+  if (forcing_ || current_->purpose == P::ForcedTest) return;  // 3.5.3: forced on purpose
+  if (!params_.safety.error_messages) return;
+  const bool disagree = use_f2 && f.error1 == f.error2;
+  if (disagree && !disagree_state_)
+    find(SafetyFunction::ErrorMessages, &f,
+         std::string("error messages disagree: F1 ") + (f.error1 ? "active" : "inactive") + ", F2 " +
+             (f.error2 ? "inactive" : "active") + " (one error path has failed)");
+  if (f.error_detected && !error_state_) {
+    find(SafetyFunction::ErrorMessages, &f,
+         std::string("error message: F1 = ") + (f.error1 ? "1" : "0") + (v22 ? std::string(", F2 = ") + (f.error2 ? "1" : "0") : ""));
+    error_sources_due_ = params_.safety.read_error_sources;
+  }
+  disagree_state_ = disagree;
+  error_state_ = f.error_detected;
+}
+
+void Master::check_forced_sampling(const FrameResult& f) {
+  const P purpose = current_->purpose;
+  if (purpose == P::ForcedTest) {
+    forced_sent_at_ = f.end;
+    forcing_ = (f.supplement.value_or(0) >> 16) != 0;
+    return;
+  }
+  if (purpose != P::ForcedError1 && purpose != P::ForcedError2 && purpose != P::ForcedOff) return;
+  const Time after = forced_sent_at_ ? f.start - *forced_sent_at_ : Time::zero();
+  const Time deadline = params_.safety.forced_sampling_deadline;
+  const auto fail = [&](const std::string& what) { find(SafetyFunction::ForcedDynamicSampling, &f, what); };
+  if (after > deadline)
+    fail("the query came " + sim::format_time(after) + " after the test command, later than " + sim::format_time(deadline));
+  if (purpose == P::ForcedError1 && !f.error1)
+    fail("error message 1 did not switch to its active level (HIGH) when forced (3.5.3)");
+  if (purpose == P::ForcedError2 && f.error2)
+    fail("error message 2 did not switch to its active level (LOW) when forced (3.5.3)");
+  if (purpose == P::ForcedOff && (f.error1 || !f.error2))
+    fail("an error message stayed active after forced sampling was switched off (port 0)");
+}
+
+void Master::check_following_error(const FrameResult& f) {
+  if (!params_.safety.following_error) return;
+  const std::uint64_t setpoint = params_.safety.setpoint.at(f.start, position_bits_);
+  const std::int64_t lag = ring_distance(f.position, setpoint, position_bits_);
+  const bool beyond = magnitude(lag) > params_.safety.following_error_limit;
+  if (beyond && !lag_state_)
+    find(SafetyFunction::FollowingError, &f,
+         "following error " + std::to_string(lag) + " LSB (position " + std::to_string(f.position) + ", set-point " +
+             std::to_string(setpoint) + ", limit " + std::to_string(params_.safety.following_error_limit) + ")");
+  lag_state_ = beyond;
+}
+
+// 2.6 (echo) and 2.6.1 (I = 5 / 6 after Busy): the encoder acknowledges what it wrote.
+void Master::check_acknowledgement(const FrameResult& f) {
+  if (!params_.safety.acknowledgements) return;
+  const auto sent_address = static_cast<std::uint8_t>(f.payload.value_or(0) >> 16);
+  const auto sent_value = static_cast<std::uint16_t>(f.payload.value_or(0));
+  if (f.command == MC::EncoderReceiveParameters &&
+      (f.outcome == FrameOutcome::Ok || f.outcome == FrameOutcome::EchoMismatch) &&
+      (f.echo_address != sent_address || f.echo_parameter != sent_value))
+    find(SafetyFunction::Acknowledgements, &f,
+         "2.1 write of " + std::to_string(sent_value) + " to address " + std::to_string(sent_address) +
+             " acknowledged as " + std::to_string(f.echo_parameter) + " at " + std::to_string(f.echo_address));
+  if (f.command == MC::EncoderSendPositionValuesAndReceiveParameter && f.supplement && f.outcome == FrameOutcome::Ok)
+    acknowledgement_due_ = Written{static_cast<std::uint8_t>(*f.supplement >> 16), static_cast<std::uint16_t>(*f.supplement)};
+  if (!acknowledgement_due_ || f.outcome != FrameOutcome::Ok) return;
+  for (const auto& d : f.additional_data) {
+    const bool lsb = d.information() == I::MemoryParameterLsb, msb = d.information() == I::MemoryParameterMsb;
+    if (!d.crc_ok || d.busy() || (!lsb && !msb)) continue;
+    const auto want = static_cast<std::uint8_t>(lsb ? acknowledgement_due_->value : acknowledgement_due_->value >> 8);
+    const auto address = static_cast<std::uint8_t>(d.data >> 8), byte = static_cast<std::uint8_t>(d.data);
+    if (address != acknowledgement_due_->address || byte != want)
+      find(SafetyFunction::Acknowledgements, &f,
+           std::string("2.2 write acknowledged (I = ") + (lsb ? "5" : "6") + ") as address " + std::to_string(address) +
+               ", byte " + std::to_string(byte) + "; written: address " + std::to_string(acknowledgement_due_->address) +
+               ", byte " + std::to_string(want));
+    acknowledgement_due_.reset();
+  }
+}
+
+// The words the safety start-up reads: the 2.1 manufacturer words come through VerifyChecksum,
+// those of the 2.2 area through additional data 1.
+void Master::collect_words(const FrameResult& f) {
+  const P purpose = current_->purpose;
+  if (purpose == P::ErrorSources && f.outcome == FrameOutcome::Ok) safety_.error_sources = f.echo_parameter;
+  if (purpose != P::Endat22Lsb && purpose != P::Endat22Msb) return;
+  if (f.outcome != FrameOutcome::Ok || f.additional_data.empty()) return;
+  const unsigned w = current_->manufacturer_word;
+  for (const auto& d : f.additional_data) {
+    if (!d.crc_ok || d.busy() || (d.data >> 8) != w) continue;
+    if (purpose == P::Endat22Lsb && d.information() == I::MemoryParameterLsb) endat22_lsb_.at(w) = d.data & 0xFF;
+    if (purpose == P::Endat22Msb && d.information() == I::MemoryParameterMsb) endat22_msb_.at(w) = d.data & 0xFF;
+  }
+  if (w == 63 && purpose == P::Endat22Msb) finish_checksums(true);
+}
+
+// 3.5.26 / 3.9.37: word 47 = sum of words 4 .. 46, word 63 = sum of words 0 .. 62, overflow ignored.
+void Master::finish_checksums(bool endat22) {
+  std::vector<std::uint16_t> e(64, 0);
+  bool complete = endat22;
+  for (unsigned w = 0; w < 64; ++w) {
+    complete = complete && endat22_lsb_[w] && endat22_msb_[w];
+    e[w] = static_cast<std::uint16_t>(endat22_msb_[w].value_or(0) << 8 | endat22_lsb_[w].value_or(0));
+  }
+  std::uint16_t sum = 0;
+  for (unsigned w = 0; w < 63; ++w) sum = static_cast<std::uint16_t>(sum + e[w]);
+  if (endat22) {
+    safety_.checksum63_stored = e[63];
+    safety_.checksum63_computed = sum;
+  }
+  if (checksum_) {
+    safety_.checksum47_stored = checksum_->stored;
+    safety_.checksum47_computed = checksum_->computed;
+  }
+  const bool ok47 = checksum_ && checksum_->ok();
+  if (params_.safety.checksums) {
+    if (!ok47)
+      find(SafetyFunction::Checksums, nullptr,
+           checksum_ && checksum_->complete ? "word 47 " + std::to_string(checksum_->stored) + " but words 4 .. 46 sum to " +
+                                                  std::to_string(checksum_->computed) + " (3.5.26)"
+                                            : "the words 4 .. 47 could not all be read");
+    if (endat22 && !complete) find(SafetyFunction::Checksums, nullptr, "the words of the EnDat 2.2 area could not all be read");
+    else if (endat22 && e[63] != sum)
+      find(SafetyFunction::Checksums, nullptr,
+           "word 63 of the EnDat 2.2 area " + std::to_string(e[63]) + " but words 0 .. 62 sum to " + std::to_string(sum) +
+               " (3.9.37)");
+  }
+  if (params_.safety.position_value_2) {
+    if (complete && checksum_ && checksum_->complete)
+      position2_parameters_ = position2_parameters(checksum_words_, e);
+    else
+      find(SafetyFunction::PositionValue2, nullptr, "the encoder's parameters for the comparison could not be read");
+  }
+}
+
+// 2.3.5.1: position value 2 is latched when word 1 is read; above 16 bits words 2 and 3 follow
+// in later frames (a rolling selection: each frame selects the word the next one carries).
+void Master::roll_position_value_2() {
+  const unsigned words = (position_bits_ + 15) / 16;
+  if (!params_.safety.position_value_2 || !selected_[0] || words < 2 || current_->purpose != P::None ||
+      frame_.command != MC::EncoderSendPositionValuesWithAdditionalData)
+    return;
+  const auto selected = protocol::information_of_mrs(selection_mrs_[0]);
+  if (selected < I::PositionValue2Word1 || selected > I::PositionValue2Word3) return;
+  const unsigned now = static_cast<unsigned>(selected) - static_cast<unsigned>(I::PositionValue2Word1) + 1;
+  const auto next = static_cast<I>(static_cast<unsigned>(I::PositionValue2Word1) + now % words);
+  frame_.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+  supplement_word_ = std::uint32_t{protocol::selection_mrs(next)} << 16;
+}
+
+void Master::check_position_value_2(const FrameResult& f) {
+  if (!params_.safety.position_value_2 || !position2_parameters_) return;
+  for (const auto& d : f.additional_data) {
+    if (!d.crc_ok || d.information() < I::PositionValue2Word1 || d.information() > I::PositionValue2Word3) continue;
+    const unsigned k = static_cast<unsigned>(d.information()) - static_cast<unsigned>(I::PositionValue2Word1);
+    if (k == 0) {
+      double velocity = 0;
+      if (last_good_ && f.start > last_good_->second)
+        velocity = static_cast<double>(ring_distance(f.position, last_good_->first, position_bits_)) * 1e12 /
+                   static_cast<double>((f.start - last_good_->second).count());
+      position2_ = Position2Read{f.position, f.start, f.index, velocity, 0, 0};
+    }
+    if (!position2_ || position2_->words != k) {
+      position2_.reset();
+      continue;
+    }
+    position2_->value |= std::uint64_t{d.data} << (16 * k);
+    ++position2_->words;
+  }
+  const unsigned words = std::min(3U, (position_bits_ + 15) / 16);
+  if (!position2_ || position2_->words < words) return;
+  const Position2Read r = *position2_;
+  position2_.reset();
+  const Position2Parameters& p = *position2_parameters_;
+  const auto accuracy = p.accuracy_at(r.velocity);
+  if (!accuracy) {
+    ++safety_.comparisons_out_of_range;
+    return;
+  }
+  ++safety_.position_comparisons;
+  // 3.9.24: position value 2 = position value 1 + offset (3.9.13: or minus it, reversed).
+  const std::uint64_t expected = p.reversed ? static_cast<std::uint64_t>(p.offset) - r.position1
+                                            : r.position1 + static_cast<std::uint64_t>(p.offset);
+  const std::int64_t deviation = ring_distance(r.value, expected, position_bits_);
+  // UNCERTAIN (3.9.20): N bits "relevant for the comparison" read as a comparison at the
+  // resolution of the N most significant bits: deviations below 2^(bits - N) LSB do not count.
+  std::uint64_t tolerance = *accuracy;
+  if (p.comparison_bits > 0 && p.comparison_bits < position_bits_)
+    tolerance = std::max<std::uint64_t>(tolerance, std::uint64_t{1} << (position_bits_ - p.comparison_bits));
+  if (magnitude(deviation) > tolerance)
+    find(SafetyFunction::PositionValue2, &f,
+         "position value 2 " + std::to_string(r.value) + " deviates " + std::to_string(deviation) +
+             " LSB from position value 1 " + std::to_string(r.position1) + " (frame #" + std::to_string(r.frame) +
+             "), more than the stored accuracy " + std::to_string(tolerance) + " LSB at " +
+             std::to_string(static_cast<long long>(r.velocity)) + " steps/s");
+}
+
+}  // namespace endatsim::master

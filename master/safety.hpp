@@ -1,0 +1,127 @@
+// master/safety.hpp — what subsequent electronics for safety-oriented designs do beyond reading
+// positions (seed 001 "Safety Techniques"; spec 1, 2.3.1, 3.5.3, 3.5.19, 3.5.26, 3.9.11, 3.9.20,
+// 3.9.24, 3.9.37). Each function can be switched off, so that a scenario shows what a master
+// without it misses; what a function catches is a SafetyFinding.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "protocol/protocol.hpp"
+#include "sim/time.hpp"
+
+namespace endatsim::master {
+
+using sim::Time;
+
+enum class SafetyFunction : std::uint8_t {
+  ErrorMessages,          // F1 and F2 evaluated separately (2.3.1: two independent error messages)
+  PositionValue2,         // position value 2 compared with position value 1 (3.9.11, 3.9.20, 3.9.24)
+  ForcedDynamicSampling,  // error messages forced and verified (3.5.3)
+  CrcSelfTest,            // the master's own CRC evaluation fed with sequences of known result
+  StartupPositions,       // multiple transmission of the position value at start-up
+  Checksums,              // words 47 (3.5.26) and 63 (3.9.37)
+  Acknowledgements,       // what the encoder acknowledges equals what was written (2.6, 2.6.1)
+  FollowingError,         // servo lag against the commanded motion
+};
+inline constexpr std::array kSafetyFunctions{
+    SafetyFunction::ErrorMessages,    SafetyFunction::PositionValue2, SafetyFunction::ForcedDynamicSampling,
+    SafetyFunction::CrcSelfTest,      SafetyFunction::StartupPositions, SafetyFunction::Checksums,
+    SafetyFunction::Acknowledgements, SafetyFunction::FollowingError};
+std::string_view to_string(SafetyFunction f);  // "error_messages", ...
+
+// The motion the drive commands: the set-point the following error is measured against.
+struct MotionSetpoint {
+  std::uint64_t start = 0;
+  std::int64_t counts_per_s = 0;
+  std::uint64_t at(Time t, unsigned position_bits) const;
+};
+
+struct SafetyParams {
+  bool error_messages = false;
+  bool read_error_sources = true;  // with error_messages: read word 0 when an error message appears (3.4.1)
+  bool position_value_2 = false;
+  bool forced_dynamic_sampling = false;
+  // 3.5.3: port addresses that force error message 1 / 2 (the table lost a column; README).
+  std::uint8_t forced_error1_port = 0x01;
+  std::uint8_t forced_error2_port = 0x09;
+  Time forced_sampling_deadline = sim::ms(1);  // 3.5.3: "with one of the next EnDat 2.2 queries (< 1 ms)"
+  bool crc_self_test = false;
+  bool startup_positions = false;
+  unsigned startup_repetitions = 3;        // consecutive values that must agree before release
+  unsigned startup_max_reads = 20;         // then the axis stays blocked
+  std::uint64_t startup_tolerance = 0;     // LSB two consecutive values may differ by
+  bool checksums = false;
+  bool acknowledgements = false;
+  bool following_error = false;
+  std::uint64_t following_error_limit = 1000;  // LSB
+  MotionSetpoint setpoint;
+
+  bool enabled(SafetyFunction f) const;
+  // Throws std::invalid_argument naming the parameter and its limit.
+  void validate() const;
+};
+
+struct SafetyFinding {
+  SafetyFunction function = SafetyFunction::ErrorMessages;
+  Time at{0};
+  std::optional<std::uint64_t> frame;
+  std::string message;
+};
+
+// The accuracy of position value 2 against position value 1 as the encoder states it: velocity
+// ranges with their accuracy (3.5.19 words 33/34, or 3.9.11 words 11..14 of the 2.2 area when
+// those hold 65535), the offset (3.9.24), the direction (3.9.13) and the bits compared (3.9.20).
+struct Position2Parameters {
+  bool linear = false;
+  std::uint32_t measuring_steps = 0;  // 3.5.12 words 20/21: nm (linear) or steps per revolution
+  std::uint16_t max_velocity = 0;     // 3.5.18 word 32: m/min or rpm
+  struct Range {
+    std::uint32_t conversion_factor = 0;  // c_i: the range ends at max_velocity / c_i
+    std::uint32_t accuracy = 0;           // a_i in LSB
+  };
+  std::vector<Range> ranges;
+  bool reversed = false;        // word 16 of the 2.2 area, bit 0
+  unsigned comparison_bits = 0;  // word 26; 0: all bits
+  std::int64_t offset = 0;       // words 31..33, 48-bit two's complement
+  // The accuracy at this velocity (measuring steps per second); none above the last range.
+  std::optional<std::uint32_t> accuracy_at(double steps_per_s) const;
+};
+// From the 48 words of the encoder manufacturer (2.1) and the 64 of the 2.2 area (3.9).
+Position2Parameters position2_parameters(const std::vector<std::uint16_t>& manufacturer,
+                                         const std::vector<std::uint16_t>& endat22);
+
+// What the safety functions found and decided; the diagnosis the master collected.
+struct SafetyReport {
+  std::vector<SafetyFinding> findings;
+  bool axis_released = false;
+  Time released_at{0};
+  std::optional<std::uint64_t> release_frame;
+  std::uint64_t release_position = 0;
+  unsigned startup_reads = 0;
+  std::uint64_t position_comparisons = 0;      // position value 2 against position value 1
+  std::uint64_t comparisons_out_of_range = 0;  // velocity above every range: nothing to compare with
+  std::optional<std::uint16_t> error_sources;  // word 0 as read after an error message (3.4.1)
+  std::optional<std::uint16_t> operating_status_error_sources;  // additional data 2 (2.3.5.3)
+  std::optional<std::uint16_t> checksum47_stored, checksum47_computed, checksum63_stored, checksum63_computed;
+  std::size_t count(SafetyFunction f) const;
+};
+
+// The bit sequences of known result the CRC self-test feeds to the master's CRC evaluation: the
+// spec's examples (A4) and the reference notes' vectors for other widths (masters-in-the-field
+// §4.2). A manufacturer keeps such a table; here it is data.
+struct CrcVector {
+  unsigned bits;
+  bool error1, error2, endat22;
+  std::uint64_t position;
+  std::uint8_t crc;
+};
+std::span<const CrcVector> crc_known_results();
+
+}  // namespace endatsim::master
