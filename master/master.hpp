@@ -394,6 +394,7 @@ class Master {
   std::optional<Written> acknowledgement_due_;
   unsigned startup_agreeing_ = 0;
   std::uint64_t startup_previous_ = 0;
+  Time startup_previous_at_{0};
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
   bool selected_[2] = {false, false};
 

@@ -257,15 +257,19 @@ bool Master::crc_passes(std::uint8_t received, std::uint8_t expected) const {
   return params_.crc.accept_any || received == expected;
 }
 
-// Multiple transmission at start-up: `startup_repetitions` consecutive values within the
-// tolerance release the axis; a careless master releases it with its first value.
+// Multiple transmission at start-up: `startup_repetitions` consecutive values that agree (after
+// the commanded motion between them, within the tolerance) release the axis; a careless master
+// releases it with its first value.
 bool Master::startup_position_read(const FrameResult& f) {
   const SafetyParams& s = params_.safety;
   ++safety_.startup_reads;
   if (f.outcome != FrameOutcome::Ok || f.error_detected) {
     startup_agreeing_ = 0;
-  } else if (startup_agreeing_ == 0 ||
-             magnitude(ring_distance(f.position, startup_previous_, position_bits_)) > s.startup_tolerance) {
+  } else if (const double moved = static_cast<double>(s.setpoint.counts_per_s) *
+                                  static_cast<double>((f.start - startup_previous_at_).count()) * 1e-12;
+             startup_agreeing_ == 0 ||
+             std::abs(static_cast<double>(ring_distance(f.position, startup_previous_, position_bits_)) - moved) >
+                 static_cast<double>(s.startup_tolerance)) {
     if (startup_agreeing_ != 0)
       find(SafetyFunction::StartupPositions, &f,
            "position " + std::to_string(f.position) + " differs from the previous " + std::to_string(startup_previous_) +
@@ -275,6 +279,7 @@ bool Master::startup_position_read(const FrameResult& f) {
     ++startup_agreeing_;
   }
   startup_previous_ = f.position;
+  startup_previous_at_ = f.start;
   const unsigned needed = s.startup_positions ? s.startup_repetitions : 1;
   if (startup_agreeing_ >= needed) {
     static constexpr SafetyFunction kBlocking[] = {SafetyFunction::CrcSelfTest, SafetyFunction::Checksums,

@@ -56,7 +56,7 @@ struct SafetyParams {
   bool startup_positions = false;
   unsigned startup_repetitions = 3;        // consecutive values that must agree before release
   unsigned startup_max_reads = 20;         // then the axis stays blocked
-  std::uint64_t startup_tolerance = 0;     // LSB two consecutive values may differ by
+  std::uint64_t startup_tolerance = 1;     // LSB two consecutive values may differ by, beyond the set-point's motion
   bool checksums = false;
   bool acknowledgements = false;
   bool following_error = false;

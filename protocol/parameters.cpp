@@ -5,6 +5,27 @@
 #include <stdexcept>
 
 namespace endatsim::protocol::parameters {
+
+namespace {
+constexpr std::string_view kErrorBits[] = {"lighting",   "signal amplitude", "position", "overvoltage",
+                                           "undervoltage", "overcurrent",     "battery"};
+constexpr std::string_view kWarningBits[] = {"frequency collision", "temperature exceeded",
+                                             "light-source control reserve", "battery charge",
+                                             "reference point not reached", "cyclic mode",
+                                             "limit position", "standby", "diagnostics"};
+}  // namespace
+
+std::span<const std::string_view> error_bit_names() { return kErrorBits; }
+std::span<const std::string_view> warning_bit_names() { return kWarningBits; }
+
+std::string bits_string(std::uint16_t word, std::span<const std::string_view> names) {
+  std::string s;
+  for (unsigned b = 0; b < 16; ++b) {
+    if (((word >> b) & 1U) == 0) continue;
+    s += (s.empty() ? "" : ", ") + (b < names.size() ? std::string(names[b]) : "bit " + std::to_string(b));
+  }
+  return s.empty() ? "none" : s;
+}
 namespace {
 
 std::uint16_t u16(unsigned v) { return static_cast<std::uint16_t>(v); }

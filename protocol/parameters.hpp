@@ -34,6 +34,12 @@ constexpr std::uint32_t join32(std::uint16_t low, std::uint16_t high) {
   return static_cast<std::uint32_t>(high) << 16 | low;
 }
 
+// ---- 3.4.1 / 3.4.2 operating status words 0 and 1: error and warning bits ---------------------
+// Index = bit. Bits 7 .. 15 are "currently not assigned" and show as "bit 7" ... in strings.
+std::span<const std::string_view> error_bit_names();    // 2^0 lighting .. 2^6 battery
+std::span<const std::string_view> warning_bit_names();  // 2^0 frequency collision .. 2^8 diagnostics
+std::string bits_string(std::uint16_t word, std::span<const std::string_view> names);  // "lighting, position" or "none"
+
 // ---- 3.4.4 operating status word 3: function initialization ------------------------------------
 // Each function is a bit pair stored inversely (or a single bit); the value activates it only
 // after "Encoder receive reset" or power-on. A pair stored equally leaves the function at its

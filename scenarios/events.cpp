@@ -121,6 +121,15 @@ void EventDriver::apply_to_encoder(const Event& e) {
       encoder_.set_probe_deflected(true);
       kernel_.schedule(*e.duration, sim::bind<&EventDriver::release_probe>(this));
       break;
+    case K::StuckErrorMessages:
+      encoder_.set_stuck_error_messages(e.error_message_1_stuck, e.error_message_2_stuck);
+      break;
+    case K::Slip:
+      encoder_.slip(e.steps);
+      break;
+    case K::Position2Fault:
+      encoder_.set_position2_fault(e.steps);
+      break;
     default:
       break;
   }

@@ -237,7 +237,9 @@ protocol::Information read_information(const Node& n) {
 void read_sensors(const Node& n, slave::Sensors& s) {
   Object o(n);
   const auto tenth_kelvin = [](const Node& v) { return static_cast<std::uint16_t>(v.as_uint(0, 0xFFFF)); };
-  if (auto v = o.opt("position2_offset")) s.position2_offset = v->as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
+  if (auto v = o.opt("position2_offset")) s.position2_offset = v->as_int(-(std::int64_t{1} << 47), (std::int64_t{1} << 47) - 1);
+  if (auto v = o.opt("position2_reversed")) s.position2_reversed = v->as_bool();
+  if (auto v = o.opt("position2_fault")) s.position2_fault = v->as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
   if (auto v = o.opt("temperature_1")) s.temperature1 = tenth_kelvin(*v);
   if (auto v = o.opt("temperature_2")) s.temperature2 = tenth_kelvin(*v);
   if (auto v = o.opt("additional_sensors")) s.additional_sensors = read_words(*v, 16);
@@ -350,6 +352,9 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     p.type1 = v->as_enum<slave::Type1Handling>(
         {{"abort_high", slave::Type1Handling::AbortHigh}, {"no_start_bit", slave::Type1Handling::NoStartBit}});
   if (auto v = o.opt("error1")) p.error1 = v->as_bool();
+  if (auto v = o.opt("error_message_1_stuck")) p.error_message_1_stuck = v->as_bool();
+  if (auto v = o.opt("error_message_2_stuck")) p.error_message_2_stuck = v->as_bool();
+  if (auto v = o.opt("unsettled_positions")) p.unsettled_positions = static_cast<unsigned>(v->as_uint(0, 1000));
   if (auto v = o.opt("error_sources")) p.error_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
   if (auto v = o.opt("warning_sources")) p.warning_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
   if (auto v = o.opt("t_ac_read")) p.t_ac_read = v->as_duration(Time::zero(), sim::ms(12));
@@ -389,6 +394,31 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("memory")) {
     read_memory(*v, p);
     validated(*v, [&] { p.validate(); });
+  }
+  o.done();
+  validated(n, [&] { p.validate(); });
+}
+
+void read_safety(const Node& n, master::SafetyParams& p) {
+  Object o(n);
+  for (const auto& [key, flag] : {std::pair{"error_messages", &p.error_messages}, {"read_error_sources", &p.read_error_sources},
+                                  {"position_value_2", &p.position_value_2},
+                                  {"forced_dynamic_sampling", &p.forced_dynamic_sampling}, {"crc_self_test", &p.crc_self_test},
+                                  {"startup_positions", &p.startup_positions}, {"checksums", &p.checksums},
+                                  {"acknowledgements", &p.acknowledgements}, {"following_error", &p.following_error}})
+    if (auto v = o.opt(key)) *flag = v->as_bool();
+  if (auto v = o.opt("forced_error1_port")) p.forced_error1_port = static_cast<std::uint8_t>(v->as_word(0xFF));
+  if (auto v = o.opt("forced_error2_port")) p.forced_error2_port = static_cast<std::uint8_t>(v->as_word(0xFF));
+  if (auto v = o.opt("forced_sampling_deadline")) p.forced_sampling_deadline = v->as_duration(sim::ps(1), sim::ms(100));
+  if (auto v = o.opt("startup_repetitions")) p.startup_repetitions = static_cast<unsigned>(v->as_uint(2, 100));
+  if (auto v = o.opt("startup_max_reads")) p.startup_max_reads = static_cast<unsigned>(v->as_uint(2, 10'000));
+  if (auto v = o.opt("startup_tolerance")) p.startup_tolerance = v->as_uint(0, (std::uint64_t{1} << 48) - 1);
+  if (auto v = o.opt("following_error_limit")) p.following_error_limit = v->as_uint(1, (std::uint64_t{1} << 48) - 1);
+  if (auto v = o.opt("setpoint")) {
+    Object m(*v);
+    if (auto s = m.opt("start")) p.setpoint.start = s->as_uint(0, (std::uint64_t{1} << 48) - 1);
+    if (auto s = m.opt("counts_per_s")) p.setpoint.counts_per_s = s->as_int(-(std::int64_t{1} << 48), std::int64_t{1} << 48);
+    m.done();
   }
   o.done();
   validated(n, [&] { p.validate(); });
@@ -434,8 +464,10 @@ void read_master(const Node& n, master::MasterParams& p) {
     read_crc_generator(c, p.crc.generator);
     if (auto s = c.opt("endat22_rule_for_21")) p.crc.endat22_rule_for_21 = s->as_bool();
     if (auto s = c.opt("table_fault_width")) p.crc.table_fault_width = static_cast<unsigned>(s->as_uint(0, 48));
+    if (auto s = c.opt("accept_any")) p.crc.accept_any = s->as_bool();
     c.done();
   }
+  if (auto v = o.opt("safety")) read_safety(*v, p.safety);
   if (auto v = o.opt("careful")) {
     Object c(*v);
     auto& k = p.careful;
@@ -632,13 +664,15 @@ master::Operation read_operation(const Node& n, std::optional<FrameExpectation>&
        {"test_command", "test_command"}, {"select_additional_data", "select_additional_data"},
        {"communication_command", "communication_command"}, {"reset", "reset"}, {"error_reset", "error_reset"},
        {"send_test_values", "send_test_values"}, {"power_on_sequence", "power_on_sequence"},
-       {"startup_routine", "startup_routine"}, {"verify_checksum", "verify_checksum"}}));
+       {"startup_routine", "startup_routine"}, {"verify_checksum", "verify_checksum"},
+       {"safety_startup", "safety_startup"}}));
   op.kind = name == "measure_delay"       ? Kind::MeasureDelay
             : name == "wait"              ? Kind::Wait
             : name == "await_not_busy"    ? Kind::AwaitNotBusy
             : name == "power_on_sequence" ? Kind::PowerOnSequence
             : name == "startup_routine"   ? Kind::StartupRoutine
             : name == "verify_checksum"   ? Kind::VerifyChecksum
+            : name == "safety_startup"    ? Kind::SafetyStartup
                                           : Kind::ReadPosition;
   if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), sim::ms(60'000));
   if (auto v = o.opt("expect")) {
@@ -655,6 +689,10 @@ master::Operation read_operation(const Node& n, std::optional<FrameExpectation>&
     if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
   } else if (name == "read_position" || name == "frame") {
     read_frame_operation(o, name, op);
+  } else if (op.kind == Kind::SafetyStartup) {
+    if (auto v = o.opt("command")) op.command = read_command(*v);
+    if (protocol::info(op.command).answer != protocol::AnswerFormat::Position)
+      o.req("command").fail("a position command for the start-up reads");
   } else if (op.kind == Kind::ReadPosition) {
     read_access(o, name, op);
   }
@@ -683,7 +721,8 @@ void read_script(const Node& n, std::vector<master::Operation>& script,
 
 constexpr std::string_view kEventKinds =
     "set_cable, bit_flip, glitch, stuck, random_bit_errors, late_driver_release, loss_of_failsafe, error_sources, "
-    "memory_access_time, t_cal, power_interruption, corrupt_word or probe_trigger";
+    "memory_access_time, t_cal, power_interruption, corrupt_word, probe_trigger, stuck_error_messages, slip or "
+    "position2_fault";
 
 line::ObservationPoint read_end(Object& o) {
   return o.req("end").as_enum<line::ObservationPoint>(
@@ -760,6 +799,16 @@ void read_encoder_fault(Object& f, Event& e) {
       if (e.xor_mask == 0) f.req("xor").fail("a mask with at least one bit set");
       break;
     }
+    case K::StuckErrorMessages:
+      if (auto v = f.opt("error_message_1")) e.error_message_1_stuck = v->as_bool();
+      if (auto v = f.opt("error_message_2")) e.error_message_2_stuck = v->as_bool();
+      break;
+    case K::Slip:
+      e.steps = f.req("steps").as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
+      break;
+    case K::Position2Fault:
+      e.steps = f.req("deviation").as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
+      break;
     default:
       break;
   }
@@ -774,7 +823,8 @@ Event read_event(const Node& item, const line::LineParams& line) {
       {"loss_of_failsafe", K::LossOfFailsafe},   {"error_sources", K::ErrorSources},
       {"memory_access_time", K::MemoryAccessTime}, {"t_cal", K::TCal},
       {"power_interruption", K::PowerInterruption}, {"corrupt_word", K::CorruptWord},
-      {"probe_trigger", K::ProbeTrigger}};
+      {"probe_trigger", K::ProbeTrigger}, {"stuck_error_messages", K::StuckErrorMessages},
+      {"slip", K::Slip},                  {"position2_fault", K::Position2Fault}};
   Object o(item);
   Event e;
   if (auto v = o.opt("at")) e.at = v->as_duration(Time::zero(), sim::ms(60'000));
@@ -903,6 +953,23 @@ void read_expect(const Node& n, Expectations& e) {
     st.done();
     e.startup = se;
   }
+  if (auto v = o.opt("safety")) {
+    Object sf(*v);
+    SafetyExpectation se;
+    static const std::vector<std::string> kNames = [] {
+      std::vector<std::string> names;
+      for (auto f : master::kSafetyFunctions) names.emplace_back(master::to_string(f));
+      return names;
+    }();
+    static const std::vector<std::string_view> kViews(kNames.begin(), kNames.end());
+    if (auto x = sf.opt("findings")) read_count_map(*x, se.findings, kViews);
+    if (auto x = sf.opt("axis_released")) se.axis_released = x->as_bool();
+    if (auto x = sf.opt("release_position_correct")) se.release_position_correct = x->as_bool();
+    if (auto x = sf.opt("undetected_errors")) se.undetected_errors = x->as_count();
+    if (auto x = sf.opt("position_comparisons")) se.position_comparisons = x->as_count();
+    sf.done();
+    e.safety = se;
+  }
   if (auto v = o.opt("memory")) {
     if (!v->raw().is_array()) v->fail("an array of {\"area\", \"address\", \"value\"}");
     for (std::size_t i = 0; i < v->raw().size(); ++i) {
@@ -960,6 +1027,10 @@ Scenario read_scenario(const json& root, const std::string& file) {
   }
   read_master(o.req("master"), s.master);
   s.master.seed = s.seed;
+  // Without a set-point of its own, the drive commands the motion the encoder makes.
+  const json& m = root.at("master");
+  if (!m.contains("safety") || !m["safety"].is_object() || !m["safety"].contains("setpoint"))
+    s.master.safety.setpoint = {s.encoder.motion.start, s.encoder.motion.counts_per_s};
   if (auto v = o.opt("checker")) read_checker(*v, s.checker);
   read_script(o.req("script"), s.script, s.operation_expectations);
   if (auto v = o.opt("events")) {

@@ -63,8 +63,41 @@ void write_careful_master(std::ostream& out, const ScenarioResult& r) {
   if (!r.checksum) return;
   out << "  checksum (word 47): ";
   if (!r.checksum->complete) out << "not every word could be read\n";
-  else out << (r.checksum->ok() ? "ok" : "MISMATCH") << ", stored " << hex4(r.checksum->stored) << "h, words 4 .. 46 sum to "
-           << hex4(r.checksum->computed) << "h\n";
+  else out << (r.checksum->ok() ? "ok" : "MISMATCH") << ", stored " << hex4(r.checksum->stored) << ", words 4 .. 46 sum to "
+           << hex4(r.checksum->computed) << "\n";
+}
+
+// What the safety functions found and decided (issue 7), for a safety assessment.
+void write_safety(std::ostream& out, const ScenarioResult& r, bool verbose) {
+  namespace pm = protocol::parameters;
+  const auto& s = r.safety;
+  if (s.findings.empty() && !s.axis_released && s.startup_reads == 0 && s.position_comparisons == 0) return;
+  out << "  safety: axis " << (s.axis_released ? "released at " + format_time(s.released_at) + " with position " +
+                                                     std::to_string(s.release_position)
+                                               : std::string("not released"));
+  if (s.startup_reads != 0) out << " after " << s.startup_reads << " start-up read(s)";
+  if (r.release_position_correct) out << (*r.release_position_correct ? " (as measured)" : " (NOT what the encoder measured)");
+  out << "\n";
+  if (s.checksum47_stored)
+    out << "    checksums: word 47 " << hex4(*s.checksum47_stored) << " (sum " << hex4(*s.checksum47_computed) << ")";
+  if (s.checksum63_stored)
+    out << ", word 63 " << hex4(*s.checksum63_stored) << " (sum " << hex4(*s.checksum63_computed) << ")";
+  if (s.checksum47_stored) out << "\n";
+  if (s.position_comparisons != 0 || s.comparisons_out_of_range != 0)
+    out << "    position value 2 compared " << s.position_comparisons << " time(s), " << s.comparisons_out_of_range
+        << " above the stored velocity ranges\n";
+  if (s.error_sources) out << "    word 0 after the error message: " << hex4(*s.error_sources) << " (" << pm::bits_string(*s.error_sources, pm::error_bit_names()) << ")\n";
+  if (s.operating_status_error_sources)
+    out << "    operating status error sources (additional data 2): " << hex4(*s.operating_status_error_sources) << "\n";
+  if (r.undetected_errors != 0) out << "    " << r.undetected_errors << " frame(s) read as good while the encoder had an error\n";
+  const std::size_t limit = verbose ? s.findings.size() : 5;
+  for (std::size_t i = 0; i < s.findings.size() && i < limit; ++i) {
+    const auto& f = s.findings[i];
+    out << "    finding " << master::to_string(f.function) << " at " << format_time(f.at);
+    if (f.frame) out << " (frame #" << *f.frame << ")";
+    out << ": " << f.message << "\n";
+  }
+  if (s.findings.size() > limit) out << "    ... " << s.findings.size() - limit << " more finding(s)\n";
 }
 
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
@@ -104,6 +137,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   }
   write_startup(out, r.startup);
   write_careful_master(out, r);
+  write_safety(out, r, verbose);
   if (!verbose) {
     for (const auto& f : r.frames) {
       if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
@@ -169,6 +203,7 @@ nlohmann::json to_json(const ScenarioResult& r) {
       }
       jf["error1"] = f.error1;
       jf["error2"] = f.error2;
+      jf["error_detected"] = f.error_detected;
       jf["crc_received"] = f.crc_received;
       jf["crc_expected"] = f.crc_expected;
     }
@@ -200,6 +235,36 @@ nlohmann::json to_json(const ScenarioResult& r) {
     word("word13", r.startup.word13);
     word("word37", r.startup.word37);
     j["startup"] = st;
+  }
+  {
+    const auto& s = r.safety;
+    json findings = json::array();
+    for (const auto& f : s.findings) {
+      json jf{{"function", master::to_string(f.function)}, {"time_ps", f.at.count()}, {"message", f.message}};
+      if (f.frame) jf["frame"] = *f.frame;
+      findings.push_back(jf);
+    }
+    json js{{"findings", findings},
+            {"axis_released", s.axis_released},
+            {"startup_reads", s.startup_reads},
+            {"position_comparisons", s.position_comparisons},
+            {"comparisons_out_of_range", s.comparisons_out_of_range},
+            {"undetected_errors", r.undetected_errors}};
+    if (s.axis_released) {
+      js["released_ps"] = s.released_at.count();
+      js["release_position"] = s.release_position;
+    }
+    if (r.release_position_correct) js["release_position_correct"] = *r.release_position_correct;
+    const auto word = [&js](const char* key, const std::optional<std::uint16_t>& v) {
+      if (v) js[key] = *v;
+    };
+    word("error_sources", s.error_sources);
+    word("operating_status_error_sources", s.operating_status_error_sources);
+    word("checksum47_stored", s.checksum47_stored);
+    word("checksum47_computed", s.checksum47_computed);
+    word("checksum63_stored", s.checksum63_stored);
+    word("checksum63_computed", s.checksum63_computed);
+    j["safety"] = js;
   }
   json vs = json::array();
   for (const auto& v : r.violations) {

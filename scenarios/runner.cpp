@@ -200,6 +200,58 @@ void judge_startup(const StartupExpectation& e, ScenarioResult& r) {
   word("word37", e.word37, got.word37);
 }
 
+// Frames the master took as good (no error message as it evaluates them) while the encoder had an
+// error active, and the truth behind the released position.
+void compare_safety_with_encoder(const Scenario& s, ScenarioResult& r) {
+  const auto paths = clock_paths(s);
+  for (const auto& f : r.frames) {
+    if (f.measurement || f.outcome != master::FrameOutcome::Ok || f.word != 0 ||
+        protocol::info(f.command).answer != protocol::AnswerFormat::Position)
+      continue;
+    const auto* ef = encoder_frame_for(r, f, paths);
+    if (ef != nullptr && ef->error_present && !f.error_detected) ++r.undetected_errors;
+    if (r.safety.release_frame == f.index && ef != nullptr) r.release_position_correct = ef->true_position == f.position;
+  }
+}
+
+void judge_safety(const SafetyExpectation& e, ScenarioResult& r) {
+  const auto& got = r.safety;
+  for (auto f : master::kSafetyFunctions) {
+    const std::string name(master::to_string(f));
+    const auto n = got.count(f);
+    const auto it = e.findings.find(name);
+    std::string first;
+    for (const auto& x : got.findings)
+      if (x.function == f) {
+        first = ": " + x.message;
+        break;
+      }
+    if (it != e.findings.end())
+      r.expectations.push_back({"safety.findings." + name, it->second.matches(n),
+                                std::to_string(n) + " (expected " + it->second.text + ")" + first});
+    else if (n != 0)
+      r.expectations.push_back({"safety.findings." + name, false, std::to_string(n) + " (expected none: not listed)" + first});
+  }
+  if (e.axis_released)
+    r.expectations.push_back({"safety.axis_released", got.axis_released == *e.axis_released,
+                              got.axis_released ? "released at " + sim::format_time(got.released_at) + " with position " +
+                                                      std::to_string(got.release_position)
+                                                : "not released"});
+  if (e.release_position_correct)
+    r.expectations.push_back({"safety.release_position_correct",
+                              r.release_position_correct == e.release_position_correct,
+                              !r.release_position_correct ? "no released position"
+                              : *r.release_position_correct ? "the encoder measured " + std::to_string(got.release_position)
+                                                            : "released " + std::to_string(got.release_position) +
+                                                                  ", not what the encoder measured"});
+  if (e.undetected_errors)
+    r.expectations.push_back({"safety.undetected_errors", e.undetected_errors->matches(r.undetected_errors),
+                              std::to_string(r.undetected_errors) + " (expected " + e.undetected_errors->text + ")"});
+  if (e.position_comparisons)
+    r.expectations.push_back({"safety.position_comparisons", e.position_comparisons->matches(got.position_comparisons),
+                              std::to_string(got.position_comparisons) + " (expected " + e.position_comparisons->text + ")"});
+}
+
 void judge(const Scenario& s, ScenarioResult& r) {
   r.expectations.push_back({"script finished", r.finished,
                             r.finished ? "at " + sim::format_time(r.simulated)
@@ -224,6 +276,7 @@ void judge(const Scenario& s, ScenarioResult& r) {
     if (s.operation_expectations[i]) judge_operation(i, *s.operation_expectations[i], r);
   judge_memory(s, r);
   if (s.expect.startup) judge_startup(*s.expect.startup, r);
+  if (s.expect.safety) judge_safety(*s.expect.safety, r);
   if (s.expect.checksum_ok) {
     const bool got = r.checksum && r.checksum->ok();
     r.expectations.push_back({"checksum", r.checksum.has_value() && got == *s.expect.checksum_ok,
@@ -312,11 +365,13 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.checksum = master.checksum();
   r.retries = master.retries();
   r.remeasurements = master.remeasurements();
+  r.safety = master.safety();
   r.encoder_memory = encoder.memory().image();
   for (const auto& e : bus) {
     r.bus_memory.push_back(e->memory().image());
     r.bus_frames.push_back(e->frames());
   }
+  compare_safety_with_encoder(scenario, r);
   judge(scenario, r);
   return r;
 }

@@ -45,6 +45,11 @@ struct ScenarioResult {
   std::optional<master::ChecksumCheck> checksum;
   std::uint64_t retries = 0;
   std::uint64_t remeasurements = 0;
+  master::SafetyReport safety;
+  // Ground truth against the safety functions: good reads while the encoder had an error, and
+  // whether the released position is what the encoder measured.
+  std::uint64_t undetected_errors = 0;
+  std::optional<bool> release_position_correct;
   std::vector<ExpectationResult> expectations;
   bool passed() const;
 };

@@ -61,6 +61,16 @@ struct StartupExpectation {
   std::optional<std::uint16_t> errors, warnings, word13, word37;
 };
 
+// What the master's safety functions must have found and decided (issue 7). Functions not listed
+// in `findings` must have found nothing.
+struct SafetyExpectation {
+  std::map<std::string, CountMatcher> findings;  // by master::to_string(SafetyFunction)
+  std::optional<bool> axis_released;
+  std::optional<bool> release_position_correct;  // the released value is what the encoder measured
+  std::optional<CountMatcher> undetected_errors;  // frames read as good while the encoder had an error
+  std::optional<CountMatcher> position_comparisons;
+};
+
 struct Expectations {
   std::map<std::string, CountMatcher> outcomes;    // non-measurement frames by master::FrameOutcome
   std::optional<bool> positions_match_encoder;
@@ -75,6 +85,7 @@ struct Expectations {
   std::optional<CountMatcher> retries;        // frames the careful master repeated
   std::optional<CountMatcher> remeasurements; // delay measurements the careful master added
   std::optional<StartupExpectation> startup;
+  std::optional<SafetyExpectation> safety;
 };
 
 // Something that happens while the script runs (issue 5): a change of the line or a fault of
@@ -85,6 +96,7 @@ struct Event {
   enum class Kind : std::uint8_t {
     SetCable, BitFlip, Glitch, Stuck, RandomBitErrors, LateDriverRelease, LossOfFailsafe,  // line
     ErrorSources, MemoryAccessTime, TCal, PowerInterruption, CorruptWord, ProbeTrigger,    // encoder
+    StuckErrorMessages, Slip, Position2Fault,                                              // encoder (issue 7)
   };
   Kind kind = Kind::SetCable;
   std::optional<Time> at;
@@ -107,6 +119,8 @@ struct Event {
   slave::Selection selection;
   std::uint8_t address = 0;
   std::uint16_t xor_mask = 0;
+  bool error_message_1_stuck = false, error_message_2_stuck = false;  // stuck_error_messages
+  std::int64_t steps = 0;                                             // slip, position2_fault
 };
 
 inline Event cable_change(Time at, double length_m, Time delay_per_m) {
