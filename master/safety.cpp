@@ -394,8 +394,11 @@ void Master::check_acknowledgement(const FrameResult& f) {
     find(SafetyFunction::Acknowledgements, &f,
          "2.1 write of " + std::to_string(sent_value) + " to address " + std::to_string(sent_address) +
              " acknowledged as " + std::to_string(f.echo_parameter) + " at " + std::to_string(f.echo_address));
-  if (f.command == MC::EncoderSendPositionValuesAndReceiveParameter && f.supplement && f.outcome == FrameOutcome::Ok)
+  // The write frame's own additional data come before its supplement: the acknowledgment follows.
+  if (f.command == MC::EncoderSendPositionValuesAndReceiveParameter && f.supplement && f.outcome == FrameOutcome::Ok) {
     acknowledgement_due_ = Written{static_cast<std::uint8_t>(*f.supplement >> 16), static_cast<std::uint16_t>(*f.supplement)};
+    return;
+  }
   if (!acknowledgement_due_ || f.outcome != FrameOutcome::Ok) return;
   for (const auto& d : f.additional_data) {
     const bool lsb = d.information() == I::MemoryParameterLsb, msb = d.information() == I::MemoryParameterMsb;
