@@ -620,19 +620,16 @@ TEST(AdditionalData, DiagnosisWithoutActivatedValuationNumbersIsNop) {
 }
 
 TEST(AppendixA2, Cause5EncoderBehindAnEibNotYetInitiated) {
-  // Word 14 type Fh (External Interface Box): parameter access before the EIB has initialised
-  // is answered with the inverted echo; afterwards normally.
+  // 3.5.7: an EIB in factory delivery state (word 14 type Fh) is "not yet initiated": selecting
+  // the OEM area is answered with the inverted echo; the encoder manufacturer's area stays open
+  // for initial commissioning.
   auto p = params();
-  p.eib_initialisation_time = us(300);
-  p.memory = slave::default_memory_image(p);
-  p.memory->areas[protocol::MemoryArea::Manufacturer1][slave::word::kEncoderType] =
-      protocol::parameters::encode_encoder_type(protocol::parameters::EncoderType::ExternalInterfaceBox);
+  p.kind = slave::EncoderKind::Eib;
   Bench b(p);
   b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
   ASSERT_TRUE(b.last().error.has_value());
   EXPECT_EQ(*b.last().error, ErrorCause::EibNotInitialised);
   EXPECT_EQ(b.slots(0, 35, 43), "1" + bits_msb(0x56, 8));
-  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
-  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
-  EXPECT_FALSE(b.last().error.has_value()) << "initialised after 300 us";
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA1, 0)));
+  EXPECT_FALSE(b.last().error.has_value()) << "A1 is open for commissioning";
 }

@@ -357,8 +357,8 @@ TEST(Profile, ErrorsNameFileJsonPathAndExpectation) {
             "string \"8019\"");
   EXPECT_EQ(error_of(replace(good, "\"0x8019\"", "\"0x18019\"")).substr(0, 42), "bad.json: at /memory/manufacturer_1/13: ex");
   EXPECT_EQ(error_of(replace(good, "\"kind\": \"singleturn\"", "\"kind\": \"rotary\"")),
-            "bad.json: at /kind: expected one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", got string "
-            "\"rotary\"");
+            "bad.json: at /kind: expected one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", \"eib\", "
+            "got string \"rotary\"");
   EXPECT_EQ(error_of(replace(good, "\"kind\": \"singleturn\"", "\"kind\": \"linear\"")),
             "bad.json: at /memory/manufacturer_1/14: expected an encoder type of kind linear (3.5.7), got C001h");
   EXPECT_EQ(error_of(replace(good, "\"version\": \"2.2\"", "\"version\": \"2.1\"")),
