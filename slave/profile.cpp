@@ -330,6 +330,14 @@ std::vector<std::pair<std::string, std::string>> describe_profile(const EncoderP
   d.emplace_back("position bits (word 13)", std::to_string(pm::decode_position_bits(m[13])));
   d.emplace_back("measuring step (words 20/21)", pm::measuring_step_string(type, pm::decode_measuring_steps(m[20], m[21])));
   if (p.kind == EncoderKind::Multiturn) d.emplace_back("distinguishable revolutions (word 17)", std::to_string(m[17]));
+  if (pm::is_incremental(type)) {  // 2.3.4.3, 3.5.10, 3.5.11
+    const auto marks = pm::reference_marks_of(type, m[18]);
+    std::string text(pm::reference_marks_name(marks));
+    const std::string unit = pm::is_linear(type) ? " mm" : " signal periods";
+    if (marks == pm::ReferenceMarks::DistanceCoded) text += ", nominal increment " + std::to_string(m[18]) + unit;
+    if (marks == pm::ReferenceMarks::Equidistant) text += " every " + std::to_string(m[18]) + unit;
+    d.emplace_back("reference marks (words 14, 18)", text);
+  }
   d.emplace_back("ID number (words 24..26)", pm::id_number_string(pm::decode_id_number(m[24], m[25], m[26])));
   d.emplace_back("serial number (words 27..29)",
                  pm::serial_number_string(pm::decode_serial_number(m[27], m[28], m[29])));
