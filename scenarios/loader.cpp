@@ -533,6 +533,7 @@ AdditionalDataExpectation read_additional_data_expectation(const Node& n) {
   e.information = *i;
   if (auto v = o.opt("data")) e.data = read_word16(*v);
   if (auto v = o.opt("busy")) e.busy = v->as_bool();
+  if (auto v = o.opt("rm")) e.rm = v->as_bool();
   o.done();
   return e;
 }

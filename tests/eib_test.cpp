@@ -81,6 +81,7 @@ std::vector<master::Operation> commissioning(std::uint16_t checksum_offset = 0) 
   // A10: LSB weighting = signal period / subdivision values (EnDat 2.2 words 27..29, 3.9.37).
   const std::uint16_t scaling = pm::encode_resolution_scaling(pm::ResolutionScaling::GratingSubdivision,
                                                               pm::ResolutionScaling::SeeWords20And21);
+  ops.push_back(op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x45, 0));  // busy in additional data 1
   for (const auto& part : {std::vector{op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0xBD, 0),
                                        await_not_busy()},
                            write_endat22(27, scaling), write_endat22(28, 4096),
@@ -175,6 +176,8 @@ TEST(EibTest, CommissioningByParameterWritesThenResetMakesItTheConnectedEncoder)
   ops.push_back(write(13, 0x8019));
   const auto r = scenarios::run_scenario(scenario({ops}));
   ASSERT_TRUE(r.finished);
+  EXPECT_EQ(r.busy_timeouts, 0U);
+  EXPECT_EQ(r.encoder_memory.areas.at(protocol::MemoryArea::ManufacturerEndat22).at(28), 4096) << "A10 scaling saved";
   for (std::size_t i = 0; i < reset_at; ++i) EXPECT_EQ(frame_of(r, i).outcome, Outcome::Ok) << "operation " << i;
   EXPECT_TRUE(frame_of(r, reset_at).error1) << "word 14 written, but not activated before the reset";
   const auto& f = frame_of(r, reset_at + 2);

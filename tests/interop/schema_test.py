@@ -50,6 +50,7 @@ BEYOND_SCHEMA = {
     "jitter_too_large_for_clock.json": "relation between jitter and the clock period",
     "max_time_zero.json": "range inside a duration string",
     "motion_start_beyond_position_bits.json": "relation between motion.start and position_bits",
+    "selected_reference_mark_beyond_marks.json": "how many reference marks exist depends on the profile's words 18/19",
     "script_at_backwards.json": "order of times",
     "start_bit_timeout_zero.json": "range inside a duration string",
     "t_cal_fraction_of_ps.json": "a duration that is not a whole number of picoseconds",
