@@ -177,6 +177,44 @@ std::string_view encoder_type_name(EncoderType type) {
 
 bool is_linear(EncoderType type) { return static_cast<unsigned>(type) < 8 && type != EncoderType::NoteD1D11; }
 
+// 2.3.4.3 / 3.5.7: the incremental types and those of them with distance-coded reference marks.
+namespace {
+struct TypeMarks {
+  EncoderType type;
+  bool distance_coded;
+};
+constexpr TypeMarks kIncrementalTypes[] = {
+    {EncoderType::IncrementalLinear, false},         {EncoderType::IncrementalLinearDistanceCoded, true},
+    {EncoderType::IncrementalLinearBattery, false},  {EncoderType::IncrementalLinearBatteryDistanceCoded, true},
+    {EncoderType::IncrementalRotary, false},         {EncoderType::IncrementalRotaryDistanceCoded, true},
+    {EncoderType::IncrementalRotaryBattery, false},  {EncoderType::IncrementalRotaryBatteryDistanceCoded, true},
+};
+const TypeMarks* incremental_entry(EncoderType type) {
+  for (const auto& t : kIncrementalTypes)
+    if (t.type == type) return &t;
+  return nullptr;
+}
+}  // namespace
+
+bool is_incremental(EncoderType type) { return incremental_entry(type) != nullptr; }
+
+ReferenceMarks reference_marks_of(EncoderType type, std::uint16_t word18) {
+  const auto* t = incremental_entry(type);
+  if (t == nullptr) return ReferenceMarks::None;
+  if (t->distance_coded) return ReferenceMarks::DistanceCoded;
+  return word18 != 0 ? ReferenceMarks::Equidistant : ReferenceMarks::One;
+}
+
+std::string_view reference_marks_name(ReferenceMarks marks) {
+  switch (marks) {
+    case ReferenceMarks::None: return "none (absolute)";
+    case ReferenceMarks::One: return "one reference mark";
+    case ReferenceMarks::DistanceCoded: return "distance-coded reference marks";
+    case ReferenceMarks::Equidistant: return "equidistant reference marks";
+  }
+  return "none (absolute)";
+}
+
 // 3.5.9
 std::uint16_t encode_revolutions(std::uint32_t revolutions) {
   return revolutions >= kRevolutionsSeeEndat22Word34 ? kRevolutionsSeeEndat22Word34 : u16(revolutions);
@@ -515,6 +553,53 @@ std::string timestamp_unit_string(TimestampUnit unit) {
   const auto d = timestamp_unit_duration(unit);
   if (!d) return "not supported";
   return d->count() >= 1000 ? std::to_string(d->count() / 1000) + " us" : std::to_string(d->count()) + " ns";
+}
+
+// 3.9.21 / 3.9.22 / A10
+std::uint16_t encode_resolution_scaling(ResolutionScaling position, ResolutionScaling position2) {
+  return u16(static_cast<unsigned>(position2) << 8 | static_cast<unsigned>(position));
+}
+
+ResolutionScaling decode_position_scaling(std::uint16_t word27) {
+  const unsigned code = word27 & 0x7U;
+  return code > 4 ? ResolutionScaling::NotSupported : static_cast<ResolutionScaling>(code);
+}
+
+namespace {
+// A10: the subdivision values per grating period (EnDat 2.2 words 28/29), when word 27 says so.
+std::optional<std::uint64_t> grating_subdivision(std::span<const std::uint16_t> words64) {
+  if (words64.size() < 30 || decode_position_scaling(words64[27]) != ResolutionScaling::GratingSubdivision)
+    return std::nullopt;
+  const std::uint64_t values = join32(words64[28], words64[29]);
+  return values == 0 ? std::nullopt : std::optional{values};
+}
+}  // namespace
+
+std::optional<std::uint64_t> steps_per_revolution(std::span<const std::uint16_t> words48,
+                                                  std::span<const std::uint16_t> words64) {
+  if (is_linear(decode_encoder_type(words48[14]))) return std::nullopt;
+  if (const std::uint64_t steps = decode_measuring_steps(words48[20], words48[21]); steps != 0) return steps;
+  const std::uint64_t periods = decode_signal_period(words48[15], words48[16]);
+  const auto subdivision = grating_subdivision(words64);
+  if (periods == 0 || !subdivision) return std::nullopt;
+  return periods * *subdivision;
+}
+
+std::optional<StepsPerUnit> steps_per_reference_unit(std::span<const std::uint16_t> words48,
+                                                     std::span<const std::uint16_t> words64) {
+  const std::uint64_t step_nm = decode_measuring_steps(words48[20], words48[21]);
+  const std::uint64_t period = decode_signal_period(words48[15], words48[16]);  // nm or P/rev
+  const auto subdivision = grating_subdivision(words64);
+  if (is_linear(decode_encoder_type(words48[14]))) {
+    constexpr std::uint64_t kNmPerMm = 1'000'000;
+    if (step_nm != 0) return StepsPerUnit{kNmPerMm, step_nm};
+    if (period != 0 && subdivision) return StepsPerUnit{kNmPerMm * *subdivision, period};  // step = period / subdivision
+    return std::nullopt;
+  }
+  if (period == 0) return std::nullopt;  // marks in signal periods need the signal period
+  if (step_nm != 0) return StepsPerUnit{step_nm, period};  // steps/rev over periods/rev
+  if (subdivision) return StepsPerUnit{*subdivision, 1};
+  return std::nullopt;
 }
 
 }  // namespace endatsim::protocol::parameters

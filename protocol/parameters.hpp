@@ -128,6 +128,16 @@ EncoderType decode_encoder_type(std::uint16_t word);
 std::string_view encoder_type_name(EncoderType type);  // the wording of the 3.5.7 table
 bool is_linear(EncoderType type);
 
+// What word 14 says about referencing (2.3.4.3): absolute types have absolute positions at
+// switch-on; incremental ones (types 0..3, 8..B) after crossing one reference mark, two with
+// distance-coded marks (types 1, 3, 9, B). Without distance-coded marks, word 18 != 0 gives
+// the distance of equidistant marks (3.5.10.2) and word 19 the first of them (3.5.11);
+// word 18 = 0 leaves one reference mark.
+enum class ReferenceMarks : std::uint8_t { None, One, DistanceCoded, Equidistant };
+bool is_incremental(EncoderType type);
+ReferenceMarks reference_marks_of(EncoderType type, std::uint16_t word18);
+std::string_view reference_marks_name(ReferenceMarks marks);  // "equidistant reference marks"
+
 // ---- 3.5.8 words 15/16: signal period of the incremental signals ----------------------------------
 // nm for linear encoders, signal periods per revolution for rotary ones; 0 for EnDat21/EnDat22.
 // Examples: 20 um = 20000 = 4E20h / 0000h; 2048 periods per revolution = 0800h / 0000h.
@@ -258,6 +268,37 @@ std::uint16_t checksum(std::span<const std::uint16_t> words, unsigned first, uns
 // words: the 48 words of the encoder manufacturer (indices 0..3 ignored) / the 64 of area BD.
 std::uint16_t manufacturer_checksum(std::span<const std::uint16_t> words48);
 std::uint16_t endat22_checksum(std::span<const std::uint16_t> words64);
+
+// ---- 3.9.21 / 3.9.22 EnDat 2.2 words 27..29, appendix A10: scaling of the resolution --------------
+// Word 27 bits 2..0 say what words 28/29 hold for the (relative) position value, bits 10..8 the
+// same for words 9/10 (position value 2): 000 see words 20/21, 001 subdivision values of a
+// grating period, 010 steps in powers of 2, 011 steps in pm, 100 not supported. The example:
+// 12-bit subdivision, word 27 = 0001h, words 28/29 = 1000h / 0000h.
+// UNCERTAIN: the bit row of word 27 lost its alignment; the two 3-bit fields are taken as bits
+// 10..8 (position value 2) and 2..0 (position), as the example's 0001h fits.
+enum class ResolutionScaling : std::uint8_t {
+  SeeWords20And21 = 0, GratingSubdivision = 1, PowerOfTwo = 2, Picometres = 3, NotSupported = 4
+};
+std::uint16_t encode_resolution_scaling(ResolutionScaling position, ResolutionScaling position2);
+ResolutionScaling decode_position_scaling(std::uint16_t word27);  // codes 5..7 decode as NotSupported
+
+// Appendix A10, 3.5.12: for the EIB and incremental encoders words 20/21 hold 0 and the weighting
+// of the LSB follows from the signal period (words 15/16) and the subdivision values of a grating
+// period (EnDat 2.2 words 27..29). The measuring steps per unit of words 18/19 (3.5.10, 3.5.11):
+// per mm for linear encoders, per signal period for rotary ones, as steps / per; none when the
+// words do not give it.
+struct StepsPerUnit {
+  std::uint64_t steps = 0;
+  std::uint64_t per = 1;
+  bool operator==(const StepsPerUnit&) const = default;
+};
+// words48: the encoder manufacturer's words (indices 0..3 ignored); words64: area BD, empty for 2.1.
+std::optional<StepsPerUnit> steps_per_reference_unit(std::span<const std::uint16_t> words48,
+                                                     std::span<const std::uint16_t> words64);
+// Measuring steps per revolution of a rotary encoder: words 20/21, else (A10) signal periods x
+// subdivision values; none for linear encoders or when the words do not give it.
+std::optional<std::uint64_t> steps_per_revolution(std::span<const std::uint16_t> words48,
+                                                  std::span<const std::uint16_t> words64);
 
 // ---- 3.9.2 / 3.9.3 EnDat 2.2 words 0 and 1: supported additional data ------------------------------
 // Word 0 (additional data 1): bit 0 position value 2, 1 test values, 2 temperature sensor 1

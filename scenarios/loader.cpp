@@ -333,7 +333,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("kind"))
     p.kind = v->as_enum<EncoderKind>(
         {{"singleturn", EncoderKind::Singleturn}, {"multiturn", EncoderKind::Multiturn}, {"linear", EncoderKind::Linear},
-         {"touch_probe", EncoderKind::TouchProbe}});
+         {"touch_probe", EncoderKind::TouchProbe}, {"eib", EncoderKind::Eib}});
   if (auto v = o.opt("version"))
     p.version = v->as_enum<protocol::EndatVersion>({{"2.1", protocol::EndatVersion::V2_1}, {"2.2", protocol::EndatVersion::V2_2}});
   if (auto v = o.opt("position_bits")) p.position_bits = static_cast<unsigned>(v->as_uint(1, 48));
@@ -370,7 +370,15 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     p.supplement_end_marker_delay = v->as_duration(Time::zero(), sim::us(1));
   if (auto v = o.opt("supplement_ignore_clocks")) p.supplement_ignore_clocks = static_cast<unsigned>(v->as_uint(0, 16));
   if (auto v = o.opt("communication_command_permitted")) p.communication_command_permitted = v->as_bool();
-  if (auto v = o.opt("eib_initialisation_time")) p.eib_initialisation_time = v->as_duration(Time::zero(), sim::ms(10'000));
+  if (auto v = o.opt("eib_activation"))
+    p.eib_activation = v->as_enum<slave::EibActivation>(
+        {{"reset", slave::EibActivation::Reset}, {"word14_write", slave::EibActivation::Word14Write}});
+  if (auto v = o.opt("eib_activation_checks_checksum")) p.eib_activation_checks_checksum = v->as_bool();
+  if (auto v = o.opt("eib_position_before_commissioning"))
+    p.eib_position_before_commissioning = v->as_enum<slave::EibPositionBeforeCommissioning>(
+        {{"error_bit", slave::EibPositionBeforeCommissioning::ErrorBit},
+         {"not_supported", slave::EibPositionBeforeCommissioning::NotSupported}});
+  if (auto v = o.opt("selected_reference_mark")) p.selected_reference_mark = v->as_uint(0, 65535);
   if (auto v = o.opt("earliest_start_bit_clock")) p.earliest_start_bit_clock = static_cast<unsigned>(v->as_uint(10, 32));
   if (auto v = o.opt("asynchronous_time_delay_step"))
     p.asynchronous_time_delay_step = v->as_duration(Time::zero(), sim::ms(1));
@@ -557,6 +565,7 @@ AdditionalDataExpectation read_additional_data_expectation(const Node& n) {
   e.information = *i;
   if (auto v = o.opt("data")) e.data = read_word16(*v);
   if (auto v = o.opt("busy")) e.busy = v->as_bool();
+  if (auto v = o.opt("rm")) e.rm = v->as_bool();
   o.done();
   return e;
 }

@@ -151,6 +151,9 @@ void judge_operation(std::size_t index, const FrameExpectation& e, ScenarioResul
              std::string(protocol::info(want.information).key));
       if (want.data) differ(at + "data", hex(got.data, 4), hex(*want.data, 4));
       if (want.busy) differ(at + "busy", std::to_string(got.busy()), std::to_string(*want.busy));
+      if (want.rm)
+        differ(at + "RM", std::to_string((got.status & protocol::AdditionalDataStatus::kReferenceMark) != 0),
+               std::to_string(*want.rm));
     }
   }
   std::string detail = "frame " + std::to_string(f->index);

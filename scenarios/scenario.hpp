@@ -34,6 +34,7 @@ struct AdditionalDataExpectation {
   protocol::Information information = protocol::Information::Nop1;
   std::optional<std::uint16_t> data;
   std::optional<bool> busy;
+  std::optional<bool> rm;  // 2.3.4.3: reference mark crossed (incremental encoders)
 };
 
 struct FrameExpectation {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "protocol/parameters.hpp"
+#include "slave/eib.hpp"
 
 namespace endatsim::slave {
 namespace {
@@ -63,8 +64,6 @@ void EncoderParams::validate() const {
   require(supplement_end_marker_delay >= Time::zero() && supplement_end_marker_delay <= sim::us(1),
           "encoder supplement_end_marker_delay must be 0 .. 1 us (below the shortest t_m), got " +
               sim::format_time(supplement_end_marker_delay));
-  require(eib_initialisation_time >= Time::zero() && eib_initialisation_time <= sim::ms(10'000),
-          "encoder eib_initialisation_time must be 0 .. 10 s, got " + sim::format_time(eib_initialisation_time));
   require(supplement_ignore_clocks <= 16,
           "encoder supplement_ignore_clocks must be 0 .. 16, got " + std::to_string(supplement_ignore_clocks));
   require(output_delay >= Time::zero() && output_delay <= sim::us(1),
@@ -95,9 +94,15 @@ void EncoderParams::validate() const {
             "test value of port " + std::to_string(port) + " must fit 40 bits (2.9)");
   if (memory) {
     const Memory m(*memory);
-    require((m.manufacturer_word(word::kPositionFormat) & 0x3F) == position_bits,
-            "memory word 13 says " + std::to_string(m.manufacturer_word(word::kPositionFormat) & 0x3F) +
-                " position bits, but position_bits is " + std::to_string(position_bits));
+    // 3.5.7: an EIB saves word 13 only at initial commissioning; until then position_bits is
+    // the width of its "no valid position" answer.
+    const bool eib = protocol::parameters::decode_encoder_type(m.manufacturer_word(word::kEncoderType)) ==
+                     protocol::parameters::EncoderType::ExternalInterfaceBox;
+    const unsigned word13 = m.manufacturer_word(word::kPositionFormat) & 0x3F;
+    require(word13 == position_bits || (eib && word13 == 0),
+            "memory word 13 says " + std::to_string(word13) + " position bits, but position_bits is " +
+                std::to_string(position_bits));
+    (void)reference_scheme(m, reference_marks, selected_reference_mark, position_bits);  // throws as it says
   }
 }
 
@@ -118,6 +123,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
                     : p.kind == EncoderKind::Multiturn  ? pm::EncoderType::MultiturnBattery
                     : p.kind == EncoderKind::TouchProbe ? pm::EncoderType::TouchProbe
                                                         : pm::EncoderType::Singleturn;
+  if (p.kind == EncoderKind::Eib) return eib_factory_image();
   MemoryImage img;
   // 3.4.3: the encoder manufacturer's areas and the compensation values are factory protected.
   const std::uint16_t function_init = p.short_t_m_selected ? kShortRecoveryTimeOn : kShortRecoveryTimeOff;
@@ -196,26 +202,62 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
       end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
       startup_timer_(kernel, sim::bind<&Encoder::on_started>(this)) {
   pins_.clock_in.on_change(sim::bind<&Encoder::on_clock>(this));
-  namespace pm = protocol::parameters;
-  const auto type = pm::decode_encoder_type(memory_.manufacturer_word(word::kEncoderType));
-  incremental_ = type <= pm::EncoderType::IncrementalLinearBatteryDistanceCoded ||
-                 (type >= pm::EncoderType::IncrementalRotary && type <= pm::EncoderType::IncrementalRotaryBatteryDistanceCoded);
-  const bool distance_coded = type == pm::EncoderType::IncrementalLinearDistanceCoded ||
-                              type == pm::EncoderType::IncrementalLinearBatteryDistanceCoded ||
-                              type == pm::EncoderType::IncrementalRotaryDistanceCoded ||
-                              type == pm::EncoderType::IncrementalRotaryBatteryDistanceCoded;
-  marks_to_reference_ = distance_coded ? 2 : 1;
-  touch_probe_ = type == pm::EncoderType::TouchProbe;
-  require(!touch_probe_ || params_.position_bits == kTouchProbeBits,
-          "a touch probe (word 14 type 5) sends 16 bits (2.3.4.4), but position_bits is " +
-              std::to_string(params_.position_bits));
-  referenced_ = !incremental_;
+  position_bits_ = params_.position_bits;
+  adopt_encoder_type();
   unsettled_left_ = params_.unsettled_positions;
   activate_functions();
-  if (type == pm::EncoderType::ExternalInterfaceBox)
-    eib_ready_at_ = params_.startup_time + params_.eib_initialisation_time;
   enable();  // idle: DATA driven LOW, unless word 5 puts the driver at high impedance (2.10)
   if (params_.startup_time > Time::zero()) go_offline(params_.startup_time);
+}
+
+// 3.5.7: what the encoder is follows word 14: absolute or incremental with its reference marks
+// (2.3.4.3), a touch probe (2.3.4.4), or an EIB that is not yet initiated (A2 cause 5), whose
+// manufacturer areas stay open for initial commissioning meanwhile.
+void Encoder::adopt_encoder_type() {
+  namespace pm = protocol::parameters;
+  const auto type = pm::decode_encoder_type(memory_.manufacturer_word(word::kEncoderType));
+  eib_not_initiated_ = type == pm::EncoderType::ExternalInterfaceBox;
+  memory_.set_initial_commissioning(eib_not_initiated_);
+  touch_probe_ = type == pm::EncoderType::TouchProbe;
+  require(!touch_probe_ || position_bits_ == kTouchProbeBits,
+          "a touch probe (word 14 type 5) sends 16 bits (2.3.4.4), but position_bits is " +
+              std::to_string(position_bits_));
+  reference_ = slave::reference_scheme(memory_, params_.reference_marks, params_.selected_reference_mark, position_bits_);
+  incremental_ = reference_.marks != pm::ReferenceMarks::None;
+  referenced_ = !incremental_;
+  reference_offset_ = 0;
+}
+
+// 3.5.7: "the encoder type must be modified during initial commissioning according to the
+// connected encoder". The EIB becomes that encoder when word 14 names another type, word 13 a
+// transfer format (1 .. 48 bits; 16 for a touch probe), words 18/19 usable reference marks and,
+// with eib_activation_checks_checksum, word 47 checks (3.5.26). Otherwise it stays not initiated.
+// Relative positions count from here, as after switching on (2.3.4.3).
+void Encoder::complete_commissioning() {
+  namespace pm = protocol::parameters;
+  std::vector<std::uint16_t> m(48, 0);
+  for (unsigned n = 4; n < 48; ++n) m[n] = memory_.manufacturer_word(n);
+  const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
+  const unsigned bits = pm::decode_position_bits(m[word::kPositionFormat]);
+  const bool checksum_ok = !params_.eib_activation_checks_checksum || pm::manufacturer_checksum(m) == m[47];
+  if (type == pm::EncoderType::ExternalInterfaceBox || bits < 1 || bits > 48 || !checksum_ok ||
+      (type == pm::EncoderType::TouchProbe && bits != kTouchProbeBits))
+    return;
+  try {
+    (void)slave::reference_scheme(memory_, params_.reference_marks, params_.selected_reference_mark, bits);
+  } catch (const std::invalid_argument&) {
+    return;  // words 18/19 name marks the model cannot place
+  }
+  position_bits_ = bits;
+  adopt_encoder_type();
+  reference_origin_ = reference_search_from_ = kernel_.now();
+}
+
+// A2 cause 5 (choice, README): an EIB that is not yet initiated refuses every memory access
+// outside the areas initial commissioning fills (slave/eib.hpp).
+std::optional<ErrorCause> Encoder::not_initiated(std::optional<MemoryArea> area) const {
+  if (!eib_not_initiated_ || (area && eib_commissioning_area(*area))) return std::nullopt;
+  return ErrorCause::EibNotInitialised;
 }
 
 // 2.3.3 (figure labels, seed 002: "*) hochohmig"): during run-up DATA is high-impedance and the
@@ -363,6 +405,9 @@ void Encoder::decode_mode_command() {
   if (!f.command || (protocol::info(*f.command).version == EndatVersion::V2_2 && params_.version == EndatVersion::V2_1))
     return abort_type1(ErrorCause::ModeCommandDisrupted);
   command_ = &protocol::info(*f.command);
+  if (eib_not_initiated_ && command_->answer == protocol::AnswerFormat::Position &&
+      params_.eib_position_before_commissioning == EibPositionBeforeCommissioning::NotSupported)
+    return abort_type1(ErrorCause::ModeCommandDisrupted);
   if (!selected_on_bus_ && *f.command != MC::EncoderReceiveCommunicationCommand) {
     state_ = State::Type1;  // 2.10: only the addressed encoder reacts; this one keeps off the bus
     return;
@@ -388,7 +433,7 @@ void Encoder::abort_type1(ErrorCause cause) {
 // value must be added"; 3.5.13: words 22/23 have no effect on the output), modulo 2^n ("after
 // the zero position follows 2^x - 1").
 std::uint64_t Encoder::output_position(std::uint64_t measured) const {
-  const unsigned n = params_.position_bits;
+  const unsigned n = position_bits_;
   const std::uint64_t mask = n >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1;
   // UNCERTAIN (3.5.16, its table lost a column): bit 0 = 0, the default, is taken as positions
   // rising in the documented direction of measurement, bit 0 = 1 as falling.
@@ -406,18 +451,19 @@ __int128 Encoder::unwrapped_position(Time t) const {
          static_cast<__int128>(params_.motion.counts_per_s) * t.count() / 1'000'000'000'000;
 }
 
-// 2.3.4.3: RM is set once the axis has crossed a reference mark (two with distance-coded
-// marks) since switching on; until then word 1 bit 4 warns "reference point not reached".
+// 2.3.4.3: RM is set once the axis has crossed a reference mark as the scheme needs it (two
+// with distance-coded marks, the selected one of equidistant marks) since switching on or the
+// last reset; until then word 1 bit 4 warns "reference point not reached".
 void Encoder::update_reference() {
   if (referenced_) return;
-  const __int128 range = __int128{1} << params_.position_bits;
-  const __int128 a = unwrapped_position(reference_search_from_), b = unwrapped_position(kernel_.now());
-  const __int128 lo = std::min(a, b), hi = std::max(a, b);
-  __int128 crossed = 0;
-  for (std::uint64_t m : params_.reference_marks)  // marks at m + k * 2^n in (lo, hi]
-    crossed += floor_div(hi - static_cast<__int128>(m), range) - floor_div(lo - static_cast<__int128>(m), range);
-  if (crossed >= marks_to_reference_) referenced_ = true;
-  else memory_.latch_errors(0, 0x0010);
+  const auto offset = find_reference(reference_, unwrapped_position(reference_search_from_),
+                                     unwrapped_position(kernel_.now()), position_bits_);
+  if (offset) {
+    referenced_ = true;
+    reference_offset_ = *offset;
+  } else {
+    memory_.latch_errors(0, 0x0010);
+  }
 }
 
 // Word 0 as the error messages see it: the stored bits and an unlatched multiturn overflow.
@@ -429,17 +475,18 @@ std::uint16_t Encoder::error_word() const {
 bool Encoder::error_message_1() const {
   const bool forced = test_port_22_ >= kForcedError1First && test_port_22_ < kForcedError1First + 7;
   return !params_.error_message_1_stuck &&
-         (params_.error1 || forced || (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0);
+         (params_.error1 || forced || eib_not_initiated_ || (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0);
 }
 
 bool Encoder::error_message_2() const {
   const bool forced = test_port_22_ >= kForcedError2First && test_port_22_ < kForcedError2First + 7;
-  return !params_.error_message_2_stuck && (params_.error1 || forced || (error_word() & memory_.endat22_word(6)) != 0);
+  return !params_.error_message_2_stuck &&
+         (params_.error1 || forced || eib_not_initiated_ || (error_word() & memory_.endat22_word(6)) != 0);
 }
 
 bool Encoder::error_present() const {
   const auto supported = memory_.manufacturer_word(word::kSupportedErrors) | memory_.endat22_word(6);
-  return params_.error1 || (error_word() & supported) != 0;
+  return params_.error1 || eib_not_initiated_ || (error_word() & supported) != 0;
 }
 
 void Encoder::answer_position() {
@@ -455,13 +502,13 @@ void Encoder::answer_position() {
   }
   if (unsettled_left_ > 0) {  // a fault: a value from before the position settled (seeded by the frame)
     --unsettled_left_;
-    const std::uint64_t mask = (std::uint64_t{1} << params_.position_bits) - 1;
+    const std::uint64_t mask = (std::uint64_t{1} << position_bits_) - 1;
     std::uint64_t z = (frames_.size() + 1) * 0x9E3779B97F4A7C15ULL;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
     f.position = (z ^ (z >> 31)) & mask;
   }
   // 2.3.1: F2 is low-active; it is only sent with 2.2 mode commands.
-  answer_ = protocol::encode_position_frame(command_->version, params_.position_bits,
+  answer_ = protocol::encode_position_frame(command_->version, position_bits_,
                                             {error_message_1(), !error_message_2(), f.position}, params_.crc);
   if (command_->version != EndatVersion::V2_2) return;
   // Timing-model §1.3: additional data 2 comes before additional data 1.
@@ -479,8 +526,13 @@ void Encoder::answer_parameter_frame() {
   Time t_ac{0};
   const bool memory_access = command_->command != MC::EncoderReceiveTestCommand &&
                              command_->command != MC::EncoderReceiveCommunicationCommand;
-  if (memory_access && kernel_.now() < eib_ready_at_) {
-    error = ErrorCause::EibNotInitialised;  // A2 cause 5
+  const bool selection = command_->command == MC::SelectionOfMemoryArea;
+  const bool parameter_access = selection || command_->command == MC::EncoderReceiveParameters ||
+                                command_->command == MC::EncoderSendParameters;
+  const auto area = selection ? protocol::memory_area_from_mrs(address)
+                              : area_selected_ ? std::optional{selection_area_.area} : std::nullopt;
+  if (const auto refused = parameter_access ? not_initiated(area) : std::nullopt) {
+    error = refused;  // A2 cause 5; a reset still works: it completes the commissioning
   } else if (memory_access && busy()) {
     error = ErrorCause::Busy;  // 2.3.1 note 1: a 2.1 access with Busy = 1 gets type II
   } else {
@@ -584,7 +636,7 @@ void Encoder::emit_answer_bit() {
 
 void Encoder::load_continuous_word() {
   EncoderFrame& f = frames_.back();
-  answer_ = protocol::encode_position_frame(EndatVersion::V2_1, params_.position_bits,
+  answer_ = protocol::encode_position_frame(EndatVersion::V2_1, position_bits_,
                                             {error_message_1(), true, f.continuous_positions.back()}, params_.crc);
   next_bit_ = 0;
   state_ = State::Answer;
@@ -626,7 +678,8 @@ void Encoder::process_supplement() {
         break;
       }
       const auto block = static_cast<std::uint8_t>(parameter);  // block address: low byte (README, guess)
-      const auto error = memory_.check_selection(address, block, true);
+      auto error = not_initiated(protocol::memory_area_from_mrs(address));  // A2 cause 5
+      if (!error) error = memory_.check_selection(address, block, true);
       f.error = error;
       // A2 type II: the MRS code (block address) is acknowledged inverted.
       last_mrs_ = error ? static_cast<std::uint8_t>(~address) : address;
@@ -682,6 +735,7 @@ void Encoder::on_memory_access_done() {
     case Pending::Kind::Write:
       memory_.write(in_progress_.selection, in_progress_.address, in_progress_.value);
       if (nvm_write_) nvm_write_->applied = true;
+      note_commissioning_write(in_progress_.selection, in_progress_.address);
       break;
     default:
       break;
@@ -733,7 +787,8 @@ void Encoder::append_additional_datum(Information selected, unsigned which) {
   } else if (std::find(stale.begin(), stale.end(), selected) != stale.end() ||
              (selected == I::Diagnosis &&
               (memory_.active_operating_parameters()[word::kDiagnosticsConfiguration] & 0x3F) == 0) ||
-             (incremental_ && !referenced_ && selected >= I::PositionValue2Word1 && selected <= I::PositionValue2Word3)) {
+             ((eib_not_initiated_ || (incremental_ && !referenced_)) && selected >= I::PositionValue2Word1 &&
+              selected <= I::PositionValue2Word3)) {
     // Type IV; an incremental encoder has no absolute position value 2 before its reference run.
     code = which == 0 ? I::Nop1 : I::Nop2;  // A2 type IV
   } else {
@@ -763,7 +818,7 @@ std::uint16_t Encoder::additional_data_content(Information i) {
     // 2.3.5.1: "position value 2 or test values are always updated by querying the first word".
     case I::PositionValue2Word1:
       // Incremental encoders: the absolute position, available after the reference run.
-      position2_latched_ = incremental_ ? output_position(measured_position(f.start))
+      position2_latched_ = incremental_ ? output_position(absolute_position(f.start))
                                         : (s.position2_reversed ? static_cast<std::uint64_t>(s.position2_offset) - f.true_position
                                                                 : f.true_position + static_cast<std::uint64_t>(s.position2_offset));
       position2_latched_ = (position2_latched_ + static_cast<std::uint64_t>(s.position2_fault)) & 0xFFFF'FFFF'FFFFULL;
@@ -846,6 +901,7 @@ void Encoder::finish_frame() {
     case Pending::Kind::Write:
       memory_.write(pending_.selection, pending_.address, pending_.value);
       if (nvm_write_) nvm_write_->applied = true;
+      note_commissioning_write(pending_.selection, pending_.address);
       break;
     case Pending::Kind::Reset:
       reset();
@@ -872,6 +928,8 @@ void Encoder::restart_state() {
   type3_[0].reset();
   type3_[1].reset();
   area_selected_ = false;
+  // 3.5.7: an EIB becomes the connected encoder at reset or power-on (EibActivation::Reset).
+  if (eib_not_initiated_ && params_.eib_activation == EibActivation::Reset) complete_commissioning();
   // 2.7: "this bit is set to 0 via Encoder receive reset ... Position value 1 and position
   // value 2 are not influenced by this."
   referenced_ = !incremental_;
@@ -989,7 +1047,7 @@ bool Encoder::function_activated(EncoderFunction f) const {
 // and keeps the position within the revolution; the count goes on from there.
 void Encoder::activate_functions() {
   if (params_.multiturn_bits == 0 || !function_activated(EncoderFunction::MultiturnCounterReset)) return;
-  const __int128 steps_per_revolution = __int128{1} << (params_.position_bits - params_.multiturn_bits);
+  const __int128 steps_per_revolution = __int128{1} << (position_bits_ - params_.multiturn_bits);
   counter_origin_ = floor_div(unwrapped_position(kernel_.now()), steps_per_revolution) * steps_per_revolution;
 }
 
@@ -999,8 +1057,23 @@ void Encoder::select(const Selection& s) {
   if (s.area == MemoryArea::AsynchronousPosition) async_time_delay_ = s.block;  // 2.4.2.3
 }
 
+// EibActivation::Word14Write: the EIB becomes the connected encoder when word 14 is written.
+void Encoder::note_commissioning_write(const Selection& s, std::uint8_t address) {
+  if (eib_not_initiated_ && params_.eib_activation == EibActivation::Word14Write &&
+      s.area == MemoryArea::Manufacturer1 && address == word::kEncoderType)
+    complete_commissioning();
+}
+
+// 2.3.4.3: the absolute position of a referenced incremental encoder (position value 2).
+std::uint64_t Encoder::absolute_position(Time t) const {
+  const __int128 range = __int128{1} << position_bits_;
+  __int128 p = (static_cast<__int128>(measured_position(t)) - reference_offset_) % range;
+  if (p < 0) p += range;
+  return static_cast<std::uint64_t>(p);
+}
+
 std::uint64_t Encoder::measured_position(Time t) const {
-  const __int128 range = __int128{1} << params_.position_bits;
+  const __int128 range = __int128{1} << position_bits_;
   __int128 p = (unwrapped_position(t) - counter_origin_) % range;
   if (p < 0) p += range;
   return static_cast<std::uint64_t>(p);
@@ -1009,6 +1082,7 @@ std::uint64_t Encoder::measured_position(Time t) const {
 // 2.3.4.3: incremental encoders send relative positions, counted from switching on. 2.3.4.4: a
 // touch probe sends 16 bits, the LSB its trigger status; the other 15 are "TBD" and sent as 0.
 std::uint64_t Encoder::latched_position(Time t) const {
+  if (eib_not_initiated_) return 0;  // EibPositionBeforeCommissioning::ErrorBit: no valid position
   if (touch_probe_) return probe_deflected_ ? 1 : 0;
   if (incremental_)
     return output_position(static_cast<std::uint64_t>(unwrapped_position(t) - unwrapped_position(reference_origin_)));
@@ -1018,7 +1092,7 @@ std::uint64_t Encoder::latched_position(Time t) const {
 // The revolution counter has left 0 .. 2^M - 1 (counting up past the top or down past 0).
 bool Encoder::multiturn_overflowed(Time t) const {
   const __int128 p = unwrapped_position(t) - counter_origin_;
-  return params_.multiturn_bits > 0 && (p < 0 || p >= (__int128{1} << params_.position_bits));
+  return params_.multiturn_bits > 0 && (p < 0 || p >= (__int128{1} << position_bits_));
 }
 
 // UNCERTAIN reading of 3.4.4: the overflow error message sets F1/F2 in the frames that latch an

@@ -10,6 +10,7 @@
 #include "line/line.hpp"
 #include "protocol/protocol.hpp"
 #include "slave/memory.hpp"
+#include "slave/reference.hpp"
 
 namespace endatsim::slave {
 
@@ -18,7 +19,9 @@ using protocol::Information;
 using protocol::ModeCommand;
 using sim::Time;
 
-enum class EncoderKind : std::uint8_t { Singleturn, Multiturn, Linear, TouchProbe };
+// Eib: an External Interface Box in factory delivery state (word 14 type Fh, slave/eib.hpp); it
+// behaves as the connected encoder once initial commissioning is complete.
+enum class EncoderKind : std::uint8_t { Singleturn, Multiturn, Linear, TouchProbe, Eib };
 
 // What the encoder puts on DATA after a mode command with a broken redundancy or one it does
 // not support (type I, appendix A2). The wire behaviour is not documented in any readable
@@ -37,6 +40,19 @@ enum class MemoryAccessPlacement : std::uint8_t { InFrame, AfterFrame };
 // value stays. Torn: the high byte is programmed, the low byte is not. Either way write
 // protection bits already stored survive (3.4.3: irreversible).
 enum class InterruptedNvmWrite : std::uint8_t { KeepOld, Torn };
+
+// What completes the initial commissioning of an EIB (3.5.7 says only that word 14 "must be
+// modified during initial commissioning"; choice, README). Reset: "Encoder receive reset" or
+// power-on, which activate the other parameters too (2.7, 3.4.3, 3.6). Word14Write: at once when
+// the write of word 14 completes.
+enum class EibActivation : std::uint8_t { Reset, Word14Write };
+
+// What an EIB that is not yet initiated answers to a position request (choice, README: A2 gives
+// type II, cause 5, for parameter frames only). ErrorBit: the frame in the width of
+// EncoderParams::position_bits with error bit F1 set (F2 = 0) and every position bit 0, "no
+// valid position" (2.3.1); additional data as for an incremental encoder before its reference
+// run. NotSupported: the mode command is answered as not supported (type I, cause 1).
+enum class EibPositionBeforeCommissioning : std::uint8_t { ErrorBit, NotSupported };
 
 // Position source: fixed (counts_per_s = 0) or constant velocity, wrapping at 2^position_bits.
 struct MotionProfile {
@@ -109,13 +125,22 @@ struct EncoderParams {
   unsigned earliest_start_bit_clock = 11;
   Type1Handling type1 = Type1Handling::AbortHigh;
   bool communication_command_permitted = true;  // A2 cause 4 when false
-  // An encoder behind an External Interface Box (word 14 type Fh) is "not yet initiated" for
-  // this long after switching on; parameter accesses meanwhile get type II (A2 cause 5; guess).
-  Time eib_initialisation_time = sim::ms(100);
+  // An EIB (word 14 type Fh) is "not yet initiated" (A2 cause 5) until initial commissioning
+  // has written the connected encoder's type into word 14 and this event activates it (3.5.7).
+  EibActivation eib_activation = EibActivation::Reset;
+  // ... and only if word 47 then checks (3.5.26: "to check the correctness of the saved data";
+  // choice): an EIB whose saved parameters do not add up stays not initiated.
+  bool eib_activation_checks_checksum = true;
+  EibPositionBeforeCommissioning eib_position_before_commissioning = EibPositionBeforeCommissioning::ErrorBit;
   MotionProfile motion;
   // Incremental encoders (word 14, 3.5.7): positions of the reference marks within the range, in
-  // measuring steps; one crossing (two with distance-coded marks) sets RM (2.3.4.3).
+  // measuring steps; one crossing (two with distance-coded marks) sets RM (2.3.4.3). Equidistant
+  // marks (word 18 != 0 without distance coding) come from words 18/19 instead (3.5.10.2, 3.5.11).
   std::vector<std::uint64_t> reference_marks{0};
+  // Equidistant marks: the one selected by hardware ("reference marks can be selected using the
+  // hardware", 2.3.4.3), counted from the first mark (0). None: every mark references and the
+  // first one crossed is taken as the first mark (guess: 2.3.4.3 needs "a reference mark").
+  std::optional<std::uint64_t> selected_reference_mark;
   bool error1 = false;              // F1 = 1 / F2 = 0 regardless of word 0
   // A failed error path (safety functions, issue 7): this error message stays at its inactive
   // level (F1 LOW, F2 HIGH) whatever the error sources and forced dynamic sampling (3.5.3) say.
@@ -176,6 +201,12 @@ class Encoder {
   const Memory& memory() const { return memory_; }
   std::optional<Information> additional_data_1() const { return selection_[0]; }
   std::optional<Information> additional_data_2() const { return selection_[1]; }
+  // The transfer format in use: word 13 as activated (an EIB's changes at commissioning).
+  unsigned position_bits() const { return position_bits_; }
+  // 3.5.7 / A2 cause 5: an EIB before initial commissioning is complete.
+  bool eib_not_initiated() const { return eib_not_initiated_; }
+  bool referenced() const { return referenced_; }  // RM (2.3.4.3); always for absolute encoders
+  const ReferenceScheme& reference_scheme() const { return reference_; }
 
   // Faults (issue 5), while running.
   void set_error_sources(std::uint16_t errors, std::uint16_t warnings);  // words 0 and 1 (3.4.1, 3.4.2)
@@ -228,6 +259,9 @@ class Encoder {
   void finish_frame();
   void reset();
   void restart_state();
+  void adopt_encoder_type();
+  void complete_commissioning();
+  std::optional<protocol::ErrorCause> not_initiated(std::optional<MemoryArea> area) const;
   void note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at);
   void interrupt_nvm_write();
   void latch_errors();
@@ -235,6 +269,8 @@ class Encoder {
   void activate_functions();
   void select(const Selection& s);
   std::uint64_t measured_position(Time t) const;
+  std::uint64_t absolute_position(Time t) const;
+  void note_commissioning_write(const Selection& s, std::uint8_t address);
   std::uint64_t latched_position(Time t) const;
   std::uint16_t error_word() const;
   std::uint16_t timestamp(Time frame_start) const;
@@ -326,9 +362,11 @@ class Encoder {
   std::int64_t slip_ = 0;                       // steps the coupling slipped
   unsigned unsettled_left_ = 0;                 // position answers still unsettled after start-up
   std::optional<Time> probe_switched_at_;       // the last trigger, for the timestamp (3.9.32)
-  unsigned marks_to_reference_ = 1;             // 2 with distance-coded reference marks
+  ReferenceScheme reference_;                   // from word 14 and words 18/19 (2.3.4.3)
   bool referenced_ = false;                     // RM (2.3.4.3)
-  Time eib_ready_at_{0};                        // A2 cause 5 before this time
+  __int128 reference_offset_ = 0;               // absolute = measured - offset (equidistant, first crossed)
+  unsigned position_bits_ = 0;                  // word 13 as activated
+  bool eib_not_initiated_ = false;              // word 14 type Fh (3.5.7, A2 cause 5)
   Time reference_origin_{0};                    // switch-on: where relative positions start
   Time reference_search_from_{0};               // since when crossings count (switch-on, reset)
 

@@ -1,6 +1,7 @@
 #include "slave/memory.hpp"
 
 #include "protocol/parameters.hpp"
+#include "slave/eib.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -207,6 +208,12 @@ std::optional<ErrorCause> Memory::write(const Selection& s, std::uint8_t address
 std::optional<ErrorCause> Memory::check_write(const Selection& s, std::uint8_t address, std::uint16_t value) const {
   std::uint16_t old = 0;
   if (const auto e = read(s, address, old)) return e;
+  if (commissioning_ && eib_commissioning_area(s.area)) {
+    // 3.5.7: "other parameters must be saved during initial commissioning".
+    const unsigned n = address + (s.area == Area::Manufacturer2 ? 16U : s.area == Area::Manufacturer3 ? 32U : 0U);
+    const bool factory = s.area != Area::ManufacturerEndat22 && eib_factory_word(n);
+    return factory ? std::optional{ErrorCause::WriteProtected} : std::nullopt;
+  }
   if (write_protected(s)) return ErrorCause::WriteProtected;
   if (s.area == Area::OperatingStatus) {
     if ((address == word::kErrors || address == word::kWarnings) && value != 0) return ErrorCause::ImpermissibleAddress;

@@ -83,6 +83,10 @@ class Memory {
   // 2.7 / 3.4.3 / 3.4.4 / 3.6: "Encoder receive reset" (or power-on) activates word 2, word 3
   // and the operating parameters as written; operating parameters 2 return to their defaults.
   void activate_on_reset();
+  // 3.5.7 / A2 cause 5: an EIB before initial commissioning. While open, the manufacturer areas
+  // of slave/eib.hpp are writable except the words the box keeps (kEibFactoryWords).
+  void set_initial_commissioning(bool open) { commissioning_ = open; }
+  bool initial_commissioning() const { return commissioning_; }
   std::uint16_t active_write_protection() const { return active_protection_; }
   std::uint16_t active_function_initialization() const { return active_functions_; }
   const std::vector<std::uint16_t>& active_operating_parameters() const { return active_operating_; }
@@ -98,6 +102,7 @@ class Memory {
   std::uint16_t active_protection_ = 0;
   std::uint16_t active_functions_ = 0;
   std::vector<std::uint16_t> active_operating_;
+  bool commissioning_ = false;
 };
 
 }  // namespace endatsim::slave

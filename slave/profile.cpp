@@ -1,5 +1,8 @@
 #include "slave/profile.hpp"
 
+#include "slave/eib.hpp"
+#include "slave/reference.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -31,6 +34,7 @@ std::string kind_key(EncoderKind k) {
     case EncoderKind::Multiturn: return "multiturn";
     case EncoderKind::Linear: return "linear";
     case EncoderKind::TouchProbe: return "touch_probe";
+    case EncoderKind::Eib: return "eib";
   }
   return "singleturn";
 }
@@ -139,7 +143,8 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
   else if (kind == "multiturn") p.kind = EncoderKind::Multiturn;
   else if (kind == "linear") p.kind = EncoderKind::Linear;
   else if (kind == "touch_probe") p.kind = EncoderKind::TouchProbe;
-  else r.child("kind").fail("one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\"");
+  else if (kind == "eib") p.kind = EncoderKind::Eib;
+  else r.child("kind").fail("one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", \"eib\"");
   p.position_bits = r.child("position_bits").as_uint(1, 48);
   if (root.contains("multiturn_bits")) p.multiturn_bits = r.child("multiturn_bits").as_uint(0, p.position_bits - 1);
 
@@ -181,6 +186,23 @@ void write_words(std::ostringstream& out, const std::vector<std::uint16_t>& w, c
     out << '"' << word_string(w[i]) << '"';
   }
   out << '\n' << indent << ']';
+}
+
+// A10 / 3.5.8: an incremental encoder states its signal period whatever its ordering
+// designation; 3.5.10.2 / 3.5.11: equidistant marks in words 18/19 must convert into
+// measuring steps and lie within the range.
+void check_reference_marks(const EncoderProfile& p, const std::vector<std::uint16_t>& m, std::vector<std::string>& problems) {
+  const auto type = pm::decode_encoder_type(m[14]);
+  if (!pm::is_incremental(type)) return;
+  if (pm::decode_signal_period(m[15], m[16]) == 0)
+    problems.push_back(manufacturer_path(15) + ": expected the signal period of an incremental encoder in words 15/16 "
+                       "(3.5.8, appendix A10), got 0000h");
+  if (pm::reference_marks_of(type, m[18]) != pm::ReferenceMarks::Equidistant) return;
+  try {
+    (void)reference_scheme(Memory(p.memory), {}, std::nullopt, p.position_bits);
+  } catch (const std::invalid_argument& e) {
+    problems.push_back(manufacturer_path(18) + ": " + e.what());
+  }
 }
 
 }  // namespace
@@ -242,34 +264,45 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
       problems.push_back("/memory: expected area " + std::string(protocol::info(partitioned[i]).key) +
                          ", which word " + std::to_string(word) + " makes available (3.5.5)");
   }
-  for (unsigned n : {8U, 13U, 30U, 31U})
-    expect((m[n] & pm::kNvmBit15) != 0, manufacturer_path(n), "bit 15 = 1 for NVM checking (3.5)", m[n]);
-  expect((m[14] & pm::kNvmBit0) != 0, manufacturer_path(14), "bit 0 = 1 for NVM checking (3.5.7)", m[14]);
-  expect(pm::decode_position_bits(m[13]) == p.position_bits, manufacturer_path(13),
-         "position_bits " + std::to_string(p.position_bits) + " in bits 0..5 (3.5.6)", m[13]);
   const auto type = pm::decode_encoder_type(m[14]);
   const bool multiturn_type = type == pm::EncoderType::MultiturnBattery || type == pm::EncoderType::MultiturnGears;
   const bool probe_type = type == pm::EncoderType::TouchProbe;
+  const bool eib_type = type == pm::EncoderType::ExternalInterfaceBox;
   const bool type_ok = p.kind == EncoderKind::Linear       ? pm::is_linear(type) && !probe_type
                        : p.kind == EncoderKind::Multiturn  ? multiturn_type
                        : p.kind == EncoderKind::TouchProbe ? probe_type
-                                                           : !pm::is_linear(type) && !multiturn_type && !probe_type;
+                       : p.kind == EncoderKind::Eib        ? eib_type
+                                                           : !pm::is_linear(type) && !multiturn_type && !probe_type && !eib_type;
   expect(type_ok, manufacturer_path(14), "an encoder type of kind " + kind_key(p.kind) + " (3.5.7)", m[14]);
+  expect((m[14] & pm::kNvmBit0) != 0, manufacturer_path(14), "bit 0 = 1 for NVM checking (3.5.7)", m[14]);
+  if (p.kind == EncoderKind::Eib) {
+    // 3.5.7: in factory delivery state an EIB holds word 14, the memory size, ID and serial
+    // number and (choice) their checksum; the other words are saved at initial commissioning.
+    for (unsigned n = 4; n < 47; ++n)
+      expect(n == 14 || eib_factory_word(n) || m[n] == 0, manufacturer_path(n),
+             "0 (an EIB in factory delivery state saves only words 9..12, 14, 24..29 and 47, 3.5.7)", m[n]);
+  } else {
+    for (unsigned n : {8U, 13U, 30U, 31U})
+      expect((m[n] & pm::kNvmBit15) != 0, manufacturer_path(n), "bit 15 = 1 for NVM checking (3.5)", m[n]);
+    expect(pm::decode_position_bits(m[13]) == p.position_bits, manufacturer_path(13),
+           "position_bits " + std::to_string(p.position_bits) + " in bits 0..5 (3.5.6)", m[13]);
+    const auto commands = pm::decode_command_set(m[37]);
+    expect(pm::command_set_consistent(m[37]) && commands.endat22 == (p.version == EndatVersion::V2_2),
+           manufacturer_path(37), "bit pairs stored inversely, command set " + version_key(p.version) + " (3.5.22)",
+           m[37]);
+    check_reference_marks(p, m, problems);
+  }
   const std::uint16_t revolutions =
       p.kind == EncoderKind::Multiturn ? pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U)) : 0;
   expect(m[17] == revolutions, manufacturer_path(17),
          hex4(revolutions) + "h distinguishable revolutions (3.5.9)", m[17]);
   if (p.kind != EncoderKind::Linear) {
-    const std::uint64_t steps = pm::decode_measuring_steps(m[20], m[21]);
+    const std::uint64_t steps = pm::steps_per_revolution(m, p.endat22_words()).value_or(0);
     const std::uint64_t expected = std::uint64_t{1} << (p.position_bits - p.multiturn_bits);
     if (steps != 0 && steps != expected)
       problems.push_back(manufacturer_path(20) + ": expected " + std::to_string(expected) +
                          " measuring steps per revolution in words 20/21 (3.5.12), got " + std::to_string(steps));
   }
-  const auto commands = pm::decode_command_set(m[37]);
-  expect(pm::command_set_consistent(m[37]) && commands.endat22 == (p.version == EndatVersion::V2_2),
-         manufacturer_path(37), "bit pairs stored inversely, command set " + version_key(p.version) + " (3.5.22)",
-         m[37]);
   if (const auto d = pm::decode_ordering_designation(m[40])) {
     const bool printable = (*d)[5] > 0x20 && (*d)[5] < 0x7F && (*d)[6] > 0x20 && (*d)[6] < 0x7F;
     const bool needs22 = (*d)[6] == '2';  // EnDat02 / EnDat22: command set 2.2 (brochure 004)
@@ -297,6 +330,14 @@ std::vector<std::pair<std::string, std::string>> describe_profile(const EncoderP
   d.emplace_back("position bits (word 13)", std::to_string(pm::decode_position_bits(m[13])));
   d.emplace_back("measuring step (words 20/21)", pm::measuring_step_string(type, pm::decode_measuring_steps(m[20], m[21])));
   if (p.kind == EncoderKind::Multiturn) d.emplace_back("distinguishable revolutions (word 17)", std::to_string(m[17]));
+  if (pm::is_incremental(type)) {  // 2.3.4.3, 3.5.10, 3.5.11
+    const auto marks = pm::reference_marks_of(type, m[18]);
+    std::string text(pm::reference_marks_name(marks));
+    const std::string unit = pm::is_linear(type) ? " mm" : " signal periods";
+    if (marks == pm::ReferenceMarks::DistanceCoded) text += ", nominal increment " + std::to_string(m[18]) + unit;
+    if (marks == pm::ReferenceMarks::Equidistant) text += " every " + std::to_string(m[18]) + unit;
+    d.emplace_back("reference marks (words 14, 18)", text);
+  }
   d.emplace_back("ID number (words 24..26)", pm::id_number_string(pm::decode_id_number(m[24], m[25], m[26])));
   d.emplace_back("serial number (words 27..29)",
                  pm::serial_number_string(pm::decode_serial_number(m[27], m[28], m[29])));

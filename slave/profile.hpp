@@ -5,7 +5,7 @@
 //     "name": "rotary_singleturn_25bit",
 //     "description": "free text",
 //     "version": "2.2",                     // command set: "2.1" or "2.2"
-//     "kind": "singleturn",                 // "singleturn", "multiturn" or "linear"
+//     "kind": "singleturn",                 // "singleturn", "multiturn", "linear", "touch_probe" or "eib"
 //     "position_bits": 25,                  // = word 13
 //     "multiturn_bits": 0,
 //     "memory": {                           // protocol::info(MemoryArea).key -> 16-bit words
@@ -63,8 +63,10 @@ void save_profile(const std::string& path, const EncoderProfile& profile);  // t
 // What is inconsistent, each as "JSON path: expectation, got value"; empty when the image is
 // consistent: sizes (as slave::Memory checks them), NVM check bits of words 8, 13, 14, 30 and
 // 31, word 13 = position_bits, word 14 against kind, word 17 against multiturn_bits, words 20/21
-// against the rotary resolution, word 37 against version, word 40, the EnDat 2.2 area present
-// exactly for 2.2, checksums of words 47 and BD 63.
+// (or the A10 scaling) against the rotary resolution, word 37 against version, word 40, the
+// signal period and equidistant reference marks of incremental encoders (A10, 3.5.10.2), the
+// EnDat 2.2 area present exactly for 2.2, checksums of words 47 and BD 63. Kind "eib": the
+// factory delivery state of 3.5.7 (word 14 type Fh; only words 9..12, 14, 24..29 and 47 saved).
 std::vector<std::string> check_profile(const EncoderProfile& profile);
 
 // For reports: (label, value) pairs decoded from the parameter words, e.g.

@@ -598,6 +598,106 @@ TEST(IncrementalEncoder, DistanceCodedMarksNeedTwoCrossings) {
   EXPECT_EQ(b.slots(2, 36, 43), bits_msb(0xC0 | 2, 8)) << "second mark at 33 000 crossed at 300 ms";
 }
 
+namespace {
+
+// 16 signal periods per revolution, 2^16 steps per revolution (4096 per period), word 18 = 2
+// signal periods: equidistant marks every 8192 steps, eight per revolution (3.5.10.2).
+slave::EncoderParams equidistant(std::optional<std::uint64_t> selected = std::nullopt) {
+  auto p = incremental(protocol::parameters::EncoderType::IncrementalRotary, 10'000);
+  p.selected_reference_mark = selected;
+  auto& m1 = p.memory->areas[protocol::MemoryArea::Manufacturer1];
+  auto& m2 = p.memory->areas[protocol::MemoryArea::Manufacturer2];
+  m1[15] = 16;     // word 15: signal periods per revolution
+  m2[2] = 2;       // word 18: distance of the marks in signal periods
+  m2[5] = 0x0001;  // words 20/21: 65536 steps per revolution
+  m2[4] = 0x0000;
+  return p;
+}
+
+void scripted_at(Bench& b, Time at, unsigned clocks, const std::string& drive) {
+  b.starts.push_back(at);
+  b.frames.push_back(std::make_unique<ScriptedFrame>(b.k, b.line, us(1), clocks, drive, at));
+  b.k.run(at + ms(1));
+}
+
+// 1 ms after the last frame: 2.7 (RM = 0, additional data deselected), then position value 2 again.
+void reset_and_reselect(Bench& b) {
+  const Time at = b.starts.back() + ms(1);
+  scripted_at(b, at, 65, ScriptedFrame::header(0b101010, payload(0, 0)));
+  scripted_at(b, at + ms(1), 67, select_position_value_2_16bit());
+}
+
+}  // namespace
+
+TEST(IncrementalEncoder, ReferenceModeFollowsWord14AndWord18) {
+  namespace pm = protocol::parameters;
+  using T = pm::EncoderType;
+  const auto mode = [](const slave::EncoderParams& p) {
+    return slave::reference_scheme(slave::Memory(*p.memory), p.reference_marks, p.selected_reference_mark, 16);
+  };
+  EXPECT_EQ(mode(incremental(T::IncrementalRotary, 0)).marks, pm::ReferenceMarks::One) << "word 18 = 0";
+  const auto coded = mode(incremental(T::IncrementalRotaryBatteryDistanceCoded, 0));
+  EXPECT_EQ(coded.marks, pm::ReferenceMarks::DistanceCoded);
+  EXPECT_EQ(coded.crossings, 2U);
+  const auto equal = mode(equidistant());
+  EXPECT_EQ(equal.marks, pm::ReferenceMarks::Equidistant);
+  EXPECT_EQ(equal.distance, 8192U) << "2 periods x 65536 / 16 steps";
+  EXPECT_EQ(equal.first, 0U) << "3.5.11: word 19 only for linear encoders";
+  EXPECT_EQ(mode(incremental(T::Singleturn, 0)).marks, pm::ReferenceMarks::None);
+  auto unscaled = equidistant();
+  unscaled.memory->areas[protocol::MemoryArea::Manufacturer1][15] = 0;  // no signal period: marks in P unplaceable
+  EXPECT_THROW(mode(unscaled), std::invalid_argument);
+  EXPECT_THROW(unscaled.validate(), std::invalid_argument);
+}
+
+TEST(IncrementalEncoder, EquidistantMarksReferenceAtTheFirstCrossing) {
+  // From 30 000 at 10 000 steps/s the first mark crossed is the fifth, at 32 768 (276.8 ms).
+  Bench b(equidistant());
+  b.frame(67, select_position_value_2_16bit());
+  frame_at(b, ms(250));
+  EXPECT_EQ(b.slots(1, 36, 43), bits_msb(0x80, 8)) << "no mark crossed yet: RM = 0, NOP";
+  frame_at(b, ms(300));
+  EXPECT_EQ(b.last().position, 3000U) << "position value 1 stays relative";
+  // The crossed mark is taken as the first: position value 2 = 33 000 - 4 x 8192 = 232.
+  EXPECT_EQ(b.slots(2, 36, 59), bits_msb(0xC0 | 2, 8) + bits_msb(232, 16)) << "RM = 1 at the first crossing";
+  reset_and_reselect(b);
+  frame_at(b, ms(304));
+  EXPECT_EQ(b.slots(5, 36, 43), bits_msb(0x80, 8)) << "after the reset RM is 0 again";
+  frame_at(b, ms(1200));  // 42 000: the mark at 40 960 crossed since the reset
+  EXPECT_EQ(b.slots(6, 36, 59), bits_msb(0xC0 | 2, 8) + bits_msb(42'000 - 40'960, 16));
+}
+
+TEST(IncrementalEncoder, SelectedEquidistantMarkIsTheOnlyReference) {
+  // 2.3.4.3: "reference marks can be selected using the hardware": mark 5 at 40 960.
+  Bench b(equidistant(5));
+  b.frame(67, select_position_value_2_16bit());
+  frame_at(b, ms(300));
+  EXPECT_EQ(b.slots(1, 36, 43), bits_msb(0x80, 8)) << "the mark at 32 768 is not the selected one";
+  frame_at(b, ms(1200));
+  EXPECT_EQ(b.slots(2, 36, 59), bits_msb(0xC0 | 2, 8) + bits_msb(42'000, 16)) << "absolute: the mark sits where it is";
+  EXPECT_THROW(slave::EncoderParams(equidistant(8)).validate(), std::invalid_argument) << "only marks 0 .. 7 exist";
+}
+
+TEST(IncrementalEncoder, OneMarkAndDistanceCodedMarksAfterReset) {
+  // The other two modes: RM back to 0 after a reset, set again at the next crossing(s).
+  using T = protocol::parameters::EncoderType;
+  Bench one(incremental(T::IncrementalLinear, 10'000));
+  one.frame(67, select_position_value_2_16bit());
+  frame_at(one, ms(150));
+  EXPECT_EQ(one.slots(1, 36, 43), bits_msb(0xC0 | 2, 8)) << "31 000 crossed";
+  reset_and_reselect(one);
+  frame_at(one, ms(200));
+  EXPECT_EQ(one.slots(4, 36, 43), bits_msb(0x80, 8)) << "no mark between 31 510 and 32 000";
+  frame_at(one, ms(350));
+  EXPECT_EQ(one.slots(5, 36, 59), bits_msb(0xC0 | 2, 8) + bits_msb(33'500, 16)) << "33 000 crossed";
+  Bench coded(incremental(T::IncrementalLinearDistanceCoded, 10'000));
+  coded.frame(67, select_position_value_2_16bit());
+  frame_at(coded, ms(350));
+  reset_and_reselect(coded);
+  frame_at(coded, ms(400));
+  EXPECT_EQ(coded.slots(4, 36, 43), bits_msb(0x80, 8)) << "two marks needed again after the reset";
+}
+
 TEST(AdditionalData, DiagnosisSendsTheActivatedValuationNumbersInTurn) {
   // 3.6.3 / A3: word 3 of the operating parameters activates valuation numbers 1 and 3.
   auto p = params();
@@ -620,19 +720,16 @@ TEST(AdditionalData, DiagnosisWithoutActivatedValuationNumbersIsNop) {
 }
 
 TEST(AppendixA2, Cause5EncoderBehindAnEibNotYetInitiated) {
-  // Word 14 type Fh (External Interface Box): parameter access before the EIB has initialised
-  // is answered with the inverted echo; afterwards normally.
+  // 3.5.7: an EIB in factory delivery state (word 14 type Fh) is "not yet initiated": selecting
+  // the OEM area is answered with the inverted echo; the encoder manufacturer's area stays open
+  // for initial commissioning.
   auto p = params();
-  p.eib_initialisation_time = us(300);
-  p.memory = slave::default_memory_image(p);
-  p.memory->areas[protocol::MemoryArea::Manufacturer1][slave::word::kEncoderType] =
-      protocol::parameters::encode_encoder_type(protocol::parameters::EncoderType::ExternalInterfaceBox);
+  p.kind = slave::EncoderKind::Eib;
   Bench b(p);
   b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
   ASSERT_TRUE(b.last().error.has_value());
   EXPECT_EQ(*b.last().error, ErrorCause::EibNotInitialised);
   EXPECT_EQ(b.slots(0, 35, 43), "1" + bits_msb(0x56, 8));
-  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
-  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
-  EXPECT_FALSE(b.last().error.has_value()) << "initialised after 300 us";
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA1, 0)));
+  EXPECT_FALSE(b.last().error.has_value()) << "A1 is open for commissioning";
 }

@@ -16,6 +16,7 @@
 
 #include <unistd.h>
 
+#include "slave/eib.hpp"
 #include "slave/profile.hpp"
 
 using namespace endatsim;
@@ -167,7 +168,49 @@ std::vector<ProfileParameters> bundled_parameters() {
     p.ordering_designation = "EnDat01";
     all.push_back(p);
   }
+  {
+    ProfileParameters p;
+    p.name = "incremental_rotary_equidistant";
+    p.description = "Incremental rotary encoder without distance-coded reference marks, EnDat22 with its signal "
+                    "period stated (A10): 2048 signal periods per revolution (3.5.8 example), 4096 steps per "
+                    "period, 23-bit position; equidistant reference marks every 512 signal periods, four per "
+                    "revolution (3.5.10.2). Illustrative values, not a real product.";
+    p.version = protocol::EndatVersion::V2_2;
+    p.kind = EncoderKind::Singleturn;
+    p.type = pm::EncoderType::IncrementalRotary;
+    p.position_bits = 23;
+    p.oem[0] = pm::AddressRange{0, 63};
+    p.signal_period = 2048;            // P/rev
+    p.reference_mark_increment = 512;  // P
+    p.id = pm::parse_id_number("385488 02");
+    p.serial = {' ', 27001234, ' '};
+    p.max_speed = 12000;
+    p.supported_errors = 0x0007;
+    p.supported_warnings = 0x0011;     // 2^4: reference point not reached (3.4.2)
+    p.t_cal = pm::calculation_time_from(5us);
+    p.ordering_designation = "EnDat22";
+    p.additional_data_1 = {"position_value_2", "temperature_1"};
+    p.additional_data_2 = {"operating_status_error_sources"};
+    p.supported_errors_2 = 0x0007;
+    p.max_clock_khz = 16000;
+    all.push_back(p);
+  }
   return all;
+}
+
+// The EIB in factory delivery state (3.5.7); position_bits is the width of its answer before
+// initial commissioning (word 13 is not saved yet).
+EncoderProfile eib_factory_profile() {
+  EncoderProfile p;
+  p.name = "eib_factory";
+  p.description = "External Interface Box in factory delivery state (3.5.7): word 14 type Fh, memory size (OEM "
+                  "areas 1 and 2, 64 words each), ID and serial number, their checksum; everything else is saved "
+                  "at initial commissioning. Illustrative values, not a real product.";
+  p.version = protocol::EndatVersion::V2_2;
+  p.kind = EncoderKind::Eib;
+  p.position_bits = 32;
+  p.memory = slave::eib_factory_image();
+  return p;
 }
 
 // What profiles/README.md documents for each bundled profile.
@@ -239,7 +282,35 @@ const std::map<std::string, std::map<std::string, std::string>> kDocumented{
       {"command set (word 37)", "2.1"},
       {"t_cal (word 39)", "5 us"},
       {"ordering designation (word 40)", "EnDat01"},
-      {"functions (operating status word 3)", "none activated"}}},
+      {"functions (operating status word 3)", "none activated"},
+      {"reference marks (words 14, 18)", "distance-coded reference marks, nominal increment 20 mm"}}},
+    {"incremental_rotary_equidistant",
+     {{"encoder type (word 14)", "incremental rotary or angle encoder without distance-coded reference marks"},
+      {"position bits (word 13)", "23"},
+      {"measuring step (words 20/21)", "8388608 steps/rev"},
+      {"reference marks (words 14, 18)", "equidistant reference marks every 512 signal periods"},
+      {"ID number (words 24..26)", "385488 02"},
+      {"serial number (words 27..29)", "27001234"},
+      {"command set (word 37)", "2.2"},
+      {"t_cal (word 39)", "5 us"},
+      {"ordering designation (word 40)", "EnDat22"},
+      {"functions (operating status word 3)", "none activated"},
+      {"additional data 1 (2.2 word 0)", "position_value_2, temperature_1"},
+      {"additional data 2 (2.2 word 1)", "operating_status_error_sources"},
+      {"maximum clock frequency (2.2 word 25)", "16 MHz"}}},
+    {"eib_factory",
+     {{"encoder type (word 14)", "External Interface Box (EIB)"},
+      {"position bits (word 13)", "0"},
+      {"measuring step (words 20/21)", "0 (see EnDat 2.2 words 27 .. 29)"},
+      {"ID number (words 24..26)", "1000000 01"},
+      {"serial number (words 27..29)", "10000001"},
+      {"command set (word 37)", "2.1 (bit pairs not stored inversely)"},
+      {"t_cal (word 39)", "not supported"},
+      {"ordering designation (word 40)", "not supported"},
+      {"functions (operating status word 3)", "none activated"},
+      {"additional data 1 (2.2 word 0)", "none"},
+      {"additional data 2 (2.2 word 1)", "none"},
+      {"maximum clock frequency (2.2 word 25)", "0 kHz"}}},
 };
 
 std::string read_text(const std::string& path) {
@@ -277,6 +348,52 @@ TEST(Profile, BundledProfilesMatchTheirParameters) {
   }
 }
 
+TEST(Profile, BundledEibFactoryMatchesItsImage) {
+  const auto built = eib_factory_profile();
+  EXPECT_TRUE(slave::check_profile(built).empty()) << slave::check_profile(built).front();
+  const std::string path = kProfiles + built.name + ".json";
+  if (std::getenv("ENDATSIM_WRITE_PROFILES") != nullptr) slave::save_profile(path, built);
+  EXPECT_EQ(read_text(path), slave::profile_text(built)) << path << " differs from eib_factory_image()";
+}
+
+TEST(Profile, EibFactoryStateIsChecked) {
+  const std::string good = slave::profile_text(eib_factory_profile());
+  EXPECT_EQ(error_of(good), "(accepted)");
+  // A word saved before commissioning (word 13), the type changed, the kind without type F.
+  EXPECT_EQ(error_of(replace(good, "\"0x0000\", \"0x2020\"", "\"0x0001\", \"0x2020\"")),
+            "bad.json: at /memory/manufacturer_1/8: expected 0 (an EIB in factory delivery state saves only words "
+            "9..12, 14, 24..29 and 47, 3.5.7), got 0001h");
+  EXPECT_EQ(error_of(replace(good, "\"0xF001\"", "\"0x8001\"")),
+            "bad.json: at /memory/manufacturer_1/14: expected an encoder type of kind eib (3.5.7), got 8001h");
+  auto singleturn = eib_factory_profile();
+  singleturn.kind = EncoderKind::Singleturn;
+  EXPECT_EQ(error_of(slave::profile_text(singleturn)),
+            "bad.json: at /memory/manufacturer_1/14: expected an encoder type of kind singleturn (3.5.7), got F001h");
+}
+
+TEST(Profile, IncrementalEncodersStateSignalPeriodAndUsableMarks) {
+  const auto params = bundled_parameters().back();
+  ASSERT_EQ(params.name, "incremental_rotary_equidistant");
+  const std::string good = slave::profile_text(slave::build_profile(params));
+  EXPECT_EQ(error_of(good), "(accepted)");
+  // A10: no signal period (words 15/16 = 0, checksum adjusted).
+  auto no_period = params;
+  no_period.signal_period = 0;
+  EXPECT_EQ(error_of(slave::profile_text(slave::build_profile(no_period))),
+            "bad.json: at /memory/manufacturer_1/15: expected the signal period of an incremental encoder in words "
+            "15/16 (3.5.8, appendix A10), got 0000h");
+  // 3.5.10.2: equidistant marks in mm need the measuring step, which words 20/21 = 0 do not give.
+  auto linear = bundled_parameters().at(4);
+  ASSERT_EQ(linear.name, "incremental_distance_coded");
+  linear.type = pm::EncoderType::IncrementalLinear;  // word 18 = 20 mm: equidistant marks
+  EXPECT_EQ(error_of(slave::profile_text(slave::build_profile(linear))), "(accepted)");
+  linear.measuring_steps = 0;
+  EXPECT_EQ(error_of(slave::profile_text(slave::build_profile(linear))),
+            "bad.json: at /memory/manufacturer_2/2: equidistant reference marks (word 18 = 20) need the measuring "
+            "step: words 20/21, or the signal period (words 15/16) and the subdivision of EnDat 2.2 words 27..29 "
+            "(3.5.12, A10)");
+}
+
 TEST(Profile, EveryBundledProfileIsConsistentAndDecodesAsDocumented) {
   unsigned count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(kProfiles)) {
@@ -288,18 +405,18 @@ TEST(Profile, EveryBundledProfileIsConsistentAndDecodesAsDocumented) {
     EXPECT_EQ(p.name, entry.path().stem().string());
     EXPECT_TRUE(slave::check_profile(p).empty());
     const auto m = p.manufacturer_words();
-    // NVM check bits (3.5.4, 3.5.6, 3.5.7, 3.5.16, 3.5.17).
-    for (unsigned n : {8U, 13U, 30U, 31U}) EXPECT_NE(m[n] & 0x8000, 0) << "word " << n;
     EXPECT_NE(m[14] & 0x0001, 0);
-    EXPECT_EQ(pm::decode_position_bits(m[13]), p.position_bits);
-    EXPECT_EQ(m[13], 0x8000 | p.position_bits);
     EXPECT_EQ(pm::manufacturer_checksum(m), m[47]);
+    // NVM check bits (3.5.4, 3.5.6, 3.5.7, 3.5.16, 3.5.17); an EIB saves these words only at
+    // initial commissioning (3.5.7).
+    for (unsigned n : {8U, 13U, 30U, 31U}) EXPECT_EQ(m[n] & 0x8000, p.kind == EncoderKind::Eib ? 0 : 0x8000) << "word " << n;
+    EXPECT_EQ(m[13], p.kind == EncoderKind::Eib ? 0 : 0x8000 | p.position_bits);
     const auto e = p.endat22_words();
     EXPECT_EQ(e.empty(), p.version == protocol::EndatVersion::V2_1);
     if (!e.empty()) {
       EXPECT_EQ(pm::endat22_checksum(e), e[63]);
     }
-    EXPECT_TRUE(pm::command_set_consistent(m[37]));
+    EXPECT_EQ(pm::command_set_consistent(m[37]), p.kind != EncoderKind::Eib);
     // The documented strings.
     ASSERT_TRUE(kDocumented.contains(p.name)) << "profile not documented in this test: " << p.name;
     const auto described = slave::describe_profile(p);
@@ -357,8 +474,8 @@ TEST(Profile, ErrorsNameFileJsonPathAndExpectation) {
             "string \"8019\"");
   EXPECT_EQ(error_of(replace(good, "\"0x8019\"", "\"0x18019\"")).substr(0, 42), "bad.json: at /memory/manufacturer_1/13: ex");
   EXPECT_EQ(error_of(replace(good, "\"kind\": \"singleturn\"", "\"kind\": \"rotary\"")),
-            "bad.json: at /kind: expected one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", got string "
-            "\"rotary\"");
+            "bad.json: at /kind: expected one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", \"eib\", "
+            "got string \"rotary\"");
   EXPECT_EQ(error_of(replace(good, "\"kind\": \"singleturn\"", "\"kind\": \"linear\"")),
             "bad.json: at /memory/manufacturer_1/14: expected an encoder type of kind linear (3.5.7), got C001h");
   EXPECT_EQ(error_of(replace(good, "\"version\": \"2.2\"", "\"version\": \"2.1\"")),

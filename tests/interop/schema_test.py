@@ -50,6 +50,7 @@ BEYOND_SCHEMA = {
     "jitter_too_large_for_clock.json": "relation between jitter and the clock period",
     "max_time_zero.json": "range inside a duration string",
     "motion_start_beyond_position_bits.json": "relation between motion.start and position_bits",
+    "selected_reference_mark_beyond_marks.json": "how many reference marks exist depends on the profile's words 18/19",
     "script_at_backwards.json": "order of times",
     "start_bit_timeout_zero.json": "range inside a duration string",
     "t_cal_fraction_of_ps.json": "a duration that is not a whole number of picoseconds",
@@ -133,7 +134,9 @@ def main():
     jsonschema.Draft202012Validator.check_schema(schema)
     validator = jsonschema.Draft202012Validator(schema)
 
-    documents = [(os.path.basename(p), json.load(open(p))) for p in sorted(glob.glob(os.path.join(bundled, "*.json")))]
+    # The bundled scenarios and the safety-function pairs next to them (scenarios/safety/).
+    paths = glob.glob(os.path.join(bundled, "*.json")) + glob.glob(os.path.join(bundled, "..", "safety", "*.json"))
+    documents = [(os.path.basename(p), json.load(open(p))) for p in sorted(paths)]
     documents.append(("README.md example", readme_example(readme)))
     if len(documents) < 2:
         sys.exit("FAIL: no bundled scenarios found in " + bundled)
