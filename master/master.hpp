@@ -386,7 +386,6 @@ class Master {
   };
   std::optional<Position2Read> position2_;
   std::optional<Position2Parameters> position2_parameters_;
-  unsigned position2_next_word_ = 1;
   struct Written {
     std::uint8_t address = 0;
     std::uint16_t value = 0;
