@@ -73,8 +73,4 @@ constexpr std::uint8_t selection_mrs(Information i) { return static_cast<std::ui
 // The code an MRS code 0x40..0x5F selects.
 constexpr Information information_of_mrs(std::uint8_t mrs) { return static_cast<Information>(mrs & 0x1F); }
 
-// A2 cause 14 note: the additional sensors carry a 4-bit address and 12 bits of data; values
-// are in 0.1 K steps with an offset of 115 K (2.3.5.1, 3.9.6).
-constexpr unsigned kAdditionalSensorOffsetTenthKelvin = 1150;
-
 }  // namespace endatsim::protocol

@@ -3,12 +3,13 @@
 // the frames (frame.hpp, 2.3.1, 2.3.5, 2.4–2.10), the MRS codes of the memory areas
 // (memory_area.hpp, 2.4), the additional-data information codes (additional_data.hpp, 2.3.5),
 // the error causes of appendix A2 (error_handling.hpp) and the meaning of the parameter words
-// of 3.5, 3.6 and 3.9 (parameters.hpp). Master and encoder both use it;
-// it depends on nothing else in endatsim.
+// of 3.5, 3.6 and 3.9 (parameters.hpp) and the diagnosis values of appendix A3 (diagnosis.hpp).
+// Master and encoder both use it; it depends on nothing else in endatsim.
 #pragma once
 
 #include "protocol/additional_data.hpp"
 #include "protocol/crc.hpp"
+#include "protocol/diagnosis.hpp"
 #include "protocol/error_handling.hpp"
 #include "protocol/frame.hpp"
 #include "protocol/memory_area.hpp"

@@ -169,7 +169,10 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     e[word::kAdditionalData1Support] = 0x001F;  // 3.9.2: all additional data 1
     e[word::kAdditionalData2Support] = 0x009F;  // 3.9.3: all but "position value 2" in additional data 2
     e[2] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
+    e[word::kTemperatureScaling] = 0x8000;      // 3.9.6: 0.1 K (default value)
+    e[word::kDiagnosticStatus] = protocol::diagnosis::kValuationNumberBits;  // 3.9.7: valuation numbers 1 .. 6
     e[6] = 0x007F;                              // 3.9.8: support of error message 2
+    e[word::kMaxEncoderTemperature] = 3881;     // 3.9.16's example: 115 degC
     e[word::kMaxClockFrequency] = 16000;        // 3.9.19: kHz
     e[9] = m[20];                               // 3.9.10: position value 2 in the steps of position value 1
     e[10] = m[21];
@@ -183,6 +186,8 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     if (type == pm::EncoderType::TouchProbe) e[45] = pm::encode_timestamp_unit(pm::TimestampUnit::Us1);  // 3.9.32
     e[word::kEndat22Checksum] = word_sum(e, 0, 62);
     img.areas[A::ManufacturerEndat22] = e;
+    // 3.6.6: the default is word 22 minus a safety reserve; 5 K gives the example's 110 degC.
+    img.areas[A::OperatingParameters][word::kTemperatureWarningThreshold] = 3831;
     img.areas[A::OperatingParameters2].assign(16, 0);
   }
   return img;
@@ -785,8 +790,7 @@ void Encoder::append_additional_datum(Information selected, unsigned which) {
   if (type3_[which]) {
     code = which == 0 ? I::Type3Error1 : I::Type3Error2;  // A2 type III
   } else if (std::find(stale.begin(), stale.end(), selected) != stale.end() ||
-             (selected == I::Diagnosis &&
-              (memory_.active_operating_parameters()[word::kDiagnosticsConfiguration] & 0x3F) == 0) ||
+             (selected == I::Diagnosis && !diagnosis_activated()) ||
              ((eib_not_initiated_ || (incremental_ && !referenced_)) && selected >= I::PositionValue2Word1 &&
               selected <= I::PositionValue2Word3)) {
     // Type IV; an incremental encoder has no absolute position value 2 before its reference run.
@@ -807,14 +811,7 @@ std::uint16_t Encoder::additional_data_content(Information i) {
   const auto uvw = static_cast<std::uint16_t>((s.commutation & 0x7) << 13);
   const auto limits = static_cast<std::uint16_t>((s.limit_position_1 ? 0x8000 : 0) | (s.limit_position_2 ? 0x4000 : 0));
   switch (i) {
-    case I::Diagnosis: {  // A3 / 3.6.3: the activated valuation numbers in turn, address | value
-      const unsigned enabled = memory_.active_operating_parameters()[word::kDiagnosticsConfiguration] & 0x3F;
-      for (unsigned tried = 0; tried < s.valuation_numbers.size(); ++tried) {
-        const std::size_t k = diagnosis_index_++ % s.valuation_numbers.size();
-        if (((enabled >> k) & 1U) != 0) return static_cast<std::uint16_t>((k + 1) << 8 | s.valuation_numbers[k]);
-      }
-      return 0;
-    }
+    case I::Diagnosis: return next_diagnosis_value();
     // 2.3.5.1: "position value 2 or test values are always updated by querying the first word".
     case I::PositionValue2Word1:
       // Incremental encoders: the absolute position, available after the reference run.
@@ -841,9 +838,7 @@ std::uint16_t Encoder::additional_data_content(Information i) {
     case I::AdditionalSensors: {  // 2.3.5.1: the address rolls on every interrogation; 115 K offset
       if (s.additional_sensors.empty()) return 0;
       const unsigned address = sensor_address_++ % static_cast<unsigned>(s.additional_sensors.size());
-      const unsigned tenth_k = s.additional_sensors[address];
-      const unsigned value = std::min(4095U, tenth_k - std::min(tenth_k, protocol::kAdditionalSensorOffsetTenthKelvin));
-      return static_cast<std::uint16_t>(address << 12 | value);
+      return protocol::diagnosis::encode_additional_sensor(address, s.additional_sensors[address]);
     }
     case I::Commutation: return uvw;
     case I::Acceleration: return acceleration;
@@ -1032,7 +1027,46 @@ void Encoder::interrupt_nvm_write() {
 // 3.4.2: word 1 bit 5 reports cyclic mode while word 3 activates it.
 void Encoder::latch_errors() {
   const bool cyclic = function_activated(EncoderFunction::CyclicOperation);
-  memory_.latch_errors(params_.error_sources, static_cast<std::uint16_t>(params_.warning_sources | (cyclic ? 0x0020 : 0)));
+  const auto warnings = params_.warning_sources | (cyclic ? 0x0020 : 0) | (temperature_exceeded() ? kTemperatureExceeded : 0);
+  memory_.latch_errors(params_.error_sources, static_cast<std::uint16_t>(warnings));
+}
+
+// 3.4.2 / 3.6.6: warning 2^1 is "only triggered by the internal temperature sensor" (temperature
+// 2, on board: 3.9.2 word 0 bit 3) above the threshold of operating parameters word 6 (0: none),
+// where word 36 says the warning is supported. "Exceeded" is read as strictly above.
+bool Encoder::temperature_exceeded() const {
+  const std::uint16_t threshold = memory_.active_operating_parameters()[word::kTemperatureWarningThreshold];
+  const bool supported = (memory_.manufacturer_word(word::kSupportedWarnings) & kTemperatureExceeded) != 0 &&
+                         (memory_.endat22_word(word::kAdditionalData1Support) & kTemperatureSensor2Support) != 0;
+  return supported && threshold != 0 && params_.sensors.temperature2 > threshold;
+}
+
+// A3 / 3.6.3: the valuation numbers word 3 activates, then (bit 15) the system-specific data,
+// one per interrogation, as address | value.
+std::uint16_t Encoder::next_diagnosis_value() {
+  const Sensors& s = params_.sensors;
+  const std::uint16_t enabled = memory_.active_operating_parameters()[word::kDiagnosticsConfiguration];
+  std::vector<std::uint16_t> rotation;
+  for (unsigned k = 0; k < s.valuation_numbers.size(); ++k)
+    if (((enabled >> k) & 1U) != 0) rotation.push_back(static_cast<std::uint16_t>((k + 1) << 8 | s.valuation_numbers[k]));
+  if ((enabled & protocol::diagnosis::kSystemSpecificDataBit) != 0)
+    for (const auto& [address, value] : s.system_data) rotation.push_back(static_cast<std::uint16_t>(address << 8 | value));
+  if (rotation.empty()) return 0;
+  return rotation[diagnosis_index_++ % rotation.size()];
+}
+
+bool Encoder::diagnosis_activated() const {
+  const std::uint16_t enabled = memory_.active_operating_parameters()[word::kDiagnosticsConfiguration];
+  return (enabled & protocol::diagnosis::kValuationNumberBits) != 0 ||
+         ((enabled & protocol::diagnosis::kSystemSpecificDataBit) != 0 && !params_.sensors.system_data.empty());
+}
+
+void Encoder::set_sensor_values(const SensorValues& v) {
+  Sensors& s = params_.sensors;
+  if (v.temperature1) s.temperature1 = *v.temperature1;
+  if (v.temperature2) s.temperature2 = *v.temperature2;
+  if (v.additional_sensors) s.additional_sensors = *v.additional_sensors;
+  if (v.valuation_numbers) s.valuation_numbers = *v.valuation_numbers;
 }
 
 // ---- word 3: function initialization (3.4.4) ----------------------------------------------------

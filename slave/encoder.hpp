@@ -76,9 +76,19 @@ struct Sensors {
   // A3: valuation numbers 1 .. 6 (addresses 1 .. 6), sent in turn as far as operating
   // parameters word 3 activates them (3.6.3).
   std::array<std::uint8_t, 6> valuation_numbers{100, 100, 100, 100, 100, 100};
+  // A3 "system-specific data": address -> value, sent in turn after the valuation numbers while
+  // word 3 bit 15 activates them; the subsequent electronics must ignore these addresses.
+  std::map<std::uint8_t, std::uint8_t> system_data;
   std::map<std::uint8_t, std::uint64_t> test_values;  // port address -> 40-bit test value
   Time timestamp_unit = sim::us(1);
   std::vector<Information> not_updatable;    // A2 cause 16: answered with NOP (type IV)
+};
+
+// A change of what the encoder's sensors measure while running; unset fields stay.
+struct SensorValues {
+  std::optional<std::uint16_t> temperature1, temperature2;  // 0.1 K
+  std::optional<std::vector<std::uint16_t>> additional_sensors;
+  std::optional<std::array<std::uint8_t, 6>> valuation_numbers;
 };
 
 struct EncoderParams {
@@ -222,6 +232,8 @@ class Encoder {
   void set_stuck_error_messages(bool error1_stuck, bool error2_stuck);
   void slip(std::int64_t steps);
   void set_position2_fault(std::int64_t deviation);
+  // What the sensors measure from now on (diagnosis, appendix A3): temperatures, valuation numbers.
+  void set_sensor_values(const SensorValues& values);
   static constexpr Time kMaxFaultTime = sim::ms(10'000);
 
   // Internal signals worth tracing: what the encoder logic drives before its output delay.
@@ -265,6 +277,9 @@ class Encoder {
   void note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at);
   void interrupt_nvm_write();
   void latch_errors();
+  bool temperature_exceeded() const;
+  bool diagnosis_activated() const;
+  std::uint16_t next_diagnosis_value();
   bool function_activated(protocol::parameters::EncoderFunction f) const;
   void activate_functions();
   void select(const Selection& s);

@@ -35,8 +35,13 @@ constexpr unsigned kAdditionalData1Support = 0, kAdditionalData2Support = 1, kSe
 constexpr unsigned kEncoderAddress = 4, kInstructions = 5;       // A7, 3.6.4 / 3.6.5
 constexpr unsigned kDatumShift = 0;                              // A7 words 0..2, 3.6.2
 constexpr unsigned kDiagnosticsConfiguration = 3;                // A7, 3.6.3
+constexpr unsigned kTemperatureWarningThreshold = 6;             // A7, 3.6.6 (0.1 K)
+constexpr unsigned kTemperatureScaling = 4, kDiagnosticStatus = 5, kMaxEncoderTemperature = 22;  // BD, 3.9.6 / 3.9.7 / 3.9.16
 constexpr unsigned kDirection = 30;                              // encoder manufacturer, 3.5.16
 }  // namespace word
+
+// 3.4.2 warning 2^1 "temperature exceeded"; 3.9.2 word 0 bit 3 "temperature sensor 2 (on board)".
+constexpr std::uint16_t kTemperatureExceeded = 0x0002, kTemperatureSensor2Support = 0x0008;
 
 // 3.4.3: bits of word 2.
 constexpr unsigned kProtectSection2Block0 = 6, kProtectSection2BlocksFrom3 = 9;
