@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/random/uniform_int_distribution.hpp>
 #include <stdexcept>
+#include <tuple>
 
 namespace endatsim::master {
 namespace {
@@ -94,6 +95,7 @@ void MasterParams::validate() const {
   require(type1_detect_samples >= 1 && type1_detect_samples <= 64,
           "master type1_detect_samples must be 1 .. 64, got " + std::to_string(type1_detect_samples));
   safety.validate();
+  diagnostics.validate();
 }
 
 Master::Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params)
@@ -149,6 +151,14 @@ void Master::next_operation() {
       return;
     case Operation::Kind::ReadEndat22Area:
       expand_endat22_read();
+      next_operation();
+      return;
+    case Operation::Kind::DiagnosisSetup:
+      expand_diagnosis_setup();
+      next_operation();
+      return;
+    case Operation::Kind::DiagnosisActivate:
+      activate_diagnosis();
       next_operation();
       return;
     case Operation::Kind::StartupPositions:
@@ -355,20 +365,23 @@ void Master::interrupt_for_measurement() {
       selected_[i] = false;
     }
   }
-  if (error_sources_due_) {  // 3.4.1: word 0 of the operating status says which error it was
+  // 3.4.1 / 3.4.2: words 0 and 1 of the operating status say which error or warning it was.
+  for (const auto& [due, address, purpose] : {std::tuple{error_sources_due_, 0, Operation::Purpose::ErrorSources},
+                                              {warnings_due_, 1, Operation::Purpose::DiagnosisWarnings}}) {
+    if (!due) continue;
     Operation read = rest;
     read.kind = Operation::Kind::ReadPosition;
     read.count = 1;
     read.command = ModeCommand::EncoderSendParameters;
-    read.address = 0;
-    read.purpose = Operation::Purpose::ErrorSources;
+    read.address = static_cast<std::uint8_t>(address);
+    read.purpose = purpose;
     operations_.push_front(read);
     read.command = ModeCommand::SelectionOfMemoryArea;
     read.address = protocol::info(protocol::MemoryArea::OperatingStatus).mrs;
     read.purpose = Operation::Purpose::None;
     operations_.push_front(read);
   }
-  remeasure_due_ = reselect_due_ = error_sources_due_ = false;
+  remeasure_due_ = reselect_due_ = error_sources_due_ = warnings_due_ = false;
   next_operation();
 }
 
@@ -403,7 +416,7 @@ void Master::operation_frame_done() {
 // ---- one frame ----------------------------------------------------------------------------
 
 void Master::start_frame(std::uint64_t) {
-  if ((remeasure_due_ || reselect_due_ || error_sources_due_) && !measuring_) {
+  if ((remeasure_due_ || reselect_due_ || error_sources_due_ || warnings_due_) && !measuring_) {
     interrupt_for_measurement();
     return;
   }
@@ -419,7 +432,7 @@ void Master::start_frame(std::uint64_t) {
   frame_.measurement = measurement;
   frame_.command = measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
   supplement_word_ = std::uint32_t{current_->address} << 16 | current_->parameter;
-  if (!measurement) roll_position_value_2();
+  if (!measurement) roll_additional_data_1();
   frame_.mode_bits = measurement || !current_->mode_bits ? protocol::info(frame_.command).bits : *current_->mode_bits;
   frame_.f_c = measurement                            ? params_.measurement.f_c
                : of_startup_routine(current_->purpose) ? params_.startup_f_c
@@ -752,6 +765,8 @@ void Master::maybe_complete_frame() {
   }
   frames_.push_back(frame_);
   if (!frame_.measurement) {
+    note_parameter(frame_);
+    note_diagnosis(frame_);
     note_safety(frames_.back());
     note_startup(frame_);
     note_checksum_word(frame_);

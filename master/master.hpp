@@ -6,12 +6,14 @@
 
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <optional>
 #include <vector>
 
 #include <boost/random/mersenne_twister.hpp>
 
 #include "line/line.hpp"
+#include "master/diagnostics.hpp"
 #include "master/safety.hpp"
 #include "protocol/protocol.hpp"
 
@@ -116,6 +118,7 @@ struct MasterParams {
   CrcCheck crc;
   CarefulMaster careful;
   SafetyParams safety;
+  DiagnosticsParams diagnostics;
 
   static constexpr Hertz kMinFc = sim::kHz(100);
   static constexpr Hertz kMaxFc = sim::MHz(16);
@@ -204,15 +207,18 @@ struct Operation {
   // word 47 with their sum (3.5.26).
   // SafetyStartup runs the switched-on safety checks before the axis is released (safety.hpp):
   // CrcSelfTest (no frames), the checksums, forced dynamic sampling and StartupPositions, which
-  // reads `command` until the position values agree.
+  // reads `command` until the position values agree. ReadEndat22Area reads the words of the 2.2
+  // area in `endat22_words` through additional data 1.
+  // DiagnosisSetup reads what the diagnosis needs; DiagnosisActivate then writes word 3 of the
+  // operating parameters and resets the encoder if it differs (diagnostics.hpp).
   enum class Kind : std::uint8_t {
     MeasureDelay, ReadPosition, Wait, AwaitNotBusy, PowerOnSequence, StartupRoutine, VerifyChecksum,
-    SafetyStartup, CrcSelfTest, ReadEndat22Area, StartupPositions
+    SafetyStartup, CrcSelfTest, ReadEndat22Area, StartupPositions, DiagnosisSetup, DiagnosisActivate
   };
   // What a frame of the start-up routine, the checksum check or a safety check is for.
   enum class Purpose : std::uint8_t {
     None, Step, Errors, Warnings, Word13, Word37, ChecksumWord,
-    ErrorSources, Endat22Lsb, Endat22Msb, ForcedTest, ForcedError1, ForcedError2, ForcedOff
+    ErrorSources, Endat22Lsb, Endat22Msb, ForcedTest, ForcedError1, ForcedError2, ForcedOff, DiagnosisWarnings
   };
   Kind kind = Kind::ReadPosition;
   std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
@@ -229,6 +235,7 @@ struct Operation {
   int clock_adjust = 0;         // clock pulses more (+) or fewer (-) than the frame needs (a fault)
   Purpose purpose = Purpose::None;
   unsigned manufacturer_word = 0;  // Purpose::ChecksumWord: which of words 4 .. 47; Endat22*: of 0 .. 63
+  std::uint64_t endat22_words = ~std::uint64_t{0};  // ReadEndat22Area: bit w = word w
   std::size_t script_index = 0;  // set by enqueue(); the frames' FrameResult::operation
 };
 
@@ -275,6 +282,9 @@ class Master {
   std::uint64_t retries() const { return retries_done_; }
   std::uint64_t remeasurements() const { return remeasurements_; }
   const SafetyReport& safety() const { return safety_; }
+  const DiagnosisReport& diagnosis() const { return diagnosis_; }
+  // A parameter word as last read or written with 2.1 frames (area by MRS code, 2.4.1).
+  std::optional<std::uint16_t> parameter(std::uint8_t mrs, std::uint8_t address) const;
   // What the installation tells the master (the runner's events): another cable, and the
   // encoder's supply back after an interruption (CarefulMaster says what the master does then).
   void line_changed();
@@ -324,7 +334,18 @@ class Master {
   void finish_checksums(bool endat22);
   bool startup_position_read(const FrameResult& f);
   void find(SafetyFunction function, const FrameResult* f, std::string message);
-  void roll_position_value_2();
+  // Additional data 1 in turn (diagnostics.cpp).
+  std::vector<protocol::Information> additional_data_1_schedule() const;
+  void roll_additional_data_1();
+  void note_parameter(const FrameResult& f);
+  std::optional<std::uint16_t> endat22_word(unsigned w) const;
+  // Diagnosis (diagnostics.cpp).
+  void expand_diagnosis_setup();
+  void activate_diagnosis();
+  void note_diagnosis(const FrameResult& f);
+  void note_diagnosis_datum(const FrameResult& f, const AdditionalDatum& d);
+  void note_temperature(const FrameResult& f, std::string_view name, unsigned tenth_kelvin, bool internal);
+  void diagnose(DiagnosisNoteKind kind, const FrameResult* f, std::string key, bool condition, const std::string& message);
   Time time_between_cycles_left() const;
   std::uint8_t expected_crc_pos(unsigned bits, bool error1, bool error2, bool v22, std::uint64_t position) const;
   FrameOutcome check_echo(FrameOutcome outcome) const;
@@ -391,6 +412,14 @@ class Master {
     std::uint16_t value = 0;
   };
   std::optional<Written> acknowledgement_due_;
+  // Diagnosis.
+  DiagnosisReport diagnosis_;
+  std::map<std::uint16_t, std::uint16_t> parameters_read_;  // MRS << 8 | address -> value
+  std::uint8_t area_mrs_ = 0;        // the 2.1 memory area selected last
+  std::size_t ai1_slot_ = 0;         // where additional data 1 is in its schedule
+  bool warning_bit_ = false;
+  bool warnings_due_ = false;
+  std::map<std::string, bool> conditions_;  // diagnosis notes in force, by subject (noted once)
   unsigned startup_agreeing_ = 0;
   std::uint64_t startup_previous_ = 0;
   Time startup_previous_at_{0};

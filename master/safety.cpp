@@ -192,8 +192,10 @@ void Master::expand_safety_startup() {
 void Master::expand_endat22_read() {
   endat22_lsb_.assign(64, std::nullopt);
   endat22_msb_.assign(64, std::nullopt);
-  if (checksum_words_.size() < 48 || !protocol::parameters::decode_command_set(checksum_words_[37]).endat22) {
-    finish_checksums(false);
+  const std::uint64_t words = current_->endat22_words;
+  const auto word37 = parameter(mrs_of(protocol::MemoryArea::Manufacturer3), 37 - 32);
+  if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
+    if (words == ~std::uint64_t{0}) finish_checksums(false);
     return;
   }
   const std::size_t index = current_->script_index;
@@ -222,6 +224,7 @@ void Master::expand_endat22_read() {
   frame(select, mrs_of(protocol::MemoryArea::ManufacturerEndat22));
   await(P::None, 0);
   for (unsigned w = 0; w < 64; ++w) {
+    if (((words >> w) & 1U) == 0) continue;
     frame(MC::EncoderSendPositionValuesAndSendParameter, static_cast<std::uint8_t>(w));
     await(P::Endat22Lsb, w);
     frame(select, protocol::selection_mrs(I::MemoryParameterMsb));
@@ -467,21 +470,6 @@ void Master::finish_checksums(bool endat22) {
     else
       find(SafetyFunction::PositionValue2, nullptr, "the encoder's parameters for the comparison could not be read");
   }
-}
-
-// 2.3.5.1: position value 2 is latched when word 1 is read; above 16 bits words 2 and 3 follow
-// in later frames (a rolling selection: each frame selects the word the next one carries).
-void Master::roll_position_value_2() {
-  const unsigned words = (position_bits_ + 15) / 16;
-  if (!params_.safety.position_value_2 || !selected_[0] || words < 2 || current_->purpose != P::None ||
-      frame_.command != MC::EncoderSendPositionValuesWithAdditionalData)
-    return;
-  const auto selected = protocol::information_of_mrs(selection_mrs_[0]);
-  if (selected < I::PositionValue2Word1 || selected > I::PositionValue2Word3) return;
-  const unsigned now = static_cast<unsigned>(selected) - static_cast<unsigned>(I::PositionValue2Word1) + 1;
-  const auto next = static_cast<I>(static_cast<unsigned>(I::PositionValue2Word1) + now % words);
-  frame_.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-  supplement_word_ = std::uint32_t{protocol::selection_mrs(next)} << 16;
 }
 
 void Master::check_position_value_2(const FrameResult& f) {

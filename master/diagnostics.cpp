@@ -1,0 +1,337 @@
+// The diagnosis the master collects (diagnostics.hpp), and the rolling selection of additional
+// data 1 that the diagnosis and the safety comparison of position value 2 share.
+#include "master/diagnostics.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <stdexcept>
+
+#include "master/master.hpp"
+#include "protocol/diagnosis.hpp"
+#include "protocol/parameters.hpp"
+
+namespace endatsim::master {
+namespace {
+
+using MC = protocol::ModeCommand;
+using I = protocol::Information;
+using P = Operation::Purpose;
+using K = DiagnosisNoteKind;
+namespace dg = protocol::diagnosis;
+
+std::uint8_t mrs_of(protocol::MemoryArea a) { return protocol::info(a).mrs; }
+
+std::string hex(std::uint16_t v) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  std::string s = "0000h";
+  for (int i = 3; i >= 0; --i, v >>= 4) s[static_cast<std::size_t>(i)] = kDigits[v & 0xF];
+  return s;
+}
+
+// Words the setup reads from the EnDat 2.2 area (3.9.2, 3.9.6, 3.9.7, 3.9.16).
+constexpr unsigned kAdditionalData1Support = 0, kTemperatureScaling = 4, kDiagnosticStatus = 5, kMaxTemperature = 22;
+// ... and with 2.1 frames: word 36 (supported warnings) and 37 (command set) in A5, operating
+// parameters words 3 and 6 (3.6.3, 3.6.6).
+constexpr std::uint8_t kSupportedWarnings = 36 - 32, kCommandSet = 37 - 32, kConfiguration = 3, kWarningThreshold = 6;
+constexpr std::uint16_t kTemperatureExceeded = 0x0002;  // 3.4.2 warning 2^1
+
+}  // namespace
+
+std::string_view to_string(DiagnosisNoteKind k) {
+  switch (k) {
+    case K::FunctionReserveLow: return "function_reserve_low";
+    case K::TemperatureAboveThreshold: return "temperature_above_threshold";
+    case K::TemperatureAboveMaximum: return "temperature_above_maximum";
+    case K::Warning: return "warning";
+    case K::Setup: return "setup";
+  }
+  return "?";
+}
+
+void DiagnosticsParams::validate() const {
+  const auto allowed = static_cast<std::uint16_t>(dg::kValuationNumberBits | dg::kSystemSpecificDataBit);
+  if ((configuration & ~allowed) != 0)
+    throw std::invalid_argument("master diagnostics configuration may set only bits 0 .. 5 (valuation numbers) and 15 "
+                                "(system-specific data) of operating parameters word 3 (3.6.3), got " + hex(configuration));
+  if (additional_sensors > 16)
+    throw std::invalid_argument("master diagnostics additional_sensors must be 0 .. 16 (a 4-bit address, 2.3.5.1), got " +
+                                std::to_string(additional_sensors));
+  if (reserve_limit > 255)
+    throw std::invalid_argument("master diagnostics reserve_limit must be 0 .. 255 (an 8-bit valuation number, A3), got " +
+                                std::to_string(reserve_limit));
+}
+
+void DiagnosisReading::add(unsigned value, Time at) {
+  if (count == 0) {
+    min = max = value;
+    first_at = at;
+  }
+  min = std::min(min, value);
+  max = std::max(max, value);
+  last = value;
+  last_at = at;
+  ++count;
+}
+
+std::size_t DiagnosisReport::count(DiagnosisNoteKind k) const {
+  return static_cast<std::size_t>(std::count_if(notes.begin(), notes.end(), [k](const DiagnosisNote& n) { return n.kind == k; }));
+}
+
+// ---- parameters read ------------------------------------------------------------------------
+
+std::optional<std::uint16_t> Master::parameter(std::uint8_t mrs, std::uint8_t address) const {
+  const auto it = parameters_read_.find(static_cast<std::uint16_t>(mrs << 8 | address));
+  if (it == parameters_read_.end()) return std::nullopt;
+  return it->second;
+}
+
+// 2.4.1: "Selection of memory area" points the 2.1 parameter frames that follow at an area.
+void Master::note_parameter(const FrameResult& f) {
+  if (f.outcome != FrameOutcome::Ok || !f.payload) return;
+  const auto address = static_cast<std::uint8_t>(*f.payload >> 16);
+  switch (f.command) {
+    case MC::SelectionOfMemoryArea: area_mrs_ = address; break;
+    case MC::EncoderSendParameters: parameters_read_[static_cast<std::uint16_t>(area_mrs_ << 8 | address)] = f.echo_parameter; break;
+    case MC::EncoderReceiveParameters:
+      parameters_read_[static_cast<std::uint16_t>(area_mrs_ << 8 | address)] = static_cast<std::uint16_t>(*f.payload & 0xFFFF);
+      break;
+    default: break;
+  }
+}
+
+std::optional<std::uint16_t> Master::endat22_word(unsigned w) const {
+  if (w >= endat22_lsb_.size() || !endat22_lsb_[w] || !endat22_msb_[w]) return std::nullopt;
+  return static_cast<std::uint16_t>(*endat22_msb_[w] << 8 | *endat22_lsb_[w]);
+}
+
+// ---- additional data 1 in turn ----------------------------------------------------------------
+
+// 2.3.5.1: one information per frame. The diagnosis (one interrogation per activated valuation
+// number: the encoder rolls them, A3), the temperatures, the additional sensors (their address
+// rolls likewise); position value 2 (words 1 .. 3, "always updated by querying the first word")
+// before each of them when the safety comparison is on.
+std::vector<I> Master::additional_data_1_schedule() const {
+  std::vector<I> diagnosis;
+  const DiagnosticsParams& d = params_.diagnostics;
+  if (d.enabled) {
+    const std::uint16_t support = diagnosis_.additional_data_1_support.value_or(0x001F);  // 3.9.2
+    const std::uint16_t active = diagnosis_.configuration.value_or(d.configuration);
+    const unsigned numbers = static_cast<unsigned>(std::popcount(static_cast<unsigned>(active & dg::kValuationNumberBits)));
+    diagnosis.insert(diagnosis.end(), std::max(numbers, 1U), I::Diagnosis);
+    if (d.temperatures && (support & 0x0004) != 0) diagnosis.push_back(I::Temperature1);
+    if (d.temperatures && (support & 0x0008) != 0) diagnosis.push_back(I::Temperature2);
+    if ((support & 0x0010) != 0) diagnosis.insert(diagnosis.end(), d.additional_sensors, I::AdditionalSensors);
+  }
+  std::vector<I> position2;
+  if (params_.safety.position_value_2)
+    for (unsigned k = 0; k < std::min(3U, (position_bits_ + 15) / 16); ++k)
+      position2.push_back(static_cast<I>(static_cast<unsigned>(I::PositionValue2Word1) + k));
+  if (diagnosis.empty() || position2.empty()) return diagnosis.empty() ? position2 : diagnosis;
+  std::vector<I> schedule;
+  for (const I item : diagnosis) {
+    schedule.insert(schedule.end(), position2.begin(), position2.end());
+    schedule.push_back(item);
+  }
+  return schedule;
+}
+
+// Each cyclic read with additional data selects, with "Encoder send position values and
+// selection of memory area" (2.4.2.2), what the next frame is to carry; it still answers with
+// the position and what was selected before. Additional data 1 selected for something else
+// (a memory read, a script's own choice) is left alone.
+void Master::roll_additional_data_1() {
+  if (current_->purpose != P::None || current_->kind == Operation::Kind::AwaitNotBusy ||
+      frame_.command != MC::EncoderSendPositionValuesWithAdditionalData)
+    return;
+  if (!params_.diagnostics.enabled && !params_.safety.position_value_2) return;
+  const auto schedule = additional_data_1_schedule();
+  if (schedule.empty()) return;
+  const std::optional<I> now = selected_[0] ? std::optional{protocol::information_of_mrs(selection_mrs_[0])} : std::nullopt;
+  if (!now && !params_.diagnostics.enabled) return;
+  if (!now) {
+    ai1_slot_ = schedule.size() - 1;
+  } else if (ai1_slot_ >= schedule.size() || schedule[ai1_slot_] != *now) {
+    const auto it = std::find(schedule.begin(), schedule.end(), *now);
+    if (it == schedule.end()) return;
+    ai1_slot_ = static_cast<std::size_t>(it - schedule.begin());
+  }
+  ai1_slot_ = (ai1_slot_ + 1) % schedule.size();
+  if (now && schedule[ai1_slot_] == *now) return;
+  frame_.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+  supplement_word_ = std::uint32_t{protocol::selection_mrs(schedule[ai1_slot_])} << 16;
+}
+
+// ---- the setup ----------------------------------------------------------------------------------
+
+// Seed 002, "Aktivieren der Diagnose": read what the encoder supports (3.9.2, 3.9.7) and how it
+// scales temperatures (3.9.6, 3.9.16; word 36 for the warnings), and the operating parameters
+// in force (3.6.3, 3.6.6); DiagnosisActivate then writes word 3 if needed.
+void Master::expand_diagnosis_setup() {
+  const std::size_t index = current_->script_index;
+  std::vector<Operation> plan;
+  const auto frame = [&](MC c, std::uint8_t address) {
+    Operation o;
+    o.script_index = index;
+    o.command = c;
+    o.address = address;
+    plan.push_back(o);
+  };
+  frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::Manufacturer3));
+  frame(MC::EncoderSendParameters, kSupportedWarnings);
+  frame(MC::EncoderSendParameters, kCommandSet);
+  frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::OperatingParameters));
+  frame(MC::EncoderSendParameters, kConfiguration);
+  frame(MC::EncoderSendParameters, kWarningThreshold);
+  Operation read22;
+  read22.kind = Operation::Kind::ReadEndat22Area;
+  read22.script_index = index;
+  read22.endat22_words = std::uint64_t{1} << kAdditionalData1Support | std::uint64_t{1} << kTemperatureScaling |
+                         std::uint64_t{1} << kDiagnosticStatus | std::uint64_t{1} << kMaxTemperature;
+  plan.push_back(read22);
+  Operation activate = read22;
+  activate.kind = Operation::Kind::DiagnosisActivate;
+  plan.push_back(activate);
+  diagnosis_ = DiagnosisReport{};
+  conditions_.clear();
+  for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
+}
+
+// 3.6: "changes to the values do not become valid until the mode command 'Encoder receive
+// reset' is transmitted"; the reset also ends the selection of additional data (2.7).
+void Master::activate_diagnosis() {
+  DiagnosisReport& r = diagnosis_;
+  const std::uint8_t a5 = mrs_of(protocol::MemoryArea::Manufacturer3), a7 = mrs_of(protocol::MemoryArea::OperatingParameters);
+  r.supported_warnings = parameter(a5, kSupportedWarnings);
+  r.configuration = parameter(a7, kConfiguration);
+  r.warning_threshold = parameter(a7, kWarningThreshold);
+  r.additional_data_1_support = endat22_word(kAdditionalData1Support);
+  r.temperature_scaling = endat22_word(kTemperatureScaling);
+  r.diagnostic_status = endat22_word(kDiagnosticStatus);
+  r.max_temperature = endat22_word(kMaxTemperature);
+  const auto word37 = parameter(a5, kCommandSet);
+  if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
+    diagnose(K::Setup, nullptr, "setup", true, "the encoder has no EnDat 2.2 command set (word 37): no diagnosis through additional data");
+    return;
+  }
+  if (!r.configuration || !r.diagnostic_status || !r.additional_data_1_support) {
+    diagnose(K::Setup, nullptr, "setup", true, "the diagnostic status (3.9.7) or the configuration (3.6.3) could not be read");
+    return;
+  }
+  if (r.temperature_scaling && !dg::temperature_scaling(*r.temperature_scaling))
+    diagnose(K::Setup, nullptr, "scaling", true, "temperature scaling word 4 = " + hex(*r.temperature_scaling) +
+                                                     " is not the 0.1 K the spec defines (3.9.6); temperatures shown as 0.1 K");
+  const auto wanted = static_cast<std::uint16_t>((params_.diagnostics.configuration & *r.diagnostic_status & dg::kValuationNumberBits) |
+                                                 (params_.diagnostics.configuration & dg::kSystemSpecificDataBit));
+  if (wanted == *r.configuration) return;
+  r.configuration_written = wanted;
+  r.configuration = wanted;
+  std::vector<Operation> plan(3);
+  for (auto& o : plan) o.script_index = current_->script_index;
+  plan[0].command = MC::SelectionOfMemoryArea;
+  plan[0].address = a7;
+  plan[1].command = MC::EncoderReceiveParameters;
+  plan[1].address = kConfiguration;
+  plan[1].parameter = wanted;
+  plan[2].command = MC::EncoderReceiveReset;
+  for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
+}
+
+// ---- what the frames carry ----------------------------------------------------------------------
+
+void Master::diagnose(DiagnosisNoteKind kind, const FrameResult* f, std::string key, bool condition, const std::string& message) {
+  bool& in_force = conditions_[key];
+  const bool new_condition = condition && !in_force;
+  in_force = condition;
+  if (!new_condition) return;
+  DiagnosisNote n;
+  n.kind = kind;
+  n.at = f != nullptr ? f->end : kernel_.now();
+  if (f != nullptr) n.frame = f->index;
+  n.message = message;
+  diagnosis_.notes.push_back(std::move(n));
+}
+
+void Master::note_diagnosis(const FrameResult& f) {
+  if (!params_.diagnostics.enabled || f.outcome != FrameOutcome::Ok) return;
+  if (current_->purpose == P::DiagnosisWarnings) {
+    diagnosis_.warnings = f.echo_parameter;
+    const bool any = f.echo_parameter != 0;
+    diagnose(K::Warning, &f, "word 1 " + hex(f.echo_parameter), any,
+             "word 1 = " + hex(f.echo_parameter) + ": " +
+                 protocol::parameters::bits_string(f.echo_parameter, protocol::parameters::warning_bit_names()));
+    return;
+  }
+  bool warning_bit = false;
+  bool seen = false;
+  for (const auto& d : f.additional_data) {
+    if (!d.crc_ok) continue;
+    seen = true;
+    warning_bit = warning_bit || (d.status & protocol::AdditionalDataStatus::kWarning) != 0;
+    note_diagnosis_datum(f, d);
+  }
+  if (!seen) return;
+  // 3.4.2: "query the group bit for warnings (WRN)"; the word says which.
+  if (warning_bit && !warning_bit_) {
+    if (!diagnosis_.warning_bit_at) {
+      diagnosis_.warning_bit_at = f.end;
+      diagnosis_.warning_bit_frame = f.index;
+    }
+    warnings_due_ = params_.diagnostics.read_warnings;
+  }
+  warning_bit_ = warning_bit;
+}
+
+void Master::note_diagnosis_datum(const FrameResult& f, const AdditionalDatum& d) {
+  DiagnosisReport& r = diagnosis_;
+  switch (d.information()) {
+    case I::Diagnosis: {
+      const unsigned address = d.data >> 8, value = d.data & 0xFF;
+      const auto a = dg::decode_diagnosis_address(address);
+      const std::uint16_t active = r.configuration.value_or(params_.diagnostics.configuration);
+      if (!a || a->bit >= dg::kValuationNumbers || ((active >> a->bit) & 1U) == 0) {
+        ++r.ignored_addresses;  // A3: "the subsequent electronics must ignore undefined addresses"
+        return;
+      }
+      r.valuation_numbers[address].add(value, f.end);
+      diagnose(K::FunctionReserveLow, &f, "valuation number at " + std::to_string(address),
+               value < params_.diagnostics.reserve_limit,
+               "valuation number " + std::to_string(a->bit + 1) + " (address " + std::to_string(address) + ") = " +
+                   std::to_string(value) + ", below the reserve limit " + std::to_string(params_.diagnostics.reserve_limit));
+      return;
+    }
+    case I::Temperature1:
+      (r.temperature1 ? *r.temperature1 : r.temperature1.emplace()).add(d.data, f.end);
+      note_temperature(f, "temperature 1", d.data, false);
+      return;
+    case I::Temperature2:
+      (r.temperature2 ? *r.temperature2 : r.temperature2.emplace()).add(d.data, f.end);
+      note_temperature(f, "temperature 2", d.data, true);
+      return;
+    case I::AdditionalSensors: {
+      const auto v = dg::decode_additional_sensor(d.data);
+      r.additional_sensors[v.address].add(v.tenth_kelvin, f.end);
+      note_temperature(f, "additional sensor " + std::to_string(v.address), v.tenth_kelvin, false);
+      return;
+    }
+    default: return;
+  }
+}
+
+// 3.6.6: only the internal sensor (temperature 2) triggers the warning at word 6; every
+// temperature is held against the maximum permissible encoder temperature (3.9.16, 0: none).
+void Master::note_temperature(const FrameResult& f, std::string_view name, unsigned tenth_kelvin, bool internal) {
+  const DiagnosisReport& r = diagnosis_;
+  const std::string what = std::string(name) + " " + dg::temperature_string(tenth_kelvin);
+  if (internal && r.warning_threshold && *r.warning_threshold != 0) {
+    const bool supported = (r.supported_warnings.value_or(kTemperatureExceeded) & kTemperatureExceeded) != 0;
+    diagnose(K::TemperatureAboveThreshold, &f, std::string(name) + " threshold", tenth_kelvin > *r.warning_threshold,
+             what + " above the warning threshold " + dg::temperature_string(*r.warning_threshold) +
+                 " (operating parameters word 6)" + (supported ? "" : "; word 36 says the encoder has no such warning"));
+  }
+  if (r.max_temperature && *r.max_temperature != 0)
+    diagnose(K::TemperatureAboveMaximum, &f, std::string(name) + " maximum", tenth_kelvin > *r.max_temperature,
+             what + " above the maximum permissible encoder temperature " + dg::temperature_string(*r.max_temperature) +
+                 " (word 22)");
+}
+
+}  // namespace endatsim::master

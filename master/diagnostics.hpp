@@ -1,0 +1,82 @@
+// master/diagnostics.hpp — what the subsequent electronics collect for a service engineer
+// (spec appendix A3, 2.3.5.1, 3.4.2, 3.6.3, 3.6.6, 3.9.2, 3.9.6, 3.9.7, 3.9.16; seed 002
+// "Diagnose"): the setup reads what the encoder supports and activates the valuation numbers
+// (operating parameters word 3, valid after "Encoder receive reset", 3.6); the cyclic position
+// reads with additional data then roll additional data 1 through the diagnosis, the
+// temperatures and the additional sensors ("transmission of the diagnosis is possible in
+// closed-loop operation", seed 002), interleaved with position value 2 when the safety
+// comparison needs it. A WRN bit has word 1 read.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sim/time.hpp"
+
+namespace endatsim::master {
+
+using sim::Time;
+
+struct DiagnosticsParams {
+  bool enabled = false;
+  // Operating parameters word 3 as the setup writes it (3.6.3: bits 0 .. 5 valuation numbers
+  // 1 .. 6, bit 15 system-specific data), limited to what 3.9.7 word 5 says is supported.
+  std::uint16_t configuration = 0x003F;
+  bool temperatures = true;         // temperature 1 and 2 (2.3.5.1) in the rotation
+  unsigned additional_sensors = 0;  // interrogations of the additional sensors per round (2.3.5.1)
+  // UNCERTAIN (seed 002: "the border areas should be suppressed in a display (definition of
+  // reserve areas is necessary)"; A3: the scaling is "identical for all HEIDENHAIN encoders"
+  // but not given): a valuation number below this is reported as a low function reserve.
+  unsigned reserve_limit = 25;
+  bool read_warnings = true;  // WRN set in additional data: read word 1 of the operating status (3.4.2)
+
+  // Throws std::invalid_argument naming the parameter and its limit.
+  void validate() const;
+};
+
+enum class DiagnosisNoteKind : std::uint8_t {
+  FunctionReserveLow,         // a valuation number below DiagnosticsParams::reserve_limit
+  TemperatureAboveThreshold,  // temperature 2 above operating parameters word 6 (3.6.6)
+  TemperatureAboveMaximum,    // a temperature above the maximum permissible one, word 22 (3.9.16)
+  Warning,                    // word 1 read after WRN, with its warnings (3.4.2)
+  Setup,                      // the setup could not read or write what it needs
+};
+std::string_view to_string(DiagnosisNoteKind k);  // "function_reserve_low", ...
+
+struct DiagnosisNote {
+  DiagnosisNoteKind kind = DiagnosisNoteKind::Setup;
+  Time at{0};
+  std::optional<std::uint64_t> frame;
+  std::string message;
+};
+
+// One quantity as collected: its last value and range.
+struct DiagnosisReading {
+  std::uint64_t count = 0;
+  unsigned last = 0, min = 0, max = 0;
+  Time first_at{0}, last_at{0};
+  void add(unsigned value, Time at);
+};
+
+struct DiagnosisReport {
+  // What the setup read: 3.9.2 word 0, 3.9.6 word 4, 3.9.7 word 5, 3.9.16 word 22 (EnDat 2.2
+  // area), 3.5 word 36 (supported warnings) and operating parameters words 3 and 6.
+  std::optional<std::uint16_t> additional_data_1_support, temperature_scaling, diagnostic_status, max_temperature,
+      supported_warnings, configuration, warning_threshold;
+  std::optional<std::uint16_t> configuration_written;  // word 3 as the setup wrote it (then a reset)
+  std::map<unsigned, DiagnosisReading> valuation_numbers;  // by A3 address
+  std::optional<DiagnosisReading> temperature1, temperature2;  // 0.1 K
+  std::map<unsigned, DiagnosisReading> additional_sensors;      // by address, 0.1 K
+  std::uint64_t ignored_addresses = 0;  // A3: undefined and system-specific addresses
+  std::optional<Time> warning_bit_at;   // WRN first seen in additional data
+  std::optional<std::uint64_t> warning_bit_frame;
+  std::optional<std::uint16_t> warnings;  // word 1 as last read (3.4.2)
+  std::vector<DiagnosisNote> notes;
+  std::size_t count(DiagnosisNoteKind k) const;
+};
+
+}  // namespace endatsim::master
