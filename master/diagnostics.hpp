@@ -8,6 +8,7 @@
 // comparison needs it. A WRN bit has word 1 read.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -45,6 +46,10 @@ enum class DiagnosisNoteKind : std::uint8_t {
   Warning,                    // word 1 read after WRN, with its warnings (3.4.2)
   Setup,                      // the setup could not read or write what it needs
 };
+inline constexpr std::array kDiagnosisNoteKinds{DiagnosisNoteKind::FunctionReserveLow,
+                                                DiagnosisNoteKind::TemperatureAboveThreshold,
+                                                DiagnosisNoteKind::TemperatureAboveMaximum, DiagnosisNoteKind::Warning,
+                                                DiagnosisNoteKind::Setup};
 std::string_view to_string(DiagnosisNoteKind k);  // "function_reserve_low", ...
 
 struct DiagnosisNote {

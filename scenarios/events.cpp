@@ -130,6 +130,9 @@ void EventDriver::apply_to_encoder(const Event& e) {
     case K::Position2Fault:
       encoder_.set_position2_fault(e.steps);
       break;
+    case K::SensorValues:
+      encoder_.set_sensor_values(e.sensors);
+      break;
     default:
       break;
   }

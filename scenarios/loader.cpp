@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -114,6 +115,20 @@ class Node {
     const std::uint64_t v = std::stoull(digits, nullptr, hex ? 16 : 10);
     if (v > max) fail(what);
     return v;
+  }
+  // A temperature in 0.1 K (3.9.6): an integer of 0.1 K steps, or a string "110 degC" / "383.1 K"
+  // (0 degC = 273.1 K, as 3.9.6 scales it).
+  std::uint16_t as_temperature() const {
+    const std::string what = "a temperature: an integer in 0.1 K or a string such as \"110 degC\" or \"383.1 K\" (0 .. 6553.5 K)";
+    if (!j_.is_string()) return static_cast<std::uint16_t>(as_uint(0, 0xFFFF));
+    static const std::regex kTemperature(R"(^(-?[0-9]{1,5}(\.[0-9]{1,3})?) ?(K|degC)$)");
+    std::smatch m;
+    const std::string s = j_.get<std::string>();
+    if (!std::regex_match(s, m, kTemperature)) fail(what);
+    const double tenth = std::round(std::stod(m[1].str()) * 10.0) +
+                         (m[3].str() == "degC" ? protocol::diagnosis::kZeroCelsiusTenthKelvin : 0);
+    if (tenth < 0 || tenth > 0xFFFF) fail(what);
+    return static_cast<std::uint16_t>(tenth);
   }
   template <class E>
   E as_enum(std::initializer_list<std::pair<std::string_view, E>> choices) const {
@@ -234,26 +249,54 @@ protocol::Information read_information(const Node& n) {
   return *i;
 }
 
+// What the sensors measure (appendix A3, 2.3.5.1): in the encoder's sensors and in a "sensors" event.
+slave::SensorValues read_sensor_values(Object& o) {
+  slave::SensorValues s;
+  if (auto v = o.opt("temperature_1")) s.temperature1 = v->as_temperature();
+  if (auto v = o.opt("temperature_2")) s.temperature2 = v->as_temperature();
+  if (auto v = o.opt("additional_sensors")) {
+    if (!v->raw().is_array() || v->raw().size() > 16) v->fail("an array of at most 16 temperatures (a 4-bit address, 2.3.5.1)");
+    s.additional_sensors.emplace();
+    for (std::size_t i = 0; i < v->raw().size(); ++i)
+      s.additional_sensors->push_back(Node(v->raw()[i], v->path() + "/" + std::to_string(i), v->file()).as_temperature());
+  }
+  if (auto v = o.opt("valuation_numbers")) {
+    if (!v->raw().is_array() || v->raw().size() != 6) v->fail("an array of the 6 valuation numbers (A3)");
+    s.valuation_numbers.emplace();
+    for (std::size_t i = 0; i < 6; ++i)
+      (*s.valuation_numbers)[i] =
+          static_cast<std::uint8_t>(Node(v->raw()[i], v->path() + "/" + std::to_string(i), v->file()).as_word(0xFF));
+  }
+  return s;
+}
+
 void read_sensors(const Node& n, slave::Sensors& s) {
   Object o(n);
-  const auto tenth_kelvin = [](const Node& v) { return static_cast<std::uint16_t>(v.as_uint(0, 0xFFFF)); };
+  const slave::SensorValues values = read_sensor_values(o);
+  if (values.temperature1) s.temperature1 = *values.temperature1;
+  if (values.temperature2) s.temperature2 = *values.temperature2;
+  if (values.additional_sensors) s.additional_sensors = *values.additional_sensors;
+  if (values.valuation_numbers) s.valuation_numbers = *values.valuation_numbers;
   if (auto v = o.opt("position2_offset")) s.position2_offset = v->as_int(-(std::int64_t{1} << 47), (std::int64_t{1} << 47) - 1);
   if (auto v = o.opt("position2_reversed")) s.position2_reversed = v->as_bool();
   if (auto v = o.opt("position2_fault")) s.position2_fault = v->as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
-  if (auto v = o.opt("temperature_1")) s.temperature1 = tenth_kelvin(*v);
-  if (auto v = o.opt("temperature_2")) s.temperature2 = tenth_kelvin(*v);
-  if (auto v = o.opt("additional_sensors")) s.additional_sensors = read_words(*v, 16);
   if (auto v = o.opt("commutation")) s.commutation = static_cast<std::uint8_t>(v->as_uint(0, 7));
   if (auto v = o.opt("acceleration")) s.acceleration = static_cast<std::uint16_t>(v->as_word(0xFFFF));
   if (auto v = o.opt("limit_position_1")) s.limit_position_1 = v->as_bool();
   if (auto v = o.opt("limit_position_2")) s.limit_position_2 = v->as_bool();
   if (auto v = o.opt("operating_status_error_sources"))
     s.operating_status_error_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
-  if (auto v = o.opt("valuation_numbers")) {
-    if (!v->raw().is_array() || v->raw().size() != 6) v->fail("an array of the 6 valuation numbers (A3)");
-    for (std::size_t i = 0; i < 6; ++i)
-      s.valuation_numbers[i] =
-          static_cast<std::uint8_t>(Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file()).as_word(0xFF));
+  if (auto v = o.opt("system_data")) {
+    if (!v->raw().is_object()) v->fail("an object of A3 address (7 .. 64, not a valuation number's) -> 8-bit value");
+    for (const auto& [address, value] : v->raw().items()) {
+      const json key = address;
+      const Node at(key, v->path() + "/" + address, n.file());
+      const auto a = static_cast<std::uint8_t>(at.as_word(64));
+      const auto decoded = protocol::diagnosis::decode_diagnosis_address(a);
+      if (!decoded || decoded->bit < protocol::diagnosis::kValuationNumbers)
+        at.fail("an A3 address 1 .. 64 that is not a valuation number's (n + 16 k, n = 1 .. 6)");
+      s.system_data[a] = static_cast<std::uint8_t>(Node(value, v->path() + "/" + address, n.file()).as_word(0xFF));
+    }
   }
   if (auto v = o.opt("test_values")) {
     if (!v->raw().is_object()) v->fail("an object of port address -> 40-bit test value");
@@ -432,6 +475,27 @@ void read_safety(const Node& n, master::SafetyParams& p) {
   validated(n, [&] { p.validate(); });
 }
 
+void read_diagnostics(const Node& n, master::DiagnosticsParams& p) {
+  Object o(n);
+  if (auto v = o.opt("enabled")) p.enabled = v->as_bool();
+  if (auto v = o.opt("valuation_numbers")) {
+    if (!v->raw().is_array()) v->fail("an array of valuation numbers 1 .. 6 to activate (3.6.3)");
+    p.configuration &= protocol::diagnosis::kSystemSpecificDataBit;
+    for (std::size_t i = 0; i < v->raw().size(); ++i)
+      p.configuration |= static_cast<std::uint16_t>(
+          1U << (Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file()).as_uint(1, 6) - 1));
+  }
+  if (auto v = o.opt("system_specific_data"))
+    p.configuration = static_cast<std::uint16_t>((p.configuration & ~protocol::diagnosis::kSystemSpecificDataBit) |
+                                                 (v->as_bool() ? protocol::diagnosis::kSystemSpecificDataBit : 0));
+  if (auto v = o.opt("temperatures")) p.temperatures = v->as_bool();
+  if (auto v = o.opt("additional_sensors")) p.additional_sensors = static_cast<unsigned>(v->as_uint(0, 16));
+  if (auto v = o.opt("reserve_limit")) p.reserve_limit = static_cast<unsigned>(v->as_uint(0, 255));
+  if (auto v = o.opt("read_warnings")) p.read_warnings = v->as_bool();
+  o.done();
+  validated(n, [&] { p.validate(); });
+}
+
 void read_master(const Node& n, master::MasterParams& p) {
   Object o(n);
   p.f_c = o.req("f_c").as_frequency(master::MasterParams::kMinFc, master::MasterParams::kMaxFc);
@@ -476,6 +540,7 @@ void read_master(const Node& n, master::MasterParams& p) {
     c.done();
   }
   if (auto v = o.opt("safety")) read_safety(*v, p.safety);
+  if (auto v = o.opt("diagnostics")) read_diagnostics(*v, p.diagnostics);
   if (auto v = o.opt("careful")) {
     Object c(*v);
     auto& k = p.careful;
@@ -674,7 +739,7 @@ master::Operation read_operation(const Node& n, std::optional<FrameExpectation>&
        {"communication_command", "communication_command"}, {"reset", "reset"}, {"error_reset", "error_reset"},
        {"send_test_values", "send_test_values"}, {"power_on_sequence", "power_on_sequence"},
        {"startup_routine", "startup_routine"}, {"verify_checksum", "verify_checksum"},
-       {"safety_startup", "safety_startup"}}));
+       {"safety_startup", "safety_startup"}, {"diagnosis_setup", "diagnosis_setup"}}));
   op.kind = name == "measure_delay"       ? Kind::MeasureDelay
             : name == "wait"              ? Kind::Wait
             : name == "await_not_busy"    ? Kind::AwaitNotBusy
@@ -682,6 +747,7 @@ master::Operation read_operation(const Node& n, std::optional<FrameExpectation>&
             : name == "startup_routine"   ? Kind::StartupRoutine
             : name == "verify_checksum"   ? Kind::VerifyChecksum
             : name == "safety_startup"    ? Kind::SafetyStartup
+            : name == "diagnosis_setup"   ? Kind::DiagnosisSetup
                                           : Kind::ReadPosition;
   if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), sim::ms(60'000));
   if (auto v = o.opt("expect")) {
@@ -730,8 +796,8 @@ void read_script(const Node& n, std::vector<master::Operation>& script,
 
 constexpr std::string_view kEventKinds =
     "set_cable, bit_flip, glitch, stuck, random_bit_errors, late_driver_release, loss_of_failsafe, error_sources, "
-    "memory_access_time, t_cal, power_interruption, corrupt_word, probe_trigger, stuck_error_messages, slip or "
-    "position2_fault";
+    "memory_access_time, t_cal, power_interruption, corrupt_word, probe_trigger, stuck_error_messages, slip, "
+    "position2_fault or sensors";
 
 line::ObservationPoint read_end(Object& o) {
   return o.req("end").as_enum<line::ObservationPoint>(
@@ -818,6 +884,11 @@ void read_encoder_fault(Object& f, Event& e) {
     case K::Position2Fault:
       e.steps = f.req("deviation").as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
       break;
+    case K::SensorValues:
+      e.sensors = read_sensor_values(f);
+      if (!e.sensors.temperature1 && !e.sensors.temperature2 && !e.sensors.additional_sensors && !e.sensors.valuation_numbers)
+        f.node().fail_raw("a sensors event sets at least one of temperature_1, temperature_2, additional_sensors, valuation_numbers");
+      break;
     default:
       break;
   }
@@ -833,7 +904,8 @@ Event read_event(const Node& item, const line::LineParams& line) {
       {"memory_access_time", K::MemoryAccessTime}, {"t_cal", K::TCal},
       {"power_interruption", K::PowerInterruption}, {"corrupt_word", K::CorruptWord},
       {"probe_trigger", K::ProbeTrigger}, {"stuck_error_messages", K::StuckErrorMessages},
-      {"slip", K::Slip},                  {"position2_fault", K::Position2Fault}};
+      {"slip", K::Slip},                  {"position2_fault", K::Position2Fault},
+      {"sensors", K::SensorValues}};
   Object o(item);
   Event e;
   if (auto v = o.opt("at")) e.at = v->as_duration(Time::zero(), sim::ms(60'000));
@@ -919,6 +991,41 @@ void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std
   }
 }
 
+// Keys that are A3 or additional-sensor addresses, each mapped through `value`.
+template <class F>
+void read_address_map(const Node& n, std::uint64_t max_address, const std::string& what, F&& value) {
+  if (!n.raw().is_object()) n.fail("an object of address -> " + what);
+  for (const auto& [address, item] : n.raw().items()) {
+    const json key = address;
+    const auto a = static_cast<unsigned>(Node(key, n.path() + "/" + address, n.file()).as_word(max_address));
+    value(a, Node(item, n.path() + "/" + address, n.file()));
+  }
+}
+
+DiagnosisExpectation read_diagnosis_expectation(const Node& n) {
+  Object o(n);
+  DiagnosisExpectation e;
+  static const std::vector<std::string> kNames = [] {
+    std::vector<std::string> names;
+    for (auto k : master::kDiagnosisNoteKinds) names.emplace_back(master::to_string(k));
+    return names;
+  }();
+  static const std::vector<std::string_view> kViews(kNames.begin(), kNames.end());
+  if (auto v = o.opt("notes")) read_count_map(*v, e.notes, kViews);
+  if (auto v = o.opt("valuation_numbers"))
+    read_address_map(*v, 64, "8-bit valuation number (A3)",
+                     [&](unsigned a, const Node& x) { e.valuation_numbers[a] = static_cast<unsigned>(x.as_word(0xFF)); });
+  if (auto v = o.opt("temperature_1")) e.temperature1 = v->as_temperature();
+  if (auto v = o.opt("temperature_2")) e.temperature2 = v->as_temperature();
+  if (auto v = o.opt("additional_sensors"))
+    read_address_map(*v, 15, "temperature", [&](unsigned a, const Node& x) { e.additional_sensors[a] = x.as_temperature(); });
+  if (auto v = o.opt("configuration")) e.configuration = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+  if (auto v = o.opt("warnings")) e.warnings = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+  if (auto v = o.opt("ignored_addresses")) e.ignored_addresses = v->as_count();
+  o.done();
+  return e;
+}
+
 void read_expect(const Node& n, Expectations& e) {
   Object o(n);
   static constexpr std::array<std::string_view, 6> kOutcomes{"ok",          "crc_error",   "no_start_bit",
@@ -979,6 +1086,7 @@ void read_expect(const Node& n, Expectations& e) {
     sf.done();
     e.safety = se;
   }
+  if (auto v = o.opt("diagnosis")) e.diagnosis = read_diagnosis_expectation(*v);
   if (auto v = o.opt("memory")) {
     if (!v->raw().is_array()) v->fail("an array of {\"area\", \"address\", \"value\"}");
     for (std::size_t i = 0; i < v->raw().size(); ++i) {

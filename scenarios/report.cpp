@@ -100,6 +100,66 @@ void write_safety(std::ostream& out, const ScenarioResult& r, bool verbose) {
   if (s.findings.size() > limit) out << "    ... " << s.findings.size() - limit << " more finding(s)\n";
 }
 
+std::string numbers_of(std::uint16_t bits) {
+  std::string s;
+  for (unsigned k = 0; k < protocol::diagnosis::kValuationNumbers; ++k)
+    if (((bits >> k) & 1U) != 0) s += (s.empty() ? "" : " ") + std::to_string(k + 1);
+  return s.empty() ? "none" : s;
+}
+
+std::string range_of(const master::DiagnosisReading& x, bool temperature) {
+  namespace dg = protocol::diagnosis;
+  const auto show = [temperature](unsigned v) { return temperature ? dg::temperature_string(v) : std::to_string(v); };
+  std::string s = show(x.last);
+  if (x.min != x.max) s += ", range " + show(x.min) + " .. " + show(x.max);
+  return s + ", " + std::to_string(x.count) + " reading(s)";
+}
+
+// What the master's diagnosis collected (issue 7; appendix A3), for a service engineer.
+void write_diagnosis(std::ostream& out, const ScenarioResult& r, bool verbose) {
+  namespace pm = protocol::parameters;
+  namespace dg = protocol::diagnosis;
+  if (!r.diagnosis) return;
+  const auto& d = *r.diagnosis;
+  out << "  diagnosis (appendix A3):";
+  if (d.diagnostic_status) out << " supported valuation numbers " << numbers_of(*d.diagnostic_status) << " (word 5)";
+  if (d.configuration) {
+    out << ", activated " << numbers_of(*d.configuration) << " (word 3";
+    if ((*d.configuration & dg::kSystemSpecificDataBit) != 0) out << ", with system-specific data";
+    if (d.configuration_written) out << ", written " << hex4(*d.configuration_written) << " and reset";
+    out << ")";
+  }
+  out << "\n";
+  for (const auto& [address, x] : d.valuation_numbers) {
+    const auto a = dg::decode_diagnosis_address(address);
+    out << "    valuation number " << (a ? a->bit + 1 : 0) << " (address " << address << "): " << range_of(x, false) << "\n";
+  }
+  if (d.temperature1) out << "    temperature 1 (external, leading): " << range_of(*d.temperature1, true) << "\n";
+  if (d.temperature2) out << "    temperature 2 (on board): " << range_of(*d.temperature2, true) << "\n";
+  for (const auto& [address, x] : d.additional_sensors)
+    out << "    additional sensor " << address << ": " << range_of(x, true) << "\n";
+  if (d.warning_threshold || d.max_temperature) {
+    out << "    limits:";
+    if (d.warning_threshold) out << " warning threshold " << (*d.warning_threshold != 0 ? dg::temperature_string(*d.warning_threshold) : "none") << " (word 6)";
+    if (d.max_temperature) out << (d.warning_threshold ? "," : "") << " maximum " << (*d.max_temperature != 0 ? dg::temperature_string(*d.max_temperature) : "not given") << " (word 22)";
+    out << "\n";
+  }
+  if (d.ignored_addresses != 0) out << "    " << d.ignored_addresses << " diagnosis value(s) at undefined or system-specific addresses ignored\n";
+  if (d.warning_bit_at) {
+    out << "    WRN first at " << format_time(*d.warning_bit_at) << " (frame #" << *d.warning_bit_frame << ")";
+    if (d.warnings) out << "; word 1 = " << hex4(*d.warnings) << " (" << pm::bits_string(*d.warnings, pm::warning_bit_names()) << ")";
+    out << "\n";
+  }
+  const std::size_t limit = verbose ? d.notes.size() : 8;
+  for (std::size_t i = 0; i < d.notes.size() && i < limit; ++i) {
+    const auto& n = d.notes[i];
+    out << "    note " << master::to_string(n.kind) << " at " << format_time(n.at);
+    if (n.frame) out << " (frame #" << *n.frame << ")";
+    out << ": " << n.message << "\n";
+  }
+  if (d.notes.size() > limit) out << "    ... " << d.notes.size() - limit << " more note(s)\n";
+}
+
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
   if (!r.description.empty()) out << "  " << r.description << "\n";
@@ -138,6 +198,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   write_startup(out, r.startup);
   write_careful_master(out, r);
   write_safety(out, r, verbose);
+  write_diagnosis(out, r, verbose);
   if (!verbose) {
     for (const auto& f : r.frames) {
       if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
@@ -165,6 +226,53 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   for (const auto& e : r.expectations)
     if (verbose || !e.passed) out << "  " << (e.passed ? "ok   " : "FAIL ") << e.name << ": " << e.detail << "\n";
 }
+
+namespace {
+
+nlohmann::json reading_json(const master::DiagnosisReading& x) {
+  return {{"last", x.last}, {"min", x.min}, {"max", x.max}, {"count", x.count}, {"first_ps", x.first_at.count()},
+          {"last_ps", x.last_at.count()}};
+}
+
+// Temperatures stay in 0.1 K as the encoder sends them (3.9.6); celsius = (value - 2731) / 10.
+nlohmann::json diagnosis_json(const master::DiagnosisReport& d) {
+  using nlohmann::json;
+  json j{{"ignored_addresses", d.ignored_addresses}};
+  const auto word = [&j](const char* key, const std::optional<std::uint16_t>& v) {
+    if (v) j[key] = *v;
+  };
+  word("additional_data_1_support", d.additional_data_1_support);
+  word("temperature_scaling", d.temperature_scaling);
+  word("diagnostic_status", d.diagnostic_status);
+  word("max_temperature", d.max_temperature);
+  word("supported_warnings", d.supported_warnings);
+  word("configuration", d.configuration);
+  word("configuration_written", d.configuration_written);
+  word("warning_threshold", d.warning_threshold);
+  word("warnings", d.warnings);
+  json vn = json::object();
+  for (const auto& [address, x] : d.valuation_numbers) vn[std::to_string(address)] = reading_json(x);
+  j["valuation_numbers"] = vn;
+  if (d.temperature1) j["temperature_1"] = reading_json(*d.temperature1);
+  if (d.temperature2) j["temperature_2"] = reading_json(*d.temperature2);
+  json sensors = json::object();
+  for (const auto& [address, x] : d.additional_sensors) sensors[std::to_string(address)] = reading_json(x);
+  j["additional_sensors"] = sensors;
+  if (d.warning_bit_at) {
+    j["warning_bit_ps"] = d.warning_bit_at->count();
+    j["warning_bit_frame"] = *d.warning_bit_frame;
+  }
+  json notes = json::array();
+  for (const auto& n : d.notes) {
+    json jn{{"kind", master::to_string(n.kind)}, {"time_ps", n.at.count()}, {"message", n.message}};
+    if (n.frame) jn["frame"] = *n.frame;
+    notes.push_back(jn);
+  }
+  j["notes"] = notes;
+  return j;
+}
+
+}  // namespace
 
 nlohmann::json to_json(const ScenarioResult& r) {
   using nlohmann::json;
@@ -266,6 +374,7 @@ nlohmann::json to_json(const ScenarioResult& r) {
     word("checksum63_computed", s.checksum63_computed);
     j["safety"] = js;
   }
+  if (r.diagnosis) j["diagnosis"] = diagnosis_json(*r.diagnosis);
   json vs = json::array();
   for (const auto& v : r.violations) {
     json jv{{"check", v.check},     {"spec", v.spec},       {"where", line::to_string(v.where)},

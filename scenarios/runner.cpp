@@ -255,6 +255,56 @@ void judge_safety(const SafetyExpectation& e, ScenarioResult& r) {
                               std::to_string(got.position_comparisons) + " (expected " + e.position_comparisons->text + ")"});
 }
 
+void judge_diagnosis(const DiagnosisExpectation& e, ScenarioResult& r) {
+  namespace dg = protocol::diagnosis;
+  if (!r.diagnosis) {
+    r.expectations.push_back({"diagnosis", false, "the master's diagnostics are not enabled (master.diagnostics.enabled)"});
+    return;
+  }
+  const auto& got = *r.diagnosis;
+  for (auto k : master::kDiagnosisNoteKinds) {
+    const std::string name(master::to_string(k));
+    const auto n = got.count(k);
+    std::string first;
+    for (const auto& x : got.notes)
+      if (x.kind == k) {
+        first = ": " + x.message;
+        break;
+      }
+    const auto it = e.notes.find(name);
+    if (it != e.notes.end())
+      r.expectations.push_back({"diagnosis.notes." + name, it->second.matches(n), std::to_string(n) + " (expected " + it->second.text + ")" + first});
+    else if (n != 0)
+      r.expectations.push_back({"diagnosis.notes." + name, false, std::to_string(n) + " (expected none: not listed)" + first});
+  }
+  const auto reading = [&](const std::string& what, const master::DiagnosisReading* got_reading, unsigned want, bool temperature) {
+    const auto show = [temperature](unsigned v) { return temperature ? dg::temperature_string(v) : std::to_string(v); };
+    r.expectations.push_back({"diagnosis." + what, got_reading != nullptr && got_reading->last == want,
+                              got_reading == nullptr ? "never read (expected " + show(want) + ")"
+                                                     : show(got_reading->last) + " (expected " + show(want) + ")"});
+  };
+  for (const auto& [address, want] : e.valuation_numbers) {
+    const auto it = got.valuation_numbers.find(address);
+    reading("valuation_numbers." + std::to_string(address), it == got.valuation_numbers.end() ? nullptr : &it->second, want, false);
+  }
+  if (e.temperature1) reading("temperature_1", got.temperature1 ? &*got.temperature1 : nullptr, *e.temperature1, true);
+  if (e.temperature2) reading("temperature_2", got.temperature2 ? &*got.temperature2 : nullptr, *e.temperature2, true);
+  for (const auto& [address, want] : e.additional_sensors) {
+    const auto it = got.additional_sensors.find(address);
+    reading("additional_sensors." + std::to_string(address), it == got.additional_sensors.end() ? nullptr : &it->second, want, true);
+  }
+  const auto word = [&](const std::string& what, const std::optional<std::uint16_t>& want, const std::optional<std::uint16_t>& have) {
+    if (want)
+      r.expectations.push_back({"diagnosis." + what, have == want,
+                                have ? std::to_string(*have) + " (expected " + std::to_string(*want) + ")" : "never read"});
+  };
+  word("configuration", e.configuration, got.configuration);
+  word("warnings", e.warnings, got.warnings);
+  if (e.ignored_addresses)
+    r.expectations.push_back({"diagnosis.ignored_addresses", e.ignored_addresses->matches(got.ignored_addresses),
+                              std::to_string(got.ignored_addresses) + " (expected " + e.ignored_addresses->text + ")"});
+}
+
 void judge(const Scenario& s, ScenarioResult& r) {
   r.expectations.push_back({"script finished", r.finished,
                             r.finished ? "at " + sim::format_time(r.simulated)
@@ -280,6 +330,7 @@ void judge(const Scenario& s, ScenarioResult& r) {
   judge_memory(s, r);
   if (s.expect.startup) judge_startup(*s.expect.startup, r);
   if (s.expect.safety) judge_safety(*s.expect.safety, r);
+  if (s.expect.diagnosis) judge_diagnosis(*s.expect.diagnosis, r);
   if (s.expect.checksum_ok) {
     const bool got = r.checksum && r.checksum->ok();
     r.expectations.push_back({"checksum", r.checksum.has_value() && got == *s.expect.checksum_ok,
@@ -369,6 +420,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.retries = master.retries();
   r.remeasurements = master.remeasurements();
   r.safety = master.safety();
+  if (scenario.master.diagnostics.enabled) r.diagnosis = master.diagnosis();
   r.encoder_memory = encoder.memory().image();
   for (const auto& e : bus) {
     r.bus_memory.push_back(e->memory().image());

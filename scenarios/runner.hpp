@@ -46,6 +46,7 @@ struct ScenarioResult {
   std::uint64_t retries = 0;
   std::uint64_t remeasurements = 0;
   master::SafetyReport safety;
+  std::optional<master::DiagnosisReport> diagnosis;  // with the master's diagnostics enabled
   // Ground truth against the safety functions: good reads while the encoder had an error, and
   // whether the released position is what the encoder measured.
   std::uint64_t undetected_errors = 0;

@@ -72,6 +72,18 @@ struct SafetyExpectation {
   std::optional<CountMatcher> position_comparisons;
 };
 
+// What the master's diagnosis must have collected (issue 7). Note kinds not listed in `notes`
+// must not have occurred; values are the last ones read.
+struct DiagnosisExpectation {
+  std::map<std::string, CountMatcher> notes;                // by master::to_string(DiagnosisNoteKind)
+  std::map<unsigned, unsigned> valuation_numbers;           // by A3 address (valuation number n: address n)
+  std::optional<std::uint16_t> temperature1, temperature2;  // 0.1 K
+  std::map<unsigned, std::uint16_t> additional_sensors;     // by address, 0.1 K
+  std::optional<std::uint16_t> configuration;               // operating parameters word 3 in force
+  std::optional<std::uint16_t> warnings;                    // word 1 as last read
+  std::optional<CountMatcher> ignored_addresses;
+};
+
 struct Expectations {
   std::map<std::string, CountMatcher> outcomes;    // non-measurement frames by master::FrameOutcome
   std::optional<bool> positions_match_encoder;
@@ -87,6 +99,7 @@ struct Expectations {
   std::optional<CountMatcher> remeasurements; // delay measurements the careful master added
   std::optional<StartupExpectation> startup;
   std::optional<SafetyExpectation> safety;
+  std::optional<DiagnosisExpectation> diagnosis;
 };
 
 // Something that happens while the script runs (issue 5): a change of the line or a fault of
@@ -97,7 +110,7 @@ struct Event {
   enum class Kind : std::uint8_t {
     SetCable, BitFlip, Glitch, Stuck, RandomBitErrors, LateDriverRelease, LossOfFailsafe,  // line
     ErrorSources, MemoryAccessTime, TCal, PowerInterruption, CorruptWord, ProbeTrigger,    // encoder
-    StuckErrorMessages, Slip, Position2Fault,                                              // encoder (issue 7)
+    StuckErrorMessages, Slip, Position2Fault, SensorValues,                                // encoder (issue 7)
   };
   Kind kind = Kind::SetCable;
   std::optional<Time> at;
@@ -122,6 +135,7 @@ struct Event {
   std::uint16_t xor_mask = 0;
   bool error_message_1_stuck = false, error_message_2_stuck = false;  // stuck_error_messages
   std::int64_t steps = 0;                                             // slip, position2_fault
+  slave::SensorValues sensors;                                        // sensors
 };
 
 inline Event cable_change(Time at, double length_m, Time delay_per_m) {
