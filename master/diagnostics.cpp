@@ -222,17 +222,25 @@ void Master::activate_diagnosis() {
                                                      " is not the 0.1 K the spec defines (3.9.6); temperatures shown as 0.1 K");
   const auto wanted = static_cast<std::uint16_t>((params_.diagnostics.configuration & *r.diagnostic_status & dg::kValuationNumberBits) |
                                                  (params_.diagnostics.configuration & dg::kSystemSpecificDataBit));
-  if (wanted == *r.configuration) return;
-  r.configuration_written = wanted;
-  r.configuration = wanted;
-  std::vector<Operation> plan(3);
-  for (auto& o : plan) o.script_index = current_->script_index;
-  plan[0].command = MC::SelectionOfMemoryArea;
-  plan[0].address = a7;
-  plan[1].command = MC::EncoderReceiveParameters;
-  plan[1].address = kConfiguration;
-  plan[1].parameter = wanted;
-  plan[2].command = MC::EncoderReceiveReset;
+  std::vector<Operation> plan;
+  const auto frame = [&](MC c, std::uint8_t address, std::uint16_t parameter = 0) {
+    Operation o;
+    o.script_index = current_->script_index;
+    o.command = c;
+    o.address = address;
+    o.parameter = parameter;
+    plan.push_back(o);
+  };
+  if (wanted != *r.configuration) {
+    r.configuration_written = wanted;
+    r.configuration = wanted;
+    frame(MC::SelectionOfMemoryArea, a7);
+    frame(MC::EncoderReceiveParameters, kConfiguration, wanted);
+    frame(MC::EncoderReceiveReset, 0);
+  }
+  // Seed 002's flow chart: then "Encoder send position values with additional data" with the
+  // diagnosis selected (the reads of the 2.2 area left memory parameters selected).
+  frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::Diagnosis));
   for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
 }
 

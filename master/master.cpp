@@ -134,32 +134,26 @@ void Master::next_operation() {
       kernel_.schedule(begin + params_.power_on.t1_t2 - kernel_.now(), sim::bind<&Master::power_on_pulse>(this, 0));
       return;
     case Operation::Kind::StartupRoutine:
-      expand_startup_routine();
-      next_operation();
+      expand(&Master::expand_startup_routine);
       return;
     case Operation::Kind::VerifyChecksum:
-      expand_checksum_check();
-      next_operation();
+      expand(&Master::expand_checksum_check);
       return;
     case Operation::Kind::SafetyStartup:
-      expand_safety_startup();
-      next_operation();
+      expand(&Master::expand_safety_startup);
       return;
     case Operation::Kind::CrcSelfTest:
       run_crc_self_test();
       next_operation();
       return;
     case Operation::Kind::ReadEndat22Area:
-      expand_endat22_read();
-      next_operation();
+      expand(&Master::expand_endat22_read);
       return;
     case Operation::Kind::DiagnosisSetup:
-      expand_diagnosis_setup();
-      next_operation();
+      expand(&Master::expand_diagnosis_setup);
       return;
     case Operation::Kind::DiagnosisActivate:
-      activate_diagnosis();
-      next_operation();
+      expand(&Master::activate_diagnosis);
       return;
     case Operation::Kind::StartupPositions:
       frames_left_ = params_.safety.startup_positions ? params_.safety.startup_max_reads : 1;
@@ -184,6 +178,13 @@ void Master::next_operation() {
   next_due_ = begin;
   const Time at = std::max(next_due_, ready_at_);
   kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
+}
+
+void Master::expand(void (Master::*expansion)()) {
+  const std::size_t before = operations_.size();
+  (this->*expansion)();
+  for (std::size_t i = 0; i + before < operations_.size(); ++i) operations_[i].expanded = true;
+  next_operation();
 }
 
 void Master::power_on_pulse(std::uint64_t phase) {
@@ -366,9 +367,10 @@ void Master::interrupt_for_measurement() {
     }
   }
   // 3.4.1 / 3.4.2: words 0 and 1 of the operating status say which error or warning it was.
+  const bool status_reads = !rest.expanded;
   for (const auto& [due, address, purpose] : {std::tuple{error_sources_due_, 0, Operation::Purpose::ErrorSources},
                                               {warnings_due_, 1, Operation::Purpose::DiagnosisWarnings}}) {
-    if (!due) continue;
+    if (!due || !status_reads) continue;
     Operation read = rest;
     read.kind = Operation::Kind::ReadPosition;
     read.count = 1;
@@ -381,7 +383,8 @@ void Master::interrupt_for_measurement() {
     read.purpose = Operation::Purpose::None;
     operations_.push_front(read);
   }
-  remeasure_due_ = reselect_due_ = error_sources_due_ = warnings_due_ = false;
+  remeasure_due_ = reselect_due_ = false;
+  if (status_reads) error_sources_due_ = warnings_due_ = false;
   next_operation();
 }
 
@@ -416,7 +419,8 @@ void Master::operation_frame_done() {
 // ---- one frame ----------------------------------------------------------------------------
 
 void Master::start_frame(std::uint64_t) {
-  if ((remeasure_due_ || reselect_due_ || error_sources_due_ || warnings_due_) && !measuring_) {
+  const bool status_read_due = (error_sources_due_ || warnings_due_) && !current_->expanded;
+  if ((remeasure_due_ || reselect_due_ || status_read_due) && !measuring_) {
     interrupt_for_measurement();
     return;
   }

@@ -237,6 +237,10 @@ struct Operation {
   unsigned manufacturer_word = 0;  // Purpose::ChecksumWord: which of words 4 .. 47; Endat22*: of 0 .. 63
   std::uint64_t endat22_words = ~std::uint64_t{0};  // ReadEndat22Area: bit w = word w
   std::size_t script_index = 0;  // set by enqueue(); the frames' FrameResult::operation
+  // Part of a sequence the master expanded (a memory read, a setup): the reads of words 0 and 1
+  // after an error message or WRN wait until it is over, lest their memory area selection
+  // (2.4.1) come between its selection and its reads.
+  bool expanded = false;
 };
 
 // What VerifyChecksum found (3.5.26).
@@ -300,6 +304,7 @@ class Master {
   enum class Rx : std::uint8_t { Off, Polling, Receiving, Done };
 
   void next_operation();
+  void expand(void (Master::*expansion)());
   void operation_frame_done();
   void start_frame(std::uint64_t);
   void clock_edge();
