@@ -1,7 +1,8 @@
 // master/ — the subsequent electronics (spec 2.1–2.3): clock generation (f_c, duty cycle,
 // t_ST, seeded jitter; CLOCK idles HIGH), mode commands on falling edges, start-bit polling,
 // CRC checks, recovery waits, and propagation-delay measurement and compensation (2.1.2).
-// It only talks through the line's master-side signals.
+// It only talks through the line's master-side signals. What it does for safety-oriented designs
+// is in safety.hpp, the diagnosis it collects for a service engineer in diagnostics.hpp.
 #pragma once
 
 #include <cstdint>
