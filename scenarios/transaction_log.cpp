@@ -28,6 +28,28 @@ std::string fields_text(const ordered_json& fields) {
   return s.empty() ? "-" : s;
 }
 
+// The diagnosis values of 2.3.5.1 / A3 in words, without spaces: "3:20" (address: valuation
+// number), "112.0degC", "1:72.5degC" (additional sensor address 1).
+std::string decoded(const master::AdditionalDatum& d) {
+  namespace dg = protocol::diagnosis;
+  char buf[32];
+  switch (d.information()) {
+    case protocol::Information::Diagnosis:
+      std::snprintf(buf, sizeof buf, "%u:%u", static_cast<unsigned>(d.data >> 8), static_cast<unsigned>(d.data & 0xFF));
+      return buf;
+    case protocol::Information::Temperature1:
+    case protocol::Information::Temperature2:
+      std::snprintf(buf, sizeof buf, "%.1fdegC", dg::celsius(d.data));
+      return buf;
+    case protocol::Information::AdditionalSensors: {
+      const auto v = dg::decode_additional_sensor(d.data);
+      std::snprintf(buf, sizeof buf, "%u:%.1fdegC", v.address, dg::celsius(v.tenth_kelvin));
+      return buf;
+    }
+    default: return "";
+  }
+}
+
 }  // namespace
 
 ordered_json transaction_of(const master::FrameResult& f, const std::vector<checker::Violation>& violations) {
@@ -94,6 +116,7 @@ ordered_json transaction_of(const master::FrameResult& f, const std::vector<chec
       if (d.busy()) additional[key + ".busy"] = true;
       if ((d.status & protocol::AdditionalDataStatus::kWarning) != 0) additional[key + ".warning"] = true;
       if ((d.status & protocol::AdditionalDataStatus::kReferenceMark) != 0) additional[key + ".reference_mark"] = true;
+      if (const auto v = decoded(d); !v.empty()) additional[key + ".decoded"] = v;
     }
   t["additional"] = additional;
   t["outcome"] = master::to_string(f.outcome);
