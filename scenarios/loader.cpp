@@ -991,6 +991,17 @@ void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std
   }
 }
 
+// The names (to_string) of every value of an enum listed in kValues: the keys of a count map.
+template <const auto& kValues>
+std::span<const std::string_view> names_of() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> v;
+    for (auto x : kValues) v.push_back(master::to_string(x));
+    return v;
+  }();
+  return names;
+}
+
 // Keys that are A3 or additional-sensor addresses, each mapped through `value`.
 template <class F>
 void read_address_map(const Node& n, std::uint64_t max_address, const std::string& what, F&& value) {
@@ -1005,13 +1016,7 @@ void read_address_map(const Node& n, std::uint64_t max_address, const std::strin
 DiagnosisExpectation read_diagnosis_expectation(const Node& n) {
   Object o(n);
   DiagnosisExpectation e;
-  static const std::vector<std::string> kNames = [] {
-    std::vector<std::string> names;
-    for (auto k : master::kDiagnosisNoteKinds) names.emplace_back(master::to_string(k));
-    return names;
-  }();
-  static const std::vector<std::string_view> kViews(kNames.begin(), kNames.end());
-  if (auto v = o.opt("notes")) read_count_map(*v, e.notes, kViews);
+  if (auto v = o.opt("notes")) read_count_map(*v, e.notes, names_of<master::kDiagnosisNoteKinds>());
   if (auto v = o.opt("valuation_numbers"))
     read_address_map(*v, 64, "8-bit valuation number (A3)",
                      [&](unsigned a, const Node& x) { e.valuation_numbers[a] = static_cast<unsigned>(x.as_word(0xFF)); });
@@ -1072,13 +1077,7 @@ void read_expect(const Node& n, Expectations& e) {
   if (auto v = o.opt("safety")) {
     Object sf(*v);
     SafetyExpectation se;
-    static const std::vector<std::string> kNames = [] {
-      std::vector<std::string> names;
-      for (auto f : master::kSafetyFunctions) names.emplace_back(master::to_string(f));
-      return names;
-    }();
-    static const std::vector<std::string_view> kViews(kNames.begin(), kNames.end());
-    if (auto x = sf.opt("findings")) read_count_map(*x, se.findings, kViews);
+    if (auto x = sf.opt("findings")) read_count_map(*x, se.findings, names_of<master::kSafetyFunctions>());
     if (auto x = sf.opt("axis_released")) se.axis_released = x->as_bool();
     if (auto x = sf.opt("release_position_correct")) se.release_position_correct = x->as_bool();
     if (auto x = sf.opt("undetected_errors")) se.undetected_errors = x->as_count();

@@ -217,24 +217,27 @@ void compare_safety_with_encoder(const Scenario& s, ScenarioResult& r) {
   }
 }
 
+// Counts per kind (safety findings by function, diagnosis notes by kind) against their
+// expectations; a kind not listed must not occur. Each result quotes the first message.
+template <class Kind, std::size_t N, class Item>
+void judge_kinds(const std::string& prefix, const std::array<Kind, N>& kinds, const std::map<std::string, CountMatcher>& expected,
+                 const std::vector<Item>& items, Kind Item::*kind_of, ScenarioResult& r) {
+  for (const Kind k : kinds) {
+    const std::string name(master::to_string(k));
+    const auto n = static_cast<std::uint64_t>(std::count_if(items.begin(), items.end(), [&](const Item& x) { return x.*kind_of == k; }));
+    const auto first = std::find_if(items.begin(), items.end(), [&](const Item& x) { return x.*kind_of == k; });
+    const std::string quote = first == items.end() ? "" : ": " + first->message;
+    const auto it = expected.find(name);
+    if (it != expected.end())
+      r.expectations.push_back({prefix + name, it->second.matches(n), std::to_string(n) + " (expected " + it->second.text + ")" + quote});
+    else if (n != 0)
+      r.expectations.push_back({prefix + name, false, std::to_string(n) + " (expected none: not listed)" + quote});
+  }
+}
+
 void judge_safety(const SafetyExpectation& e, ScenarioResult& r) {
   const auto& got = r.safety;
-  for (auto f : master::kSafetyFunctions) {
-    const std::string name(master::to_string(f));
-    const auto n = got.count(f);
-    const auto it = e.findings.find(name);
-    std::string first;
-    for (const auto& x : got.findings)
-      if (x.function == f) {
-        first = ": " + x.message;
-        break;
-      }
-    if (it != e.findings.end())
-      r.expectations.push_back({"safety.findings." + name, it->second.matches(n),
-                                std::to_string(n) + " (expected " + it->second.text + ")" + first});
-    else if (n != 0)
-      r.expectations.push_back({"safety.findings." + name, false, std::to_string(n) + " (expected none: not listed)" + first});
-  }
+  judge_kinds("safety.findings.", master::kSafetyFunctions, e.findings, got.findings, &master::SafetyFinding::function, r);
   if (e.axis_released)
     r.expectations.push_back({"safety.axis_released", got.axis_released == *e.axis_released,
                               got.axis_released ? "released at " + sim::format_time(got.released_at) + " with position " +
@@ -262,21 +265,7 @@ void judge_diagnosis(const DiagnosisExpectation& e, ScenarioResult& r) {
     return;
   }
   const auto& got = *r.diagnosis;
-  for (auto k : master::kDiagnosisNoteKinds) {
-    const std::string name(master::to_string(k));
-    const auto n = got.count(k);
-    std::string first;
-    for (const auto& x : got.notes)
-      if (x.kind == k) {
-        first = ": " + x.message;
-        break;
-      }
-    const auto it = e.notes.find(name);
-    if (it != e.notes.end())
-      r.expectations.push_back({"diagnosis.notes." + name, it->second.matches(n), std::to_string(n) + " (expected " + it->second.text + ")" + first});
-    else if (n != 0)
-      r.expectations.push_back({"diagnosis.notes." + name, false, std::to_string(n) + " (expected none: not listed)" + first});
-  }
+  judge_kinds("diagnosis.notes.", master::kDiagnosisNoteKinds, e.notes, got.notes, &master::DiagnosisNote::kind, r);
   const auto reading = [&](const std::string& what, const master::DiagnosisReading* got_reading, unsigned want, bool temperature) {
     const auto show = [temperature](unsigned v) { return temperature ? dg::temperature_string(v) : std::to_string(v); };
     r.expectations.push_back({"diagnosis." + what, got_reading != nullptr && got_reading->last == want,
