@@ -56,6 +56,8 @@ void DiagnosticsParams::validate() const {
   if (additional_sensors > 16)
     throw std::invalid_argument("master diagnostics additional_sensors must be 0 .. 16 (a 4-bit address, 2.3.5.1), got " +
                                 std::to_string(additional_sensors));
+  if (warnings_interval < Time::zero() || warnings_interval > sim::ms(60'000))
+    throw std::invalid_argument("master diagnostics warnings_interval must be 0 .. 60 s, got " + sim::format_time(warnings_interval));
   if (reserve_limit > 255)
     throw std::invalid_argument("master diagnostics reserve_limit must be 0 .. 255 (an 8-bit valuation number, A3), got " +
                                 std::to_string(reserve_limit));
@@ -148,12 +150,17 @@ void Master::roll_additional_data_1() {
   if (schedule.empty()) return;
   const std::optional<I> now = selected_[0] ? std::optional{protocol::information_of_mrs(selection_mrs_[0])} : std::nullopt;
   if (!now && !params_.diagnostics.enabled) return;
+  const std::size_t size = schedule.size();
+  if (ai1_slot_ >= size) ai1_slot_ = 0;
   if (!now) {
-    ai1_slot_ = schedule.size() - 1;
-  } else if (ai1_slot_ >= schedule.size() || schedule[ai1_slot_] != *now) {
-    const auto it = std::find(schedule.begin(), schedule.end(), *now);
-    if (it == schedule.end()) return;
-    ai1_slot_ = static_cast<std::size_t>(it - schedule.begin());
+    ai1_slot_ = size - 1;
+  } else if (schedule[ai1_slot_] != *now) {
+    // A selection that did not come through (or another one): back to the latest slot that holds
+    // what is selected, so that the round goes on rather than starting over.
+    std::size_t back = 1;
+    while (back <= size && schedule[(ai1_slot_ + size - back) % size] != *now) ++back;
+    if (back > size) return;
+    ai1_slot_ = (ai1_slot_ + size - back) % size;
   }
   ai1_slot_ = (ai1_slot_ + 1) % schedule.size();
   if (now && schedule[ai1_slot_] == *now) return;
@@ -193,6 +200,8 @@ void Master::expand_diagnosis_setup() {
   plan.push_back(activate);
   diagnosis_ = DiagnosisReport{};
   conditions_.clear();
+  warning_bit_ = false;
+  warnings_read_at_.reset();
   for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
 }
 
@@ -213,30 +222,30 @@ void Master::activate_diagnosis() {
     diagnose(K::Setup, nullptr, "setup", true, "the encoder has no EnDat 2.2 command set (word 37): no diagnosis through additional data");
     return;
   }
-  if (!r.configuration || !r.diagnostic_status || !r.additional_data_1_support) {
-    diagnose(K::Setup, nullptr, "setup", true, "the diagnostic status (3.9.7) or the configuration (3.6.3) could not be read");
-    return;
-  }
-  if (r.temperature_scaling && !dg::temperature_scaling(*r.temperature_scaling))
-    diagnose(K::Setup, nullptr, "scaling", true, "temperature scaling word 4 = " + hex(*r.temperature_scaling) +
-                                                     " is not the 0.1 K the spec defines (3.9.6); temperatures shown as 0.1 K");
-  const auto wanted = static_cast<std::uint16_t>((params_.diagnostics.configuration & *r.diagnostic_status & dg::kValuationNumberBits) |
-                                                 (params_.diagnostics.configuration & dg::kSystemSpecificDataBit));
   std::vector<Operation> plan;
-  const auto frame = [&](MC c, std::uint8_t address, std::uint16_t parameter = 0) {
+  const auto frame = [&](MC c, std::uint8_t address, std::uint16_t parameter = 0, P purpose = P::None) {
     Operation o;
     o.script_index = current_->script_index;
     o.command = c;
     o.address = address;
     o.parameter = parameter;
+    o.purpose = purpose;
     plan.push_back(o);
   };
-  if (wanted != *r.configuration) {
-    r.configuration_written = wanted;
-    r.configuration = wanted;
-    frame(MC::SelectionOfMemoryArea, a7);
-    frame(MC::EncoderReceiveParameters, kConfiguration, wanted);
-    frame(MC::EncoderReceiveReset, 0);
+  if (!r.configuration || !r.diagnostic_status || !r.additional_data_1_support) {
+    diagnose(K::Setup, nullptr, "setup", true, "the diagnostic status (3.9.7) or the configuration (3.6.3) could not be read");
+  } else {
+    if (r.temperature_scaling && !dg::temperature_scaling(*r.temperature_scaling))
+      diagnose(K::Setup, nullptr, "scaling", true, "temperature scaling word 4 = " + hex(*r.temperature_scaling) +
+                                                       " is not the 0.1 K the spec defines (3.9.6); temperatures shown as 0.1 K");
+    // 3.9.7: word 5 has the bits of word 3 for what is supported.
+    const auto wanted = static_cast<std::uint16_t>(params_.diagnostics.configuration & *r.diagnostic_status);
+    if (wanted != *r.configuration) {
+      r.configuration_written = wanted;
+      frame(MC::SelectionOfMemoryArea, a7);
+      frame(MC::EncoderReceiveParameters, kConfiguration, wanted, P::DiagnosisConfiguration);
+      frame(MC::EncoderReceiveReset, 0);
+    }
   }
   // Seed 002's flow chart: then "Encoder send position values with additional data" with the
   // diagnosis selected (the reads of the 2.2 area left memory parameters selected).
@@ -260,8 +269,18 @@ void Master::diagnose(DiagnosisNoteKind kind, const FrameResult* f, std::string 
 }
 
 void Master::note_diagnosis(const FrameResult& f) {
-  if (!params_.diagnostics.enabled || f.outcome != FrameOutcome::Ok) return;
+  if (!params_.diagnostics.enabled) return;
+  if (current_->purpose == P::DiagnosisConfiguration) {
+    if (f.outcome == FrameOutcome::Ok) diagnosis_.configuration = static_cast<std::uint16_t>(*f.payload & 0xFFFF);
+    else
+      diagnose(K::Setup, &f, "configuration", true,
+               "operating parameters word 3 could not be written (" + std::string(to_string(f.outcome)) + "); " +
+                   hex(diagnosis_.configuration.value_or(0)) + " stays in force");
+    return;
+  }
+  if (f.outcome != FrameOutcome::Ok) return;
   if (current_->purpose == P::DiagnosisWarnings) {
+    warnings_read_at_ = f.end;
     diagnosis_.warnings = f.echo_parameter;
     const bool any = f.echo_parameter != 0;
     diagnose(K::Warning, &f, "word 1 " + hex(f.echo_parameter), any,
@@ -277,15 +296,19 @@ void Master::note_diagnosis(const FrameResult& f) {
     warning_bit = warning_bit || (d.status & protocol::AdditionalDataStatus::kWarning) != 0;
     note_diagnosis_datum(f, d);
   }
-  if (!seen) return;
-  // 3.4.2: "query the group bit for warnings (WRN)"; the word says which.
-  if (warning_bit && !warning_bit_) {
-    if (!diagnosis_.warning_bit_at) {
-      diagnosis_.warning_bit_at = f.end;
-      diagnosis_.warning_bit_frame = f.index;
-    }
-    warnings_due_ = params_.diagnostics.read_warnings;
+  if (seen) note_warning_bit(f, warning_bit);
+}
+
+// 3.4.2: "query the group bit for warnings (WRN)"; word 1 says which, when WRN appears and at
+// regular intervals while it stays (a further warning leaves WRN as it is).
+void Master::note_warning_bit(const FrameResult& f, bool warning_bit) {
+  const DiagnosticsParams& d = params_.diagnostics;
+  if (warning_bit && !diagnosis_.warning_bit_at) {
+    diagnosis_.warning_bit_at = f.end;
+    diagnosis_.warning_bit_frame = f.index;
   }
+  const bool again = warnings_read_at_ && d.warnings_interval > Time::zero() && f.end - *warnings_read_at_ >= d.warnings_interval;
+  if (warning_bit && (!warning_bit_ || again)) warnings_due_ = d.read_warnings;
   warning_bit_ = warning_bit;
 }
 
@@ -309,35 +332,34 @@ void Master::note_diagnosis_datum(const FrameResult& f, const AdditionalDatum& d
     }
     case I::Temperature1:
       (r.temperature1 ? *r.temperature1 : r.temperature1.emplace()).add(d.data, f.end);
-      note_temperature(f, "temperature 1", d.data, false);
       return;
     case I::Temperature2:
       (r.temperature2 ? *r.temperature2 : r.temperature2.emplace()).add(d.data, f.end);
-      note_temperature(f, "temperature 2", d.data, true);
+      note_temperature(f, d.data);
       return;
     case I::AdditionalSensors: {
       const auto v = dg::decode_additional_sensor(d.data);
       r.additional_sensors[v.address].add(v.tenth_kelvin, f.end);
-      note_temperature(f, "additional sensor " + std::to_string(v.address), v.tenth_kelvin, false);
       return;
     }
     default: return;
   }
 }
 
-// 3.6.6: only the internal sensor (temperature 2) triggers the warning at word 6; every
-// temperature is held against the maximum permissible encoder temperature (3.9.16, 0: none).
-void Master::note_temperature(const FrameResult& f, std::string_view name, unsigned tenth_kelvin, bool internal) {
+// 3.6.6: only the internal sensor (temperature 2) triggers the warning at word 6; it is also held
+// against the maximum permissible encoder temperature (3.9.16, 0: none). Temperature 1 and the
+// additional sensors measure the motor (2.3.5.1): no encoder limit applies to them.
+void Master::note_temperature(const FrameResult& f, unsigned tenth_kelvin) {
   const DiagnosisReport& r = diagnosis_;
-  const std::string what = std::string(name) + " " + dg::temperature_string(tenth_kelvin);
-  if (internal && r.warning_threshold && *r.warning_threshold != 0) {
+  const std::string what = "temperature 2 " + dg::temperature_string(tenth_kelvin);
+  if (r.warning_threshold && *r.warning_threshold != 0) {
     const bool supported = (r.supported_warnings.value_or(kTemperatureExceeded) & kTemperatureExceeded) != 0;
-    diagnose(K::TemperatureAboveThreshold, &f, std::string(name) + " threshold", tenth_kelvin > *r.warning_threshold,
+    diagnose(K::TemperatureAboveThreshold, &f, "threshold", tenth_kelvin > *r.warning_threshold,
              what + " above the warning threshold " + dg::temperature_string(*r.warning_threshold) +
                  " (operating parameters word 6)" + (supported ? "" : "; word 36 says the encoder has no such warning"));
   }
   if (r.max_temperature && *r.max_temperature != 0)
-    diagnose(K::TemperatureAboveMaximum, &f, std::string(name) + " maximum", tenth_kelvin > *r.max_temperature,
+    diagnose(K::TemperatureAboveMaximum, &f, "maximum", tenth_kelvin > *r.max_temperature,
              what + " above the maximum permissible encoder temperature " + dg::temperature_string(*r.max_temperature) +
                  " (word 22)");
 }

@@ -25,7 +25,8 @@ using sim::Time;
 struct DiagnosticsParams {
   bool enabled = false;
   // Operating parameters word 3 as the setup writes it (3.6.3: bits 0 .. 5 valuation numbers
-  // 1 .. 6, bit 15 system-specific data), limited to what 3.9.7 word 5 says is supported.
+  // 1 .. 6, bit 15 system-specific data), limited to what 3.9.7 word 5 says is supported
+  // (the same bits).
   std::uint16_t configuration = 0x003F;
   bool temperatures = true;         // temperature 1 and 2 (2.3.5.1) in the rotation
   unsigned additional_sensors = 0;  // interrogations of the additional sensors per round (2.3.5.1)
@@ -34,6 +35,9 @@ struct DiagnosticsParams {
   // but not given): a valuation number below this is reported as a low function reserve.
   unsigned reserve_limit = 25;
   bool read_warnings = true;  // WRN set in additional data: read word 1 of the operating status (3.4.2)
+  // ... and again this often while WRN stays set: a further warning does not change WRN (3.4.2:
+  // "it is recommended to query this word at regular intervals"). 0: only when WRN appears.
+  Time warnings_interval = sim::ms(100);
 
   // Throws std::invalid_argument naming the parameter and its limit.
   void validate() const;
@@ -42,7 +46,7 @@ struct DiagnosticsParams {
 enum class DiagnosisNoteKind : std::uint8_t {
   FunctionReserveLow,         // a valuation number below DiagnosticsParams::reserve_limit
   TemperatureAboveThreshold,  // temperature 2 above operating parameters word 6 (3.6.6)
-  TemperatureAboveMaximum,    // a temperature above the maximum permissible one, word 22 (3.9.16)
+  TemperatureAboveMaximum,    // temperature 2 above the maximum permissible encoder temperature, word 22 (3.9.16)
   Warning,                    // word 1 read after WRN, with its warnings (3.4.2)
   Setup,                      // the setup could not read or write what it needs
 };
@@ -73,6 +77,7 @@ struct DiagnosisReport {
   std::optional<std::uint16_t> additional_data_1_support, temperature_scaling, diagnostic_status, max_temperature,
       supported_warnings, configuration, warning_threshold;
   std::optional<std::uint16_t> configuration_written;  // word 3 as the setup wrote it (then a reset)
+  // `configuration` is word 3 as read, or as written once the write's echo came back.
   std::map<unsigned, DiagnosisReading> valuation_numbers;  // by A3 address
   std::optional<DiagnosisReading> temperature1, temperature2;  // 0.1 K
   std::map<unsigned, DiagnosisReading> additional_sensors;      // by address, 0.1 K

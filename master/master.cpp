@@ -118,6 +118,8 @@ void Master::start() {
 // ---- operations -------------------------------------------------------------------------
 
 void Master::next_operation() {
+  // Reads of words 0 / 1 that waited for the end of an expanded sequence come before the end.
+  if (operations_.empty() && (error_sources_due_ || warnings_due_) && current_) push_status_reads(*current_);
   if (operations_.empty()) {
     current_.reset();
     finished_ = true;
@@ -366,14 +368,23 @@ void Master::interrupt_for_measurement() {
       selected_[i] = false;
     }
   }
-  // 3.4.1 / 3.4.2: words 0 and 1 of the operating status say which error or warning it was.
-  const bool status_reads = !rest.expanded;
+  if (!rest.expanded) push_status_reads(rest);
+  remeasure_due_ = reselect_due_ = false;
+  next_operation();
+}
+
+// 3.4.1 / 3.4.2: words 0 and 1 of the operating status say which error or warning it was.
+void Master::push_status_reads(const Operation& base) {
   for (const auto& [due, address, purpose] : {std::tuple{error_sources_due_, 0, Operation::Purpose::ErrorSources},
                                               {warnings_due_, 1, Operation::Purpose::DiagnosisWarnings}}) {
-    if (!due || !status_reads) continue;
-    Operation read = rest;
+    if (!due) continue;
+    Operation read = base;
     read.kind = Operation::Kind::ReadPosition;
     read.count = 1;
+    read.at.reset();
+    read.mode_bits.reset();
+    read.clock_adjust = 0;
+    read.continuous_words = 0;
     read.command = ModeCommand::EncoderSendParameters;
     read.address = static_cast<std::uint8_t>(address);
     read.purpose = purpose;
@@ -383,9 +394,7 @@ void Master::interrupt_for_measurement() {
     read.purpose = Operation::Purpose::None;
     operations_.push_front(read);
   }
-  remeasure_due_ = reselect_due_ = false;
-  if (status_reads) error_sources_due_ = warnings_due_ = false;
-  next_operation();
+  error_sources_due_ = warnings_due_ = false;
 }
 
 void Master::operation_frame_done() {

@@ -219,7 +219,8 @@ struct Operation {
   // What a frame of the start-up routine, the checksum check or a safety check is for.
   enum class Purpose : std::uint8_t {
     None, Step, Errors, Warnings, Word13, Word37, ChecksumWord,
-    ErrorSources, Endat22Lsb, Endat22Msb, ForcedTest, ForcedError1, ForcedError2, ForcedOff, DiagnosisWarnings
+    ErrorSources, Endat22Lsb, Endat22Msb, ForcedTest, ForcedError1, ForcedError2, ForcedOff, DiagnosisWarnings,
+    DiagnosisConfiguration
   };
   Kind kind = Kind::ReadPosition;
   std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
@@ -349,8 +350,10 @@ class Master {
   void expand_diagnosis_setup();
   void activate_diagnosis();
   void note_diagnosis(const FrameResult& f);
+  void note_warning_bit(const FrameResult& f, bool warning_bit);
+  void push_status_reads(const Operation& base);
   void note_diagnosis_datum(const FrameResult& f, const AdditionalDatum& d);
-  void note_temperature(const FrameResult& f, std::string_view name, unsigned tenth_kelvin, bool internal);
+  void note_temperature(const FrameResult& f, unsigned tenth_kelvin);
   void diagnose(DiagnosisNoteKind kind, const FrameResult* f, std::string key, bool condition, const std::string& message);
   Time time_between_cycles_left() const;
   std::uint8_t expected_crc_pos(unsigned bits, bool error1, bool error2, bool v22, std::uint64_t position) const;
@@ -425,6 +428,7 @@ class Master {
   std::size_t ai1_slot_ = 0;         // where additional data 1 is in its schedule
   bool warning_bit_ = false;
   bool warnings_due_ = false;
+  std::optional<Time> warnings_read_at_;  // the last read of word 1 after WRN
   std::map<std::string, bool> conditions_;  // diagnosis notes in force, by subject (noted once)
   unsigned startup_agreeing_ = 0;
   std::uint64_t startup_previous_ = 0;

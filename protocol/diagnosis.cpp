@@ -1,6 +1,7 @@
 #include "protocol/diagnosis.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace endatsim::protocol::diagnosis {
@@ -10,6 +11,8 @@ std::string temperature_string(unsigned tenth_kelvin) {
   std::snprintf(text, sizeof text, "%.1f degC (%.1f K)", celsius(tenth_kelvin), kelvin(tenth_kelvin));
   return text;
 }
+
+long tenth_kelvin_of_celsius(double celsius) { return std::lround(celsius * 10.0) + kZeroCelsiusTenthKelvin; }
 
 std::optional<double> temperature_scaling(std::uint16_t word4) {
   if ((word4 & 0x0007) == 0) return 0.1;

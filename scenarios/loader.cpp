@@ -119,14 +119,16 @@ class Node {
   // A temperature in 0.1 K (3.9.6): an integer of 0.1 K steps, or a string "110 degC" / "383.1 K"
   // (0 degC = 273.1 K, as 3.9.6 scales it).
   std::uint16_t as_temperature() const {
-    const std::string what = "a temperature: an integer in 0.1 K or a string such as \"110 degC\" or \"383.1 K\" (0 .. 6553.5 K)";
+    const std::string what =
+        "a temperature: an integer in 0.1 K (or a hex string) or a string such as \"110 degC\" or \"383.1 K\" (0 .. 6553.5 K)";
     if (!j_.is_string()) return static_cast<std::uint16_t>(as_uint(0, 0xFFFF));
     static const std::regex kTemperature(R"(^(-?[0-9]{1,5}(\.[0-9]{1,3})?) ?(K|degC)$)");
     std::smatch m;
     const std::string s = j_.get<std::string>();
+    if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) return static_cast<std::uint16_t>(as_word(0xFFFF));
     if (!std::regex_match(s, m, kTemperature)) fail(what);
-    const double tenth = std::round(std::stod(m[1].str()) * 10.0) +
-                         (m[3].str() == "degC" ? protocol::diagnosis::kZeroCelsiusTenthKelvin : 0);
+    const double x = std::stod(m[1].str());
+    const long tenth = m[3].str() == "degC" ? protocol::diagnosis::tenth_kelvin_of_celsius(x) : std::lround(x * 10.0);
     if (tenth < 0 || tenth > 0xFFFF) fail(what);
     return static_cast<std::uint16_t>(tenth);
   }
@@ -492,6 +494,7 @@ void read_diagnostics(const Node& n, master::DiagnosticsParams& p) {
   if (auto v = o.opt("additional_sensors")) p.additional_sensors = static_cast<unsigned>(v->as_uint(0, 16));
   if (auto v = o.opt("reserve_limit")) p.reserve_limit = static_cast<unsigned>(v->as_uint(0, 255));
   if (auto v = o.opt("read_warnings")) p.read_warnings = v->as_bool();
+  if (auto v = o.opt("warnings_interval")) p.warnings_interval = v->as_duration(Time::zero(), sim::ms(60'000));
   o.done();
   validated(n, [&] { p.validate(); });
 }
@@ -1004,11 +1007,13 @@ std::span<const std::string_view> names_of() {
 
 // Keys that are A3 or additional-sensor addresses, each mapped through `value`.
 template <class F>
-void read_address_map(const Node& n, std::uint64_t max_address, const std::string& what, F&& value) {
+void read_address_map(const Node& n, unsigned min_address, unsigned max_address, const std::string& what, F&& value) {
   if (!n.raw().is_object()) n.fail("an object of address -> " + what);
   for (const auto& [address, item] : n.raw().items()) {
     const json key = address;
-    const auto a = static_cast<unsigned>(Node(key, n.path() + "/" + address, n.file()).as_word(max_address));
+    const Node at(key, n.path() + "/" + address, n.file());
+    const auto a = static_cast<unsigned>(at.as_word(max_address));
+    if (a < min_address) at.fail("an address " + std::to_string(min_address) + " .. " + std::to_string(max_address));
     value(a, Node(item, n.path() + "/" + address, n.file()));
   }
 }
@@ -1018,12 +1023,12 @@ DiagnosisExpectation read_diagnosis_expectation(const Node& n) {
   DiagnosisExpectation e;
   if (auto v = o.opt("notes")) read_count_map(*v, e.notes, names_of<master::kDiagnosisNoteKinds>());
   if (auto v = o.opt("valuation_numbers"))
-    read_address_map(*v, 64, "8-bit valuation number (A3)",
+    read_address_map(*v, 1, 64, "8-bit valuation number (A3)",
                      [&](unsigned a, const Node& x) { e.valuation_numbers[a] = static_cast<unsigned>(x.as_word(0xFF)); });
   if (auto v = o.opt("temperature_1")) e.temperature1 = v->as_temperature();
   if (auto v = o.opt("temperature_2")) e.temperature2 = v->as_temperature();
   if (auto v = o.opt("additional_sensors"))
-    read_address_map(*v, 15, "temperature", [&](unsigned a, const Node& x) { e.additional_sensors[a] = x.as_temperature(); });
+    read_address_map(*v, 0, 15, "temperature", [&](unsigned a, const Node& x) { e.additional_sensors[a] = x.as_temperature(); });
   if (auto v = o.opt("configuration")) e.configuration = static_cast<std::uint16_t>(v->as_word(0xFFFF));
   if (auto v = o.opt("warnings")) e.warnings = static_cast<std::uint16_t>(v->as_word(0xFFFF));
   if (auto v = o.opt("ignored_addresses")) e.ignored_addresses = v->as_count();

@@ -170,7 +170,9 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     e[word::kAdditionalData2Support] = 0x009F;  // 3.9.3: all but "position value 2" in additional data 2
     e[2] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
     e[word::kTemperatureScaling] = 0x8000;      // 3.9.6: 0.1 K (default value)
-    e[word::kDiagnosticStatus] = protocol::diagnosis::kValuationNumberBits;  // 3.9.7: valuation numbers 1 .. 6
+    // 3.9.7: valuation numbers 1 .. 6, system-specific data where the encoder has any.
+    e[word::kDiagnosticStatus] = static_cast<std::uint16_t>(
+        protocol::diagnosis::kValuationNumberBits | (p.sensors.system_data.empty() ? 0 : protocol::diagnosis::kSystemSpecificDataBit));
     e[6] = 0x007F;                              // 3.9.8: support of error message 2
     e[word::kMaxEncoderTemperature] = 3881;     // 3.9.16's example: 115 degC
     e[word::kMaxClockFrequency] = 16000;        // 3.9.19: kHz

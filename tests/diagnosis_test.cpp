@@ -52,7 +52,8 @@ std::uint16_t warnings_at_end(const scenarios::ScenarioResult& r) {
 
 TEST(TemperatureScaling, ReproducesTheExamplesOfWords6And22) {
   // 3.6.6: 110 degC = 383.1 K = 3831 = EF7h; 3.9.16: 115 degC = 388.1 K = 3881 = F29h.
-  EXPECT_EQ(3831, 0xEF7);
+  EXPECT_EQ(dg::tenth_kelvin_of_celsius(110.0), 0xEF7);
+  EXPECT_EQ(dg::tenth_kelvin_of_celsius(115.0), 0xF29);
   EXPECT_DOUBLE_EQ(dg::celsius(0xEF7), 110.0);
   EXPECT_DOUBLE_EQ(dg::kelvin(0xEF7), 383.1);
   EXPECT_DOUBLE_EQ(dg::celsius(0xF29), 115.0);
@@ -223,14 +224,21 @@ TEST(MasterDiagnosis, IgnoresSystemSpecificAddresses) {
   EXPECT_TRUE(r.diagnosis->valuation_numbers.contains(1));
 }
 
-TEST(MasterDiagnosis, TemperatureAboveTheMaximumIsNotedButOnlyTemperature2IsHeldAgainstWord6) {
+TEST(MasterDiagnosis, OnlyTemperature2IsHeldAgainstTheEncoderLimits) {
+  // 3.6.6 / 3.9.16: words 6 and 22 concern the encoder; temperature 1 and the additional sensors
+  // measure the motor (2.3.5.1).
   auto s = diagnosis_scenario();
-  s.encoder.sensors.temperature1 = 3931;  // 120 degC, external: above word 22, not a word-6 matter
-  const auto r = scenarios::run_scenario(s);
+  s.encoder.sensors.temperature1 = 3931;  // 120 degC
+  s.encoder.sensors.additional_sensors = {3931};
+  s.master.diagnostics.additional_sensors = 1;
+  auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.diagnosis.has_value());
+  EXPECT_TRUE(r.diagnosis->notes.empty()) << r.diagnosis->notes.front().message;
+  s.encoder.sensors.temperature2 = 3931;
+  r = scenarios::run_scenario(s);
   ASSERT_TRUE(r.diagnosis.has_value());
   EXPECT_EQ(r.diagnosis->count(DiagnosisNoteKind::TemperatureAboveMaximum), 1U);
-  EXPECT_EQ(r.diagnosis->count(DiagnosisNoteKind::TemperatureAboveThreshold), 0U);
-  EXPECT_FALSE(r.diagnosis->warning_bit_at.has_value());
+  EXPECT_EQ(r.diagnosis->count(DiagnosisNoteKind::TemperatureAboveThreshold), 1U);
 }
 
 TEST(MasterDiagnosis, WrnHasWord1ReadUnlessSwitchedOff) {
@@ -296,4 +304,110 @@ TEST(TransactionLog, DecodesDiagnosisValues) {
   EXPECT_EQ(t[0]["additional"]["temperature_2.decoded"], "110.0degC");
   EXPECT_EQ(t[0]["additional"]["diagnosis.decoded"], "3:20");
   EXPECT_EQ(t[0]["additional"]["additional_sensors.decoded"], "1:72.5degC");
+}
+
+namespace {
+
+slave::SensorValues valuation_numbers(std::uint8_t first) {
+  slave::SensorValues v;
+  v.valuation_numbers = std::array<std::uint8_t, 6>{first, 100, 100, 100, 100, 100};
+  return v;
+}
+
+slave::SensorValues temperature2(std::uint16_t tenth_kelvin) {
+  slave::SensorValues v;
+  v.temperature2 = tenth_kelvin;
+  return v;
+}
+
+scenarios::Event sensors_at(sim::Time at, slave::SensorValues values) {
+  scenarios::Event e;
+  e.kind = scenarios::Event::Kind::SensorValues;
+  e.at = at;
+  e.sensors = std::move(values);
+  return e;
+}
+
+}  // namespace
+
+TEST(MasterDiagnosis, LowReserveIsNotedAgainAfterItRecovered) {
+  auto s = diagnosis_scenario(400);
+  s.master.diagnostics.configuration = 0x0001;
+  s.encoder.sensors.valuation_numbers = {10, 100, 100, 100, 100, 100};
+  s.events.push_back(sensors_at(sim::ms(75), valuation_numbers(90)));
+  s.events.push_back(sensors_at(sim::ms(85), valuation_numbers(12)));
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.diagnosis.has_value());
+  const auto& vn1 = r.diagnosis->valuation_numbers.at(1);
+  EXPECT_EQ(vn1.max, 90U) << "the recovery was read";
+  EXPECT_EQ(vn1.last, 12U);
+  EXPECT_EQ(r.diagnosis->count(DiagnosisNoteKind::FunctionReserveLow), 2U);
+}
+
+TEST(MasterDiagnosis, RollingSelectionKeepsItsRoundUnderBitErrors) {
+  // A selection frame that fails must not send the round back to its start: every item of the
+  // schedule is still read, position value 2 still compared.
+  auto s = diagnosis_scenario(1500);
+  s.master.safety.position_value_2 = true;
+  s.master.diagnostics.additional_sensors = 3;
+  master::Operation startup;
+  startup.kind = master::Operation::Kind::SafetyStartup;
+  startup.command = ModeCommand::EncoderSendPositionValuesWithAdditionalData;
+  s.script.insert(s.script.begin() + 1, startup);
+  scenarios::Event noise;
+  noise.kind = scenarios::Event::Kind::RandomBitErrors;
+  noise.at = sim::ms(250);  // after the safety start-up
+  noise.end = line::ObservationPoint::MasterPins;
+  noise.rate = 0.002;
+  s.events.push_back(noise);
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.diagnosis.has_value());
+  std::size_t failed_selections = 0;
+  for (const auto& f : r.frames)
+    failed_selections += f.command == ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea &&
+                         f.outcome != master::FrameOutcome::Ok && f.start > sim::ms(250);
+  EXPECT_GT(failed_selections, 3U) << "the noise must hit selections for this test to mean something";
+  ASSERT_TRUE(r.diagnosis->temperature2.has_value());
+  EXPECT_GT(r.diagnosis->temperature2->count, 10U);
+  EXPECT_GT(r.diagnosis->temperature2->last_at, sim::ms(330)) << "still read late under the noise";
+  EXPECT_EQ(r.diagnosis->additional_sensors.size(), 3U);
+  for (const auto& [address, reading] : r.diagnosis->additional_sensors) EXPECT_GT(reading.count, 10U) << address;
+  EXPECT_GT(r.safety.position_comparisons, 100U);
+}
+
+TEST(MasterDiagnosis, AWriteProtectedConfigurationIsReportedNotAssumed) {
+  auto s = diagnosis_scenario();
+  s.encoder.memory = slave::default_memory_image(s.encoder);
+  s.encoder.memory->areas[MemoryArea::OperatingStatus][slave::word::kWriteProtection] |= 0x0002;  // 3.4.3: operating parameters
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.diagnosis.has_value());
+  EXPECT_EQ(r.diagnosis->configuration_written, 0x003F);
+  EXPECT_EQ(r.diagnosis->configuration, 0x0000) << "still what was read";
+  ASSERT_EQ(r.diagnosis->count(DiagnosisNoteKind::Setup), 1U);
+  EXPECT_NE(r.diagnosis->notes[0].message.find("could not be written"), std::string::npos) << r.diagnosis->notes[0].message;
+  EXPECT_TRUE(r.diagnosis->valuation_numbers.empty()) << "nothing activated, nothing to read";
+}
+
+TEST(MasterDiagnosis, AFurtherWarningUnderWrnIsReadAtTheNextInterval) {
+  auto s = diagnosis_scenario(600);
+  s.master.diagnostics.warnings_interval = sim::ms(10);
+  s.events.push_back(sensors_at(sim::ms(70), temperature2(3900)));
+  scenarios::Event reserve;
+  reserve.kind = scenarios::Event::Kind::ErrorSources;
+  reserve.at = sim::ms(90);
+  reserve.warnings = 0x0004;  // 3.4.2: light-source control reserve
+  s.events.push_back(reserve);
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.diagnosis.has_value());
+  EXPECT_EQ(r.diagnosis->warnings, 0x0006);
+  EXPECT_EQ(r.diagnosis->count(DiagnosisNoteKind::Warning), 2U);
+}
+
+TEST(MasterDiagnosis, AWarningSeenDuringTheSetupIsReadWhenItEnds) {
+  auto s = diagnosis_scenario();
+  s.script.pop_back();  // the setup only: its last frames see WRN
+  s.encoder.sensors.temperature2 = 3900;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.diagnosis.has_value());
+  EXPECT_EQ(r.diagnosis->warnings, 0x0002);
 }
