@@ -100,6 +100,17 @@ try:
     jsonschema.validate(results, schema, cls=jsonschema.Draft202012Validator)
 except jsonschema.ValidationError as e:
     failures.append("results.json does not validate against schema/results.schema.json: %s at %s" % (e.message, list(e.absolute_path)))
+# The safety and diagnosis sections (issue 7) validate too.
+r7 = run("run", os.path.join(bundled, "diagnosis_service_read.json"),
+         os.path.join(source, "scenarios", "safety", "01_error_messages.json"), "--quiet", "--json", path("results7.json"))
+check(r7.returncode == 0, "the diagnosis and safety scenarios pass", r7)
+results7 = json.load(open(path("results7.json")))
+try:
+    jsonschema.validate(results7, schema, cls=jsonschema.Draft202012Validator)
+except jsonschema.ValidationError as e:
+    failures.append("results7.json does not validate: %s at %s" % (e.message, list(e.absolute_path)))
+check("diagnosis" in results7["scenarios"][0] and results7["scenarios"][0]["diagnosis"]["notes"] and
+      results7["scenarios"][1]["safety"]["findings"], "--json: the diagnosis notes and the safety findings are there")
 frames = sum(len(s["frames"]) for s in results["scenarios"])
 log_lines = [l for l in r.stdout.splitlines() if not l.startswith("#") and "  sent: " in l]
 check(len(log_lines) == frames, "--log -: one line per frame (%d lines, %d frames)" % (len(log_lines), frames), r)
