@@ -174,35 +174,22 @@ void Master::roll_additional_data_1() {
 // scales temperatures (3.9.6, 3.9.16; word 36 for the warnings), and the operating parameters
 // in force (3.6.3, 3.6.6); DiagnosisActivate then writes word 3 if needed.
 void Master::expand_diagnosis_setup() {
-  const std::size_t index = current_->script_index;
-  std::vector<Operation> plan;
-  const auto frame = [&](MC c, std::uint8_t address) {
-    Operation o;
-    o.script_index = index;
-    o.command = c;
-    o.address = address;
-    plan.push_back(o);
-  };
-  frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::Manufacturer3));
-  frame(MC::EncoderSendParameters, kSupportedWarnings);
-  frame(MC::EncoderSendParameters, kCommandSet);
-  frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::OperatingParameters));
-  frame(MC::EncoderSendParameters, kConfiguration);
-  frame(MC::EncoderSendParameters, kWarningThreshold);
-  Operation read22;
-  read22.kind = Operation::Kind::ReadEndat22Area;
-  read22.script_index = index;
-  read22.endat22_words = std::uint64_t{1} << kAdditionalData1Support | std::uint64_t{1} << kTemperatureScaling |
-                         std::uint64_t{1} << kDiagnosticStatus | std::uint64_t{1} << kMaxTemperature;
-  plan.push_back(read22);
-  Operation activate = read22;
-  activate.kind = Operation::Kind::DiagnosisActivate;
-  plan.push_back(activate);
+  Sequence plan = sequence();
+  plan.frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::Manufacturer3));
+  plan.frame(MC::EncoderSendParameters, kSupportedWarnings);
+  plan.frame(MC::EncoderSendParameters, kCommandSet);
+  plan.frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::OperatingParameters));
+  plan.frame(MC::EncoderSendParameters, kConfiguration);
+  plan.frame(MC::EncoderSendParameters, kWarningThreshold);
+  plan.add(Operation::Kind::ReadEndat22Area).endat22_words =
+      std::uint64_t{1} << kAdditionalData1Support | std::uint64_t{1} << kTemperatureScaling |
+      std::uint64_t{1} << kDiagnosticStatus | std::uint64_t{1} << kMaxTemperature;
+  plan.add(Operation::Kind::DiagnosisActivate);
   diagnosis_ = DiagnosisReport{};
   conditions_.clear();
   warning_bit_ = false;
   warnings_read_at_.reset();
-  for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
+  run_first(plan);
 }
 
 // 3.6: "changes to the values do not become valid until the mode command 'Encoder receive
@@ -222,16 +209,7 @@ void Master::activate_diagnosis() {
     diagnose(K::Setup, nullptr, "setup", true, "the encoder has no EnDat 2.2 command set (word 37): no diagnosis through additional data");
     return;
   }
-  std::vector<Operation> plan;
-  const auto frame = [&](MC c, std::uint8_t address, std::uint16_t parameter = 0, P purpose = P::None) {
-    Operation o;
-    o.script_index = current_->script_index;
-    o.command = c;
-    o.address = address;
-    o.parameter = parameter;
-    o.purpose = purpose;
-    plan.push_back(o);
-  };
+  Sequence plan = sequence();
   if (!r.configuration || !r.diagnostic_status || !r.additional_data_1_support) {
     diagnose(K::Setup, nullptr, "setup", true, "the diagnostic status (3.9.7) or the configuration (3.6.3) could not be read");
   } else {
@@ -242,15 +220,15 @@ void Master::activate_diagnosis() {
     const auto wanted = static_cast<std::uint16_t>(params_.diagnostics.configuration & *r.diagnostic_status);
     if (wanted != *r.configuration) {
       r.configuration_written = wanted;
-      frame(MC::SelectionOfMemoryArea, a7);
-      frame(MC::EncoderReceiveParameters, kConfiguration, wanted, P::DiagnosisConfiguration);
-      frame(MC::EncoderReceiveReset, 0);
+      plan.frame(MC::SelectionOfMemoryArea, a7);
+      plan.frame(MC::EncoderReceiveParameters, kConfiguration, wanted, P::DiagnosisConfiguration);
+      plan.frame(MC::EncoderReceiveReset);
     }
   }
   // Seed 002's flow chart: then "Encoder send position values with additional data" with the
   // diagnosis selected (the reads of the 2.2 area left memory parameters selected).
-  frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::Diagnosis));
-  for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
+  plan.frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::Diagnosis));
+  run_first(plan);
 }
 
 // ---- what the frames carry ----------------------------------------------------------------------

@@ -182,6 +182,27 @@ void Master::next_operation() {
   kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
 }
 
+Operation& Master::Sequence::frame(ModeCommand c, std::uint8_t address, std::uint16_t parameter,
+                                   Operation::Purpose purpose, unsigned word) {
+  Operation& o = ops.emplace_back();
+  o.script_index = script_index;
+  o.command = c;
+  o.address = address;
+  o.parameter = parameter;
+  o.purpose = purpose;
+  o.manufacturer_word = word;
+  return o;
+}
+
+Operation& Master::Sequence::add(Operation::Kind k) {
+  Operation& o = ops.emplace_back();
+  o.kind = k;
+  o.script_index = script_index;
+  return o;
+}
+
+void Master::run_first(const Sequence& s) { operations_.insert(operations_.begin(), s.ops.begin(), s.ops.end()); }
+
 void Master::expand(void (Master::*expansion)()) {
   const std::size_t before = operations_.size();
   (this->*expansion)();
@@ -204,39 +225,26 @@ void Master::power_on_pulse(std::uint64_t phase) {
 void Master::expand_startup_routine() {
   // Seed 002, "Spannungsversorgung und Einschalten": EnDat 2.1 mode commands only.
   using P = Operation::Purpose;
-  const std::size_t index = current_->script_index;
-  const auto frame = [index](ModeCommand c, std::uint8_t address = 0, std::uint16_t parameter = 0,
-                             P purpose = P::Step) {
-    Operation o;
-    o.script_index = index;
-    o.command = c;
-    o.address = address;
-    o.parameter = parameter;
-    o.purpose = purpose;
-    return o;
-  };
   using MC = ModeCommand;
-  const std::vector<Operation> routine{
-      frame(MC::EncoderReceiveReset),  // then reset_wait (50 ms)
-      frame(MC::SelectionOfMemoryArea, 0xB9),
-      frame(MC::EncoderSendParameters, 0, 0, P::Errors),
-      frame(MC::EncoderSendParameters, 1, 0, P::Warnings),
-      frame(MC::EncoderReceiveParameters, 0, 0x0000),  // 3.4.1: alarms cleared by writing 0000h
-      frame(MC::EncoderReceiveParameters, 1, 0x0000),  // 3.4.2: warnings likewise
-      frame(MC::SelectionOfMemoryArea, 0xA1),
-      frame(MC::EncoderSendParameters, 13, 0, P::Word13),
-      frame(MC::SelectionOfMemoryArea, 0xA5),
-      frame(MC::EncoderSendParameters, 37 - 32, 0, P::Word37),
+  Sequence routine = sequence();
+  const auto step = [&routine](MC c, std::uint8_t address = 0, std::uint16_t parameter = 0, P purpose = P::Step) {
+    routine.frame(c, address, parameter, purpose);
   };
-  if (params_.delay_compensation) {  // seed 002 / 2.1.2: then the propagation delay is measured
-    Operation measure;
-    measure.kind = Operation::Kind::MeasureDelay;
-    measure.script_index = index;
-    operations_.push_front(measure);
-  }
+  step(MC::EncoderReceiveReset);  // then reset_wait (50 ms)
+  step(MC::SelectionOfMemoryArea, 0xB9);
+  step(MC::EncoderSendParameters, 0, 0, P::Errors);
+  step(MC::EncoderSendParameters, 1, 0, P::Warnings);
+  step(MC::EncoderReceiveParameters, 0, 0x0000);  // 3.4.1: alarms cleared by writing 0000h
+  step(MC::EncoderReceiveParameters, 1, 0x0000);  // 3.4.2: warnings likewise
+  step(MC::SelectionOfMemoryArea, 0xA1);
+  step(MC::EncoderSendParameters, 13, 0, P::Word13);
+  step(MC::SelectionOfMemoryArea, 0xA5);
+  step(MC::EncoderSendParameters, 37 - 32, 0, P::Word37);
+  // Seed 002 / 2.1.2: then the propagation delay is measured.
+  if (params_.delay_compensation) routine.add(Operation::Kind::MeasureDelay);
   startup_ = {};
   startup_.completed = true;
-  for (auto it = routine.rbegin(); it != routine.rend(); ++it) operations_.push_front(*it);
+  run_first(routine);
 }
 
 void Master::note_startup(const FrameResult& f) {
@@ -263,25 +271,16 @@ void Master::note_startup(const FrameResult& f) {
 // (addresses 0 .. 15 each) with 2.1 frames; then word 47 against the sum of words 4 .. 46.
 void Master::expand_checksum_check() {
   using MC = ModeCommand;
-  std::vector<Operation> frames;
-  const auto add = [&](MC c, std::uint8_t address, unsigned word = 0) {
-    Operation o;
-    o.script_index = current_->script_index;
-    o.command = c;
-    o.address = address;
-    o.purpose = word != 0 ? Operation::Purpose::ChecksumWord : Operation::Purpose::None;
-    o.manufacturer_word = word;
-    frames.push_back(o);
-  };
+  Sequence reads = sequence();
   for (const auto& [mrs, first] : {std::pair{0xA1, 4U}, {0xA3, 16U}, {0xA5, 32U}}) {
-    add(MC::SelectionOfMemoryArea, static_cast<std::uint8_t>(mrs));
+    reads.frame(MC::SelectionOfMemoryArea, static_cast<std::uint8_t>(mrs));
     for (unsigned w = first; w < (first == 4 ? 16U : first + 16); ++w)
-      add(MC::EncoderSendParameters, static_cast<std::uint8_t>(w % 16), w);
+      reads.frame(MC::EncoderSendParameters, static_cast<std::uint8_t>(w % 16), 0, Operation::Purpose::ChecksumWord, w);
   }
   checksum_ = ChecksumCheck{};
   checksum_words_.assign(48, 0);
   checksum_read_ = 0;
-  for (auto it = frames.rbegin(); it != frames.rend(); ++it) operations_.push_front(*it);
+  run_first(reads);
 }
 
 void Master::note_checksum_word(const FrameResult& f) {

@@ -305,6 +305,17 @@ class Master {
  private:
   enum class Rx : std::uint8_t { Off, Polling, Receiving, Done };
 
+  // The operations the master expands from one script operation (a routine, a memory read, a
+  // setup): they share its script index and run before what is queued.
+  struct Sequence {
+    std::size_t script_index = 0;
+    std::vector<Operation> ops;
+    Operation& frame(ModeCommand c, std::uint8_t address = 0, std::uint16_t parameter = 0,
+                     Operation::Purpose purpose = Operation::Purpose::None, unsigned word = 0);
+    Operation& add(Operation::Kind k);
+  };
+  Sequence sequence() const { return {current_->script_index, {}}; }
+  void run_first(const Sequence& s);
   void next_operation();
   void expand(void (Master::*expansion)());
   void operation_frame_done();

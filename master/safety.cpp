@@ -147,23 +147,9 @@ Position2Parameters position2_parameters(const std::vector<std::uint16_t>& m, co
 // error paths, then the position read several times; the axis is released only after all.
 void Master::expand_safety_startup() {
   const SafetyParams& s = params_.safety;
-  const std::size_t index = current_->script_index;
-  std::vector<Operation> plan;
-  const auto frame = [&](MC c, std::uint8_t address = 0, P purpose = P::None) {
-    Operation o;
-    o.script_index = index;
-    o.command = c;
-    o.address = address;
-    o.purpose = purpose;
-    plan.push_back(o);
-  };
-  const auto kind = [&](Operation::Kind k) {
-    Operation o;
-    o.kind = k;
-    o.script_index = index;
-    o.command = current_->command;
-    plan.push_back(o);
-  };
+  Sequence plan = sequence();
+  const auto frame = [&plan](MC c, std::uint8_t address, P purpose) { plan.frame(c, address, 0, purpose); };
+  const auto kind = [&](Operation::Kind k) { plan.add(k).command = current_->command; };
   if (s.crc_self_test) kind(Operation::Kind::CrcSelfTest);
   if (s.checksums || s.position_value_2) {
     kind(Operation::Kind::VerifyChecksum);
@@ -181,9 +167,9 @@ void Master::expand_safety_startup() {
   }
   kind(Operation::Kind::StartupPositions);
   if (s.position_value_2)  // 2.3.5.1: additional data 1 = position value 2, word 1 (it latches words 2, 3)
-    frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::PositionValue2Word1));
+    frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::PositionValue2Word1), P::None);
   safety_.axis_released = false;
-  for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
+  run_first(plan);
 }
 
 // 2.5.1: a word of the 2.2 area (MRS BD, selectable only with 2.2 mode commands) comes back in
@@ -198,26 +184,16 @@ void Master::expand_endat22_read() {
     if (words == ~std::uint64_t{0}) finish_checksums(false);
     return;
   }
-  const std::size_t index = current_->script_index;
-  std::vector<Operation> plan;
-  const auto frame = [&](MC c, std::uint8_t address, P purpose = P::None, unsigned word = 0) {
-    Operation o;
-    o.script_index = index;
-    o.command = c;
-    o.address = address;
-    o.purpose = purpose;
-    o.manufacturer_word = word;
-    plan.push_back(o);
+  Sequence plan = sequence();
+  const auto frame = [&plan](MC c, std::uint8_t address, P purpose = P::None, unsigned word = 0) {
+    plan.frame(c, address, 0, purpose, word);
   };
-  const auto await = [&](P purpose, unsigned word) {
-    Operation o;
-    o.kind = Operation::Kind::AwaitNotBusy;
-    o.script_index = index;
+  const auto await = [&plan](P purpose, unsigned word) {
+    Operation& o = plan.add(Operation::Kind::AwaitNotBusy);
     o.count = 300;  // 50 us apart: beyond t_ac max (12 ms, 2.3.2)
     o.cycle = sim::us(50);
     o.purpose = purpose;
     o.manufacturer_word = word;
-    plan.push_back(o);
   };
   const auto select = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
   frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
@@ -231,7 +207,7 @@ void Master::expand_endat22_read() {
     frame(MC::EncoderSendPositionValuesWithAdditionalData, 0, P::Endat22Msb, w);
     frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
   }
-  for (auto it = plan.rbegin(); it != plan.rend(); ++it) operations_.push_front(*it);
+  run_first(plan);
 }
 
 // Seed 001: "the CRC generation in the receiver chip ... must be ensured through a targeted
