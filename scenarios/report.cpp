@@ -229,6 +229,11 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
 
 namespace {
 
+// A parameter word that was read, or nothing when it was not.
+void put_word(nlohmann::json& j, const char* key, const std::optional<std::uint16_t>& v) {
+  if (v) j[key] = *v;
+}
+
 nlohmann::json reading_json(const master::DiagnosisReading& x) {
   return {{"last", x.last}, {"min", x.min}, {"max", x.max}, {"count", x.count}, {"first_ps", x.first_at.count()},
           {"last_ps", x.last_at.count()}};
@@ -238,18 +243,15 @@ nlohmann::json reading_json(const master::DiagnosisReading& x) {
 nlohmann::json diagnosis_json(const master::DiagnosisReport& d) {
   using nlohmann::json;
   json j{{"ignored_addresses", d.ignored_addresses}};
-  const auto word = [&j](const char* key, const std::optional<std::uint16_t>& v) {
-    if (v) j[key] = *v;
-  };
-  word("additional_data_1_support", d.additional_data_1_support);
-  word("temperature_scaling", d.temperature_scaling);
-  word("diagnostic_status", d.diagnostic_status);
-  word("max_temperature", d.max_temperature);
-  word("supported_warnings", d.supported_warnings);
-  word("configuration", d.configuration);
-  word("configuration_written", d.configuration_written);
-  word("warning_threshold", d.warning_threshold);
-  word("warnings", d.warnings);
+  put_word(j, "additional_data_1_support", d.additional_data_1_support);
+  put_word(j, "temperature_scaling", d.temperature_scaling);
+  put_word(j, "diagnostic_status", d.diagnostic_status);
+  put_word(j, "max_temperature", d.max_temperature);
+  put_word(j, "supported_warnings", d.supported_warnings);
+  put_word(j, "configuration", d.configuration);
+  put_word(j, "configuration_written", d.configuration_written);
+  put_word(j, "warning_threshold", d.warning_threshold);
+  put_word(j, "warnings", d.warnings);
   json vn = json::object();
   for (const auto& [address, x] : d.valuation_numbers) vn[std::to_string(address)] = reading_json(x);
   j["valuation_numbers"] = vn;
@@ -335,13 +337,10 @@ nlohmann::json to_json(const ScenarioResult& r) {
   if (r.startup.completed || r.startup.failed_frames != 0) {
     json st;
     st["completed"] = r.startup.completed;
-    const auto word = [&](const char* key, const std::optional<std::uint16_t>& v) {
-      if (v) st[key] = *v;
-    };
-    word("errors", r.startup.errors);
-    word("warnings", r.startup.warnings);
-    word("word13", r.startup.word13);
-    word("word37", r.startup.word37);
+    put_word(st, "errors", r.startup.errors);
+    put_word(st, "warnings", r.startup.warnings);
+    put_word(st, "word13", r.startup.word13);
+    put_word(st, "word37", r.startup.word37);
     j["startup"] = st;
   }
   {
@@ -363,15 +362,12 @@ nlohmann::json to_json(const ScenarioResult& r) {
       js["release_position"] = s.release_position;
     }
     if (r.release_position_correct) js["release_position_correct"] = *r.release_position_correct;
-    const auto word = [&js](const char* key, const std::optional<std::uint16_t>& v) {
-      if (v) js[key] = *v;
-    };
-    word("error_sources", s.error_sources);
-    word("operating_status_error_sources", s.operating_status_error_sources);
-    word("checksum47_stored", s.checksum47_stored);
-    word("checksum47_computed", s.checksum47_computed);
-    word("checksum63_stored", s.checksum63_stored);
-    word("checksum63_computed", s.checksum63_computed);
+    put_word(js, "error_sources", s.error_sources);
+    put_word(js, "operating_status_error_sources", s.operating_status_error_sources);
+    put_word(js, "checksum47_stored", s.checksum47_stored);
+    put_word(js, "checksum47_computed", s.checksum47_computed);
+    put_word(js, "checksum63_stored", s.checksum63_stored);
+    put_word(js, "checksum63_computed", s.checksum63_computed);
     j["safety"] = js;
   }
   if (r.diagnosis) j["diagnosis"] = diagnosis_json(*r.diagnosis);
