@@ -13,10 +13,8 @@ namespace {
 
 using sim::format_time;
 
-constexpr unsigned kTurnaroundEdge = 9;       // FE9: the master has sent its mode bits (timing-model §1.2)
-constexpr Time kCalculationTimeMax = sim::ms(1);  // 2.3.2 t_cal maximum
-constexpr Time kMemoryAccessMax = sim::ms(12);    // 2.3.2 t_ac maximum
-constexpr Time kPeriodAtMinimumFc = sim::us(10);  // 2.3.2 note 6: T = 1/f_c min (100 kHz)
+namespace limit = protocol::limit;
+namespace position = protocol::frame_position;
 
 }  // namespace
 
@@ -46,7 +44,7 @@ void TimingChecker::note_encoder_low() {
 void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
   if (!in_frame_) return;
   const Time now = kernel_.now();
-  const Time period = params_.t_z_per_frame_period ? sim::period_of(current_.header.f_c) : kPeriodAtMinimumFc;
+  const Time period = params_.t_z_per_frame_period ? sim::period_of(current_.header.f_c) : limit::kPeriodAtFcMin;
   const auto clock = static_cast<unsigned>(current_.falling.size());
   if (enabled == 0 && !released_) {
     released_ = true;
@@ -57,7 +55,7 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
               "the encoder released DATA too late after FE1: the master drives from FE2"}, "FE1 release");
   } else if (enabled != 0 && released_ && !driving_) {
     driving_ = true;
-    const unsigned turnaround = kTurnaroundEdge + current_.header.payload_bits;
+    const unsigned turnaround = position::kTurnaround + current_.header.payload_bits;
     if (current_.falling.size() < turnaround) {
       report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
               now, current_.header.index, clock, "before FE" + std::to_string(turnaround),
@@ -122,11 +120,11 @@ void TimingChecker::first_start_bit() {
 // first rising edge after its calculation), so that edge must come within t_cal max of FE1.
 void TimingChecker::check_calculation_time_maximum() {
   const Time t_cal = current_.rising[start_clock_ - 1] - current_.fe1;
-  const Time limit = kCalculationTimeMax + sim::period_of(current_.header.f_c);
-  if (t_cal > limit)
+  const Time bound = limit::kCalculationTimeMax + sim::period_of(current_.header.f_c);
+  if (t_cal > bound)
     report({std::string(check::kCalculationTime), "2.3.2 t_cal maximum 1 ms", ObservationPoint::EncoderPins,
             kernel_.now(), current_.header.index, start_clock_, format_time(t_cal),
-            "<= 1 ms + T = " + format_time(limit), Severity::Error,
+            "<= 1 ms + T = " + format_time(bound), Severity::Error,
             "the start bit came later than the longest calculation time allows"}, "start bit");
 }
 
@@ -139,16 +137,15 @@ void TimingChecker::check_calculation_time_maximum() {
 // its maximum. Counted as the LOW run before the start bit, so that a HIGH bit of two clocks
 // (TI's reading, timing-model §2) is not counted as LOW.
 void TimingChecker::next_word_start_bit(unsigned clock) {
-  constexpr unsigned kMaxLowBits = 7;
   ++word_;
   word_start_clock_ = clock;
   note_start_bit_for_t_d();
   const unsigned low_bits = clock - low_clock_;
-  if (low_bits <= kMaxLowBits) return;
+  if (low_bits <= limit::kContinuousClockMaxLowBits) return;
   report({std::string(check::kCalculationTime),
           "2.3.1.1 continuous clock: at most 7 LOW bits before the next word (in place of t_cal)",
           ObservationPoint::EncoderPins, kernel_.now(), current_.header.index + word_, clock,
-          std::to_string(low_bits) + " LOW bits", "<= " + std::to_string(kMaxLowBits) + " LOW bits", Severity::Error,
+          std::to_string(low_bits) + " LOW bits", "<= " + std::to_string(limit::kContinuousClockMaxLowBits) + " LOW bits", Severity::Error,
           "continuous word " + std::to_string(word_) +
               ": the start bit came later than the encoder's internal synchronization allows"},
          "start bit");
@@ -158,24 +155,23 @@ void TimingChecker::next_word_start_bit(unsigned clock) {
 // after FE1, so the row is read as a count (the start bit on RE11 or later) and holds for any
 // duty cycle or t_ST (timing-model §1.2).
 void TimingChecker::check_calculation_time_minimum() {
-  constexpr unsigned kEarliestStartBitClock = 11;
-  if (start_clock_ >= kEarliestStartBitClock) return;
+  if (start_clock_ >= position::kEarliestStartBit) return;
   report({std::string(check::kCalculationTime), "2.3.2 t_cal minimum 10.5/f_c", ObservationPoint::EncoderPins,
           kernel_.now(), current_.header.index, start_clock_, "RE" + std::to_string(start_clock_),
-          "RE" + std::to_string(kEarliestStartBitClock) + " or later (10.5 periods after FE1)", Severity::Error,
+          "RE" + std::to_string(position::kEarliestStartBit) + " or later (10.5 periods after FE1)", Severity::Error,
           "the start bit came before the shortest calculation time"}, "start bit");
 }
 
 // 2.1 parameter frames: the acknowledgment's start bit waits for the memory access, which
 // begins with the last bit of the master's 8 + 16 (timing-model §7, "in the frame").
 void TimingChecker::check_memory_access_time() {
-  const unsigned last_payload = kTurnaroundEdge - 1 + current_.header.payload_bits;
+  const unsigned last_payload = position::kTurnaround - 1 + current_.header.payload_bits;
   if (start_clock_ <= last_payload) return;
   const Time t_ac = current_.rising[start_clock_ - 1] - current_.rising[last_payload - 1];
-  const Time limit = kMemoryAccessMax + sim::period_of(current_.header.f_c);
-  if (t_ac > limit)
+  const Time bound = limit::kMemoryAccessMax + sim::period_of(current_.header.f_c);
+  if (t_ac > bound)
     report({std::string(check::kMemoryAccess), "2.3.2 t_ac maximum 12 ms", ObservationPoint::EncoderPins,
-            kernel_.now(), current_.header.index, start_clock_, format_time(t_ac), "<= 12 ms + T = " + format_time(limit),
+            kernel_.now(), current_.header.index, start_clock_, format_time(t_ac), "<= 12 ms + T = " + format_time(bound),
             Severity::Error, "the acknowledgment came later than the longest memory access time allows"}, "start bit");
 }
 
@@ -219,10 +215,10 @@ void TimingChecker::on_master_data(std::uint64_t level) {
 // t_D (2.3.2, 2.1.2): from the rising clock edge that carried the start bit to the start bit's
 // edge, both at the master logic; at most 0.2 us + 0.01 us/m x cable length.
 void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
-  const Time limit = sim::ns(200) + Time{static_cast<std::int64_t>(line_.params().cable_length_m * 10'000.0 + 0.5)};
-  if (t_d > limit)
+  const Time bound = limit::data_delay_max(line_.params().cable_length_m);
+  if (t_d > bound)
     report({std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,
-            kernel_.now(), start.frame, start.clock, format_time(t_d), "<= " + format_time(limit), Severity::Error,
+            kernel_.now(), start.frame, start.clock, format_time(t_d), "<= " + format_time(bound), Severity::Error,
             "the round trip of the line and the encoder is longer than the spec allows"}, "start bit");
 }
 
@@ -231,7 +227,7 @@ void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
 void TimingChecker::check_delay_tolerance(const StartBitInFlight& start, Time t_d) {
   if (!start.compensated) return;
   const Time error = start.t_d_used > t_d ? start.t_d_used - t_d : t_d - start.t_d_used;
-  const Time tenth = start.period / 10;
+  const Time tenth = start.period * limit::kDataDelayTolerancePercent / 100;
   if (error > tenth)
     report({std::string(check::kDataDelayTolerance), "2.3 (data delay time within +/-10 % of the period)",
             ObservationPoint::MasterPins, kernel_.now(), start.frame, start.clock, format_time(error),
@@ -252,8 +248,7 @@ namespace {
 // (the encoder's release must reach the master before it drives); the alternative reading keeps
 // the table's 2 us for every length. Only with delay compensation (table column).
 Time required_start_delay(sim::Hertz f_c, double cable_m) {
-  const sim::Hertz over = std::clamp<sim::Hertz>(f_c - sim::MHz(8), 0, sim::MHz(8));
-  const Time at_100m = sim::us(2) - Time{over * 1'000'000 / sim::MHz(8)};
+  const Time at_100m = limit::start_delay(f_c);
   const double share = (0.2 + 0.01 * cable_m) / 1.2;
   return Time{static_cast<std::int64_t>(static_cast<double>(at_100m.count()) * share + 0.5)};
 }
@@ -277,7 +272,7 @@ void TimingChecker::on_master_driven(std::uint64_t driven) {
 
 // The encoder takes the mode bits on RE3..RE8 (2.3); DATA must be driven at its pins then.
 void TimingChecker::check_encoder_sample(unsigned clock) {
-  if (clock < 3 || clock > 8 || floating_reported_) return;
+  if (clock < position::kFirstModeBit || clock > position::kLastModeBit || floating_reported_) return;
   if (line_.pins(ObservationPoint::EncoderPins).data_driven.read()) return;
   floating_reported_ = true;
   report({std::string(check::kFloatingData), "2.3 (mode bits taken on rising edges)", ObservationPoint::EncoderPins,

@@ -10,13 +10,7 @@ namespace {
 using sim::format_frequency;
 using sim::format_time;
 
-constexpr Time kPulseMinWithoutCompensation = sim::ns(200);  // 2.3.2 t_HI, t_LO minimum
-constexpr Time kPulseHighMax = sim::us(10);                  // 2.3.2 t_HI maximum
-constexpr Time kTimeBetweenCyclesMin = sim::ms(1);           // 2.3.2 t_b (EnDat 2.1 commands)
-constexpr sim::Hertz kMinFc = sim::kHz(100);
-constexpr sim::Hertz kMaxFcWithout = sim::MHz(2);
-constexpr sim::Hertz kMaxFcWith = sim::MHz(8);
-constexpr sim::Hertz kMaxFcSpecial = sim::MHz(16);  // 2.1.2: "8 to 16 MHz is intended for special applications"
+namespace limit = protocol::limit;
 
 // The frame's clock frequency from a least-squares fit over its rising edges from RE2 on (the
 // first period contains t_ST), at most kMaxFitEdges of them (a long continuous clock). A steady
@@ -29,12 +23,12 @@ struct FittedFrequency {
   __int128 den = 0;
   std::int64_t uncertainty_ppm = 0;
   sim::Hertz hertz() const { return static_cast<sim::Hertz>((__int128{1'000'000'000'000} * den + num / 2) / num); }
-  // f above (or below) limit by more than `ppm` parts per million plus the fit's uncertainty.
-  bool above(sim::Hertz limit, std::int64_t ppm) const {
-    return __int128{1'000'000'000'000} * den * 1'000'000 > __int128{limit} * (1'000'000 + ppm + uncertainty_ppm) * num;
+  // f above (or below) bound by more than `ppm` parts per million plus the fit's uncertainty.
+  bool above(sim::Hertz bound, std::int64_t ppm) const {
+    return __int128{1'000'000'000'000} * den * 1'000'000 > __int128{bound} * (1'000'000 + ppm + uncertainty_ppm) * num;
   }
-  bool below(sim::Hertz limit, std::int64_t ppm) const {
-    return __int128{1'000'000'000'000} * den * 1'000'000 < __int128{limit} * (1'000'000 - ppm - uncertainty_ppm) * num;
+  bool below(sim::Hertz bound, std::int64_t ppm) const {
+    return __int128{1'000'000'000'000} * den * 1'000'000 < __int128{bound} * (1'000'000 - ppm - uncertainty_ppm) * num;
   }
 };
 
@@ -69,12 +63,11 @@ FittedFrequency fit_frequency(const std::vector<Time>& rising) {
 }  // namespace
 
 std::span<const std::string_view> check::all() {
-  static constexpr std::array names{kClockFrequency, kMeasurementClock, kMeasurementProcedure, kPulseHigh,
-                                    kPulseLow,       kSamplingWindow,   kRecovery,             kContention,
-                                    kDriverOff,      kDriverOn,         kCalculationTime,      kDataDelay,
-                                    kShortRecoveryClock, kStartDelay,   kFloatingData,         kErrorRecovery,
-                                    kDataDelayTolerance, kClockCount,  kMemoryAccess, kPowerOn,
-                                    kTimeBetweenCycles};
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> v;
+    for (const protocol::TimingRow& row : protocol::timing_rows()) v.push_back(row.check);
+    return v;
+  }();
   return names;
 }
 
@@ -127,9 +120,9 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
 // HIGH for t3 = 380 .. 420 ms before the first request.
 void TimingChecker::check_power_on(const master::FrameResult& first) {
   const std::string spec = "2.3.3 power-on conditions (t1, t2, pulse > 125 ns, t3)";
-  const auto fail = [&](Time at, const std::string& measured, const std::string& limit, const std::string& message) {
+  const auto fail = [&](Time at, const std::string& measured, const std::string& bound, const std::string& message) {
     report({std::string(check::kPowerOn), spec, ObservationPoint::MasterPins, at, first.index, std::nullopt, measured,
-            limit, Severity::Error, message}, "before the first frame");
+            bound, Severity::Error, message}, "before the first frame");
   };
   std::optional<std::pair<Time, Time>> pulse;  // the last LOW pulse: falling, rising
   for (std::size_t i = 0; i + 1 < power_on_edges_.size(); ++i)
@@ -141,13 +134,13 @@ void TimingChecker::check_power_on(const master::FrameResult& first) {
     return;
   }
   const Time width = pulse->second - pulse->first;
-  if (width <= sim::ns(125))
+  if (width <= limit::kPowerOnPulseMin)
     fail(pulse->first, format_time(width), "> 125 ns", "the power-on pulse is too short");
-  if (pulse->first < sim::ms(880))
+  if (pulse->first < limit::kPowerOnT1Min + limit::kPowerOnT2Min)
     fail(pulse->first, format_time(pulse->first), ">= t1 + t2 = 800 ms + 80 ms",
          "the power-on pulse came before t1 and t2 had passed");
   const Time t3 = first.start - pulse->second;
-  if (t3 < sim::ms(380) || t3 > sim::ms(420))
+  if (t3 < limit::kPowerOnT3Min || t3 > limit::kPowerOnT3Max)
     fail(first.start, format_time(t3), "t3 = 380 .. 420 ms", "the first request does not follow the pulse after t3");
 }
 
@@ -233,7 +226,7 @@ void TimingChecker::evaluate(const PinFrame& f) {
 void TimingChecker::check_pulse_widths(const PinFrame& f) {
   // With compensation the on-off ratio row applies: each phase within 50 % +/- 10 % of T.
   const Time period = sim::period_of(f.header.f_c);
-  const Time min = f.header.compensated ? period * 4 / 10 : kPulseMinWithoutCompensation;
+  const Time min = f.header.compensated ? period * (50 - limit::kOnOffRatioErrorPercent) / 100 : limit::kPulseWidthMin;
   const std::string spec = f.header.compensated ? "2.3.2 on-off ratio error (+/-10 % with delay compensation)"
                                          : "2.3.2 t_HI / t_LO minimum 0.2 us";
   struct Worst {
@@ -249,18 +242,18 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
   for (std::size_t k = 0; k + 1 < f.falling.size() && k < f.rising.size(); ++k) {
     const Time w = f.falling[k + 1] - f.rising[k];
     if (w < min && ++high.count && w < high.width) high = {w, static_cast<unsigned>(k + 1), f.rising[k], high.count};
-    if (w > kPulseHighMax && ++long_high.count) long_high = {w, static_cast<unsigned>(k + 1), f.rising[k], long_high.count};
+    if (w > limit::kPulseHighMax && ++long_high.count) long_high = {w, static_cast<unsigned>(k + 1), f.rising[k], long_high.count};
   }
-  const auto emit = [&](const Worst& w, std::string_view name, const std::string& limit, const std::string& s,
+  const auto emit = [&](const Worst& w, std::string_view name, const std::string& bound, const std::string& s,
                         const char* what) {
     if (w.count == 0) return;
-    report({std::string(name), s, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock, format_time(w.width), limit,
+    report({std::string(name), s, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock, format_time(w.width), bound,
             Severity::Error,
             std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)"});
   };
   emit(low, check::kPulseLow, ">= " + format_time(min), spec, "CLOCK LOW phase too short");
   emit(high, check::kPulseHigh, ">= " + format_time(min), spec, "CLOCK HIGH phase too short");
-  emit(long_high, check::kPulseHigh, "<= " + format_time(kPulseHighMax), "2.3.2 t_HI maximum 10 us",
+  emit(long_high, check::kPulseHigh, "<= " + format_time(limit::kPulseHighMax), "2.3.2 t_HI maximum 10 us",
        "CLOCK HIGH phase inside a frame too long: the encoder may end the transfer (t_m)");
 }
 
@@ -272,23 +265,23 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   const std::int64_t tol = params_.f_c_tolerance_ppm;
   const Time at = f.rising[1];
   if (f.header.measurement) {
-    if (fit.below(sim::kHz(100), tol) || fit.above(sim::kHz(200), tol))
+    if (fit.below(limit::kMeasurementFcMin, tol) || fit.above(limit::kMeasurementFcMax, tol))
       report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
               ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc),
               "100 kHz .. 200 kHz", Severity::Error, "delay measured with a clock outside the prescribed range"});
     return;
   }
   if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected &&
-      fit.below(sim::MHz(1), tol))
+      fit.below(limit::kShortRecoveryTimeFcMin, tol))
     report({std::string(check::kShortRecoveryClock), "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), ">= 1 MHz",
             Severity::Error, "the short recovery time is selected but the clock is slower than 1 MHz"});
   const bool compensated = f.header.compensated;
-  const sim::Hertz max = compensated ? kMaxFcWith : kMaxFcWithout;
-  const std::string range = format_frequency(kMinFc) + " .. " + format_frequency(max);
+  const sim::Hertz max = compensated ? limit::kFcMaxWithCompensation : limit::kFcMaxWithoutCompensation;
+  const std::string range = format_frequency(limit::kFcMin) + " .. " + format_frequency(max);
   const std::string spec = compensated ? "2.3.2 f_c (with delay compensation)" : "2.3.2 f_c (without delay compensation)";
-  if (fit.below(kMinFc, tol) || (fit.above(max, tol) && (!compensated || fit.above(kMaxFcSpecial, tol)))) {
-    const std::string applied = compensated ? format_frequency(kMinFc) + " .. " + format_frequency(kMaxFcSpecial) +
+  if (fit.below(limit::kFcMin, tol) || (fit.above(max, tol) && (!compensated || fit.above(limit::kFcMaxSpecial, tol)))) {
+    const std::string applied = compensated ? format_frequency(limit::kFcMin) + " .. " + format_frequency(limit::kFcMaxSpecial) +
                                                   " (above 8 MHz only for special applications)"
                                             : range;
     report({std::string(check::kClockFrequency), spec, ObservationPoint::EncoderPins, at, f.header.index, std::nullopt,
@@ -307,7 +300,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
 void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_rise) {
   if (next.header.command_type != protocol::EndatVersion::V2_1 || next.header.payload_bits == 0) return;
   const Time gap = next.fe1 - last_rise;
-  if (gap > kTimeBetweenCyclesMin) return;
+  if (gap > limit::kTimeBetweenCyclesMin) return;
   report({std::string(check::kTimeBetweenCycles), "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
           ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(gap), "> 1 ms", Severity::Error,
           "a 2.1 memory or parameter frame followed the previous frame too soon (read here: last rising edge to FE1 "
@@ -319,8 +312,7 @@ void TimingChecker::check_recovery(const PinFrame& next) {
   if (!previous_end_) return;
   const auto [last_rise, type, index] = *previous_end_;
   // A2: "After an error handling, the maximum t_m of 30 us must at least be waited".
-  constexpr Time kMaxRecoveryTime = sim::us(30);
-  if (error_handling_frame_ == index && next.fe1 - last_rise < kMaxRecoveryTime)
+  if (error_handling_frame_ == index && next.fe1 - last_rise < limit::kErrorRecoveryWait)
     report({std::string(check::kErrorRecovery), "A2 (wait the maximum t_m after an error handling)",
             ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(next.fe1 - last_rise),
             ">= 30 us", Severity::Error, "the next frame followed an error handling too soon"},
@@ -406,11 +398,11 @@ void TimingChecker::check_busy_time(const master::FrameResult& frame) {
     return;
   }
   const Time busy_for = frame.start - *busy_since_;
-  const Time limit = sim::ms(12) + sim::period_of(frame.f_c);
-  if (busy_for <= limit || busy_reported_) return;
+  const Time bound = limit::kMemoryAccessMax + sim::period_of(frame.f_c);
+  if (busy_for <= bound || busy_reported_) return;
   busy_reported_ = true;
   report({std::string(check::kMemoryAccess), "2.3.2 t_ac maximum 12 ms (EnDat 2.2: busy bit)", ObservationPoint::MasterPins,
-          frame.start, frame.index, std::nullopt, "busy after " + format_time(busy_for), "<= 12 ms + T = " + format_time(limit),
+          frame.start, frame.index, std::nullopt, "busy after " + format_time(busy_for), "<= 12 ms + T = " + format_time(bound),
           Severity::Error, "the encoder's memory access outlasts the longest access time: Busy is still set"},
          "additional data 1");
 }

@@ -9,6 +9,7 @@
 
 #include "line/line.hpp"
 #include "master/master.hpp"
+#include "protocol/timing.hpp"
 #include "slave/encoder.hpp"
 
 namespace endatsim::checker {
@@ -19,30 +20,11 @@ using sim::Time;
 enum class Severity : std::uint8_t { Error, Warning };
 std::string_view to_string(Severity s);
 
-// Names of the checks, as used in scenarios' expectations and in reports.
+// Names of the checks, as used in scenarios' expectations and in reports: one per row of the
+// timing table (protocol/timing.hpp).
 namespace check {
-inline constexpr std::string_view kClockFrequency = "f_c";
-inline constexpr std::string_view kMeasurementClock = "delay_measurement_f_c";
-inline constexpr std::string_view kMeasurementProcedure = "delay_measurement";
-inline constexpr std::string_view kPulseHigh = "t_hi";
-inline constexpr std::string_view kPulseLow = "t_lo";
-inline constexpr std::string_view kSamplingWindow = "sampling_window";
-inline constexpr std::string_view kRecovery = "t_m_t_r";
-inline constexpr std::string_view kContention = "bus_contention";
-inline constexpr std::string_view kDriverOff = "t_z";
-inline constexpr std::string_view kDriverOn = "t_oe";
-inline constexpr std::string_view kCalculationTime = "t_cal";
-inline constexpr std::string_view kDataDelay = "t_d";
-inline constexpr std::string_view kShortRecoveryClock = "t_m_short_f_c";
-inline constexpr std::string_view kStartDelay = "t_st";
-inline constexpr std::string_view kFloatingData = "floating_data";
-inline constexpr std::string_view kErrorRecovery = "error_recovery";
-inline constexpr std::string_view kDataDelayTolerance = "t_d_tolerance";
-inline constexpr std::string_view kClockCount = "clock_count";
-inline constexpr std::string_view kMemoryAccess = "t_ac";
-inline constexpr std::string_view kPowerOn = "power_on";
-inline constexpr std::string_view kTimeBetweenCycles = "t_b";
-// Every check name above, for loaders and reports.
+using namespace protocol::check;
+// Every check name, in the timing table's order, for loaders and reports.
 std::span<const std::string_view> all();
 }  // namespace check
 

@@ -3,8 +3,9 @@
 // the frames (frame.hpp, 2.3.1, 2.3.5, 2.4–2.10), the MRS codes of the memory areas
 // (memory_area.hpp, 2.4), the additional-data information codes (additional_data.hpp, 2.3.5),
 // the error causes of appendix A2 (error_handling.hpp) and the meaning of the parameter words
-// of 3.5, 3.6 and 3.9 (parameters.hpp) and the diagnosis values of appendix A3 (diagnosis.hpp).
-// Master and encoder both use it; it depends on nothing else in endatsim.
+// of 3.5, 3.6 and 3.9 (parameters.hpp), the diagnosis values of appendix A3 (diagnosis.hpp), and
+// the timing conditions of 2.3.2 with the frame positions they count from (timing.hpp).
+// Master, encoder and checker use it; it depends only on sim/time.hpp.
 #pragma once
 
 #include "protocol/additional_data.hpp"
@@ -15,3 +16,4 @@
 #include "protocol/memory_area.hpp"
 #include "protocol/mode_command.hpp"
 #include "protocol/parameters.hpp"
+#include "protocol/timing.hpp"

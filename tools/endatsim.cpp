@@ -1,6 +1,6 @@
 // endatsim — command-line front end: runs scenarios and writes summaries, VCD, JSON and JUnit
 // results and decoded transaction logs; sweeps one scenario over a grid of parameters (CSV,
-// JSON, SVG chart); validates scenario files; draws frame diagrams (SVG).
+// JSON, SVG chart); validates scenario files; draws frame diagrams (SVG); prints the timing table.
 // Results go to stdout, errors and progress to stderr; colour only on a terminal.
 // Exit codes: 0 every expectation holds (sweep, validate, diagram: done), 1 one does not,
 // 2 bad input or usage.
@@ -19,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "protocol/timing.hpp"
 #include "scenarios/diagram.hpp"
 #include "scenarios/junit.hpp"
 #include "scenarios/scenarios.hpp"
@@ -43,9 +44,10 @@ const char* const kSweepUsage =
 const char* const kValidateUsage = "usage: endatsim validate FILE... [--quiet]\n";
 const char* const kDiagramUsage =
     "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet]\n";
+const char* const kChecksUsage = "usage: endatsim checks\n";
 
 std::string usage() {
-  return std::string(kRunUsage) + kSweepUsage + kValidateUsage + kDiagramUsage +
+  return std::string(kRunUsage) + kSweepUsage + kValidateUsage + kDiagramUsage + kChecksUsage +
          "       endatsim --help | --version | COMMAND --help | COMMAND --version\n";
 }
 
@@ -93,7 +95,14 @@ const char* const kDiagramHelp =
     "values, and the checker's violations in red. The same input gives the same bytes.\n"
     "Exit status: 0 when the diagram was written, 2 for bad input or usage.\n";
 
-enum class Command { Run, Sweep, Validate, Diagram };
+const char* const kChecksHelp =
+    "checks: prints the checker's timing table as Markdown: one row per check name (the names\n"
+    "scenarios use under expect.violations) with its spec symbol, section, minimum, maximum, how\n"
+    "it is read, where it is observed and whether the wires alone decide it or the master must\n"
+    "declare its sampling. docs/checks.md is this output.\n"
+    "Exit status: 0.\n";
+
+enum class Command { Run, Sweep, Validate, Diagram, Checks };
 
 struct CommandInfo {
   Command command;
@@ -107,6 +116,7 @@ const CommandInfo kCommands[] = {
     {Command::Sweep, "sweep", kSweepUsage, kSweepHelp},
     {Command::Validate, "validate", kValidateUsage, kValidateHelp},
     {Command::Diagram, "diagram", kDiagramUsage, kDiagramHelp},
+    {Command::Checks, "checks", kChecksUsage, kChecksHelp},
 };
 
 // Each command's own options; --help, --version, --quiet everywhere.
@@ -136,6 +146,7 @@ po::options_description options_of(Command c) {
           "jobs", po::value<std::string>(), "threads (default: the number of cores)");
       break;
     case Command::Validate:
+    case Command::Checks:
       break;
     case Command::Diagram:
       o.add_options()("svg", po::value<std::string>(), "write the diagram to this file (required)")(
@@ -548,6 +559,15 @@ int diagram_command(const po::variables_map& vm) {
   return kPass;
 }
 
+int checks_command(const po::variables_map& vm) {
+  if (!files_of(vm).empty()) {
+    std::cerr << "endatsim checks: takes no file\n" << kChecksUsage;
+    return kBadInput;
+  }
+  std::cout << protocol::timing_table_markdown();
+  return kPass;
+}
+
 const CommandInfo* find_command(const std::string& name) {
   for (const auto& c : kCommands)
     if (name == c.name) return &c;
@@ -626,6 +646,7 @@ int main(int argc, char** argv) {
       case Command::Sweep: return sweep_command(vm);
       case Command::Validate: return validate_command(vm);
       case Command::Diagram: return diagram_command(vm);
+      case Command::Checks: return checks_command(vm);
     }
   } catch (const std::exception& e) {  // ScenarioError included: bad input
     std::cerr << "endatsim: " << e.what() << "\n";
