@@ -1,0 +1,287 @@
+#include "checker/frame_decoder.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include "protocol/additional_data.hpp"
+#include "protocol/crc.hpp"
+#include "protocol/memory_area.hpp"
+#include "protocol/timing.hpp"
+
+namespace endatsim::checker {
+namespace {
+
+namespace position = protocol::frame_position;
+using MC = protocol::ModeCommand;
+
+// The CRC over a word's bits between its first bit (start bit or leading LOW) and its CRC: in
+// wire order that is what MakeCrcPos and MakeCrcNorm feed the generator (A4.4.2).
+bool crc_matches(std::span<const std::uint8_t> word) {
+  constexpr std::size_t kCrcBits = 5;
+  const auto covered = word.subspan(1, word.size() - 1 - kCrcBits);
+  std::uint8_t received = 0;
+  for (std::size_t i = word.size() - kCrcBits; i < word.size(); ++i) received = static_cast<std::uint8_t>(received << 1 | word[i]);
+  return protocol::crc5(covered) == received;
+}
+
+}  // namespace
+
+bool FrameDecoder::on_clock(Time t, bool level) {
+  resolve(t);
+  if (level == clock_level_) return false;
+  clock_level_ = level;
+  if (level) {
+    last_rise_ = t;
+    if (in_frame_) on_rising(t);
+    return false;
+  }
+  const Time high = t - last_rise_;
+  // A HIGH phase of t_m ends any frame at the encoder (2.3.2 recovery time I); a frame that has
+  // had every clock it needs ends at a HIGH phase clearly longer than its own clock's.
+  const bool fe1 = !in_frame_ || high >= params_.t_m || (frame_.complete && high > 2 * longest_high_);
+  if (fe1) {
+    if (in_frame_) end_frame();
+    begin_frame(t);
+    return true;
+  }
+  longest_high_ = std::max(longest_high_, high);
+  return false;
+}
+
+void FrameDecoder::on_data(Time t, bool level) {
+  resolve(t);
+  if (level == data_level_) return;
+  data_level_ = level;
+  data_.emplace_back(t, level);
+}
+
+void FrameDecoder::finish() {
+  resolve(Time::max());
+  if (in_frame_) end_frame();
+}
+
+std::vector<WireFrame> FrameDecoder::take_finished() {
+  std::vector<WireFrame> out;
+  out.swap(finished_);
+  return out;
+}
+
+void FrameDecoder::begin_frame(Time t) {
+  frame_ = WireFrame{};
+  frame_.index = frames_++;
+  frame_.fe1 = t;
+  in_frame_ = true;
+  state_ = State::Header;
+  rising_.clear();
+  longest_high_ = Time::zero();
+  shift_ = 0;
+  shifted_ = 0;
+  seen_low_ = false;
+  bits_.clear();
+}
+
+void FrameDecoder::end_frame() {
+  // 2.7: a reset ends every selection of additional data.
+  if (frame_.command == MC::EncoderReceiveReset) selected_[0] = selected_[1] = false;
+  finished_.push_back(frame_);
+  in_frame_ = false;
+}
+
+// The master's bits are taken on rising edges at the encoder pins, as the encoder takes them;
+// the encoder's bit of slot k is taken in the middle of its data-valid window, half-way between
+// RE_k and RE_(k+1) plus the encoder's clock-to-data delay.
+void FrameDecoder::on_rising(Time t) {
+  rising_.push_back(t);
+  const auto k = static_cast<unsigned>(rising_.size());
+  frame_.clocks = k;
+  frame_.last_rise = t;
+  const auto insert = [&](Sample s) {
+    const auto at = std::upper_bound(pending_.begin(), pending_.end(), s.due,
+                                     [](Time due, const Sample& p) { return due < p.due; });
+    pending_.insert(at, s);
+  };
+  insert({t, k, true});
+  if (k >= 2) insert({rising_[k - 2] + (t - rising_[k - 2]) / 2 + params_.clock_to_data, k - 1, false});
+}
+
+bool FrameDecoder::level_at(Time t) const {
+  bool level = base_level_;
+  for (const auto& [when, value] : data_) {
+    if (when > t) break;
+    level = value;
+  }
+  return level;
+}
+
+void FrameDecoder::resolve(Time t) {
+  while (!pending_.empty() && pending_.front().due < t) {
+    const Sample s = pending_.front();
+    pending_.pop_front();
+    const bool bit = level_at(s.due);
+    if (s.master) on_master_bit(s.clock, bit);
+    else on_encoder_bit(s.clock, bit);
+  }
+  // Changes before the earliest sample still due are folded into the level they left.
+  const Time horizon = pending_.empty() ? t : std::min(t, pending_.front().due);
+  while (!data_.empty() && data_.front().first <= horizon) {
+    base_level_ = data_.front().second;
+    data_.pop_front();
+  }
+}
+
+void FrameDecoder::on_master_bit(unsigned clock, bool bit) {
+  switch (state_) {
+    case State::Header:
+      if (clock < position::kFirstModeBit || clock > position::kLastModeBit) return;
+      frame_.mode_bits = static_cast<std::uint8_t>(frame_.mode_bits << 1 | (bit ? 1 : 0));
+      if (++frame_.mode_bits_seen == position::kModeBits) decode_mode_command();
+      return;
+    case State::Payload:
+      shift_ = shift_ << 1 | (bit ? 1U : 0U);
+      if (++shifted_ == protocol::kPayloadBits) {
+        frame_.payload = shift_;
+        state_ = State::Hunt;
+      }
+      return;
+    case State::SupplementHunt:
+      // The line floats until the master drives its lead bits; the supplement's start bit is
+      // the first HIGH after a LOW (2.3, command supplement).
+      if (clock <= release_clock_ + params_.supplement_ignore_clocks) return;
+      if (!seen_low_) seen_low_ = !bit;
+      else if (bit) {
+        state_ = State::Supplement;
+        shift_ = 0;
+        shifted_ = 0;
+      }
+      return;
+    case State::Supplement:
+      shift_ = shift_ << 1 | (bit ? 1U : 0U);
+      if (++shifted_ == protocol::kPayloadBits) {
+        frame_.supplement = shift_;
+        note_selection();
+        frame_.complete = true;
+        state_ = State::Done;
+      }
+      return;
+    default:
+      return;
+  }
+}
+
+void FrameDecoder::decode_mode_command() {
+  frame_.command = protocol::decode_mode_bits(frame_.mode_bits);
+  if (!frame_.command) {  // A2 type I: the encoder answers no start bit
+    state_ = State::Done;
+    return;
+  }
+  const auto& info = protocol::info(*frame_.command);
+  layout_ = protocol::answer_layout(info, params_.position_bits);
+  const bool additional_data = info.answer == protocol::AnswerFormat::Position && info.version == protocol::EndatVersion::V2_2;
+  frame_.answer_bits = layout_.width() + (additional_data ? protocol::kAdditionalDatumBits * expected_additional_data() : 0);
+  shift_ = 0;
+  shifted_ = 0;
+  seen_low_ = false;
+  state_ = info.payload_bits != 0 ? State::Payload : State::Hunt;
+}
+
+unsigned FrameDecoder::expected_additional_data() const { return (selected_[0] ? 1U : 0U) + (selected_[1] ? 1U : 0U); }
+
+// The encoder drives LOW after the turnaround until its answer is ready; the start bit is the
+// first HIGH after that LOW (2.3). With a continuous clock the next word follows the same way.
+void FrameDecoder::on_encoder_bit(unsigned clock, bool bit) {
+  switch (state_) {
+    case State::Hunt: {
+      const unsigned payload = frame_.command ? protocol::info(*frame_.command).payload_bits : 0;
+      if (clock < position::kTurnaround + payload) return;
+      if (!seen_low_) {
+        seen_low_ = !bit;
+        return;
+      }
+      if (!bit) return;
+      if (frame_.continuous_words == 0 && frame_.start_bit_clock == 0) frame_.start_bit_clock = clock;
+      bits_.assign(1, 1);
+      state_ = State::Answer;
+      return;
+    }
+    case State::Answer:
+      // 2.3.5: each additional datum opens with a LOW bit; a HIGH there (the level after the CRC)
+      // says no further datum follows, whatever the decoder believed was selected (an encoder
+      // forgets its selection when its power is interrupted).
+      if (!frame_.answer_complete && bits_.size() >= layout_.width() &&
+          (bits_.size() - layout_.width()) % protocol::kAdditionalDatumBits == 0 && bit) {
+        frame_.answer_bits = static_cast<unsigned>(bits_.size());
+        decode_answer();
+        return;
+      }
+      bits_.push_back(bit ? 1 : 0);
+      if (bits_.size() == (frame_.answer_complete ? layout_.width() : frame_.answer_bits)) decode_answer();
+      return;
+    case State::MoreData:
+      // After the data the decoder expected, a LOW opens a datum it did not know was selected.
+      state_ = State::Done;
+      if (bit) return;
+      bits_.push_back(0);
+      frame_.answer_bits += protocol::kAdditionalDatumBits;
+      frame_.answer_complete = false;
+      frame_.complete = false;
+      frame_.additional_data.clear();
+      state_ = State::Answer;
+      return;
+    default:
+      return;
+  }
+}
+
+void FrameDecoder::decode_answer() {
+  const unsigned clock = static_cast<unsigned>(rising_.size());
+  if (frame_.answer_complete) {  // a further word of a continuous clock
+    ++frame_.continuous_words;
+    seen_low_ = false;
+    state_ = State::Hunt;
+    return;
+  }
+  frame_.answer_complete = true;
+  frame_.fields = layout_.decode(bits_);
+  frame_.crc_ok = crc_matches(std::span(bits_).first(layout_.width()));
+  for (std::size_t at = layout_.width(); at + protocol::kAdditionalDatumBits <= bits_.size();
+       at += protocol::kAdditionalDatumBits) {
+    const auto word = std::span(bits_).subspan(at, protocol::kAdditionalDatumBits);
+    const auto v = protocol::additional_datum_layout().decode(word);
+    DecodedDatum d;
+    d.status = static_cast<std::uint8_t>(v[static_cast<std::size_t>(protocol::Field::Status)]);
+    d.data = static_cast<std::uint16_t>(v[static_cast<std::size_t>(protocol::Field::AdditionalData)]);
+    d.crc_ok = word[0] == 0 && crc_matches(word);
+    frame_.additional_data.push_back(d);
+  }
+  const auto& info = protocol::info(*frame_.command);
+  const bool additional_data = info.answer == protocol::AnswerFormat::Position && info.version == protocol::EndatVersion::V2_2;
+  if (additional_data) {  // what the encoder sent tells what is selected
+    selected_[0] = selected_[1] = false;
+    for (const auto& d : frame_.additional_data) selected_[d.additional_data_2() ? 1 : 0] = true;
+  }
+  if (info.supplement) {
+    // The encoder releases DATA after its last bit; the master sends the supplement.
+    release_clock_ = clock;
+    seen_low_ = false;
+    state_ = State::SupplementHunt;
+    return;
+  }
+  frame_.complete = true;
+  seen_low_ = false;
+  // 2.3.1: only "Encoder send position values" goes on with a continuous clock.
+  if (*frame_.command == MC::EncoderSendPositionValues) state_ = State::Hunt;
+  else if (additional_data && frame_.additional_data.size() < 2) state_ = State::MoreData;
+  else state_ = State::Done;
+}
+
+// 2.4.2.2: MRS codes 0x40 + I select additional data 1, 0x50 + (I - 16) additional data 2;
+// 0x4F and 0x5F stop sending it.
+void FrameDecoder::note_selection() {
+  if (frame_.command != MC::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
+  const auto mrs = static_cast<std::uint8_t>(*frame_.supplement >> 16);
+  if (!protocol::selects_additional_data(mrs)) return;
+  const unsigned which = (mrs & 0x10) != 0 ? 1 : 0;
+  selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
+}
+
+}  // namespace endatsim::checker

@@ -1,0 +1,128 @@
+// A passive decoder of EnDat frames from the wires at the encoder's connector, the way a logic
+// analyzer's protocol decoder reads them: one explicit state machine over time-stamped CLOCK and
+// DATA levels, nothing from the master's or the encoder's models. It splits the clock into
+// frames, reads the mode command on RE3..RE8 and a 2.1 payload after it (D297403 2.3, 2.4),
+// finds the encoder's start bit and decodes its answer, additional data and CRC (2.3.1, 2.3.5,
+// appendix A4), and the 2.2 command supplement, whose MRS codes it follows to know how many
+// additional data the next answers carry (2.4.2.2).
+//
+// What it cannot see it takes as declared (a datasheet, a profile): the position width, the
+// encoder's clock-to-data delay at its pins, its recovery time t_m. docs/analyzer.md says how
+// frames are split and sampled.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "protocol/frame.hpp"
+#include "protocol/mode_command.hpp"
+#include "sim/time.hpp"
+
+namespace endatsim::checker {
+
+using sim::Time;
+
+struct DecoderParams {
+  unsigned position_bits = 25;
+  // CLOCK edge at the encoder pins -> DATA edge at the encoder pins (receiver, logic, driver).
+  Time clock_to_data = sim::ns(130);
+  // The encoder's recovery time I: a HIGH phase this long ends any frame (2.3.2).
+  Time t_m = sim::us(10);
+  // Rising edges the encoder lets pass after releasing DATA before it hunts for the
+  // supplement's start bit: its own last bit may still be on the line.
+  unsigned supplement_ignore_clocks = 3;
+};
+
+struct DecodedDatum {
+  std::uint8_t status = 0;  // WRN RM Busy I4..I0
+  std::uint16_t data = 0;
+  bool crc_ok = false;
+  bool busy() const { return (status & 0x20) != 0; }
+  bool additional_data_2() const { return (status & 0x1F) >= 16; }
+};
+
+// One frame as the wires show it. Clocks count rising edges from FE1 (RE1 is the first).
+struct WireFrame {
+  std::uint64_t index = 0;
+  Time fe1{0};
+  Time last_rise{0};
+  unsigned clocks = 0;
+  std::uint8_t mode_bits = 0;
+  unsigned mode_bits_seen = 0;
+  std::optional<protocol::ModeCommand> command;  // none: mode bits not seen or redundancy broken
+  std::optional<std::uint32_t> payload;          // 2.1: 8 + 16 bits after the mode bits
+  unsigned start_bit_clock = 0;                  // 0: no start bit
+  unsigned answer_bits = 0;                      // S .. CRC and the additional data expected
+  bool answer_complete = false;
+  protocol::FieldValues fields{};
+  bool crc_ok = false;
+  std::vector<DecodedDatum> additional_data;     // wire order: additional data 2 first
+  std::optional<std::uint32_t> supplement;
+  unsigned continuous_words = 0;                 // further words of a continuous clock
+  bool complete = false;                         // every bit the frame needs was clocked
+};
+
+class FrameDecoder {
+ public:
+  explicit FrameDecoder(const DecoderParams& params) : params_(params) {}
+
+  // Levels at the encoder pins, in time order. on_clock returns true when the edge is FE1.
+  bool on_clock(Time t, bool level);
+  void on_data(Time t, bool level);
+  // Ends the last frame (no more edges).
+  void finish();
+
+  // The frame being clocked, if any (its fields grow as its bits arrive).
+  const WireFrame* current() const { return in_frame_ ? &frame_ : nullptr; }
+  // Frames that ended since the last call.
+  std::vector<WireFrame> take_finished();
+  // Additional data 1 and 2 as the selections seen so far leave them (2.4.2.2).
+  bool selected(unsigned which) const { return selected_[which]; }
+
+ private:
+  enum class State : std::uint8_t { Header, Payload, Hunt, Answer, MoreData, SupplementHunt, Supplement, Done };
+  struct Sample {
+    Time due;
+    unsigned clock;
+    bool master;  // a bit the master drives (taken on RE_clock) or the encoder's slot `clock`
+  };
+
+  void begin_frame(Time t);
+  void end_frame();
+  void resolve(Time t);
+  bool level_at(Time t) const;
+  void on_rising(Time t);
+  void on_master_bit(unsigned clock, bool bit);
+  void on_encoder_bit(unsigned clock, bool bit);
+  void decode_mode_command();
+  void begin_answer(unsigned clock);
+  void decode_answer();
+  void note_selection();
+  unsigned expected_additional_data() const;
+
+  DecoderParams params_;
+  bool clock_level_ = true;
+  Time last_rise_{0};
+  Time longest_high_{0};
+  bool in_frame_ = false;
+  std::uint64_t frames_ = 0;
+  WireFrame frame_;
+  State state_ = State::Done;
+  std::vector<Time> rising_;
+  std::deque<std::pair<Time, bool>> data_;  // DATA changes still needed for sampling
+  bool data_level_ = true;
+  bool base_level_ = true;  // DATA before the first change in data_
+  std::deque<Sample> pending_;
+  std::vector<std::uint8_t> bits_;
+  std::uint32_t shift_ = 0;
+  unsigned shifted_ = 0;
+  bool seen_low_ = false;
+  unsigned release_clock_ = 0;
+  protocol::Layout layout_{{}};
+  bool selected_[2] = {false, false};
+  std::vector<WireFrame> finished_;
+};
+
+}  // namespace endatsim::checker
