@@ -1,0 +1,71 @@
+// capture/ — waveforms recorded elsewhere, read as a stream of level changes of named 1-bit
+// signals: VCD from any HDL simulator (vcd.cpp), sigrok session files as PulseView and
+// sigrok-cli save them (sigrok.cpp), CSV from logic analyzers (csv.cpp). The checker's
+// `endatsim check` reads captures through this interface only; nothing here knows EnDat.
+//
+// Readers stream: memory does not grow with the length of a capture. Bad input throws
+// CaptureError with the file, the line (or the entry inside a zip) and what was expected.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sim/time.hpp"
+
+namespace endatsim::capture {
+
+using sim::Time;
+
+class CaptureError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A change of one signal's level. Values are '0', '1' or 'x' (unknown, undriven, conflicting:
+// VCD x/z/U/X/Z/W/-, and H/L read as 1/0 because they are weak drives of those levels).
+struct Change {
+  Time time{0};
+  std::uint32_t signal = 0;  // index into Reader::signals()
+  char value = 'x';
+};
+
+class Reader {
+ public:
+  virtual ~Reader() = default;
+  // Full names of the 1-bit signals the capture holds, in a fixed order ("top.dut.clock",
+  // "clock[3]" for a bit of a vector, a sigrok channel name, a CSV column header).
+  virtual const std::vector<std::string>& signals() const = 0;
+  // The capture's time resolution: a VCD's timescale, a logic analyzer's sample period. A
+  // timing limit closer than this to a measured value cannot be decided from the capture.
+  virtual Time resolution() const = 0;
+  // Only the signals with these indices are reported by next() (default: all). Readers may
+  // skip work for the others.
+  virtual void select(const std::vector<std::uint32_t>& wanted) = 0;
+  // The next change in time order (changes at equal times in file order); false at the end.
+  // Every selected signal's initial level is reported as a change at the capture's start.
+  virtual bool next(Change& change) = 0;
+  // The file as named by the user, for messages.
+  virtual const std::string& path() const = 0;
+  // Bytes read so far and the file's size, for progress on long captures.
+  virtual std::uint64_t bytes_read() const = 0;
+  virtual std::uint64_t bytes_total() const = 0;
+};
+
+// Opens a capture by its content (a VCD header, a zip signature) and, for CSV, its extension
+// (.csv). Throws CaptureError naming the file when it cannot be read or is of no known format.
+std::unique_ptr<Reader> open(const std::string& path);
+
+// Readers of each format (open() picks one of them).
+std::unique_ptr<Reader> open_vcd(const std::string& path);
+std::unique_ptr<Reader> open_sigrok(const std::string& path);
+std::unique_ptr<Reader> open_csv(const std::string& path);
+
+// The index of the signal the user means by `name`: its full name, or a suffix of it that ends
+// at a scope separator ('.', '/', ':') and matches one signal only. Throws CaptureError listing
+// the candidates when none or several match.
+std::uint32_t find_signal(const Reader& reader, const std::string& name);
+
+}  // namespace endatsim::capture

@@ -1,0 +1,290 @@
+// VCD (IEEE 1364 section 18) as HDL simulators write it: Icarus, GHDL, Verilator and commercial
+// ones. Any $timescale (1, 10 or 100 of s .. fs; femtoseconds are rounded to the picosecond),
+// nested scopes, identifiers of any printable characters, vectors split into one signal per bit
+// ("data[3]"), std_logic values (U X Z W - unknown, H and L weak 1 and 0), real variables ignored.
+// The body is streamed token by token.
+#include <array>
+#include <charconv>
+#include <fstream>
+#include <map>
+#include <sys/stat.h>
+
+#include "capture/capture.hpp"
+
+namespace endatsim::capture {
+namespace {
+
+class TokenStream {
+ public:
+  explicit TokenStream(const std::string& path) : in_(path, std::ios::binary) {}
+  bool good() const { return static_cast<bool>(in_); }
+  // The next whitespace-separated token; false at the end of the file.
+  bool next(std::string& token) {
+    token.clear();
+    int c = get();
+    while (c != EOF && is_space(c)) c = get();
+    if (c == EOF) return false;
+    while (c != EOF && !is_space(c)) {
+      token.push_back(static_cast<char>(c));
+      if (token.size() > kMaxToken) return true;  // the caller rejects it
+      c = get();
+    }
+    return true;
+  }
+  std::size_t line() const { return line_; }
+  std::uint64_t consumed() const { return consumed_; }
+  static constexpr std::size_t kMaxToken = 4096;
+
+ private:
+  static bool is_space(int c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+  int get() {
+    if (pos_ == end_) {
+      in_.read(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+      end_ = static_cast<std::size_t>(in_.gcount());
+      pos_ = 0;
+      if (end_ == 0) return EOF;
+    }
+    ++consumed_;
+    const char c = buffer_[pos_++];
+    if (c == '\n') ++line_;
+    if (c == '\0') return ' ';  // a NUL is no part of any VCD token
+    return static_cast<unsigned char>(c);
+  }
+  std::ifstream in_;
+  std::array<char, 1 << 16> buffer_{};
+  std::size_t pos_ = 0;
+  std::size_t end_ = 0;
+  std::size_t line_ = 1;
+  std::uint64_t consumed_ = 0;
+};
+
+char normalize(char v) {
+  switch (v) {
+    case '0': case 'L': case 'l': return '0';
+    case '1': case 'H': case 'h': return '1';
+    case 'x': case 'X': case 'z': case 'Z': case 'U': case 'u': case 'W': case 'w': case '-': return 'x';
+    default: return '?';
+  }
+}
+
+class VcdReader final : public Reader {
+ public:
+  explicit VcdReader(const std::string& path) : path_(path), tokens_(path) {
+    struct stat st {};
+    if (!tokens_.good() || ::stat(path.c_str(), &st) != 0) throw CaptureError(path + ": cannot open the capture for reading");
+    if (!S_ISREG(st.st_mode)) throw CaptureError(path + ": not a regular file");
+    size_ = static_cast<std::uint64_t>(st.st_size);
+    header();
+    selected_.assign(signals_.size(), true);
+    last_.assign(signals_.size(), '?');
+  }
+
+  const std::vector<std::string>& signals() const override { return signals_; }
+  Time resolution() const override { return resolution_; }
+  void select(const std::vector<std::uint32_t>& wanted) override {
+    selected_.assign(signals_.size(), false);
+    for (auto i : wanted)
+      if (i < selected_.size()) selected_[i] = true;
+  }
+  const std::string& path() const override { return path_; }
+  std::uint64_t bytes_read() const override { return tokens_.consumed(); }
+  std::uint64_t bytes_total() const override { return size_; }
+
+  bool next(Change& change) override {
+    while (queue_at_ == queue_.size()) {
+      queue_.clear();
+      queue_at_ = 0;
+      if (!body_token()) return false;
+    }
+    change = queue_[queue_at_++];
+    return true;
+  }
+
+ private:
+  struct Variable {
+    std::uint32_t first = 0;  // index of its most significant bit's signal
+    unsigned width = 1;
+    bool real = false;
+  };
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw CaptureError(path_ + ": line " + std::to_string(tokens_.line()) + ": " + what);
+  }
+
+  std::string token(const char* expecting) {
+    std::string t;
+    if (!tokens_.next(t)) fail(std::string("the file ends where ") + expecting + " was expected (truncated?)");
+    if (t.size() > TokenStream::kMaxToken) fail("a token longer than " + std::to_string(TokenStream::kMaxToken) + " characters");
+    return t;
+  }
+
+  void skip_to_end(const std::string& keyword) {
+    for (std::string t = token(("$end of " + keyword).c_str()); t != "$end"; t = token(("$end of " + keyword).c_str())) {
+    }
+  }
+
+  void header() {
+    std::string first;
+    if (!tokens_.next(first)) fail("empty file: no VCD header");
+    if (first.empty() || first[0] != '$') fail("not a VCD file: it does not begin with a $ keyword (got '" + first.substr(0, 40) + "')");
+    std::string t = first;
+    while (true) {
+      if (t == "$enddefinitions") {
+        skip_to_end(t);
+        break;
+      }
+      if (t == "$timescale") timescale();
+      else if (t == "$scope") {
+        token("the scope's type");
+        scopes_.push_back(token("the scope's name"));
+        skip_to_end(t);
+      } else if (t == "$upscope") {
+        if (scopes_.empty()) fail("$upscope without a $scope");
+        scopes_.pop_back();
+        skip_to_end(t);
+      } else if (t == "$var") variable();
+      else if (t[0] == '$') skip_to_end(t);
+      else fail("'" + t.substr(0, 40) + "' in the header, where a $ keyword was expected");
+      t = token("$enddefinitions");
+    }
+    if (scale_num_ == 0) fail("no $timescale before $enddefinitions");
+    if (signals_.empty()) fail("no 1-bit or vector variables declared");
+  }
+
+  void timescale() {
+    std::string text;
+    for (std::string t = token("the timescale"); t != "$end"; t = token("$end of $timescale")) text += t;
+    std::size_t digits = 0;
+    while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+    const std::string number = text.substr(0, digits), unit = text.substr(digits);
+    static const std::map<std::string, std::int64_t> kFs{{"s", 1'000'000'000'000'000}, {"ms", 1'000'000'000'000},
+                                                         {"us", 1'000'000'000},        {"ns", 1'000'000},
+                                                         {"ps", 1'000},                {"fs", 1}};
+    const auto u = kFs.find(unit);
+    if ((number != "1" && number != "10" && number != "100") || u == kFs.end())
+      fail("unknown $timescale '" + text.substr(0, 40) + "': expected 1, 10 or 100 followed by s, ms, us, ns, ps or fs");
+    // Time per unit in femtoseconds as a fraction of a picosecond: ps = t * num / 1000.
+    scale_num_ = std::stoll(number) * u->second;
+    resolution_ = Time{std::max<std::int64_t>(1, scale_num_ / 1000)};
+  }
+
+  void variable() {
+    const std::string type = token("the variable's type");
+    const std::string width_text = token("the variable's width");
+    const std::string id = token("the variable's identifier");
+    std::string name = token("the variable's name");
+    std::string range;
+    for (std::string t = token("$end of $var"); t != "$end"; t = token("$end of $var")) range += t;
+    unsigned width = 0;
+    const auto [p, ec] = std::from_chars(width_text.data(), width_text.data() + width_text.size(), width);
+    if (ec != std::errc() || p != width_text.data() + width_text.size() || width == 0 || width > 4096)
+      fail("variable '" + name + "': width '" + width_text + "' is not 1 .. 4096");
+    if (vars_.count(id) != 0) return;  // the same signal under another name (an alias): keep the first
+    Variable v;
+    v.first = static_cast<std::uint32_t>(signals_.size());
+    v.width = width;
+    v.real = type == "real" || type == "realtime";
+    if (v.real) {
+      vars_[id] = v;
+      return;
+    }
+    std::string full;
+    for (const auto& s : scopes_) full += s + ".";
+    full += name;
+    // "[7:0]" after the name (or in it): the bits run from the first index to the second.
+    long msb = static_cast<long>(width) - 1, lsb = 0;
+    if (const auto open = range.find('['); !range.empty() && open != std::string::npos) {
+      const auto colon = range.find(':');
+      try {
+        msb = std::stol(range.substr(open + 1));
+        lsb = colon == std::string::npos ? msb : std::stol(range.substr(colon + 1));
+      } catch (const std::exception&) {
+        fail("variable '" + name + "': bad bit range '" + range + "'");
+      }
+    }
+    if (width == 1) {
+      signals_.push_back(range.empty() ? full : full + range);
+    } else {
+      const long step = msb >= lsb ? -1 : 1;
+      for (unsigned i = 0; i < width; ++i) signals_.push_back(full + "[" + std::to_string(msb + step * static_cast<long>(i)) + "]");
+    }
+    vars_[id] = v;
+  }
+
+  const Variable& lookup(const std::string& id) {
+    const auto it = vars_.find(id);
+    if (it == vars_.end()) fail("value change for undeclared identifier '" + id.substr(0, 40) + "'");
+    return it->second;
+  }
+
+  void emit(std::uint32_t signal, char value) {
+    if (!selected_[signal] || last_[signal] == value) return;
+    last_[signal] = value;
+    queue_.push_back({now_, signal, value});
+  }
+
+  // One token of the body; false at the end of the file.
+  bool body_token() {
+    std::string t;
+    if (!tokens_.next(t)) return false;
+    if (t.size() > TokenStream::kMaxToken) fail("a token longer than " + std::to_string(TokenStream::kMaxToken) + " characters");
+    switch (t[0]) {
+      case '$':
+        if (t == "$comment") skip_to_end(t);
+        return true;  // $dumpvars, $dumpall, $dumpon, $dumpoff and their $end: the changes inside count
+      case '#': {
+        std::int64_t units = 0;
+        const auto [p, ec] = std::from_chars(t.data() + 1, t.data() + t.size(), units);
+        if (ec != std::errc() || p != t.data() + t.size() || units < 0) fail("bad timestamp '" + t.substr(0, 40) + "'");
+        if (units > INT64_MAX / scale_num_) fail("timestamp '" + t.substr(0, 40) + "' beyond the picosecond range");
+        const Time at{(units * scale_num_ + 500) / 1000};
+        if (at < now_) fail("time goes backwards (" + t.substr(0, 40) + ")");
+        now_ = at;
+        return true;
+      }
+      case 'b': case 'B': vector(t.substr(1), token("the vector's identifier")); return true;
+      case 'r': case 'R': lookup(token("the real's identifier")); return true;
+      default: break;
+    }
+    const char v = normalize(t[0]);
+    if (v == '?' || t.size() < 2) fail("'" + t.substr(0, 40) + "' is no value change");
+    const Variable& var = lookup(t.substr(1));
+    if (var.real || var.width != 1) fail("scalar value '" + t.substr(0, 40) + "' for a vector or real variable");
+    emit(var.first, v);
+    return true;
+  }
+
+  // "b0101 id": left-extended with 0, or with x when the leftmost digit is x or z.
+  void vector(const std::string& digits, const std::string& id) {
+    const Variable& var = lookup(id);
+    if (var.real) return;
+    if (digits.empty() || digits.size() > var.width) fail("vector value 'b" + digits.substr(0, 40) + "' does not fit '" + id + "'");
+    const char fill = normalize(digits[0]) == 'x' ? 'x' : '0';
+    const std::size_t pad = var.width - digits.size();
+    for (unsigned i = 0; i < var.width; ++i) {
+      const char v = i < pad ? fill : normalize(digits[i - pad]);
+      if (v == '?') fail("'" + std::string(1, digits[i - pad]) + "' in vector value 'b" + digits.substr(0, 40) + "'");
+      emit(var.first + i, v);
+    }
+  }
+
+  std::string path_;
+  TokenStream tokens_;
+  std::uint64_t size_ = 0;
+  std::vector<std::string> scopes_;
+  std::vector<std::string> signals_;
+  std::map<std::string, Variable> vars_;
+  std::int64_t scale_num_ = 0;  // femtoseconds per unit
+  Time resolution_{1};
+  Time now_{0};
+  std::vector<bool> selected_;
+  std::vector<char> last_;
+  std::vector<Change> queue_;
+  std::size_t queue_at_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Reader> open_vcd(const std::string& path) { return std::make_unique<VcdReader>(path); }
+
+}  // namespace endatsim::capture
