@@ -43,8 +43,10 @@ void TimingChecker::note_encoder_low() {
 // DATA undriven while the master samples, which floating_data reports.
 void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
   if (!in_frame_) return;
+  refresh_wire_header();
   const Time now = kernel_.now();
-  const Time period = params_.t_z_per_frame_period ? sim::period_of(current_.header.f_c) : limit::kPeriodAtFcMin;
+  const Time period = params_.t_z_per_frame_period && current_.header.f_c > 0 ? sim::period_of(current_.header.f_c)
+                                                                             : limit::kPeriodAtFcMin;
   const auto clock = static_cast<unsigned>(current_.falling.size());
   if (enabled == 0 && !released_) {
     released_ = true;
@@ -75,6 +77,7 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
 }
 
 void TimingChecker::on_encoder_data(std::uint64_t level) {
+  if (wires_only_ || !mode_decided_) decoder_.on_data(kernel_.now(), level != 0);
   if (!in_frame_) return;
   if (level == 0) {
     note_encoder_low();
@@ -104,6 +107,7 @@ unsigned TimingChecker::carrying_clock() const {
 // The start bit of the frame's first word: the first rising DATA edge the encoder drives after the
 // turnaround.
 void TimingChecker::first_start_bit() {
+  refresh_wire_header();
   start_clock_ = carrying_clock();
   if (start_clock_ == 0) return;
   word_start_clock_ = start_clock_;

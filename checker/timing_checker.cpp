@@ -88,7 +88,16 @@ std::string_view to_string(Severity s) { return s == Severity::Error ? "error" :
 
 TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave::EncoderParams& encoder,
                              const master::MasterParams& master, const CheckerParams& params)
-    : kernel_(kernel), line_(line), encoder_(encoder), master_(master), params_(params) {
+    : kernel_(kernel),
+      line_(line),
+      encoder_(encoder),
+      master_(master),
+      params_(params),
+      decoder_(DecoderParams{
+          .position_bits = encoder.position_bits,
+          .clock_to_data = line.params().encoder.receiver_delay + encoder.output_delay + line.params().encoder.driver_delay,
+          .t_m = encoder.short_t_m_selected && encoder.t_m_short ? std::min(encoder.t_m, *encoder.t_m_short) : encoder.t_m,
+      }) {
   line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
   auto encoder_pins = line.pins(ObservationPoint::EncoderPins);
   encoder_pins.clock.on_change(sim::bind<&TimingChecker::on_encoder_clock>(this));
@@ -118,10 +127,10 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
 // on (encoder startup_time > 0): CLOCK at a valid level for t1 >= 800 ms and HIGH for t2 =
 // 80 .. 120 ms, so the pulse comes no earlier than 880 ms; at least one LOW pulse > 125 ns; then
 // HIGH for t3 = 380 .. 420 ms before the first request.
-void TimingChecker::check_power_on(const master::FrameResult& first) {
+void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
   const std::string spec = "2.3.3 power-on conditions (t1, t2, pulse > 125 ns, t3)";
   const auto fail = [&](Time at, const std::string& measured, const std::string& bound, const std::string& message) {
-    report({std::string(check::kPowerOn), spec, ObservationPoint::MasterPins, at, first.index, std::nullopt, measured,
+    report({std::string(check::kPowerOn), spec, ObservationPoint::MasterPins, at, index, std::nullopt, measured,
             bound, Severity::Error, message}, "before the first frame");
   };
   std::optional<std::pair<Time, Time>> pulse;  // the last LOW pulse: falling, rising
@@ -129,7 +138,7 @@ void TimingChecker::check_power_on(const master::FrameResult& first) {
     if (!power_on_edges_[i].second && power_on_edges_[i + 1].second)
       pulse = std::pair{power_on_edges_[i].first, power_on_edges_[i + 1].first};
   if (!pulse) {
-    fail(first.start, "no pulse", "one LOW pulse > 125 ns, then t3",
+    fail(first_request, "no pulse", "one LOW pulse > 125 ns, then t3",
          "the master requested data after switching on without the power-on clock sequence");
     return;
   }
@@ -139,13 +148,22 @@ void TimingChecker::check_power_on(const master::FrameResult& first) {
   if (pulse->first < limit::kPowerOnT1Min + limit::kPowerOnT2Min)
     fail(pulse->first, format_time(pulse->first), ">= t1 + t2 = 800 ms + 80 ms",
          "the power-on pulse came before t1 and t2 had passed");
-  const Time t3 = first.start - pulse->second;
+  const Time t3 = first_request - pulse->second;
   if (t3 < limit::kPowerOnT3Min || t3 > limit::kPowerOnT3Max)
-    fail(first.start, format_time(t3), "t3 = 380 .. 420 ms", "the first request does not follow the pulse after t3");
+    fail(first_request, format_time(t3), "t3 = 380 .. 420 ms", "the first request does not follow the pulse after t3");
 }
 
 void TimingChecker::on_frame_start(const master::FrameResult& frame) {
-  if (frame_starts_.empty() && encoder_.startup_time > Time::zero()) check_power_on(frame);
+  if (wires_only_) {
+    // The master declares its frames after all: what came before (a power-on pulse, taken for
+    // an aborted frame) was no frame of its own.
+    wires_only_ = false;
+    in_frame_ = false;
+    frame_starts_.clear();
+    previous_end_.reset();
+    error_handling_frame_.reset();
+  }
+  if (frame_starts_.empty() && encoder_.startup_time > Time::zero()) check_power_on(frame.index, frame.start);
   if (frame.measurement && !last_frame_was_measurement_) check_measurement_procedure(frame);
   if (frame.measurement) {
     t_d_stale_ = false;
@@ -184,18 +202,36 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
 }
 
 void TimingChecker::on_master_clock(std::uint64_t level) {
-  if (frame_starts_.empty()) power_on_edges_.emplace_back(kernel_.now(), level != 0);
+  if (wires_only_ ? !power_on_judged_ : frame_starts_.empty()) power_on_edges_.emplace_back(kernel_.now(), level != 0);
   if (level == 0) ++master_falling_edges_;
   else master_rising_.push_back(kernel_.now());
 }
 
 void TimingChecker::on_encoder_clock(std::uint64_t level) {
   const Time now = kernel_.now();
+  if (!mode_decided_ && level == 0) {  // a master declares its frames before their FE1 gets here
+    mode_decided_ = true;
+    wires_only_ = pending_.empty() && frame_starts_.empty();
+  }
+  const bool wire_fe1 = wires_only_ && decoder_.on_clock(now, level != 0);
   if (level != 0) {
     if (!in_frame_) return;
     current_.rising.push_back(now);
     note_encoder_low();
     check_encoder_sample(static_cast<unsigned>(current_.rising.size()));
+    // 2.3.3: the first frame that carries a mode command is the first request.
+    if (wires_only_ && !power_on_judged_ && current_.rising.size() == protocol::frame_position::kLastModeBit) {
+      power_on_judged_ = true;
+      const Time first_request = current_.fe1 - clock_path();
+      std::erase_if(power_on_edges_, [&](const auto& e) { return e.first >= first_request; });
+      if (encoder_.startup_time > Time::zero()) check_power_on(current_.header.index, first_request);
+    }
+    return;
+  }
+  if (wires_only_) {
+    ++encoder_falling_edges_;
+    if (wire_fe1) begin_wire_frame(now);
+    if (in_frame_) current_.falling.push_back(now);
     return;
   }
   ++encoder_falling_edges_;
@@ -215,6 +251,76 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
   if (in_frame_) current_.falling.push_back(now);
 }
 
+// The master's CLOCK edge reaches the encoder pins through its driver and the cable.
+Time TimingChecker::clock_path() const { return line_.params().master.driver_delay + line_.params().cable_delay(); }
+
+// A frame found on the wires (no master declares its own): the frame before it is judged with
+// what the decoder made of it; the new one starts like a declared one.
+void TimingChecker::begin_wire_frame(Time now) {
+  auto finished = decoder_.take_finished();
+  if (!finished.empty()) last_wire_ = std::move(finished.back());
+  if (in_frame_) {
+    refresh_wire_header();
+    if (start_clock_ == 0) error_handling_frame_ = current_.header.index;  // A2: no start bit
+    evaluate(current_);
+    if (last_wire_ && last_wire_->index == current_.header.index && last_wire_->command) {
+      const WireFrame& w = *last_wire_;
+      const auto ai1 = std::find_if(w.additional_data.begin(), w.additional_data.end(),
+                                    [](const DecodedDatum& d) { return !d.additional_data_2(); });
+      const bool data_ok = std::all_of(w.additional_data.begin(), w.additional_data.end(),
+                                       [](const DecodedDatum& d) { return d.crc_ok; });
+      check_busy_time({w.index, w.fe1, w.last_rise, *w.command, w.supplement, w.answer_complete && w.crc_ok && data_ok,
+                       ai1 == w.additional_data.end() ? std::nullopt : std::optional<bool>(ai1->busy()),
+                       current_.header.f_c});
+    }
+  }
+  const WireFrame* started = decoder_.current();
+  if (started == nullptr) return;  // the end of the run
+  master_driven_.assign(1, {now, line_.pins(ObservationPoint::MasterPins).data_driven.read()});
+  floating_reported_ = false;
+  current_.header = FrameHeader{};
+  current_.header.index = started->index;
+  current_.fe1 = now;
+  current_.rising.clear();
+  current_.falling.clear();
+  in_frame_ = true;
+  // The master's edges of this frame at its logic: from its FE1, one clock path earlier.
+  const Time master_fe1 = now - clock_path();
+  std::erase_if(master_rising_, [&](Time t) { return t < master_fe1; });
+  frame_starts_.emplace_back(master_fe1, started->index);
+  start_data_line_checks();
+  check_recovery(current_);
+}
+
+// What the wires have shown of the current frame so far: its mode command and what follows
+// from it, and its clock. Without a master's declaration a frame clocked above 2 MHz is judged
+// against the table's "with delay compensation" column: only with it is such a clock allowed.
+void TimingChecker::refresh_wire_header() {
+  if (!wires_only_) return;
+  FrameHeader& h = current_.header;
+  const WireFrame* w = decoder_.current();
+  if (w == nullptr || w->index != h.index) w = last_wire_ && last_wire_->index == h.index ? &*last_wire_ : nullptr;
+  if (w != nullptr && w->command) {
+    const auto& info = protocol::info(*w->command);
+    h.command_type = info.version;
+    h.payload_bits = info.payload_bits;
+    h.answer_bits = w->answer_bits;
+    h.supplement = info.supplement;
+    h.continuous = *w->command == protocol::ModeCommand::EncoderSendPositionValues;
+  }
+  const auto& rising = current_.rising;
+  if (rising.size() >= 3) {
+    const FittedFrequency fit = fit_frequency(rising);
+    if (fit.num > 0) {
+      h.f_c = fit.hertz();
+      h.compensated = fit.above(limit::kFcMaxWithoutCompensation, params_.f_c_tolerance_ppm);
+    }
+  } else if (rising.size() == 2 && rising[1] > rising[0]) {
+    h.f_c = sim::frequency_of(rising[1] - rising[0]);
+    h.compensated = h.f_c > limit::kFcMaxWithoutCompensation;
+  }
+}
+
 void TimingChecker::evaluate(const PinFrame& f) {
   check_pulse_widths(f);
   check_frequency(f);
@@ -225,7 +331,7 @@ void TimingChecker::evaluate(const PinFrame& f) {
 
 void TimingChecker::check_pulse_widths(const PinFrame& f) {
   // With compensation the on-off ratio row applies: each phase within 50 % +/- 10 % of T.
-  const Time period = sim::period_of(f.header.f_c);
+  const Time period = f.header.f_c > 0 ? sim::period_of(f.header.f_c) : Time::zero();  // 0: fewer than two rising edges
   const Time min = f.header.compensated ? period * (50 - limit::kOnOffRatioErrorPercent) / 100 : limit::kPulseWidthMin;
   const std::string spec = f.header.compensated ? "2.3.2 on-off ratio error (+/-10 % with delay compensation)"
                                          : "2.3.2 t_HI / t_LO minimum 0.2 us";
@@ -369,13 +475,17 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
 void TimingChecker::on_frame_end(const master::FrameResult& frame) {
   if (frame.outcome == master::FrameOutcome::Type1Error || frame.outcome == master::FrameOutcome::NoStartBit)
     error_handling_frame_ = frame.index;
-  check_busy_time(frame);
+  const auto ai1 = std::find_if(frame.additional_data.begin(), frame.additional_data.end(),
+                                [](const master::AdditionalDatum& d) { return !protocol::is_additional_data_2(d.information()); });
+  check_busy_time({frame.index, frame.start, frame.end, frame.command, frame.supplement,
+                   frame.outcome == master::FrameOutcome::Ok,
+                   ai1 == frame.additional_data.end() ? std::nullopt : std::optional<bool>(ai1->busy()), frame.f_c});
 }
 
 // 2.3.2 t_ac maximum 12 ms with EnDat 2.2 commands: the access runs after the command supplement
 // and additional data 1 shows Busy until it is done (2.5.1, 2.6.1). A frame that begins more than
 // 12 ms + T after the supplement and still shows Busy = 1 is reported, once per access.
-void TimingChecker::check_busy_time(const master::FrameResult& frame) {
+void TimingChecker::check_busy_time(const AccessEvidence& frame) {
   using MC = protocol::ModeCommand;
   if (frame.supplement) {
     const auto mrs = static_cast<std::uint8_t>(*frame.supplement >> 16);
@@ -389,11 +499,8 @@ void TimingChecker::check_busy_time(const master::FrameResult& frame) {
     }
     return;
   }
-  if (!busy_since_ || frame.outcome != master::FrameOutcome::Ok) return;
-  const auto ai1 = std::find_if(frame.additional_data.begin(), frame.additional_data.end(),
-                                [](const master::AdditionalDatum& d) { return !protocol::is_additional_data_2(d.information()); });
-  if (ai1 == frame.additional_data.end()) return;
-  if (!ai1->busy()) {
+  if (!busy_since_ || !frame.ok || !frame.busy) return;
+  if (!*frame.busy) {
     busy_since_.reset();
     return;
   }
@@ -408,6 +515,11 @@ void TimingChecker::check_busy_time(const master::FrameResult& frame) {
 }
 
 void TimingChecker::finish() {
+  if (wires_only_) {
+    decoder_.finish();
+    if (in_frame_) begin_wire_frame(kernel_.now());  // evaluates the last frame
+    in_frame_ = false;
+  }
   if (in_frame_) {
     evaluate(current_);
     in_frame_ = false;

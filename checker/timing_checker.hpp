@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "line/line.hpp"
+#include "checker/frame_decoder.hpp"
 #include "master/master.hpp"
 #include "protocol/timing.hpp"
 #include "slave/encoder.hpp"
@@ -79,6 +80,9 @@ class TimingChecker final : public master::MasterObserver {
 
   // Evaluates what is still open (last frame, running contention). Call once after the run.
   void finish();
+  // True when no master declared its frames: they were found on the wires at the encoder pins
+  // (frame_decoder.hpp), and only the rows that need nothing but wires were judged.
+  bool judged_from_wires() const { return wires_only_; }
   const std::vector<Violation>& violations() const { return violations_; }
 
  private:
@@ -121,10 +125,24 @@ class TimingChecker final : public master::MasterObserver {
   void check_delay_tolerance(const StartBitInFlight& s, Time t_d);
   void check_memory_access_time();
   void check_calculation_time_minimum();
-  void check_power_on(const master::FrameResult& first);
+  void check_power_on(std::uint64_t index, Time first_request);
+  void begin_wire_frame(Time now);
+  void refresh_wire_header();
+  Time clock_path() const;
   void check_clock_count(const PinFrame& f);
   void check_time_between_cycles(const PinFrame& next, Time last_rise);
-  void check_busy_time(const master::FrameResult& frame);
+  // What t_ac needs of a frame, from the master's declaration or from the wires.
+  struct AccessEvidence {
+    std::uint64_t index = 0;
+    Time start{0};
+    Time end{0};
+    protocol::ModeCommand command = protocol::ModeCommand::EncoderSendPositionValues;
+    std::optional<std::uint32_t> supplement;
+    bool ok = false;
+    std::optional<bool> busy;  // additional data 1's Busy bit, if sent
+    sim::Hertz f_c = 0;
+  };
+  void check_busy_time(const AccessEvidence& frame);
   std::string field_of(const master::FrameResult& frame, unsigned clock) const;
   unsigned bits_of(const master::FrameResult& frame) const;
   void check_encoder_sample(unsigned clock);
@@ -191,6 +209,12 @@ class TimingChecker final : public master::MasterObserver {
     Time period;
   };
   std::deque<StartBitInFlight> start_bits_in_flight_;
+  // Frames found on the wires when no master declares its own (decided at the first FE).
+  FrameDecoder decoder_;
+  std::optional<WireFrame> last_wire_;  // the frame the decoder finished last
+  bool power_on_judged_ = false;
+  bool mode_decided_ = false;
+  bool wires_only_ = false;
   std::vector<Violation> violations_;
 };
 
