@@ -219,6 +219,12 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
     current_.rising.push_back(now);
     note_encoder_low();
     check_encoder_sample(static_cast<unsigned>(current_.rising.size()));
+    // The decoder has taken the last mode bit (on RE8) once the next edge comes.
+    if (wires_only_ && !recovery_checked_ && current_.rising.size() == protocol::frame_position::kLastModeBit + 1) {
+      recovery_checked_ = true;
+      refresh_wire_header();
+      check_recovery(current_);
+    }
     // 2.3.3: the first frame that carries a mode command is the first request.
     if (wires_only_ && !power_on_judged_ && current_.rising.size() == protocol::frame_position::kLastModeBit) {
       power_on_judged_ = true;
@@ -261,6 +267,8 @@ void TimingChecker::begin_wire_frame(Time now) {
   if (!finished.empty()) last_wire_ = std::move(finished.back());
   if (in_frame_) {
     refresh_wire_header();
+    if (!recovery_checked_) check_recovery(current_);  // a frame that ended before its mode command
+    recovery_checked_ = true;
     if (start_clock_ == 0) error_handling_frame_ = current_.header.index;  // A2: no start bit
     evaluate(current_);
     if (last_wire_ && last_wire_->index == current_.header.index && last_wire_->command) {
@@ -289,7 +297,7 @@ void TimingChecker::begin_wire_frame(Time now) {
   std::erase_if(master_rising_, [&](Time t) { return t < master_fe1; });
   frame_starts_.emplace_back(master_fe1, started->index);
   start_data_line_checks();
-  check_recovery(current_);
+  recovery_checked_ = false;  // once the mode command is known (t_b depends on it)
 }
 
 // What the wires have shown of the current frame so far: its mode command and what follows

@@ -576,6 +576,7 @@ void read_checker(const Node& n, checker::CheckerParams& p) {
   if (auto v = o.opt("sample_setup")) p.sample_setup = v->as_duration(Time::zero(), sim::us(1));
   if (auto v = o.opt("sample_hold")) p.sample_hold = v->as_duration(Time::zero(), sim::us(1));
   if (auto v = o.opt("t_z_per_frame_period")) p.t_z_per_frame_period = v->as_bool();
+  if (auto v = o.opt("t_st_reduced_for_cable")) p.t_st_reduced_for_cable = v->as_bool();
   if (auto v = o.opt("f_c_tolerance_ppm")) p.f_c_tolerance_ppm = static_cast<std::int64_t>(v->as_uint(0, 100'000));
   o.done();
 }

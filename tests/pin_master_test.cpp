@@ -1,0 +1,243 @@
+// Masters that only drive pins, written here edge by edge from the spec (no master model, no
+// declarations to the checker): the checker must find their frames on the wires and judge every
+// row that needs nothing but wires. Each defective master breaks one rule and is caught by that
+// rule's row; the same master without the defect draws no violation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "checker/timing_checker.hpp"
+#include "line/line.hpp"
+#include "slave/encoder.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace endatsim;
+using namespace endatsim::sim;
+using test_support::bits_msb;
+
+// One frame of a pin-driving master: FE1 at `start` (master logic), the first LOW phase `t_st`
+// (0: half a period), then `clocks` pulses of period 1/f_c; on FE_k the DATA driver does what
+// drive[k-1] says ('0'/'1' drive, anything else release).
+struct PinFrame {
+  Time start;
+  Hertz f_c;
+  unsigned clocks;
+  std::string drive;
+  Time t_st{0};
+};
+
+// "-0" then six mode bits (M2 first), then a 2.1 payload: the master's part of a frame (2.3).
+std::string header(std::uint8_t mode_bits, const std::string& payload = "") {
+  return "-0" + bits_msb(mode_bits, 6) + payload;
+}
+
+class PinMaster {
+ public:
+  PinMaster(Kernel& k, line::Line& line, const std::vector<PinFrame>& frames)
+      : k_(k), m_(line.master()), timer_(k, sim::bind<&PinMaster::step>(this)) {
+    for (const auto& f : frames) {
+      const Time half = period_of(f.f_c) / 2;
+      Time t = f.start;
+      for (unsigned n = 1; n <= f.clocks; ++n) {
+        const char c = n <= f.drive.size() ? f.drive[n - 1] : '-';
+        edges_.push_back({t, false, c});
+        t += n == 1 && f.t_st > Time::zero() ? f.t_st : half;
+        edges_.push_back({t, true, ' '});
+        t += half;
+      }
+    }
+    std::stable_sort(edges_.begin(), edges_.end(), [](const Edge& a, const Edge& b) { return a.at < b.at; });
+    if (!edges_.empty()) timer_.start(edges_.front().at - k.now());
+  }
+
+ private:
+  struct Edge {
+    Time at;
+    bool clock;
+    char drive;
+  };
+  void step() {
+    const Edge e = edges_[next_++];
+    m_.clock_out.write(e.clock);
+    if (!e.clock) {
+      m_.data_enable.write(e.drive == '0' || e.drive == '1');
+      if (e.drive == '0' || e.drive == '1') m_.data_out.write(e.drive == '1');
+    }
+    if (next_ < edges_.size()) timer_.start(edges_[next_].at - k_.now());
+  }
+  Kernel& k_;
+  line::Line::MasterSide m_;
+  Timer timer_;
+  std::vector<Edge> edges_;
+  std::size_t next_ = 0;
+};
+
+constexpr std::uint8_t k21Position = 0b000111;  // "Encoder send position values" (2.3.1)
+constexpr std::uint8_t k22Position = 0b111000;  // "... with additional data" (2.3.1)
+constexpr std::uint8_t k21SendParameter = 0b001110;  // "Encoder send parameters" (2.4)
+
+struct Run {
+  std::vector<checker::Violation> violations;
+  bool from_wires = false;
+  std::size_t count(std::string_view check) const {
+    return static_cast<std::size_t>(std::count_if(violations.begin(), violations.end(),
+                                                  [&](const auto& v) { return v.check == check; }));
+  }
+  std::string list() const {
+    std::string s;
+    for (const auto& v : violations) s += v.check + " " + v.measured + " (" + v.limit + "): " + v.message + "\n";
+    return s;
+  }
+};
+
+Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, double cable_m = 1, Time until = ms(2),
+        const checker::CheckerParams& params = {}) {
+  Kernel k;
+  line::LineParams lp;
+  lp.cable_length_m = cable_m;
+  line::Line line(k, lp);
+  slave::Encoder e(k, line, encoder);
+  checker::TimingChecker checker(k, line, encoder, master::MasterParams{}, params);
+  PinMaster m(k, line, frames);
+  k.run(until);
+  checker.finish();
+  return {checker.violations(), checker.judged_from_wires()};
+}
+
+slave::EncoderParams quick_encoder() {
+  slave::EncoderParams p;
+  p.t_cal = us(1);  // the start bit on RE11 at 1 MHz and above
+  return p;
+}
+
+// 2.1 position reads at 1 MHz: start bit on RE11, 32 answer bits (S F1 25 position bits CRC),
+// one more pulse for the HIGH end.
+std::vector<PinFrame> position_reads_21(unsigned n, Time cycle, unsigned clocks = 11 + 32) {
+  std::vector<PinFrame> out;
+  for (unsigned i = 0; i < n; ++i) out.push_back({us(10) + cycle * i, MHz(1), clocks, header(k21Position)});
+  return out;
+}
+
+// 2.2 position reads: 33 answer bits (S F1 F2 25 bits CRC), no additional data selected.
+std::vector<PinFrame> position_reads_22(unsigned n, Time cycle, Hertz f_c, Time t_st, unsigned clocks = 11 + 33) {
+  std::vector<PinFrame> out;
+  for (unsigned i = 0; i < n; ++i) out.push_back({us(10) + cycle * i, f_c, clocks, header(k22Position), t_st});
+  return out;
+}
+
+TEST(PinMaster, ACleanMasterDrawsNoViolationAndIsJudgedFromTheWires) {
+  const auto r = run(position_reads_21(5, us(100)), quick_encoder());
+  EXPECT_TRUE(r.from_wires);
+  EXPECT_TRUE(r.violations.empty()) << r.list();
+}
+
+TEST(PinMaster, ACleanSixteenMegahertzMasterWithOneMicrosecondTstIsClean) {
+  const auto r = run(position_reads_22(5, us(100), MHz(16), us(1)), quick_encoder(), 10);
+  EXPECT_EQ(r.count(checker::check::kClockFrequency), 5U) << "16 MHz is only a warning (special applications)";
+  for (const auto& v : r.violations) EXPECT_EQ(v.severity, checker::Severity::Warning) << r.list();
+}
+
+TEST(PinMaster, AStartDelayTooShortAtSixteenMegahertzIsCaught) {
+  const auto r = run(position_reads_22(3, us(100), MHz(16), ns(400)), quick_encoder(), 10);
+  EXPECT_EQ(r.count(checker::check::kStartDelay), 3U) << r.list();
+}
+
+// 2.3.2 note 8 at 16 MHz: 1 us, to the picosecond, whatever the cable.
+TEST(PinMaster, StartDelayAtSixteenMegahertzIsOneMicrosecondToThePicosecond) {
+  EXPECT_EQ(run(position_reads_22(1, us(100), MHz(16), us(1)), quick_encoder(), 10).count(checker::check::kStartDelay), 0U);
+  const auto r = run(position_reads_22(1, us(100), MHz(16), us(1) - ps(1)), quick_encoder(), 10);
+  ASSERT_EQ(r.count(checker::check::kStartDelay), 1U) << r.list();
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kStartDelay) {
+      EXPECT_EQ(v.limit, ">= 1 us");
+      EXPECT_EQ(v.spec, "2.3.2 t_ST and note 8");
+    }
+}
+
+// "Can be reduced with a shorter cable" only through the named option, which the finding names.
+TEST(PinMaster, AShorterStartDelayForAShortCableOnlyWithTheNamedOption) {
+  checker::CheckerParams reduced;
+  reduced.t_st_reduced_for_cable = true;
+  const auto frames = position_reads_22(1, us(100), MHz(16), ns(250));  // 1 us x (0.2 + 0.1) / 1.2 on 10 m
+  EXPECT_EQ(run(frames, quick_encoder(), 10).count(checker::check::kStartDelay), 1U);
+  EXPECT_EQ(run(frames, quick_encoder(), 10, ms(2), reduced).count(checker::check::kStartDelay), 0U);
+  const auto r = run(position_reads_22(1, us(100), MHz(16), ns(250) - ps(1)), quick_encoder(), 10, ms(2), reduced);
+  ASSERT_EQ(r.count(checker::check::kStartDelay), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kStartDelay) {
+      EXPECT_NE(v.spec.find("t_st_reduced_for_cable"), std::string::npos) << v.spec;
+    }
+}
+
+TEST(PinMaster, NoRecoveryWaitIsCaught) {
+  // The next frame 3 us after the last rising edge: t_m (20 us) + t_R have not passed.
+  auto frames = position_reads_22(1, us(100), MHz(8), us(2));
+  const Time end = frames[0].start + us(2) + period_of(MHz(8)) * (frames[0].clocks - 1);
+  frames.push_back({end + us(3), MHz(8), 44, header(k22Position), us(2)});
+  const auto r = run(frames, quick_encoder());
+  EXPECT_EQ(r.count(checker::check::kRecovery), 1U) << r.list();
+  // With the wait it is clean.
+  frames.back().start = end + us(21);
+  const auto fixed = run(frames, quick_encoder());
+  EXPECT_EQ(fixed.count(checker::check::kRecovery), 0U) << fixed.list();
+}
+
+TEST(PinMaster, TooFewClocksAreCaught) {
+  const auto r = run(position_reads_21(2, us(100), 11 + 20), quick_encoder());  // stops inside the position
+  EXPECT_EQ(r.count(checker::check::kClockCount), 2U) << r.list();
+  EXPECT_EQ(run(position_reads_21(2, us(100), 11 + 31), quick_encoder()).count(checker::check::kClockCount), 0U)
+      << "the last CRC bit on RE42 is enough";
+}
+
+TEST(PinMaster, AClockAboveTheTableIsCaught) {
+  const auto r = run(position_reads_22(2, us(100), MHz(20), us(1)), quick_encoder());
+  EXPECT_EQ(r.count(checker::check::kClockFrequency), 2U) << r.list();
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kClockFrequency) {
+      EXPECT_EQ(v.severity, checker::Severity::Error);
+    }
+}
+
+TEST(PinMaster, ModeBitsOnAnUndrivenLineAreCaught) {
+  std::vector<PinFrame> frames{{us(10), MHz(1), 43, std::string(43, '-')}};
+  const auto r = run(frames, quick_encoder());
+  EXPECT_EQ(r.count(checker::check::kFloatingData), 1U) << r.list();
+}
+
+TEST(PinMaster, A21ParameterFrameTooSoonAfterTheLastIsCaught) {
+  // "Encoder send parameters" for word 13 (8 + 16 payload bits; answer on RE35 or later after
+  // t_ac) 200 us after a position read: t_b > 1 ms is not kept (2.3.2).
+  auto p = quick_encoder();
+  p.t_ac_read = Time::zero();
+  std::vector<PinFrame> frames = position_reads_21(1, us(100));
+  const std::string payload = bits_msb(0x0D, 8) + bits_msb(0, 16);
+  frames.push_back({us(210), MHz(1), 35 + 30, header(k21SendParameter, payload)});
+  const auto r = run(frames, p);
+  EXPECT_EQ(r.count(checker::check::kTimeBetweenCycles), 1U) << r.list();
+  frames.back().start = us(10) + us(43) + ms(1) + us(1);
+  EXPECT_EQ(run(frames, p, 1, ms(3)).count(checker::check::kTimeBetweenCycles), 0U);
+}
+
+TEST(PinMaster, PowerOnWithoutT3IsCaught) {
+  // 2.3.3: CLOCK HIGH for t1 + t2, one LOW pulse > 125 ns, then t3 = 380 .. 420 ms before the
+  // first request. This master requests 50 ms after its pulse.
+  auto p = quick_encoder();
+  p.startup_time = ms(500);
+  std::vector<PinFrame> frames{{ms(900), MHz(1), 1, ""}};
+  auto reads = position_reads_21(2, us(100));
+  for (auto& f : reads) f.start += ms(950);
+  frames.insert(frames.end(), reads.begin(), reads.end());
+  const auto r = run(frames, p, 1, ms(951));
+  EXPECT_EQ(r.count(checker::check::kPowerOn), 1U) << r.list();
+  for (auto& f : frames)
+    if (f.clocks > 1) f.start += ms(350);  // t3 = 400 ms
+  const auto fixed = run(frames, p, 1, ms(1301));
+  EXPECT_EQ(fixed.count(checker::check::kPowerOn), 0U) << fixed.list();
+}
+
+}  // namespace
