@@ -120,6 +120,19 @@ void TimingChecker::first_start_bit() {
   check_calculation_time_maximum();
 }
 
+// The same from the decoder's sampled start bit (captures without driver enables). t_D needs the
+// master's side of the cable, which such a capture does not have.
+void TimingChecker::start_bit_from_decoder(unsigned clock) {
+  refresh_wire_header();
+  start_clock_ = word_start_clock_ = clock;
+  if (current_.header.payload_bits != 0) {
+    check_memory_access_time();
+    return;
+  }
+  check_calculation_time_minimum();
+  check_calculation_time_maximum();
+}
+
 // t_cal ends no later than the rising edge that carried the start bit (the encoder answers on the
 // first rising edge after its calculation), so that edge must come within t_cal max of FE1.
 void TimingChecker::check_calculation_time_maximum() {

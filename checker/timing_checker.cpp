@@ -220,6 +220,12 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
     note_encoder_low();
     check_encoder_sample(static_cast<unsigned>(current_.rising.size()));
     // The decoder has taken the last mode bit (on RE8) once the next edge comes.
+    // Without the encoder's driver enable the fail-safe level between the master's release and
+    // the encoder's LOW looks like a start bit on DATA: the decoder's sampled start bit is used.
+    if (wires_only_ && !params_.driver_enables_observable && start_clock_ == 0) {
+      const WireFrame* w = decoder_.current();
+      if (w != nullptr && w->start_bit_clock != 0) start_bit_from_decoder(w->start_bit_clock);
+    }
     if (wires_only_ && !recovery_checked_ && current_.rising.size() == protocol::frame_position::kLastModeBit + 1) {
       recovery_checked_ = true;
       refresh_wire_header();
@@ -237,7 +243,8 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
   if (wires_only_) {
     ++encoder_falling_edges_;
     if (wire_fe1) begin_wire_frame(now);
-    if (in_frame_) current_.falling.push_back(now);
+    if (!in_frame_) return;
+    current_.falling.push_back(now);
     return;
   }
   ++encoder_falling_edges_;
@@ -534,6 +541,9 @@ void TimingChecker::finish() {
   }
   for (const line::Contention& c : line_.contentions()) {
     const Time end = c.end == Time::max() ? kernel_.now() : c.end;
+    // One recorded DATA wire shows no collision; two drivers handing over at the same
+    // picosecond do not collide.
+    if (!params_.driver_enables_observable || end == c.start) continue;
     // The frame that had begun (FE1 at the master logic) when the contention began.
     std::optional<std::uint64_t> frame;
     for (const auto& [start, index] : frame_starts_)

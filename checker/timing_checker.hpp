@@ -63,6 +63,10 @@ struct CheckerParams {
   // 16 MHz) whatever the cable; with this option they are scaled by the cable's share of the t_D
   // bound, (0.2 + 0.01 L) / 1.2, and every t_ST finding says so.
   bool t_st_reduced_for_cable = false;
+  // A capture that holds no driver enables: the encoder is taken to drive DATA from the
+  // turnaround on (2.3), and the rows that need the enables (t_z, t_OE, floating data,
+  // contention) are not observable.
+  bool driver_enables_observable = true;
 };
 
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
@@ -117,6 +121,7 @@ class TimingChecker final : public master::MasterObserver {
   void on_encoder_data(std::uint64_t level);
   unsigned carrying_clock() const;
   void first_start_bit();
+  void start_bit_from_decoder(unsigned clock);
   void check_calculation_time_maximum();
   void next_word_start_bit(unsigned clock);
   void note_start_bit_for_t_d();

@@ -160,6 +160,24 @@ void write_diagnosis(std::ostream& out, const ScenarioResult& r, bool verbose) {
   if (d.notes.size() > limit) out << "    ... " << d.notes.size() - limit << " more note(s)\n";
 }
 
+void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations, bool verbose) {
+  std::map<std::string, std::vector<const checker::Violation*>> by_check;
+  for (const auto& v : violations) by_check[v.check].push_back(&v);
+  for (const auto& [check, list] : by_check) {
+    out << "  violation " << check << " x" << list.size() << " [" << list.front()->spec << "]\n";
+    const std::size_t limit = verbose ? list.size() : 3;
+    for (std::size_t i = 0; i < list.size() && i < limit; ++i) {
+      const auto& v = *list[i];
+      out << "    " << checker::to_string(v.severity) << " at " << format_time(v.time) << " ("
+          << line::to_string(v.where);
+      if (v.frame) out << ", frame #" << *v.frame;
+      if (v.clock) out << ", clock " << *v.clock;
+      if (!v.field.empty()) out << ", " << v.field;
+      out << "): measured " << v.measured << ", limit " << v.limit << " - " << v.message << "\n";
+    }
+  }
+}
+
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
   if (!r.description.empty()) out << "  " << r.description << "\n";
@@ -208,21 +226,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
       break;
     }
   }
-  std::map<std::string, std::vector<const checker::Violation*>> by_check;
-  for (const auto& v : r.violations) by_check[v.check].push_back(&v);
-  for (const auto& [check, list] : by_check) {
-    out << "  violation " << check << " x" << list.size() << " [" << list.front()->spec << "]\n";
-    const std::size_t limit = verbose ? list.size() : 3;
-    for (std::size_t i = 0; i < list.size() && i < limit; ++i) {
-      const auto& v = *list[i];
-      out << "    " << checker::to_string(v.severity) << " at " << format_time(v.time) << " ("
-          << line::to_string(v.where);
-      if (v.frame) out << ", frame #" << *v.frame;
-      if (v.clock) out << ", clock " << *v.clock;
-      if (!v.field.empty()) out << ", " << v.field;
-      out << "): measured " << v.measured << ", limit " << v.limit << " - " << v.message << "\n";
-    }
-  }
+  write_violations(out, r.violations, verbose);
   for (const auto& e : r.expectations)
     if (verbose || !e.passed) out << "  " << (e.passed ? "ok   " : "FAIL ") << e.name << ": " << e.detail << "\n";
 }

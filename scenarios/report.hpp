@@ -11,6 +11,9 @@ namespace endatsim::scenarios {
 // value, limit and spec section, and each expectation's verdict.
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose);
 
+// The violations grouped by check, the first three of each (all with `verbose`).
+void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations, bool verbose);
+
 // The stable result format (documented in the README).
 nlohmann::json to_json(const ScenarioResult& r);
 

@@ -19,6 +19,8 @@
 #include <sstream>
 #include <thread>
 
+#include "capture/capture.hpp"
+#include "slave/profile.hpp"
 #include "protocol/timing.hpp"
 #include "scenarios/diagram.hpp"
 #include "scenarios/junit.hpp"
@@ -45,9 +47,13 @@ const char* const kValidateUsage = "usage: endatsim validate FILE... [--quiet]\n
 const char* const kDiagramUsage =
     "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet]\n";
 const char* const kChecksUsage = "usage: endatsim checks\n";
+const char* const kCheckUsage =
+    "usage: endatsim check FILE --clock NAME --data NAME [--data-enable NAME [--enable-active-low]]\n"
+    "                      [--encoder PROFILE|SCENARIO.json] [--clock-to-data TIME] [--t-st-reduced-for-cable]\n"
+    "                      [--json PATH] [--log PATH] [--verbose|--quiet]\n";
 
 std::string usage() {
-  return std::string(kRunUsage) + kSweepUsage + kValidateUsage + kDiagramUsage + kChecksUsage +
+  return std::string(kRunUsage) + kSweepUsage + kValidateUsage + kDiagramUsage + kCheckUsage + kChecksUsage +
          "       endatsim --help | --version | COMMAND --help | COMMAND --version\n";
 }
 
@@ -102,7 +108,20 @@ const char* const kChecksHelp =
     "declare its sampling. docs/checks.md is this output.\n"
     "Exit status: 0.\n";
 
-enum class Command { Run, Sweep, Validate, Diagram, Checks };
+const char* const kCheckHelp =
+    "check: judges a waveform recorded elsewhere against the timing conditions of spec 2.3.2, from\n"
+    "the wires alone: a VCD from any HDL simulator, a sigrok session (.sr) as PulseView and\n"
+    "sigrok-cli save it, or logic-analyzer CSV (sigrok-cli, Saleae Logic). CLOCK and DATA are the\n"
+    "levels at the encoder's connector (signals by full name or an unambiguous suffix; a wrong\n"
+    "name lists the candidates); --data-enable is the encoder's DATA driver enable, if recorded\n"
+    "(without it t_z, t_OE, floating data and contention are not observable). Frames are found\n"
+    "and decoded on the wires (mode command, payload, start bit, answer, CRC, additional data,\n"
+    "command supplement); --encoder takes the encoder's declared position width, t_m and t_R\n"
+    "from a profile or a scenario (default: the model's encoder), --clock-to-data its delay from\n"
+    "CLOCK to DATA at the connector (default 130 ns). --log writes the decoded frames.\n"
+    "Exit status: 0 when no row is broken, 1 when one is, 2 for bad input or usage.\n";
+
+enum class Command { Run, Sweep, Validate, Diagram, Check, Checks };
 
 struct CommandInfo {
   Command command;
@@ -116,6 +135,7 @@ const CommandInfo kCommands[] = {
     {Command::Sweep, "sweep", kSweepUsage, kSweepHelp},
     {Command::Validate, "validate", kValidateUsage, kValidateHelp},
     {Command::Diagram, "diagram", kDiagramUsage, kDiagramHelp},
+    {Command::Check, "check", kCheckUsage, kCheckHelp},
     {Command::Checks, "checks", kChecksUsage, kChecksHelp},
 };
 
@@ -144,6 +164,18 @@ po::options_description options_of(Command c) {
           "json", po::value<std::string>(), "write the points as JSON to this file")(
           "svg", po::value<std::string>(), "write a chart of the --maximize table to this file")(
           "jobs", po::value<std::string>(), "threads (default: the number of cores)");
+      break;
+    case Command::Check:
+      o.add_options()("verbose,v", "print every decoded frame and every violation")(
+          "clock", po::value<std::string>(), "the CLOCK signal at the encoder's connector")(
+          "data", po::value<std::string>(), "the DATA signal at the encoder's connector")(
+          "data-enable", po::value<std::string>(), "the encoder's DATA driver enable, if recorded")(
+          "enable-active-low", "the enable is LOW while the encoder drives")(
+          "encoder", po::value<std::string>(), "the declared encoder: a profile or a scenario (JSON)")(
+          "clock-to-data", po::value<std::string>(), "the encoder's CLOCK-to-DATA delay at its connector")(
+          "t-st-reduced-for-cable", "accept a t_ST shorter than note 8 for a cable shorter than 100 m")(
+          "json", po::value<std::string>(), "write the decoded frames and violations as JSON")(
+          "log", po::value<std::string>(), "write the decoded frames, one line each (- for stdout)");
       break;
     case Command::Validate:
     case Command::Checks:
@@ -559,6 +591,82 @@ int diagram_command(const po::variables_map& vm) {
   return kPass;
 }
 
+// The declared encoder of a check: a scenario's (its line's transceivers included in the delay
+// at the connector) or a profile's with the model's transceivers.
+slave::EncoderParams declared_encoder(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open the encoder declaration for reading");
+  const auto j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) throw std::runtime_error(path + ": not a JSON object (a profile or a scenario)");
+  if (j.contains("encoder") || j.contains("script")) {
+    const auto s = scenarios::load_scenario_file(path);
+    auto p = s.encoder;
+    p.output_delay = s.line.encoder.receiver_delay + s.encoder.output_delay + s.line.encoder.driver_delay;
+    return p;
+  }
+  slave::EncoderParams p;
+  slave::load_profile(path).apply(p);
+  const line::LineParams lp;
+  p.output_delay = lp.encoder.receiver_delay + p.output_delay + lp.encoder.driver_delay;
+  return p;
+}
+
+int check_command(const po::variables_map& vm) {
+  const auto files = files_of(vm);
+  scenarios::CaptureCheckOptions o;
+  const auto clock = string_option(vm, "clock"), data = string_option(vm, "data");
+  if (files.size() != 1 || !clock || !data) {
+    std::cerr << "endatsim check: expected one capture file, --clock NAME and --data NAME\n" << kCheckUsage;
+    return kBadInput;
+  }
+  if (vm.count("verbose") != 0 && vm.count("quiet") != 0) {
+    std::cerr << "endatsim check: --verbose and --quiet exclude each other\n";
+    return kBadInput;
+  }
+  o.file = files.front();
+  o.clock = *clock;
+  o.data = *data;
+  o.data_enable = string_option(vm, "data-enable");
+  o.enable_active_low = vm.count("enable-active-low") != 0;
+  if (o.enable_active_low && !o.data_enable) {
+    std::cerr << "endatsim check: --enable-active-low needs --data-enable NAME\n";
+    return kBadInput;
+  }
+  {
+    const line::LineParams lp;
+    o.encoder.output_delay = lp.encoder.receiver_delay + o.encoder.output_delay + lp.encoder.driver_delay;
+  }
+  if (const auto e = string_option(vm, "encoder")) o.encoder = declared_encoder(*e);
+  if (const auto d = string_option(vm, "clock-to-data")) {
+    try {
+      o.encoder.output_delay = sim::parse_duration(*d);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "endatsim check: --clock-to-data: " << e.what() << "\n";
+      return kBadInput;
+    }
+    if (o.encoder.output_delay > sim::us(10)) {
+      std::cerr << "endatsim check: --clock-to-data must be 0 .. 10 us, got " << *d << "\n";
+      return kBadInput;
+    }
+  }
+  o.checker.t_st_reduced_for_cable = vm.count("t-st-reduced-for-cable") != 0;
+  const auto json = string_option(vm, "json"), log = string_option(vm, "log");
+  scenarios::CaptureCheckResult r;
+  try {
+    r = scenarios::check_capture(o);
+  } catch (const capture::CaptureError& e) {
+    std::cerr << "endatsim check: " << e.what() << "\n";
+    return kBadInput;
+  }
+  if (json) write_file(*json, scenarios::capture_json(r).dump(2) + "\n");
+  if (log) {
+    if (*log == "-") std::cout << scenarios::capture_log(r);
+    else write_file(*log, scenarios::capture_log(r));
+  }
+  if (vm.count("quiet") == 0 || !r.conforms()) scenarios::write_capture_summary(std::cout, r, vm.count("verbose") != 0);
+  return r.conforms() ? kPass : kFail;
+}
+
 int checks_command(const po::variables_map& vm) {
   if (!files_of(vm).empty()) {
     std::cerr << "endatsim checks: takes no file\n" << kChecksUsage;
@@ -646,6 +754,7 @@ int main(int argc, char** argv) {
       case Command::Sweep: return sweep_command(vm);
       case Command::Validate: return validate_command(vm);
       case Command::Diagram: return diagram_command(vm);
+      case Command::Check: return check_command(vm);
       case Command::Checks: return checks_command(vm);
     }
   } catch (const std::exception& e) {  // ScenarioError included: bad input

@@ -1,0 +1,235 @@
+#include "scenarios/capture_check.hpp"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <sstream>
+
+#include "capture/capture.hpp"
+#include "line/line.hpp"
+#include "scenarios/report.hpp"
+
+namespace endatsim::scenarios {
+namespace {
+
+using sim::Time;
+
+// The capture's changes, one at a time at their recorded times, onto the pins of a line
+// without delays: CLOCK from the master; DATA from the encoder while its recorded enable is on,
+// from the master otherwise (without a recorded enable, always from the master: the checker
+// then knows the enables are not observable). 'x' releases DATA.
+class Replay {
+ public:
+  Replay(sim::Kernel& kernel, line::Line& line, capture::Reader& reader, const CaptureCheckOptions& o,
+         checker::FrameDecoder& log_decoder, CaptureCheckResult& result)
+      : kernel_(kernel),
+        master_(line.master()),
+        encoder_(line.encoder()),
+        reader_(reader),
+        decoder_(log_decoder),
+        result_(result),
+        active_low_(o.enable_active_low),
+        timer_(kernel, sim::bind<&Replay::step>(this)) {
+    clock_ = capture::find_signal(reader, o.clock);
+    data_ = capture::find_signal(reader, o.data);
+    std::vector<std::uint32_t> wanted{clock_, data_};
+    if (o.data_enable) {
+      enable_ = capture::find_signal(reader, *o.data_enable);
+      wanted.push_back(*enable_);
+    }
+    if (clock_ == data_ || (enable_ && (*enable_ == clock_ || *enable_ == data_)))
+      throw capture::CaptureError(reader.path() + ": CLOCK, DATA and the enable must be different signals");
+    reader.select(wanted);
+    if (reader_.next(next_)) {
+      offset_ = next_.time < Time::zero() ? -next_.time : Time::zero();  // pre-trigger samples
+      schedule();
+    }
+  }
+
+ private:
+  void schedule() { timer_.start(next_.time + offset_ - kernel_.now()); }
+
+  void step() {
+    do {
+      apply(next_);
+      ++result_.changes;
+      result_.end = next_.time + offset_;
+      if (!reader_.next(next_)) return;
+    } while (next_.time + offset_ == kernel_.now());
+    schedule();
+  }
+
+  void apply(const capture::Change& c) {
+    const Time now = kernel_.now();
+    if (c.signal == clock_) {
+      if (c.value == 'x') return;  // an unknown clock level changes nothing
+      master_.clock_out.write(c.value == '1');
+      decoder_.on_clock(now, c.value == '1');
+      return;
+    }
+    if (c.signal == data_) data_level_ = c.value;
+    else encoder_on_ = c.value != 'x' && ((c.value == '1') != active_low_);
+    const bool known = data_level_ != 'x';
+    const bool encoder_drives = enable_ && encoder_on_;
+    // The driver that goes off first, so that the line never sees both on.
+    encoder_.data_out.write(data_level_ == '1');
+    master_.data_out.write(data_level_ == '1');
+    if (encoder_drives) {
+      master_.data_enable.write(false);
+      encoder_.data_enable.write(known);
+    } else {
+      encoder_.data_enable.write(false);
+      master_.data_enable.write(known);
+    }
+    if (c.signal == data_ && known) decoder_.on_data(now, data_level_ == '1');
+  }
+
+  sim::Kernel& kernel_;
+  line::Line::MasterSide master_;
+  line::Line::EncoderSide encoder_;
+  capture::Reader& reader_;
+  checker::FrameDecoder& decoder_;
+  CaptureCheckResult& result_;
+  bool active_low_;
+  sim::Timer timer_;
+  std::uint32_t clock_ = 0;
+  std::uint32_t data_ = 0;
+  std::optional<std::uint32_t> enable_;
+  capture::Change next_;
+  Time offset_{0};
+  char data_level_ = '1';
+  bool encoder_on_ = false;
+};
+
+std::string hex(std::uint64_t v, int digits) {
+  std::ostringstream s;
+  s << std::uppercase << std::hex;
+  s.width(digits);
+  s.fill('0');
+  s << v << "h";
+  return s.str();
+}
+
+}  // namespace
+
+bool CaptureCheckResult::conforms() const {
+  return std::none_of(violations.begin(), violations.end(),
+                      [](const checker::Violation& v) { return v.severity == checker::Severity::Error; });
+}
+
+CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
+  CaptureCheckResult result;
+  result.file = o.file;
+  const auto reader = capture::open(o.file);
+  result.resolution = reader->resolution();
+
+  sim::Kernel kernel;
+  line::LineParams lp;
+  lp.cable_length_m = 0;
+  lp.master = lp.encoder = line::TransceiverParams{Time::zero(), Time::zero(), Time::zero(), Time::zero()};
+  line::Line line(kernel, lp);
+  checker::CheckerParams params = o.checker;
+  params.driver_enables_observable = o.data_enable.has_value();
+  checker::TimingChecker checker(kernel, line, o.encoder, master::MasterParams{}, params);
+  checker::FrameDecoder log(checker::DecoderParams{
+      .position_bits = o.encoder.position_bits, .clock_to_data = o.encoder.output_delay, .t_m = o.encoder.t_m});
+  Replay replay(kernel, line, *reader, o, log, result);
+  kernel.run();
+  checker.finish();
+  log.finish();
+  result.frames = log.take_finished();
+  result.violations = checker.violations();
+  return result;
+}
+
+std::string capture_log(const CaptureCheckResult& r) {
+  std::ostringstream out;
+  for (const auto& f : r.frames) {
+    out << "#" << f.index << " " << sim::format_time(f.fe1) << " ";
+    if (!f.command) {
+      out << "mode bits " << (f.mode_bits_seen == protocol::frame_position::kModeBits ? hex(f.mode_bits, 2) : "incomplete")
+          << " (no mode command), " << f.clocks << " clocks\n";
+      continue;
+    }
+    const auto& info = protocol::info(*f.command);
+    out << info.key;
+    if (f.payload) out << " address " << hex(*f.payload >> 16, 2) << " parameter " << hex(*f.payload & 0xFFFF, 4);
+    if (f.start_bit_clock == 0) {
+      out << ": no start bit, " << f.clocks << " clocks\n";
+      continue;
+    }
+    out << ": start bit RE" << f.start_bit_clock;
+    if (!f.answer_complete) {
+      out << ", answer incomplete after " << f.clocks << " clocks\n";
+      continue;
+    }
+    using protocol::Field;
+    const auto field = [&](Field x) { return f.fields[static_cast<std::size_t>(x)]; };
+    switch (info.answer) {
+      case protocol::AnswerFormat::Position:
+        out << ", F1 " << field(Field::Error1);
+        if (info.version == protocol::EndatVersion::V2_2) out << " F2 " << field(Field::Error2);
+        out << ", position " << field(Field::Position);
+        break;
+      case protocol::AnswerFormat::TestValues: out << ", test value " << hex(field(Field::TestValue), 10); break;
+      case protocol::AnswerFormat::Parameter:
+        out << ", echo " << hex(field(Field::Address), 2) << " " << hex(field(Field::Parameter), 4);
+        break;
+    }
+    out << ", CRC " << (f.crc_ok ? "ok" : "BAD");
+    for (const auto& d : f.additional_data)
+      out << ", additional data I=" << (d.status & 0x1F) << " status " << hex(d.status, 2) << " data " << hex(d.data, 4)
+          << " CRC " << (d.crc_ok ? "ok" : "BAD");
+    if (f.supplement) out << ", supplement " << hex(*f.supplement >> 16, 2) << " " << hex(*f.supplement & 0xFFFF, 4);
+    if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";
+    out << "\n";
+  }
+  return out.str();
+}
+
+void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool verbose) {
+  out << (r.conforms() ? "PASS " : "FAIL ") << r.file << "\n";
+  out << "  " << r.changes << " level changes over " << sim::format_time(r.end) << ", resolution "
+      << sim::format_time(r.resolution) << "; frames decoded: " << r.frames.size() << " (";
+  std::size_t clean = 0;
+  for (const auto& f : r.frames) clean += f.answer_complete && f.crc_ok ? 1 : 0;
+  out << clean << " with a complete answer and a good CRC)\n";
+  out << "  judged from the wires at the encoder's connector; rows that need the master's declaration "
+         "(sampling window, t_D used, measurement frames) are not observable in a capture\n";
+  if (verbose) out << capture_log(r);
+  write_violations(out, r.violations, verbose);
+}
+
+nlohmann::json capture_json(const CaptureCheckResult& r) {
+  using nlohmann::json;
+  json frames = json::array();
+  for (const auto& f : r.frames) {
+    json j{{"index", f.index}, {"fe1_ps", f.fe1.count()}, {"clocks", f.clocks}};
+    if (f.command) j["command"] = std::string(protocol::info(*f.command).key);
+    if (f.payload) j["payload"] = *f.payload;
+    if (f.start_bit_clock != 0) j["start_bit_clock"] = f.start_bit_clock;
+    if (f.answer_complete) {
+      j["crc_ok"] = f.crc_ok;
+      j["position"] = f.fields[static_cast<std::size_t>(protocol::Field::Position)];
+      json ad = json::array();
+      for (const auto& d : f.additional_data) ad.push_back({{"status", d.status}, {"data", d.data}, {"crc_ok", d.crc_ok}});
+      j["additional_data"] = ad;
+    }
+    if (f.supplement) j["supplement"] = *f.supplement;
+    frames.push_back(j);
+  }
+  json violations = json::array();
+  for (const auto& v : r.violations) {
+    json j{{"check", v.check}, {"spec", v.spec}, {"where", std::string(line::to_string(v.where))},
+           {"time_ps", v.time.count()}, {"measured", v.measured}, {"limit", v.limit},
+           {"severity", std::string(checker::to_string(v.severity))}, {"message", v.message}, {"field", v.field}};
+    if (v.frame) j["frame"] = *v.frame;
+    if (v.clock) j["clock"] = *v.clock;
+    violations.push_back(j);
+  }
+  return {{"file", r.file},       {"resolution_ps", r.resolution.count()}, {"end_ps", r.end.count()},
+          {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
+          {"violations", violations}};
+}
+
+}  // namespace endatsim::scenarios

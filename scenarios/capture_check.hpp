@@ -1,0 +1,50 @@
+// `endatsim check`: a waveform recorded elsewhere (an HDL simulator's VCD, a logic analyzer's
+// sigrok session or CSV) judged by the same checker as a simulated run, from the wires alone.
+// The capture's CLOCK and DATA at the encoder's connector are replayed edge by edge, at their
+// recorded times, onto a line without delays; the checker finds the frames on the wires
+// (checker/frame_decoder.hpp) and judges every row that needs nothing but wires.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "checker/timing_checker.hpp"
+#include "slave/encoder.hpp"
+
+namespace endatsim::scenarios {
+
+struct CaptureCheckOptions {
+  std::string file;
+  std::string clock;                        // signal names: full path or an unambiguous suffix
+  std::string data;
+  std::optional<std::string> data_enable;   // the encoder's DATA driver enable at its pins, if recorded
+  bool enable_active_low = false;
+  // What the encoder declares (a profile or a scenario's encoder): position width, t_m, t_R,
+  // and its clock-to-data delay at the connector, in EncoderParams::output_delay.
+  slave::EncoderParams encoder;
+  checker::CheckerParams checker;
+};
+
+struct CaptureCheckResult {
+  std::string file;
+  sim::Time resolution{0};
+  sim::Time end{0};  // the last change
+  std::uint64_t changes = 0;
+  std::vector<checker::WireFrame> frames;
+  std::vector<checker::Violation> violations;
+  bool conforms() const;  // no violation of error severity
+};
+
+// Throws capture::CaptureError for unreadable or malformed captures and missing signals.
+CaptureCheckResult check_capture(const CaptureCheckOptions& options);
+
+// One line per decoded frame: time, mode command, payload, answer fields, CRC, additional data.
+std::string capture_log(const CaptureCheckResult& r);
+// The summary `endatsim check` prints.
+void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool verbose);
+nlohmann::json capture_json(const CaptureCheckResult& r);
+
+}  // namespace endatsim::scenarios
