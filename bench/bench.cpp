@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "scenarios/capture_check.hpp"
 #include "scenarios/runner.hpp"
 #include "sim/delay.hpp"
 #include "sim/kernel.hpp"
@@ -176,6 +177,37 @@ void BM_Frame_EnDat22_16MHz_10m(benchmark::State& state, bool vcd) {
 }
 BENCHMARK_CAPTURE(BM_Frame_EnDat22_16MHz_10m, no_vcd, false)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Frame_EnDat22_16MHz_10m, vcd, true)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// ---- Check: the same 0.1 s read back from its VCD and judged from the wires (endatsim check) ----
+
+void BM_Check_Capture_EnDat22_16MHz_10m(benchmark::State& state) {
+  const scenarios::Scenario scenario = frame_scenario();
+  scenarios::RunOptions options;
+  options.vcd_path = "/tmp/endatsim_bench_check_" + std::to_string(::getpid()) + ".vcd";
+  scenarios::run_scenario(scenario, options);
+  scenarios::CaptureCheckOptions o;
+  o.file = *options.vcd_path;
+  o.clock = "encoder.clock";
+  o.data = "encoder.data";
+  o.data_enable = "encoder.data_driver_enable";
+  o.encoder = scenario.encoder;
+  o.encoder.output_delay += scenario.line.encoder.receiver_delay + scenario.line.encoder.driver_delay;
+  std::size_t frames = 0;
+  for (auto _ : state) {
+    const auto r = scenarios::check_capture(o);
+    frames = r.frames.size();
+    if (!r.conforms()) {
+      state.SkipWithError("the capture of a clean run does not conform");
+      break;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::remove(*options.vcd_path, ec);
+  if (state.error_occurred()) return;
+  state.counters["frames_per_s"] =
+      benchmark::Counter(static_cast<double>(frames), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_Check_Capture_EnDat22_16MHz_10m)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
