@@ -86,6 +86,41 @@ unsigned TimingChecker::bits_of(const master::FrameResult& frame) const {
 
 std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
 
+std::string_view to_string(RowConformance::Status s) {
+  switch (s) {
+    case RowConformance::Status::Judged: return "judged";
+    case RowConformance::Status::NotApplicable: return "not applicable";
+    case RowConformance::Status::NotObservable: return "not observable";
+  }
+  return "?";
+}
+
+std::vector<RowConformance> TimingChecker::conformance() const {
+  std::vector<RowConformance> out;
+  for (const protocol::TimingRow& row : protocol::timing_rows()) {
+    RowConformance c;
+    c.check = std::string(row.check);
+    if (const auto it = judged_.find(row.check); it != judged_.end()) c.judged = it->second;
+    for (const Violation& v : violations_)
+      if (v.check == row.check) ++(v.severity == Severity::Error ? c.violations : c.warnings);
+    const bool needs_enables = row.check == check::kDriverOff || row.check == check::kDriverOn ||
+                               row.check == check::kFloatingData || row.check == check::kContention;
+    if (c.judged != 0 || c.violations + c.warnings != 0) {
+      c.status = RowConformance::Status::Judged;
+    } else if (row.evidence == protocol::Evidence::MasterDeclaration && wires_only_) {
+      c.status = RowConformance::Status::NotObservable;
+      c.reason = "needs the master's declaration (sampling instants, t_D used, measurement frames)";
+    } else if (needs_enables && !params_.driver_enables_observable) {
+      c.status = RowConformance::Status::NotObservable;
+      c.reason = "needs the DATA drivers' enables";
+    } else {
+      c.reason = "no frame or event it applies to";
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave::EncoderParams& encoder,
                              const master::MasterParams& master, const CheckerParams& params)
     : kernel_(kernel),
@@ -113,6 +148,7 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
   const auto& m = master_.measurement;
   const sim::Hertz f_e = m.f_e != 0 ? m.f_e : 8 * master_.f_c;
   const std::string spec = "2.1.2 propagation-delay measurement";
+  judge(check::kMeasurementProcedure);
   if (f_e * 10 < 72 * master_.f_c)
     report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
             std::nullopt, format_frequency(f_e), ">= " + format_frequency(8 * master_.f_c) + " - 10 %",
@@ -129,6 +165,7 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
 // HIGH for t3 = 380 .. 420 ms before the first request.
 void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
   const std::string spec = "2.3.3 power-on conditions (t1, t2, pulse > 125 ns, t3)";
+  judge(check::kPowerOn);
   const auto fail = [&](Time at, const std::string& measured, const std::string& bound, const std::string& message) {
     report({std::string(check::kPowerOn), spec, ObservationPoint::MasterPins, at, index, std::nullopt, measured,
             bound, Severity::Error, message}, "before the first frame");
@@ -169,6 +206,7 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
     t_d_stale_ = false;
     measured_ = true;
   }
+  if (frame.compensated) judge(check::kMeasurementProcedure);
   if (frame.compensated && !measured_ && !unmeasured_reported_) {
     unmeasured_reported_ = true;
     report({std::string(check::kMeasurementProcedure), "2.1.2 (measure the propagation delay, after each power interruption)",
@@ -337,6 +375,7 @@ void TimingChecker::refresh_wire_header() {
 }
 
 void TimingChecker::evaluate(const PinFrame& f) {
+  if (params_.driver_enables_observable) judge(check::kContention);
   check_pulse_widths(f);
   check_frequency(f);
   check_start_delay(f);
@@ -356,6 +395,10 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
     Time at{0};
     unsigned count = 0;
   } low, high, long_high;
+  if (!f.falling.empty()) {
+    judge(check::kPulseLow);
+    judge(check::kPulseHigh);
+  }
   for (std::size_t k = 0; k < f.rising.size() && k < f.falling.size(); ++k) {
     const Time w = f.rising[k] - f.falling[k];
     if (w < min && ++low.count && w < low.width) low = {w, static_cast<unsigned>(k + 1), f.falling[k], low.count};
@@ -385,6 +428,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   const sim::Hertz fc = fit.hertz();
   const std::int64_t tol = params_.f_c_tolerance_ppm;
   const Time at = f.rising[1];
+  judge(f.header.measurement ? check::kMeasurementClock : check::kClockFrequency);
   if (f.header.measurement) {
     if (fit.below(limit::kMeasurementFcMin, tol) || fit.above(limit::kMeasurementFcMax, tol))
       report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
@@ -392,6 +436,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
               "100 kHz .. 200 kHz", Severity::Error, "delay measured with a clock outside the prescribed range"});
     return;
   }
+  if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected) judge(check::kShortRecoveryClock);
   if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected &&
       fit.below(limit::kShortRecoveryTimeFcMin, tol))
     report({std::string(check::kShortRecoveryClock), "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
@@ -420,6 +465,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
 // position reads too) are named in the report: the latter would forbid the 2.1 continuous clock.
 void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_rise) {
   if (next.header.command_type != protocol::EndatVersion::V2_1 || next.header.payload_bits == 0) return;
+  judge(check::kTimeBetweenCycles);
   const Time gap = next.fe1 - last_rise;
   if (gap > limit::kTimeBetweenCyclesMin) return;
   report({std::string(check::kTimeBetweenCycles), "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
@@ -432,6 +478,8 @@ void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_ri
 void TimingChecker::check_recovery(const PinFrame& next) {
   if (!previous_end_) return;
   const auto [last_rise, type, index] = *previous_end_;
+  judge(check::kRecovery);
+  if (error_handling_frame_ == index) judge(check::kErrorRecovery);
   // A2: "After an error handling, the maximum t_m of 30 us must at least be waited".
   if (error_handling_frame_ == index && next.fe1 - last_rise < limit::kErrorRecoveryWait)
     report({std::string(check::kErrorRecovery), "A2 (wait the maximum t_m after an error handling)",
@@ -458,7 +506,9 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
   }
   check_master_sample(frame, clock);
   // Measurement frames are for the counter (2.1.2), taken without compensation by design.
-  if (frame.measurement || sampling_reported_ || clock == 0) return;
+  if (frame.measurement || clock == 0) return;
+  judge(check::kSamplingWindow);
+  if (sampling_reported_) return;
   // Bit slot k leaves the encoder after RE_k and reaches the master logic one round trip later.
   // Both sides of the comparison are at the master logic; removing the master's driver and
   // receiver delays from both gives the same inequality at the master's pins.
@@ -515,6 +565,7 @@ void TimingChecker::check_busy_time(const AccessEvidence& frame) {
     return;
   }
   if (!busy_since_ || !frame.ok || !frame.busy) return;
+  judge(check::kMemoryAccess);
   if (!*frame.busy) {
     busy_since_.reset();
     return;

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -48,6 +49,17 @@ struct Violation : Finding {
   std::string field;
 };
 
+// How a row fared in a run: judged (how often, how many violations), or why it was not.
+struct RowConformance {
+  std::string check;
+  enum class Status : std::uint8_t { Judged, NotApplicable, NotObservable } status = Status::NotApplicable;
+  std::uint64_t judged = 0;      // occasions the row was evaluated (frames, words, samples, accesses)
+  std::uint64_t violations = 0;  // of error severity
+  std::uint64_t warnings = 0;
+  std::string reason;            // for a row that was not judged
+};
+std::string_view to_string(RowConformance::Status s);
+
 struct CheckerParams {
   // The master's sampling flip-flop: DATA must be stable this long before and after the instant.
   Time sample_setup = sim::ps(1);
@@ -93,6 +105,8 @@ class TimingChecker final : public master::MasterObserver {
   // (frame_decoder.hpp), and only the rows that need nothing but wires were judged.
   bool judged_from_wires() const { return wires_only_; }
   const std::vector<Violation>& violations() const { return violations_; }
+  // Every row of the timing table, in its order, with how it fared (call after finish()).
+  std::vector<RowConformance> conformance() const;
 
  private:
   struct FrameHeader {
@@ -164,6 +178,8 @@ class TimingChecker final : public master::MasterObserver {
   void check_recovery(const PinFrame& next);
   void check_measurement_procedure(const master::FrameResult& frame);
   void report(Finding f, std::string_view field = {}) { violations_.push_back({std::move(f), std::string(field)}); }
+  // A row was evaluated once (whatever its verdict), for the conformance table.
+  void judge(std::string_view check) { ++judged_[std::string(check)]; }
 
   sim::Kernel& kernel_;
   line::Line& line_;
@@ -227,6 +243,7 @@ class TimingChecker final : public master::MasterObserver {
   bool mode_decided_ = false;
   bool wires_only_ = false;
   std::vector<Violation> violations_;
+  std::map<std::string, std::uint64_t, std::less<>> judged_;
 };
 
 }  // namespace endatsim::checker

@@ -139,6 +139,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   log.finish();
   result.frames = log.take_finished();
   result.violations = checker.violations();
+  result.conformance = checker.conformance();
   return result;
 }
 
@@ -198,6 +199,7 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
          "(sampling window, t_D used, measurement frames) are not observable in a capture\n";
   if (verbose) out << capture_log(r);
   write_violations(out, r.violations, verbose);
+  write_conformance(out, r.conformance);
 }
 
 nlohmann::json capture_json(const CaptureCheckResult& r) {
@@ -229,7 +231,7 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
   }
   return {{"file", r.file},       {"resolution_ps", r.resolution.count()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
-          {"violations", violations}};
+          {"violations", violations}, {"conformance", conformance_json(r.conformance)}};
 }
 
 }  // namespace endatsim::scenarios

@@ -35,6 +35,7 @@ struct CaptureCheckResult {
   std::uint64_t changes = 0;
   std::vector<checker::WireFrame> frames;
   std::vector<checker::Violation> violations;
+  std::vector<checker::RowConformance> conformance;
   bool conforms() const;  // no violation of error severity
 };
 

@@ -160,6 +160,29 @@ void write_diagnosis(std::ostream& out, const ScenarioResult& r, bool verbose) {
   if (d.notes.size() > limit) out << "    ... " << d.notes.size() - limit << " more note(s)\n";
 }
 
+void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows) {
+  out << "  conformance (row: judged / violations / warnings, or why not judged):\n";
+  for (const auto& c : rows) {
+    out << "    " << c.check << ": ";
+    if (c.status == checker::RowConformance::Status::Judged)
+      out << c.judged << " / " << c.violations << " / " << c.warnings << (c.violations == 0 ? "  ok" : "  BROKEN");
+    else
+      out << checker::to_string(c.status) << " (" << c.reason << ")";
+    out << "\n";
+  }
+}
+
+nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& c : rows) {
+    nlohmann::json j{{"check", c.check}, {"status", std::string(checker::to_string(c.status))}, {"judged", c.judged},
+                     {"violations", c.violations}, {"warnings", c.warnings}};
+    if (!c.reason.empty()) j["reason"] = c.reason;
+    out.push_back(j);
+  }
+  return out;
+}
+
 void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations, bool verbose) {
   std::map<std::string, std::vector<const checker::Violation*>> by_check;
   for (const auto& v : violations) by_check[v.check].push_back(&v);
@@ -227,6 +250,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     }
   }
   write_violations(out, r.violations, verbose);
+  if (verbose) write_conformance(out, r.conformance);
   for (const auto& e : r.expectations)
     if (verbose || !e.passed) out << "  " << (e.passed ? "ok   " : "FAIL ") << e.name << ": " << e.detail << "\n";
 }
@@ -386,6 +410,7 @@ nlohmann::json to_json(const ScenarioResult& r) {
     vs.push_back(jv);
   }
   j["violations"] = vs;
+  j["conformance"] = conformance_json(r.conformance);
   json es = json::array();
   for (const auto& e : r.expectations) es.push_back({{"name", e.name}, {"passed", e.passed}, {"detail", e.detail}});
   j["expectations"] = es;

@@ -14,6 +14,10 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose);
 // The violations grouped by check, the first three of each (all with `verbose`).
 void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations, bool verbose);
 
+// The conformance table: each row judged (how often, violations, warnings) or why not.
+void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows);
+nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows);
+
 // The stable result format (documented in the README).
 nlohmann::json to_json(const ScenarioResult& r);
 

@@ -402,6 +402,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.measurements = master.measurements();
   r.encoder_frames = encoder.frames();
   r.violations = checker.violations();
+  r.conformance = checker.conformance();
   r.cycle_overruns = master.cycle_overruns();
   r.busy_timeouts = master.busy_timeouts();
   r.startup = master.startup();

@@ -36,6 +36,7 @@ struct ScenarioResult {
   std::vector<master::DelayMeasurementResult> measurements;
   std::vector<slave::EncoderFrame> encoder_frames;
   std::vector<checker::Violation> violations;
+  std::vector<checker::RowConformance> conformance;  // every row of the timing table
   std::uint64_t cycle_overruns = 0;
   std::uint64_t busy_timeouts = 0;     // await_not_busy operations that gave up
   slave::MemoryImage encoder_memory;   // at the end of the run

@@ -134,6 +134,7 @@ TEST(CheckCommand, BadCapturesAndNamesExitTwoNamingTheFileAndTheProblem) {
   r = cli("check '" + two.string() + "' --clock encoder.clock --data encoder.data");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("frames decoded: 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("t_z: not observable (needs the DATA drivers' enables)"), std::string::npos) << r.out;
 
   r = cli("check '" + temp("missing.vcd").string() + "' --clock a --data b");
   EXPECT_EQ(r.status, 2);
@@ -154,6 +155,7 @@ TEST(CheckCommand, ADefectInACaptureExitsOneWithItsRow) {
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("violation t_st"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("measured 900 ns, limit >= 1 us"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("    t_st: 16 / 16 / 0  BROKEN"), std::string::npos) << r.out;  // the 16 MHz frames
 }
 
 }  // namespace

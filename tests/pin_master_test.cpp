@@ -83,6 +83,10 @@ constexpr std::uint8_t k21SendParameter = 0b001110;  // "Encoder send parameters
 
 struct Run {
   std::vector<checker::Violation> violations;
+  std::vector<checker::RowConformance> conformance;
+  const checker::RowConformance& row(std::string_view check) const {
+    return *std::find_if(conformance.begin(), conformance.end(), [&](const auto& c) { return c.check == check; });
+  }
   bool from_wires = false;
   std::size_t count(std::string_view check) const {
     return static_cast<std::size_t>(std::count_if(violations.begin(), violations.end(),
@@ -106,7 +110,7 @@ Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, 
   PinMaster m(k, line, frames);
   k.run(until);
   checker.finish();
-  return {checker.violations(), checker.judged_from_wires()};
+  return {checker.violations(), checker.conformance(), checker.judged_from_wires()};
 }
 
 slave::EncoderParams quick_encoder() {
@@ -134,6 +138,23 @@ TEST(PinMaster, ACleanMasterDrawsNoViolationAndIsJudgedFromTheWires) {
   const auto r = run(position_reads_21(5, us(100)), quick_encoder());
   EXPECT_TRUE(r.from_wires);
   EXPECT_TRUE(r.violations.empty()) << r.list();
+}
+
+// The conformance table: every row of the timing table, judged (how often) or why not.
+TEST(PinMaster, TheConformanceTableSaysWhatWasJudgedAndWhatCouldNotBe) {
+  using S = checker::RowConformance::Status;
+  const auto r = run(position_reads_21(5, us(100)), quick_encoder());
+  EXPECT_EQ(r.conformance.size(), protocol::timing_rows().size());
+  EXPECT_EQ(r.row(checker::check::kClockFrequency).status, S::Judged);
+  EXPECT_EQ(r.row(checker::check::kClockFrequency).judged, 5U);
+  EXPECT_EQ(r.row(checker::check::kClockFrequency).violations, 0U);
+  EXPECT_EQ(r.row(checker::check::kRecovery).judged, 4U);  // between five frames
+  EXPECT_EQ(r.row(checker::check::kSamplingWindow).status, S::NotObservable);
+  EXPECT_EQ(r.row(checker::check::kTimeBetweenCycles).status, S::NotApplicable);  // no 2.1 parameter frame
+  const auto broken = run(position_reads_22(3, us(100), MHz(16), ns(400)), quick_encoder(), 10);
+  EXPECT_EQ(broken.row(checker::check::kStartDelay).judged, 3U);
+  EXPECT_EQ(broken.row(checker::check::kStartDelay).violations, 3U);
+  EXPECT_EQ(broken.row(checker::check::kClockFrequency).warnings, 3U);
 }
 
 TEST(PinMaster, ACleanSixteenMegahertzMasterWithOneMicrosecondTstIsClean) {
