@@ -5,6 +5,7 @@
 // The body is streamed token by token.
 #include <array>
 #include <charconv>
+#include <climits>
 #include <fstream>
 #include <map>
 #include <sys/stat.h>
@@ -202,6 +203,9 @@ class VcdReader final : public Reader {
         fail("variable '" + name + "': bad bit range '" + range + "'");
       }
     }
+    const long span = static_cast<long>(width) - 1;
+    if (msb >= lsb ? msb < LONG_MIN + span : msb > LONG_MAX - span)
+      fail("variable '" + name + "': bit range '" + range + "' leaves no room for its " + std::to_string(width) + " bits");
     if (width == 1) {
       signals_.push_back(range.empty() ? full : full + range);
     } else {

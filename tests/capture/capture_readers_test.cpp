@@ -632,6 +632,43 @@ TEST_F(CaptureReaders, BadCsvIsRefusedWithTheLine) {
   }
 }
 
+// --- Inputs found by fuzzing (fuzz/fuzz_capture.cpp) ----------------------------------------
+
+// The name of each signal, or the CaptureError reading the VCD to the end gave.
+std::string vcd_signals_or_error(const std::string& path) {
+  try {
+    auto reader = capture::open_vcd(path);
+    Change c;
+    while (reader->next(c)) {
+    }
+    std::string names;
+    for (const auto& n : reader->signals()) names += (names.empty() ? "" : " ") + n;
+    return names;
+  } catch (const CaptureError& e) {
+    return e.what();
+  }
+}
+
+TEST_F(CaptureReaders, VcdBitRangePastTheIndexRangeIsRefused) {
+  const auto vcd = [&](const std::string& width, const std::string& range) {
+    return write("range.vcd", "$timescale 1 ns $end\n$var wire " + width + " ! v " + range +
+                                  " $end\n$enddefinitions $end\n#0\nb" + std::string(std::stoul(width), '1') + " !\n");
+  };
+  EXPECT_EQ(vcd_signals_or_error(vcd("2", "[9223372036854775806:9223372036854775807]")),
+            "v[9223372036854775806] v[9223372036854775807]");
+  EXPECT_EQ(vcd_signals_or_error(vcd("2", "[-9223372036854775807:-9223372036854775808]")),
+            "v[-9223372036854775807] v[-9223372036854775808]");
+  for (const auto& [width, range] : std::vector<std::pair<std::string, std::string>>{
+           {"2", "[-9223372036854775808]"},
+           {"4", "[9223372036854775806:9223372036854775807]"},
+           {"3", "[-9223372036854775807:-9223372036854775808]"}}) {
+    const std::string path = vcd(width, range);
+    SCOPED_TRACE(range);
+    expect_mentions(vcd_signals_or_error(path),
+                    {path + ": line ", "variable 'v'", "bit range '" + range + "'", "no room for its " + width + " bits"});
+  }
+}
+
 // --- Signal names --------------------------------------------------------------------------
 
 TEST_F(CaptureReaders, FindSignalNamesTheCandidates) {
