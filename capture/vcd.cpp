@@ -240,7 +240,7 @@ class VcdReader final : public Reader {
         std::int64_t units = 0;
         const auto [p, ec] = std::from_chars(t.data() + 1, t.data() + t.size(), units);
         if (ec != std::errc() || p != t.data() + t.size() || units < 0) fail("bad timestamp '" + t.substr(0, 40) + "'");
-        if (units > INT64_MAX / scale_num_) fail("timestamp '" + t.substr(0, 40) + "' beyond the picosecond range");
+        if (units > (INT64_MAX - 500) / scale_num_) fail("timestamp '" + t.substr(0, 40) + "' beyond the picosecond range");
         const Time at{(units * scale_num_ + 500) / 1000};
         if (at < now_) fail("time goes backwards (" + t.substr(0, 40) + ")");
         now_ = at;

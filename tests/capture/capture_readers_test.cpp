@@ -669,6 +669,23 @@ TEST_F(CaptureReaders, VcdBitRangePastTheIndexRangeIsRefused) {
   }
 }
 
+TEST_F(CaptureReaders, VcdTimestampAtTheEndOfThePicosecondRange) {
+  const auto vcd = [&](const std::string& stamp) {
+    return write("late.vcd", "$timescale 1 fs $end\n$var wire 1 ! a $end\n$enddefinitions $end\n#0\n0!\n" + stamp +
+                                 "\n1!\n");
+  };
+  auto reader = capture::open_vcd(vcd("#9223372036854775307"));
+  Change c;
+  ASSERT_TRUE(reader->next(c));
+  ASSERT_TRUE(reader->next(c));
+  EXPECT_EQ(c.time, Time{INT64_MAX / 1000});
+  EXPECT_EQ(c.value, '1');
+  for (const std::string stamp : {"#9223372036854775308", "#9223372036854775807"}) {
+    const std::string path = vcd(stamp);
+    expect_mentions(vcd_signals_or_error(path), {path + ": line ", "timestamp '" + stamp + "' beyond the picosecond range"});
+  }
+}
+
 // --- Signal names --------------------------------------------------------------------------
 
 TEST_F(CaptureReaders, FindSignalNamesTheCandidates) {
