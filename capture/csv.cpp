@@ -102,6 +102,7 @@ bool parse_seconds(const std::string& s, std::int64_t& ps) {
     ++i;
     const bool exp_negative = i < s.size() && s[i] == '-';
     if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    if (i == s.size() || s[i] < '0' || s[i] > '9') return false;  // one sign only
     const auto [p, ec] = std::from_chars(s.data() + i, s.data() + s.size(), exponent);
     if (ec != std::errc() || p == s.data() + i || exponent > 100) return false;
     i = static_cast<std::size_t>(p - s.data());

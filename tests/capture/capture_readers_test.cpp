@@ -686,6 +686,21 @@ TEST_F(CaptureReaders, VcdTimestampAtTheEndOfThePicosecondRange) {
   }
 }
 
+TEST_F(CaptureReaders, SaleaeTimeWithTwoExponentSignsIsRefused) {
+  for (const std::string time : {"1e--5", "1e+-5", "1e-+5", "0.0000000000001e+-2147483648", "1e--2147483648", "1e-"}) {
+    const std::string csv = write("signs.csv", "Time [s],a\n0,0\n" + time + ",1\n");
+    SCOPED_TRACE(time);
+    expect_mentions(error_of([&] { read_to_end(csv); }),
+                    {csv + ": line 3: ", "time '" + time + "' is not a decimal number of seconds"});
+  }
+  const std::string csv = write("one_sign.csv", "Time [s],a\n0,0\n1.5e-6,1\n25E+0,0\n");
+  auto reader = capture::open_csv(csv);
+  Change c;
+  std::vector<std::int64_t> times;
+  while (reader->next(c)) times.push_back(c.time.count());
+  EXPECT_EQ(times, (std::vector<std::int64_t>{0, 1'500'000, 25'000'000'000'000}));
+}
+
 // --- Signal names --------------------------------------------------------------------------
 
 TEST_F(CaptureReaders, FindSignalNamesTheCandidates) {
