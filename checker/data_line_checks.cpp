@@ -306,7 +306,7 @@ void TimingChecker::on_master_driven(std::uint64_t driven) {
 // The encoder takes the mode bits on RE3..RE8 (2.3); DATA must be driven at its pins then.
 void TimingChecker::check_encoder_sample(unsigned clock) {
   if (clock < position::kFirstModeBit || clock > position::kLastModeBit) return;
-  if (params_.driver_enables_observable) judge(check::kFloatingData);
+  if (params_.driver_enables_observable && clock == position::kFirstModeBit) judge(check::kFloatingData);
   if (floating_reported_) return;
   if (line_.pins(ObservationPoint::EncoderPins).data_driven.read()) return;
   floating_reported_ = true;
@@ -317,7 +317,6 @@ void TimingChecker::check_encoder_sample(unsigned clock) {
 
 // The master's receiver output at its sampling instant shows its pins one receiver delay earlier.
 void TimingChecker::check_master_sample(const master::FrameResult& frame, unsigned clock) {
-  judge(check::kFloatingData);
   if (floating_reported_) return;
   const Time at_pins = kernel_.now() - line_.params().master.receiver_delay;
   bool driven = master_driven_.empty() || master_driven_.front().second;

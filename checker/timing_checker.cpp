@@ -95,12 +95,21 @@ std::string_view to_string(RowConformance::Status s) {
   return "?";
 }
 
+void TimingChecker::judge(std::string_view check) {
+  const auto rows = protocol::timing_rows();
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (rows[i].check == check) {
+      ++judged_[i];
+      return;
+    }
+}
+
 std::vector<RowConformance> TimingChecker::conformance() const {
   std::vector<RowConformance> out;
   for (const protocol::TimingRow& row : protocol::timing_rows()) {
     RowConformance c;
     c.check = std::string(row.check);
-    if (const auto it = judged_.find(row.check); it != judged_.end()) c.judged = it->second;
+    c.judged = judged_[out.size()];
     for (const Violation& v : violations_)
       if (v.check == row.check) ++(v.severity == Severity::Error ? c.violations : c.warnings);
     const bool needs_enables = row.check == check::kDriverOff || row.check == check::kDriverOn ||
@@ -132,7 +141,8 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave:
           .position_bits = encoder.position_bits,
           .clock_to_data = line.params().encoder.receiver_delay + encoder.output_delay + line.params().encoder.driver_delay,
           .t_m = encoder.short_t_m_selected && encoder.t_m_short ? std::min(encoder.t_m, *encoder.t_m_short) : encoder.t_m,
-      }) {
+      }),
+      judged_(protocol::timing_rows().size(), 0) {
   line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
   auto encoder_pins = line.pins(ObservationPoint::EncoderPins);
   encoder_pins.clock.on_change(sim::bind<&TimingChecker::on_encoder_clock>(this));
@@ -507,7 +517,11 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
   check_master_sample(frame, clock);
   // Measurement frames are for the counter (2.1.2), taken without compensation by design.
   if (frame.measurement || clock == 0) return;
-  judge(check::kSamplingWindow);
+  if (sample_judged_frame_ != frame.index) {  // once per frame or continuous-clock word
+    sample_judged_frame_ = frame.index;
+    judge(check::kSamplingWindow);
+    judge(check::kFloatingData);
+  }
   if (sampling_reported_) return;
   // Bit slot k leaves the encoder after RE_k and reaches the master logic one round trip later.
   // Both sides of the comparison are at the master logic; removing the master's driver and

@@ -2,7 +2,6 @@
 
 #include <cstdint>
 #include <deque>
-#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -179,7 +178,8 @@ class TimingChecker final : public master::MasterObserver {
   void check_measurement_procedure(const master::FrameResult& frame);
   void report(Finding f, std::string_view field = {}) { violations_.push_back({std::move(f), std::string(field)}); }
   // A row was evaluated once (whatever its verdict), for the conformance table.
-  void judge(std::string_view check) { ++judged_[std::string(check)]; }
+  // Rows that are evaluated per sample count once per frame (word).
+  void judge(std::string_view check);
 
   sim::Kernel& kernel_;
   line::Line& line_;
@@ -243,7 +243,8 @@ class TimingChecker final : public master::MasterObserver {
   bool mode_decided_ = false;
   bool wires_only_ = false;
   std::vector<Violation> violations_;
-  std::map<std::string, std::uint64_t, std::less<>> judged_;
+  std::vector<std::uint64_t> judged_;  // per row of protocol::timing_rows()
+  std::uint64_t sample_judged_frame_ = UINT64_MAX;
 };
 
 }  // namespace endatsim::checker
