@@ -8,10 +8,13 @@
 //                        a zip here (so that mutations reach the metadata and the samples rather
 //                        than fail the zip's checksums)
 // The readers take a path: the bytes go to a file in a directory private to the process (mkdtemp,
-// mode 0700), named by mkstemps. Every signal is selected and next() drained (at most 1e6
+// mode 0700, under $TMPDIR or /tmp), named by mkstemps, and removed at exit and when a bug is
+// reported (not when libFuzzer ends a run for a timeout or too much memory; fuzz/run points
+// TMPDIR at its scratch directory). Every signal is selected and next() drained (at most 1e6
 // changes), and find_signal is asked for a name taken from the input and for one of the signals.
 // Only a CaptureError that names the file may come out; anything else (another exception, a
 // crash, UB, a leak, a hang, a broken promise of the interface) is a bug.
+#include <sanitizer/common_interface_defs.h>
 #include <unistd.h>
 #include <zip.h>
 
@@ -37,15 +40,19 @@ constexpr int kVcd = 1, kCsv = 2, kSigrok = 3;
 constexpr int kFormat = ENDATSIM_FUZZ_CAPTURE;
 constexpr std::uint64_t kMaxChanges = 1'000'000;
 
-[[noreturn]] void bug(const std::string& what) {
-  std::fprintf(stderr, "fuzz_capture: %s\n", what.c_str());
-  std::abort();
+std::string private_dir;
+std::string current_file;  // the input's file while it is read
+
+// At exit, and when a sanitizer or this target reports a bug: the file and the directory go.
+void remove_private_dir() {
+  if (!current_file.empty()) ::unlink(current_file.c_str());
+  if (!private_dir.empty()) ::rmdir(private_dir.c_str());
 }
 
-std::string private_dir;
-
-void remove_private_dir() {
-  if (!private_dir.empty()) ::rmdir(private_dir.c_str());
+[[noreturn]] void bug(const std::string& what) {
+  std::fprintf(stderr, "fuzz_capture: %s\n", what.c_str());
+  remove_private_dir();
+  std::abort();
 }
 
 const std::string& dir() {
@@ -55,6 +62,7 @@ const std::string& dir() {
     if (::mkdtemp(pattern.data()) == nullptr) bug("mkdtemp failed: " + std::string(std::strerror(errno)));
     private_dir = pattern;
     std::atexit(remove_private_dir);
+    __sanitizer_set_death_callback(remove_private_dir);
   }
   return private_dir;
 }
@@ -161,6 +169,7 @@ void read_capture(const std::string& path, const std::uint8_t* data, std::size_t
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   int fd = -1;
   const std::string path = new_file(fd);
+  current_file = path;
   const bool raw = kFormat != kSigrok || (size >= 4 && std::memcmp(data, "PK\3\4", 4) == 0);
   if (raw) write_all(fd, data, size);
   ::close(fd);
@@ -172,5 +181,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   ::unlink(path.c_str());
+  current_file.clear();
   return 0;
 }
