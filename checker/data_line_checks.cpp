@@ -50,7 +50,7 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
   const auto clock = static_cast<unsigned>(current_.falling.size());
   if (enabled == 0 && !released_) {
     released_ = true;
-    judge(check::kDriverOff);
+    judge(protocol::check::row_index(check::kDriverOff));
     const Time t_z = now - current_.fe1;
     if (t_z > period)
       report({std::string(check::kDriverOff), "2.3.2 t_z (clock low to data inactive)", ObservationPoint::EncoderPins,
@@ -58,7 +58,7 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
               "the encoder released DATA too late after FE1: the master drives from FE2"}, "FE1 release");
   } else if (enabled != 0 && released_ && !driving_) {
     driving_ = true;
-    judge(check::kDriverOn);
+    judge(protocol::check::row_index(check::kDriverOn));
     const unsigned turnaround = position::kTurnaround + current_.header.payload_bits;
     if (current_.falling.size() < turnaround) {
       report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
@@ -138,7 +138,7 @@ void TimingChecker::start_bit_from_decoder(unsigned clock) {
 // t_cal ends no later than the rising edge that carried the start bit (the encoder answers on the
 // first rising edge after its calculation), so that edge must come within t_cal max of FE1.
 void TimingChecker::check_calculation_time_maximum() {
-  judge(check::kCalculationTime);
+  judge(protocol::check::row_index(check::kCalculationTime));
   const Time t_cal = current_.rising[start_clock_ - 1] - current_.fe1;
   const Time bound = limit::kCalculationTimeMax + sim::period_of(current_.header.f_c);
   if (t_cal > bound)
@@ -160,7 +160,7 @@ void TimingChecker::next_word_start_bit(unsigned clock) {
   ++word_;
   word_start_clock_ = clock;
   note_start_bit_for_t_d();
-  judge(check::kCalculationTime);
+  judge(protocol::check::row_index(check::kCalculationTime));
   const unsigned low_bits = clock - low_clock_;
   if (low_bits <= limit::kContinuousClockMaxLowBits) return;
   report({std::string(check::kCalculationTime),
@@ -188,7 +188,7 @@ void TimingChecker::check_calculation_time_minimum() {
 void TimingChecker::check_memory_access_time() {
   const unsigned last_payload = position::kTurnaround - 1 + current_.header.payload_bits;
   if (start_clock_ <= last_payload) return;
-  judge(check::kMemoryAccess);
+  judge(protocol::check::row_index(check::kMemoryAccess));
   const Time t_ac = current_.rising[start_clock_ - 1] - current_.rising[last_payload - 1];
   const Time bound = limit::kMemoryAccessMax + sim::period_of(current_.header.f_c);
   if (t_ac > bound)
@@ -237,7 +237,7 @@ void TimingChecker::on_master_data(std::uint64_t level) {
 // t_D (2.3.2, 2.1.2): from the rising clock edge that carried the start bit to the start bit's
 // edge, both at the master logic; at most 0.2 us + 0.01 us/m x cable length.
 void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
-  judge(check::kDataDelay);
+  judge(protocol::check::row_index(check::kDataDelay));
   const Time bound = limit::data_delay_max(line_.params().cable_length_m);
   if (t_d > bound)
     report({std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,
@@ -249,7 +249,7 @@ void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
 // a compensating master uses may differ from the real one by at most a tenth of the period.
 void TimingChecker::check_delay_tolerance(const StartBitInFlight& start, Time t_d) {
   if (!start.compensated || wires_only_) return;  // the t_D a master uses is not on the wires
-  judge(check::kDataDelayTolerance);
+  judge(protocol::check::row_index(check::kDataDelayTolerance));
   const Time error = start.t_d_used > t_d ? start.t_d_used - t_d : t_d - start.t_d_used;
   const Time tenth = start.period * limit::kDataDelayTolerancePercent / 100;
   if (error > tenth)
@@ -284,7 +284,7 @@ Time required_start_delay(sim::Hertz f_c, double cable_m, bool reduced_for_cable
 
 void TimingChecker::check_start_delay(const PinFrame& f) {
   if (!f.header.compensated || f.rising.empty()) return;
-  judge(check::kStartDelay);
+  judge(protocol::check::row_index(check::kStartDelay));
   const Time t_st = f.rising.front() - f.fe1;
   const bool reduced = params_.t_st_reduced_for_cable;
   const Time required = required_start_delay(f.header.f_c, line_.params().cable_length_m, reduced);
@@ -306,7 +306,7 @@ void TimingChecker::on_master_driven(std::uint64_t driven) {
 // The encoder takes the mode bits on RE3..RE8 (2.3); DATA must be driven at its pins then.
 void TimingChecker::check_encoder_sample(unsigned clock) {
   if (clock < position::kFirstModeBit || clock > position::kLastModeBit) return;
-  if (params_.driver_enables_observable && clock == position::kFirstModeBit) judge(check::kFloatingData);
+  if (params_.driver_enables_observable && clock == position::kFirstModeBit) judge(protocol::check::row_index(check::kFloatingData));
   if (floating_reported_) return;
   if (line_.pins(ObservationPoint::EncoderPins).data_driven.read()) return;
   floating_reported_ = true;
@@ -337,7 +337,7 @@ void TimingChecker::check_master_sample(const master::FrameResult& frame, unsign
 // parameter frame an error (2.4.1). A 2.2 command supplement runs on after the answer.
 void TimingChecker::check_clock_count(const PinFrame& f) {
   if (start_clock_ == 0) return;  // no start bit: nothing to count against
-  judge(check::kClockCount);
+  judge(protocol::check::row_index(check::kClockCount));
   const bool v22 = f.header.command_type == protocol::EndatVersion::V2_2;
   const bool parameter_frame = f.header.payload_bits != 0;
   const unsigned last_bit = start_clock_ + f.header.answer_bits - 1;

@@ -62,14 +62,7 @@ FittedFrequency fit_frequency(const std::vector<Time>& rising) {
 
 }  // namespace
 
-std::span<const std::string_view> check::all() {
-  static const std::vector<std::string_view> names = [] {
-    std::vector<std::string_view> v;
-    for (const protocol::TimingRow& row : protocol::timing_rows()) v.push_back(row.check);
-    return v;
-  }();
-  return names;
-}
+std::span<const std::string_view> check::all() { return protocol::check::kAll; }
 
 // The field of bit slot `clock` as the master counts the frame.
 std::string TimingChecker::field_of(const master::FrameResult& frame, unsigned clock) const {
@@ -93,15 +86,6 @@ std::string_view to_string(RowConformance::Status s) {
     case RowConformance::Status::NotObservable: return "not observable";
   }
   return "?";
-}
-
-void TimingChecker::judge(std::string_view check) {
-  const auto rows = protocol::timing_rows();
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    if (rows[i].check == check) {
-      ++judged_[i];
-      return;
-    }
 }
 
 std::vector<RowConformance> TimingChecker::conformance() const {
@@ -158,7 +142,7 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
   const auto& m = master_.measurement;
   const sim::Hertz f_e = m.f_e != 0 ? m.f_e : 8 * master_.f_c;
   const std::string spec = "2.1.2 propagation-delay measurement";
-  judge(check::kMeasurementProcedure);
+  judge(protocol::check::row_index(check::kMeasurementProcedure));
   if (f_e * 10 < 72 * master_.f_c)
     report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
             std::nullopt, format_frequency(f_e), ">= " + format_frequency(8 * master_.f_c) + " - 10 %",
@@ -175,7 +159,7 @@ void TimingChecker::check_measurement_procedure(const master::FrameResult& frame
 // HIGH for t3 = 380 .. 420 ms before the first request.
 void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
   const std::string spec = "2.3.3 power-on conditions (t1, t2, pulse > 125 ns, t3)";
-  judge(check::kPowerOn);
+  judge(protocol::check::row_index(check::kPowerOn));
   const auto fail = [&](Time at, const std::string& measured, const std::string& bound, const std::string& message) {
     report({std::string(check::kPowerOn), spec, ObservationPoint::MasterPins, at, index, std::nullopt, measured,
             bound, Severity::Error, message}, "before the first frame");
@@ -216,7 +200,7 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
     t_d_stale_ = false;
     measured_ = true;
   }
-  if (frame.compensated) judge(check::kMeasurementProcedure);
+  if (frame.compensated) judge(protocol::check::row_index(check::kMeasurementProcedure));
   if (frame.compensated && !measured_ && !unmeasured_reported_) {
     unmeasured_reported_ = true;
     report({std::string(check::kMeasurementProcedure), "2.1.2 (measure the propagation delay, after each power interruption)",
@@ -385,7 +369,7 @@ void TimingChecker::refresh_wire_header() {
 }
 
 void TimingChecker::evaluate(const PinFrame& f) {
-  if (params_.driver_enables_observable) judge(check::kContention);
+  if (params_.driver_enables_observable) judge(protocol::check::row_index(check::kContention));
   check_pulse_widths(f);
   check_frequency(f);
   check_start_delay(f);
@@ -406,8 +390,8 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
     unsigned count = 0;
   } low, high, long_high;
   if (!f.falling.empty()) {
-    judge(check::kPulseLow);
-    judge(check::kPulseHigh);
+    judge(protocol::check::row_index(check::kPulseLow));
+    judge(protocol::check::row_index(check::kPulseHigh));
   }
   for (std::size_t k = 0; k < f.rising.size() && k < f.falling.size(); ++k) {
     const Time w = f.rising[k] - f.falling[k];
@@ -438,7 +422,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   const sim::Hertz fc = fit.hertz();
   const std::int64_t tol = params_.f_c_tolerance_ppm;
   const Time at = f.rising[1];
-  judge(f.header.measurement ? check::kMeasurementClock : check::kClockFrequency);
+  judge(f.header.measurement ? protocol::check::row_index(check::kMeasurementClock) : protocol::check::row_index(check::kClockFrequency));
   if (f.header.measurement) {
     if (fit.below(limit::kMeasurementFcMin, tol) || fit.above(limit::kMeasurementFcMax, tol))
       report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
@@ -446,7 +430,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
               "100 kHz .. 200 kHz", Severity::Error, "delay measured with a clock outside the prescribed range"});
     return;
   }
-  if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected) judge(check::kShortRecoveryClock);
+  if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected) judge(protocol::check::row_index(check::kShortRecoveryClock));
   if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected &&
       fit.below(limit::kShortRecoveryTimeFcMin, tol))
     report({std::string(check::kShortRecoveryClock), "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
@@ -475,7 +459,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
 // position reads too) are named in the report: the latter would forbid the 2.1 continuous clock.
 void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_rise) {
   if (next.header.command_type != protocol::EndatVersion::V2_1 || next.header.payload_bits == 0) return;
-  judge(check::kTimeBetweenCycles);
+  judge(protocol::check::row_index(check::kTimeBetweenCycles));
   const Time gap = next.fe1 - last_rise;
   if (gap > limit::kTimeBetweenCyclesMin) return;
   report({std::string(check::kTimeBetweenCycles), "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
@@ -488,8 +472,8 @@ void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_ri
 void TimingChecker::check_recovery(const PinFrame& next) {
   if (!previous_end_) return;
   const auto [last_rise, type, index] = *previous_end_;
-  judge(check::kRecovery);
-  if (error_handling_frame_ == index) judge(check::kErrorRecovery);
+  judge(protocol::check::row_index(check::kRecovery));
+  if (error_handling_frame_ == index) judge(protocol::check::row_index(check::kErrorRecovery));
   // A2: "After an error handling, the maximum t_m of 30 us must at least be waited".
   if (error_handling_frame_ == index && next.fe1 - last_rise < limit::kErrorRecoveryWait)
     report({std::string(check::kErrorRecovery), "A2 (wait the maximum t_m after an error handling)",
@@ -519,8 +503,8 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
   if (frame.measurement || clock == 0) return;
   if (sample_judged_frame_ != frame.index) {  // once per frame or continuous-clock word
     sample_judged_frame_ = frame.index;
-    judge(check::kSamplingWindow);
-    judge(check::kFloatingData);
+    judge(protocol::check::row_index(check::kSamplingWindow));
+    judge(protocol::check::row_index(check::kFloatingData));
   }
   if (sampling_reported_) return;
   // Bit slot k leaves the encoder after RE_k and reaches the master logic one round trip later.
@@ -579,7 +563,7 @@ void TimingChecker::check_busy_time(const AccessEvidence& frame) {
     return;
   }
   if (!busy_since_ || !frame.ok || !frame.busy) return;
-  judge(check::kMemoryAccess);
+  judge(protocol::check::row_index(check::kMemoryAccess));
   if (!*frame.busy) {
     busy_since_.reset();
     return;

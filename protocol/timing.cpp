@@ -96,6 +96,14 @@ constexpr std::array kRows{
               "CLOCK from switching on to the first frame", "master pins", E::Wires},
 };
 
+constexpr bool rows_in_check_order() {
+  if (kRows.size() != check::kAll.size()) return false;
+  for (std::size_t i = 0; i < kRows.size(); ++i)
+    if (kRows[i].check != check::kAll[i]) return false;
+  return true;
+}
+static_assert(rows_in_check_order(), "check::kAll lists the rows' check names in the table's order");
+
 std::string cell(std::string_view s) { return s.empty() ? std::string("-") : std::string(s); }
 
 }  // namespace

@@ -9,6 +9,7 @@
 // the spec's figures count them: FEk is the k-th falling edge, REk the k-th rising edge.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -125,6 +126,19 @@ inline constexpr std::string_view kClockCount = "clock_count";
 inline constexpr std::string_view kMemoryAccess = "t_ac";
 inline constexpr std::string_view kPowerOn = "power_on";
 inline constexpr std::string_view kTimeBetweenCycles = "t_b";
+// Every check name in the order of timing_rows() (timing.cpp asserts the two agree).
+inline constexpr std::array kAll{kClockFrequency,  kCalculationTime,    kMemoryAccess,         kRecovery,
+                                 kShortRecoveryClock, kDataDelay,       kStartDelay,           kPulseHigh,
+                                 kPulseLow,        kDriverOff,          kDriverOn,             kTimeBetweenCycles,
+                                 kMeasurementClock, kMeasurementProcedure, kDataDelayTolerance, kSamplingWindow,
+                                 kClockCount,      kFloatingData,       kContention,           kErrorRecovery,
+                                 kPowerOn};
+// The row of a check name, at compile time.
+consteval std::size_t row_index(std::string_view name) {
+  for (std::size_t i = 0; i < kAll.size(); ++i)
+    if (kAll[i] == name) return i;
+  throw "not a check name";
+}
 }  // namespace check
 
 // What a row needs to be judged: the wires alone, or also what the master declares about
