@@ -30,6 +30,7 @@ std::string_view trim(std::string_view s) {
 template <std::size_t N>
 std::int64_t parse_quantity(std::string_view text, const std::array<Unit, N>& units,
                             std::string_view what) {
+  constexpr int kMaxFractionDigits = 20;
   const std::string expected = std::string("a ") + std::string(what) + " such as \"" +
                                (what == "duration" ? "2.5 us" : "2 MHz") + "\"";
   std::string_view s = trim(text);
@@ -43,8 +44,10 @@ std::int64_t parse_quantity(std::string_view text, const std::array<Unit, N>& un
     if (std::isdigit(static_cast<unsigned char>(c))) {
       digits = true;
       mantissa = mantissa * 10 + (c - '0');
-      if (point) ++fraction_digits;
-      if (mantissa > Wide{1} << 100) throw std::invalid_argument("expected " + expected + ", got a number too large");
+      if (point && ++fraction_digits > kMaxFractionDigits)
+        throw std::invalid_argument("expected " + expected + ", got more than " + std::to_string(kMaxFractionDigits) +
+                                    " digits after the decimal point");
+      if (mantissa > Wide{1} << 86) throw std::invalid_argument("expected " + expected + ", got a number too large");
     } else if (c == '.' && !point) {
       point = true;
     } else {
@@ -55,6 +58,8 @@ std::int64_t parse_quantity(std::string_view text, const std::array<Unit, N>& un
   const std::string_view unit = trim(s.substr(i));
   for (const Unit& u : units) {
     if (u.name != unit) continue;
+    // mantissa <= 2^86 and scale <= 10^12 < 2^40: the product fits the 127 bits of Wide; the
+    // divisor is at most 10^20.
     Wide value = mantissa * u.scale;
     Wide divisor = 1;
     for (int d = 0; d < fraction_digits; ++d) divisor *= 10;

@@ -40,3 +40,20 @@ TEST(TimePeriod, RoundsToThePicosecond) {
   EXPECT_EQ(period_of(MHz(128)), ps(7813));  // 7812.5 rounds up
   EXPECT_EQ(frequency_of(ps(62500)), MHz(16));
 }
+
+// A number the 128-bit arithmetic cannot hold is refused, never wrapped: a huge mantissa times
+// the unit's scale, and a long fraction's divisor (reachable from a capture's samplerate).
+TEST(TimeParse, RefusesNumbersBeyondTheArithmeticInsteadOfWrapping) {
+  EXPECT_THROW(parse_frequency("1000000000000000000000000000000 GHz"), std::invalid_argument);
+  EXPECT_THROW(parse_duration("775503514212818758233030730337 s"), std::invalid_argument);
+  EXPECT_THROW(parse_frequency("0.00000000000000000000000000000000000000001 MHz"), std::invalid_argument);
+  try {
+    parse_duration("1.000000000000000000001 us");
+    FAIL() << "21 fraction digits were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 20 digits after the decimal point"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(parse_duration("1.00000000000000000000 us"), us(1));  // 20 digits are fine
+  EXPECT_EQ(parse_duration("4611686 s"), Time{4'611'686'000'000'000'000});  // below INT64_MAX / 2 ps
+  EXPECT_THROW(parse_duration("4611687 s"), std::invalid_argument);
+}
