@@ -548,8 +548,47 @@ void TimingChecker::on_frame_end(const master::FrameResult& frame) {
 // 2.3.2 t_ac maximum 12 ms with EnDat 2.2 commands: the access runs after the command supplement
 // and additional data 1 shows Busy until it is done (2.5.1, 2.6.1). A frame that begins more than
 // 12 ms + T after the supplement and still shows Busy = 1 is reported, once per access.
+// 2.5.1, 2.6.1: while the encoder processes a 2.2 memory access, "no further write access, read
+// access or reset, also not after type 2.1 mode commands, must be performed"; the master must
+// query additional data 1 between the commands until Busy = 0. The answer of a frame comes
+// before its own supplement, so its Busy bit speaks for the accesses before it. An encoder
+// ignores such a 2.2 access silently (2.3.1 note 1), so it is reported here.
+void TimingChecker::check_access_while_busy(const AccessEvidence& frame) {
+  using MC = protocol::ModeCommand;
+  if (frame.ok && frame.busy && !*frame.busy) awaiting_not_busy_.reset();
+  const auto& info = protocol::info(frame.command);
+  const bool access_21 = info.version == protocol::EndatVersion::V2_1 &&
+                         (frame.command == MC::SelectionOfMemoryArea || frame.command == MC::EncoderReceiveParameters ||
+                          frame.command == MC::EncoderSendParameters || frame.command == MC::EncoderReceiveReset);
+  bool access_22 = false;
+  if (frame.supplement) {
+    const auto mrs = static_cast<std::uint8_t>(*frame.supplement >> 16);
+    access_22 = frame.command == MC::EncoderSendPositionValuesAndReceiveParameter ||
+                frame.command == MC::EncoderSendPositionValuesAndSendParameter ||
+                (frame.command == MC::EncoderSendPositionValuesAndSelectionOfMemoryArea &&
+                 !protocol::selects_additional_data(mrs));
+  }
+  if (!access_21 && !access_22) return;
+  if (awaiting_not_busy_) {
+    judge(protocol::check::row_index(check::kAccessWhileBusy));
+    report({std::string(check::kAccessWhileBusy), "2.5.1, 2.6.1 (no access while Busy)", ObservationPoint::EncoderPins,
+            frame.start, frame.index, std::nullopt, std::string(info.key),
+            "a frame with Busy = 0 after the access of frame #" + std::to_string(*awaiting_not_busy_), Severity::Error,
+            "a memory access or reset while the encoder may still be busy with the 2.2 access of frame #" +
+                std::to_string(*awaiting_not_busy_) + ": no frame since showed Busy = 0 in additional data 1"},
+           access_22 ? "command supplement" : "mode command");
+  } else if (access_22 || awaiting_known_) {
+    judge(protocol::check::row_index(check::kAccessWhileBusy));
+  }
+  if (access_22) {
+    awaiting_not_busy_ = frame.index;
+    awaiting_known_ = true;
+  }
+}
+
 void TimingChecker::check_busy_time(const AccessEvidence& frame) {
   using MC = protocol::ModeCommand;
+  check_access_while_busy(frame);
   if (frame.supplement) {
     const auto mrs = static_cast<std::uint8_t>(*frame.supplement >> 16);
     const bool access = frame.command == MC::EncoderSendPositionValuesAndReceiveParameter ||

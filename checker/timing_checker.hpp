@@ -166,6 +166,7 @@ class TimingChecker final : public master::MasterObserver {
     sim::Hertz f_c = 0;
   };
   void check_busy_time(const AccessEvidence& frame);
+  void check_access_while_busy(const AccessEvidence& frame);
   std::string field_of(const master::FrameResult& frame, unsigned clock) const;
   unsigned bits_of(const master::FrameResult& frame) const;
   void check_encoder_sample(unsigned clock);
@@ -201,6 +202,8 @@ class TimingChecker final : public master::MasterObserver {
   std::optional<std::uint64_t> error_handling_frame_;  // the last master frame that ended in an error handling
   std::optional<Time> busy_since_;  // a 2.2 memory access began with this frame's supplement (t_ac)
   bool busy_reported_ = false;
+  std::optional<std::uint64_t> awaiting_not_busy_;
+  bool awaiting_known_ = false;  // a 2.2 access has been seen: later accesses are judged  // the 2.2 memory access no Busy = 0 has followed yet
   // Changes of "DATA driven" at the master pins during the current frame, to judge samples.
   std::vector<std::pair<Time, bool>> master_driven_;
   bool floating_reported_ = false;

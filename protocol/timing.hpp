@@ -126,13 +126,14 @@ inline constexpr std::string_view kClockCount = "clock_count";
 inline constexpr std::string_view kMemoryAccess = "t_ac";
 inline constexpr std::string_view kPowerOn = "power_on";
 inline constexpr std::string_view kTimeBetweenCycles = "t_b";
+inline constexpr std::string_view kAccessWhileBusy = "busy_access";
 // Every check name in the order of timing_rows() (timing.cpp asserts the two agree).
 inline constexpr std::array kAll{kClockFrequency,  kCalculationTime,    kMemoryAccess,         kRecovery,
                                  kShortRecoveryClock, kDataDelay,       kStartDelay,           kPulseHigh,
                                  kPulseLow,        kDriverOff,          kDriverOn,             kTimeBetweenCycles,
                                  kMeasurementClock, kMeasurementProcedure, kDataDelayTolerance, kSamplingWindow,
                                  kClockCount,      kFloatingData,       kContention,           kErrorRecovery,
-                                 kPowerOn};
+                                 kPowerOn,         kAccessWhileBusy};
 // The row of a check name, at compile time.
 consteval std::size_t row_index(std::string_view name) {
   for (std::size_t i = 0; i < kAll.size(); ++i)

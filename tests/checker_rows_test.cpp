@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "scenario_support.hpp"
+#include "scenarios/loader.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;
@@ -255,4 +256,27 @@ TEST(CheckerBoundaries, MeasurementClockAt100And200KilohertzByOnePicosecondOfPer
   EXPECT_EQ(outside(kHz(100), us(5), us(5) + ps(1)), 1U);
   EXPECT_EQ(outside(kHz(200), ns(2500), ns(2500)), 0U);
   EXPECT_EQ(outside(kHz(200), ns(2500), ns(2500) - ps(1)), 1U);
+}
+
+// 2.5.1, 2.6.1: after a 2.2 write, the next access must follow a frame that shows Busy = 0. The
+// bundled busy-polling scenario waits for it (clean, and the row is judged); without the wait the
+// read right after the write is reported, from the wires and from the run alike.
+TEST(CheckerAccessWhileBusy, AnAccessBeforeBusyZeroIsReportedAfterItIsNot) {
+  auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                         "/scenarios/bundled/parameters_endat22_busy_polling.json");
+  const auto clean = scenarios::run_scenario(s);
+  EXPECT_EQ(count(clean, checker::check::kAccessWhileBusy), 0U);
+  const auto row = std::find_if(clean.conformance.begin(), clean.conformance.end(),
+                                [](const auto& c) { return c.check == checker::check::kAccessWhileBusy; });
+  ASSERT_NE(row, clean.conformance.end());
+  EXPECT_GE(row->judged, 2U);  // the write and the read after the selection
+  ASSERT_EQ(s.script[5].kind, master::Operation::Kind::AwaitNotBusy);
+  s.script.erase(s.script.begin() + 5);  // the wait after the write
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count(r, checker::check::kAccessWhileBusy), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kAccessWhileBusy) {
+      EXPECT_EQ(v.field, "command supplement");
+      EXPECT_NE(v.limit.find("Busy = 0"), std::string::npos) << v.limit;
+    }
 }
