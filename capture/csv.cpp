@@ -34,7 +34,7 @@
 #include <set>
 #include <sys/stat.h>
 
-#include "capture/capture.hpp"
+#include "capture/queued_reader.hpp"
 
 namespace endatsim::capture {
 namespace {
@@ -187,52 +187,30 @@ class LineStream {
   bool overlong_ = false;
 };
 
-class CsvReader final : public Reader {
+class CsvReader final : public QueuedReader {
  public:
-  explicit CsvReader(const std::string& path) : path_(path), lines_(path) {
-    struct stat st {};
-    if (!lines_.good() || ::stat(path.c_str(), &st) != 0) throw CaptureError(path + ": cannot open the capture for reading");
-    if (!S_ISREG(st.st_mode)) throw CaptureError(path + ": not a regular file");
-    size_ = static_cast<std::uint64_t>(st.st_size);
+  explicit CsvReader(const std::string& path) : QueuedReader(path), lines_(path) {
+    if (!lines_.good()) throw CaptureError(path + ": cannot open the capture for reading");
     if (size_ == 0)
       throw CaptureError(path + ": empty file; expected a logic-analyzer CSV: sigrok-cli's (-O csv) or a Saleae "
                          "Logic 2 digital export ('Time [s],Channel 0,...')");
     header();
-    selected_.assign(signals_.size(), true);
-    last_.assign(signals_.size(), '?');
+    reset_levels();
     // The first data row now, so that a capture without samples is refused when it is opened.
     if (!row()) fail("no data rows after the header; expected one row of 0/1 values per sample or change");
   }
 
-  const std::vector<std::string>& signals() const override { return signals_; }
-  Time resolution() const override { return resolution_; }
-  void select(const std::vector<std::uint32_t>& wanted) override {
-    selected_.assign(signals_.size(), false);
-    for (auto i : wanted)
-      if (i < selected_.size()) selected_[i] = true;
-  }
-  const std::string& path() const override { return path_; }
   std::uint64_t bytes_read() const override { return lines_.consumed(); }
-  std::uint64_t bytes_total() const override { return size_; }
-
-  bool next(Change& change) override {
-    while (true) {
-      if (pending_) {
-        pending_ = false;
-        emit_row();
-      }
-      if (queue_at_ < queue_.size()) {
-        change = queue_[queue_at_++];
-        return true;
-      }
-      queue_.clear();
-      queue_at_ = 0;
-      if (!row()) return false;
-      pending_ = true;
-    }
-  }
 
  private:
+  // One row at a time: the first was read when the file was opened.
+  bool refill() override {
+    if (!pending_ && !row()) return false;
+    pending_ = false;
+    emit_row();
+    return true;
+  }
+
   enum class Layout {
     kSaleae,      // "Time [s]" column, a row per change
     kSigrokTime,  // a time column in sigrok's units of the sample period
@@ -423,11 +401,7 @@ class CsvReader final : public Reader {
   }
 
   void emit_row() {
-    for (std::uint32_t i = 0; i < values_.size(); ++i) {
-      if (!selected_[i] || last_[i] == values_[i]) continue;
-      last_[i] = values_[i];
-      queue_.push_back({row_time_, i, values_[i]});
-    }
+    for (std::uint32_t i = 0; i < values_.size(); ++i) emit(row_time_, i, values_[i]);
   }
 
   Time time_of(std::uint64_t sample) const {
@@ -436,9 +410,7 @@ class CsvReader final : public Reader {
     return Time{static_cast<std::int64_t>(t)};
   }
 
-  std::string path_;
   LineStream lines_;
-  std::uint64_t size_ = 0;
   bool have_header_ = false;
   bool sigrok_ = false;
   std::int64_t samplerate_ = 0;
@@ -449,18 +421,12 @@ class CsvReader final : public Reader {
   std::size_t first_value_ = 0;
   std::int64_t period_units_ = 1;
   std::int64_t base_sample_ = 0;
-  std::vector<std::string> signals_;
-  Time resolution_{1};
   std::vector<std::string> fields_;
   bool pending_first_ = false;  // fields_ holds the first data row (a headerless file)
   bool pending_ = true;         // values_ holds a row not yet turned into changes
   std::uint64_t rows_ = 0;
   Time row_time_{0};
   std::vector<char> values_;
-  std::vector<bool> selected_;
-  std::vector<char> last_;
-  std::vector<Change> queue_;
-  std::size_t queue_at_ = 0;
 };
 
 }  // namespace

@@ -10,7 +10,7 @@
 #include <map>
 #include <sys/stat.h>
 
-#include "capture/capture.hpp"
+#include "capture/queued_reader.hpp"
 
 namespace endatsim::capture {
 namespace {
@@ -68,40 +68,19 @@ char normalize(char v) {
   }
 }
 
-class VcdReader final : public Reader {
+class VcdReader final : public QueuedReader {
  public:
-  explicit VcdReader(const std::string& path) : path_(path), tokens_(path) {
-    struct stat st {};
-    if (!tokens_.good() || ::stat(path.c_str(), &st) != 0) throw CaptureError(path + ": cannot open the capture for reading");
-    if (!S_ISREG(st.st_mode)) throw CaptureError(path + ": not a regular file");
-    size_ = static_cast<std::uint64_t>(st.st_size);
+  explicit VcdReader(const std::string& path) : QueuedReader(path), tokens_(path) {
+    if (!tokens_.good()) throw CaptureError(path + ": cannot open the capture for reading");
     header();
-    selected_.assign(signals_.size(), true);
-    last_.assign(signals_.size(), '?');
+    reset_levels();
   }
 
-  const std::vector<std::string>& signals() const override { return signals_; }
-  Time resolution() const override { return resolution_; }
-  void select(const std::vector<std::uint32_t>& wanted) override {
-    selected_.assign(signals_.size(), false);
-    for (auto i : wanted)
-      if (i < selected_.size()) selected_[i] = true;
-  }
-  const std::string& path() const override { return path_; }
   std::uint64_t bytes_read() const override { return tokens_.consumed(); }
-  std::uint64_t bytes_total() const override { return size_; }
-
-  bool next(Change& change) override {
-    while (queue_at_ == queue_.size()) {
-      queue_.clear();
-      queue_at_ = 0;
-      if (!body_token()) return false;
-    }
-    change = queue_[queue_at_++];
-    return true;
-  }
 
  private:
+  bool refill() override { return body_token(); }
+
   struct Variable {
     std::uint32_t first = 0;  // index of its most significant bit's signal
     unsigned width = 1;
@@ -221,11 +200,7 @@ class VcdReader final : public Reader {
     return it->second;
   }
 
-  void emit(std::uint32_t signal, char value) {
-    if (!selected_[signal] || last_[signal] == value) return;
-    last_[signal] = value;
-    queue_.push_back({now_, signal, value});
-  }
+  void emit(std::uint32_t signal, char value) { QueuedReader::emit(now_, signal, value); }
 
   // One token of the body; false at the end of the file.
   bool body_token() {
@@ -272,19 +247,11 @@ class VcdReader final : public Reader {
     }
   }
 
-  std::string path_;
   TokenStream tokens_;
-  std::uint64_t size_ = 0;
   std::vector<std::string> scopes_;
-  std::vector<std::string> signals_;
   std::map<std::string, Variable> vars_;
   std::int64_t scale_num_ = 0;  // femtoseconds per unit
-  Time resolution_{1};
   Time now_{0};
-  std::vector<bool> selected_;
-  std::vector<char> last_;
-  std::vector<Change> queue_;
-  std::size_t queue_at_ = 0;
 };
 
 }  // namespace
