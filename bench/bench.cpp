@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "scenarios/capture_check.hpp"
+#include "scenarios/declarations.hpp"
 #include "scenarios/runner.hpp"
 #include "sim/delay.hpp"
 #include "sim/kernel.hpp"
@@ -190,8 +191,8 @@ void BM_Check_Capture_EnDat22_16MHz_10m(benchmark::State& state) {
   o.clock = "encoder.clock";
   o.data = "encoder.data";
   o.data_enable = "encoder.data_driver_enable";
-  o.encoder = scenario.encoder;
-  o.encoder.output_delay += scenario.line.encoder.receiver_delay + scenario.line.encoder.driver_delay;
+  o.encoder = scenarios::declared_encoder(scenario.encoder);
+  o.encoder.output_delay = scenario.line.encoder.receiver_delay + scenario.encoder.output_delay + scenario.line.encoder.driver_delay;
   std::size_t frames = 0;
   for (auto _ : state) {
     const auto r = scenarios::check_capture(o);

@@ -316,7 +316,7 @@ void TimingChecker::check_encoder_sample(unsigned clock) {
 }
 
 // The master's receiver output at its sampling instant shows its pins one receiver delay earlier.
-void TimingChecker::check_master_sample(const master::FrameResult& frame, unsigned clock) {
+void TimingChecker::check_master_sample(const DeclaredFrame& frame, unsigned clock) {
   if (floating_reported_) return;
   const Time at_pins = kernel_.now() - line_.params().master.receiver_delay;
   bool driven = master_driven_.empty() || master_driven_.front().second;

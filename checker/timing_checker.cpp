@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "protocol/memory_area.hpp"
+
 namespace endatsim::checker {
 namespace {
 
@@ -65,7 +67,7 @@ FittedFrequency fit_frequency(const std::vector<Time>& rising) {
 std::span<const std::string_view> check::all() { return protocol::check::kAll; }
 
 // The field of bit slot `clock` as the master counts the frame.
-std::string TimingChecker::field_of(const master::FrameResult& frame, unsigned clock) const {
+std::string TimingChecker::field_of(const DeclaredFrame& frame, unsigned clock) const {
   if (frame.start_bit_clock == 0 || clock < frame.start_bit_clock) return "start-bit polling";
   const auto layout = protocol::answer_layout(protocol::info(frame.command), bits_of(frame));
   const unsigned bit = clock - frame.start_bit_clock;
@@ -73,7 +75,7 @@ std::string TimingChecker::field_of(const master::FrameResult& frame, unsigned c
   return bit < frame.answer_bits ? "additional data" : "after the CRC";
 }
 
-unsigned TimingChecker::bits_of(const master::FrameResult& frame) const {
+unsigned TimingChecker::bits_of(const DeclaredFrame& frame) const {
   return frame.position_bits != 0 ? frame.position_bits : master_.position_bits;
 }
 
@@ -114,8 +116,8 @@ std::vector<RowConformance> TimingChecker::conformance() const {
   return out;
 }
 
-TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave::EncoderParams& encoder,
-                             const master::MasterParams& master, const CheckerParams& params)
+TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const EncoderDeclaration& encoder,
+                             const MasterDeclaration& master, const CheckerParams& params)
     : kernel_(kernel),
       line_(line),
       encoder_(encoder),
@@ -125,6 +127,7 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave:
           .position_bits = encoder.position_bits,
           .clock_to_data = line.params().encoder.receiver_delay + encoder.output_delay + line.params().encoder.driver_delay,
           .t_m = encoder.short_t_m_selected && encoder.t_m_short ? std::min(encoder.t_m, *encoder.t_m_short) : encoder.t_m,
+          .supplement_ignore_clocks = encoder.supplement_ignore_clocks,
       }),
       judged_(protocol::timing_rows().size(), 0) {
   line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
@@ -136,25 +139,24 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const slave:
   line.pins(ObservationPoint::MasterPins).data_driven.on_change(sim::bind<&TimingChecker::on_master_driven>(this));
 }
 
-void TimingChecker::check_measurement_procedure(const master::FrameResult& frame) {
+void TimingChecker::check_measurement_procedure(const DeclaredFrame& frame) {
   // 2.1.2: a counter at least eight times the intended f_c (f_e tolerance +/-10 %), and at
   // least three measurements averaged.
-  const auto& m = master_.measurement;
-  const sim::Hertz f_e = m.f_e != 0 ? m.f_e : 8 * master_.f_c;
+  const sim::Hertz f_e = master_.f_e != 0 ? master_.f_e : 8 * master_.f_c;
   const std::string spec = "2.1.2 propagation-delay measurement";
   judge(protocol::check::row_index(check::kMeasurementProcedure));
   if (f_e * 10 < 72 * master_.f_c)
     report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
             std::nullopt, format_frequency(f_e), ">= " + format_frequency(8 * master_.f_c) + " - 10 %",
             Severity::Error, "counter clock f_e below eight times the intended f_c"});
-  if (m.count < 3)
+  if (master_.measurements < limit::kMeasurementsMin)
     report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
-            std::nullopt, std::to_string(m.count) + " measurement(s)", ">= 3", Severity::Error,
+            std::nullopt, std::to_string(master_.measurements) + " measurement(s)", ">= 3", Severity::Error,
             "fewer than three measurements averaged"});
 }
 
 // 2.3.3 (seed 002 figure, TI's reading, timing-model §3.3), judged when the run models switching
-// on (encoder startup_time > 0): CLOCK at a valid level for t1 >= 800 ms and HIGH for t2 =
+// on (EncoderDeclaration::switched_on_in_run): CLOCK at a valid level for t1 >= 800 ms and HIGH for t2 =
 // 80 .. 120 ms, so the pulse comes no earlier than 880 ms; at least one LOW pulse > 125 ns; then
 // HIGH for t3 = 380 .. 420 ms before the first request.
 void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
@@ -184,7 +186,7 @@ void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
     fail(first_request, format_time(t3), "t3 = 380 .. 420 ms", "the first request does not follow the pulse after t3");
 }
 
-void TimingChecker::on_frame_start(const master::FrameResult& frame) {
+void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
   if (wires_only_) {
     // The master declares its frames after all: what came before (a power-on pulse, taken for
     // an aborted frame) was no frame of its own.
@@ -194,7 +196,7 @@ void TimingChecker::on_frame_start(const master::FrameResult& frame) {
     previous_end_.reset();
     error_handling_frame_.reset();
   }
-  if (frame_starts_.empty() && encoder_.startup_time > Time::zero()) check_power_on(frame.index, frame.start);
+  if (frame_starts_.empty() && encoder_.switched_on_in_run) check_power_on(frame.index, frame.start);
   if (frame.measurement && !last_frame_was_measurement_) check_measurement_procedure(frame);
   if (frame.measurement) {
     t_d_stale_ = false;
@@ -268,7 +270,7 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
       power_on_judged_ = true;
       const Time first_request = current_.fe1 - clock_path();
       std::erase_if(power_on_edges_, [&](const auto& e) { return e.first >= first_request; });
-      if (encoder_.startup_time > Time::zero()) check_power_on(current_.header.index, first_request);
+      if (encoder_.switched_on_in_run) check_power_on(current_.header.index, first_request);
     }
     return;
   }
@@ -493,7 +495,7 @@ void TimingChecker::check_recovery(const PinFrame& next) {
          "between frames");
 }
 
-void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, bool, bool) {
+void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
   if (frame.index != sampled_frame_) {  // a new frame or a new continuous-clock word
     sampled_frame_ = frame.index;
     sampling_reported_ = false;
@@ -535,14 +537,9 @@ void TimingChecker::on_sample(const master::FrameResult& frame, unsigned clock, 
               "; true round trip " + format_time(rt) + ", t_D used " + format_time(frame.t_d_used) + ")"}, field_of(frame, clock));
 }
 
-void TimingChecker::on_frame_end(const master::FrameResult& frame) {
-  if (frame.outcome == master::FrameOutcome::Type1Error || frame.outcome == master::FrameOutcome::NoStartBit)
-    error_handling_frame_ = frame.index;
-  const auto ai1 = std::find_if(frame.additional_data.begin(), frame.additional_data.end(),
-                                [](const master::AdditionalDatum& d) { return !protocol::is_additional_data_2(d.information()); });
-  check_busy_time({frame.index, frame.start, frame.end, frame.command, frame.supplement,
-                   frame.outcome == master::FrameOutcome::Ok,
-                   ai1 == frame.additional_data.end() ? std::nullopt : std::optional<bool>(ai1->busy()), frame.f_c});
+void TimingChecker::on_frame_end(const DeclaredFrame& frame) {
+  if (frame.error_handling) error_handling_frame_ = frame.index;
+  check_busy_time({frame.index, frame.start, frame.end, frame.command, frame.supplement, frame.ok, frame.busy, frame.f_c});
 }
 
 // 2.3.2 t_ac maximum 12 ms with EnDat 2.2 commands: the access runs after the command supplement

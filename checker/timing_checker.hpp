@@ -8,10 +8,9 @@
 #include <vector>
 
 #include "line/line.hpp"
+#include "checker/declarations.hpp"
 #include "checker/frame_decoder.hpp"
-#include "master/master.hpp"
 #include "protocol/timing.hpp"
-#include "slave/encoder.hpp"
 
 namespace endatsim::checker {
 
@@ -84,16 +83,20 @@ struct CheckerParams {
 // ratio row (HIGH and LOW each within 50 % +/- 10 % of the period); without it, the 0.2 us rows
 // apply (2.3.2). The alternative reading (0.2 us in both cases) would forbid every f_c above
 // 2.5 MHz, which the same table allows.
-class TimingChecker final : public master::MasterObserver {
+class TimingChecker final {
  public:
-  TimingChecker(sim::Kernel& kernel, line::Line& line, const slave::EncoderParams& encoder,
-                const master::MasterParams& master, const CheckerParams& params = {});
+  // `master` matters only if the master declares its frames (the calls below); a master that
+  // only drives pins is judged from the wires alone.
+  TimingChecker(sim::Kernel& kernel, line::Line& line, const EncoderDeclaration& encoder,
+                const MasterDeclaration& master = {}, const CheckerParams& params = {});
   TimingChecker(const TimingChecker&) = delete;
   TimingChecker& operator=(const TimingChecker&) = delete;
 
-  void on_frame_start(const master::FrameResult& frame) override;
-  void on_sample(const master::FrameResult& frame, unsigned clock, bool value, bool in_data) override;
-  void on_frame_end(const master::FrameResult& frame) override;
+  // A cooperating master declares its frames: at FE1 (at its logic, before the edge reaches the
+  // encoder), at each sampling instant of bit slot `clock`, and at the frame's end.
+  void on_frame_start(const DeclaredFrame& frame);
+  void on_sample(const DeclaredFrame& frame, unsigned clock);
+  void on_frame_end(const DeclaredFrame& frame);
 
   // The transmission path changed (cable, connector): t_D must be measured again (2.1.2).
   void on_line_change() { t_d_stale_ = true; }
@@ -167,16 +170,16 @@ class TimingChecker final : public master::MasterObserver {
   };
   void check_busy_time(const AccessEvidence& frame);
   void check_access_while_busy(const AccessEvidence& frame);
-  std::string field_of(const master::FrameResult& frame, unsigned clock) const;
-  unsigned bits_of(const master::FrameResult& frame) const;
+  std::string field_of(const DeclaredFrame& frame, unsigned clock) const;
+  unsigned bits_of(const DeclaredFrame& frame) const;
   void check_encoder_sample(unsigned clock);
-  void check_master_sample(const master::FrameResult& frame, unsigned clock);
+  void check_master_sample(const DeclaredFrame& frame, unsigned clock);
   void on_master_clock(std::uint64_t level);
   void evaluate(const PinFrame& f);
   void check_pulse_widths(const PinFrame& f);
   void check_frequency(const PinFrame& f);
   void check_recovery(const PinFrame& next);
-  void check_measurement_procedure(const master::FrameResult& frame);
+  void check_measurement_procedure(const DeclaredFrame& frame);
   void report(Finding f, std::string_view field = {}) { violations_.push_back({std::move(f), std::string(field)}); }
   // A row was evaluated once (whatever its verdict), for the conformance table.
   // Rows that are evaluated per sample count once per frame (word).
@@ -184,8 +187,8 @@ class TimingChecker final : public master::MasterObserver {
 
   sim::Kernel& kernel_;
   line::Line& line_;
-  slave::EncoderParams encoder_;
-  master::MasterParams master_;
+  EncoderDeclaration encoder_;
+  MasterDeclaration master_;
   CheckerParams params_;
 
   std::uint64_t master_falling_edges_ = 0;

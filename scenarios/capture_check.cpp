@@ -130,7 +130,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   line::Line line(kernel, lp);
   checker::CheckerParams params = o.checker;
   params.driver_enables_observable = o.data_enable.has_value();
-  checker::TimingChecker checker(kernel, line, o.encoder, master::MasterParams{}, params);
+  checker::TimingChecker checker(kernel, line, o.encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
       .position_bits = o.encoder.position_bits, .clock_to_data = o.encoder.output_delay, .t_m = o.encoder.t_m});
   Replay replay(kernel, line, *reader, o, log, result);

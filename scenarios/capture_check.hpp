@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "checker/timing_checker.hpp"
-#include "slave/encoder.hpp"
 
 namespace endatsim::scenarios {
 
@@ -23,8 +22,8 @@ struct CaptureCheckOptions {
   std::optional<std::string> data_enable;   // the encoder's DATA driver enable at its pins, if recorded
   bool enable_active_low = false;
   // What the encoder declares (a profile or a scenario's encoder): position width, t_m, t_R,
-  // and its clock-to-data delay at the connector, in EncoderParams::output_delay.
-  slave::EncoderParams encoder;
+  // and its clock-to-data delay at the connector (receiver and driver included) in output_delay.
+  checker::EncoderDeclaration encoder;
   checker::CheckerParams checker;
 };
 

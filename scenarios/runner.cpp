@@ -1,5 +1,7 @@
 #include "scenarios/runner.hpp"
 
+#include "scenarios/declarations.hpp"
+
 #include "scenarios/events.hpp"
 
 #include <algorithm>
@@ -360,8 +362,10 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   std::vector<std::unique_ptr<slave::Encoder>> bus;
   for (const auto& p : scenario.bus) bus.push_back(std::make_unique<slave::Encoder>(kernel, line.add_encoder(), p));
   master::Master master(kernel, line, master_params);
-  checker::TimingChecker checker(kernel, line, scenario.encoder, master_params, scenario.checker);
-  master.add_observer(&checker);
+  checker::TimingChecker checker(kernel, line, declared_encoder(scenario.encoder), declared_master(master_params),
+                                 scenario.checker);
+  MasterDeclarations declarations(checker);
+  master.add_observer(&declarations);
 
   std::unique_ptr<sim::VcdWriter> vcd;
   if (options.vcd_path) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "scenarios/capture_check.hpp"
+#include "scenarios/declarations.hpp"
 #include "scenarios/loader.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/runner.hpp"

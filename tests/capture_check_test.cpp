@@ -58,7 +58,7 @@ TEST_P(CaptureRoundTrip, CheckFindsWhatRunFoundOnTheWires) {
   o.clock = "encoder.clock";
   o.data = "encoder.data";
   o.data_enable = "encoder.data_driver_enable";
-  o.encoder = scenario.encoder;
+  o.encoder = scenarios::declared_encoder(scenario.encoder);
   o.encoder.output_delay = scenario.line.encoder.receiver_delay + scenario.encoder.output_delay +
                            scenario.line.encoder.driver_delay;
   o.checker = scenario.checker;

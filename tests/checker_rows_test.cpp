@@ -201,12 +201,12 @@ class HandClock {
   Signal& clock_;
 };
 
-std::size_t hand_clocked(const master::FrameResult& frame, const std::vector<Time>& phases, std::string_view check) {
+std::size_t hand_clocked(const checker::DeclaredFrame& frame, const std::vector<Time>& phases, std::string_view check) {
   Kernel k;
   line::Line line(k, line::LineParams{});
   checker::CheckerParams params;
   params.f_c_tolerance_ppm = 0;
-  checker::TimingChecker checker(k, line, slave::EncoderParams{}, master::MasterParams{}, params);
+  checker::TimingChecker checker(k, line, checker::EncoderDeclaration{}, checker::MasterDeclaration{}, params);
   HandClock clock(k, line);
   checker.on_frame_start(frame);
   clock.frame(us(1), phases);
@@ -226,8 +226,8 @@ std::vector<Time> pulses(unsigned n, Time low, Time high, unsigned odd = 0, Time
   return phases;
 }
 
-master::FrameResult frame_at(Hertz f_c, bool measurement) {
-  master::FrameResult f;
+checker::DeclaredFrame frame_at(Hertz f_c, bool measurement) {
+  checker::DeclaredFrame f;
   f.f_c = f_c;
   f.measurement = measurement;
   f.command = MC::EncoderSendPositionValues;

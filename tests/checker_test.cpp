@@ -3,6 +3,7 @@
 #include <functional>
 
 #include "scenario_support.hpp"
+#include "scenarios/declarations.hpp"
 #include "test_support.hpp"
 
 using namespace endatsim;
@@ -208,8 +209,8 @@ TEST(CheckerFloatingData, AnEncoderTakingModeBitsFromAnUndrivenLineIsReported) {
     line::Line l(k, line::LineParams{});
     slave::EncoderParams ep;
     slave::Encoder e(k, l, ep);
-    checker::TimingChecker c(k, l, ep, master::MasterParams{});
-    master::FrameResult f;
+    checker::TimingChecker c(k, l, scenarios::declared_encoder(ep));
+    checker::DeclaredFrame f;
     f.f_c = MHz(1);
     c.on_frame_start(f);
     test_support::ScriptedClock clock(k, l, us(1), 12, 0b000111, Time::zero(), drive);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "scenarios/declarations.hpp"
 #include "checker/checker.hpp"
 #include "protocol/frame.hpp"
 #include "scenario_support.hpp"
@@ -105,8 +106,10 @@ HandRun run_hand_written(unsigned words, unsigned low_bits, bool release_in_gap 
   line::Line line(kernel, s.line);
   HandWrittenEncoder encoder(kernel, line, s.encoder, words, low_bits, release_in_gap);
   master::Master master(kernel, line, s.master);
-  checker::TimingChecker checker(kernel, line, s.encoder, s.master, s.checker);
-  master.add_observer(&checker);
+  checker::TimingChecker checker(kernel, line, scenarios::declared_encoder(s.encoder), scenarios::declared_master(s.master),
+                                 s.checker);
+  scenarios::MasterDeclarations declarations(checker);
+  master.add_observer(&declarations);
   for (const auto& op : s.script) master.enqueue(op);
   master.start();
   kernel.run(ms(1));

@@ -11,6 +11,7 @@
 
 #include "checker/timing_checker.hpp"
 #include "line/line.hpp"
+#include "scenarios/declarations.hpp"
 #include "slave/encoder.hpp"
 #include "test_support.hpp"
 
@@ -106,7 +107,7 @@ Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, 
   lp.cable_length_m = cable_m;
   line::Line line(k, lp);
   slave::Encoder e(k, line, encoder);
-  checker::TimingChecker checker(k, line, encoder, master::MasterParams{}, params);
+  checker::TimingChecker checker(k, line, scenarios::declared_encoder(encoder), {}, params);
   PinMaster m(k, line, frames);
   k.run(until);
   checker.finish();

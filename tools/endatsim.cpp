@@ -22,6 +22,7 @@
 #include "capture/capture.hpp"
 #include "slave/profile.hpp"
 #include "protocol/timing.hpp"
+#include "scenarios/declarations.hpp"
 #include "scenarios/diagram.hpp"
 #include "scenarios/junit.hpp"
 #include "scenarios/scenarios.hpp"
@@ -593,22 +594,23 @@ int diagram_command(const po::variables_map& vm) {
 
 // The declared encoder of a check: a scenario's (its line's transceivers included in the delay
 // at the connector) or a profile's with the model's transceivers.
-slave::EncoderParams declared_encoder(const std::string& path) {
+checker::EncoderDeclaration encoder_declaration_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open the encoder declaration for reading");
   const auto j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw std::runtime_error(path + ": not a JSON object (a profile or a scenario)");
   if (j.contains("encoder") || j.contains("script")) {
     const auto s = scenarios::load_scenario_file(path);
-    auto p = s.encoder;
-    p.output_delay = s.line.encoder.receiver_delay + s.encoder.output_delay + s.line.encoder.driver_delay;
-    return p;
+    auto d = scenarios::declared_encoder(s.encoder);
+    d.output_delay = s.line.encoder.receiver_delay + s.encoder.output_delay + s.line.encoder.driver_delay;
+    return d;
   }
   slave::EncoderParams p;
   slave::load_profile(path).apply(p);
   const line::LineParams lp;
-  p.output_delay = lp.encoder.receiver_delay + p.output_delay + lp.encoder.driver_delay;
-  return p;
+  auto d = scenarios::declared_encoder(p);
+  d.output_delay = lp.encoder.receiver_delay + p.output_delay + lp.encoder.driver_delay;
+  return d;
 }
 
 int check_command(const po::variables_map& vm) {
@@ -634,9 +636,11 @@ int check_command(const po::variables_map& vm) {
   }
   {
     const line::LineParams lp;
-    o.encoder.output_delay = lp.encoder.receiver_delay + o.encoder.output_delay + lp.encoder.driver_delay;
+    const slave::EncoderParams model;
+    o.encoder = scenarios::declared_encoder(model);
+    o.encoder.output_delay = lp.encoder.receiver_delay + model.output_delay + lp.encoder.driver_delay;
   }
-  if (const auto e = string_option(vm, "encoder")) o.encoder = declared_encoder(*e);
+  if (const auto e = string_option(vm, "encoder")) o.encoder = encoder_declaration_file(*e);
   if (const auto d = string_option(vm, "clock-to-data")) {
     try {
       o.encoder.output_delay = sim::parse_duration(*d);

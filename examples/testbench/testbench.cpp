@@ -19,7 +19,7 @@ namespace {
 // DATA is sampled at the falling edges; start bit, F1, position LSB first, CRC MSB first.
 class MyMaster {
  public:
-  MyMaster(sim::Kernel& kernel, line::Line& line, master::MasterObserver& monitor)
+  MyMaster(sim::Kernel& kernel, line::Line& line, checker::TimingChecker& monitor)
       : kernel_(kernel), pins_(line.master()), monitor_(monitor) {}
 
   void read(unsigned frames, sim::Time cycle) {
@@ -35,7 +35,7 @@ class MyMaster {
 
  private:
   void start_frame() {
-    frame_ = master::FrameResult{};
+    frame_ = checker::DeclaredFrame{};
     frame_.index = index_++;
     frame_.start = kernel_.now();
     frame_.command = protocol::ModeCommand::EncoderSendPositionValues;
@@ -68,8 +68,7 @@ class MyMaster {
 
   void sample(unsigned slot) {
     const bool level = pins_.data_in.read();
-    const bool in_data = start_bit_ != 0;
-    monitor_.on_sample(frame_, slot, level, in_data);
+    monitor_.on_sample(frame_, slot);
     if (start_bit_ == 0) {
       seen_low_ = seen_low_ || !level;
       if (seen_low_ && level) {
@@ -84,7 +83,6 @@ class MyMaster {
   void rising() {
     pins_.clock_out.write(true);
     frame_.end = kernel_.now();
-    frame_.clocks = clock_;
     // One pulse more after the last bit, whose falling edge samples it.
     const bool done = start_bit_ != 0 && clock_ >= start_bit_ + kWordBits + 1;
     if (!done && clock_ < 2000) {
@@ -97,18 +95,16 @@ class MyMaster {
   void finish_frame() {
     if (bits_.size() == kWordBits) {
       // F1, then the position LSB first, then the CRC MSB first.
-      frame_.error1 = bits_[0] != 0;
+      const bool error1 = bits_[0] != 0;
       std::uint64_t position = 0;
       for (unsigned i = 0; i < kPositionBits; ++i) position |= std::uint64_t{bits_[1 + i]} << i;
       std::uint8_t crc = 0;
       for (unsigned i = 0; i < 5; ++i) crc = static_cast<std::uint8_t>(crc << 1 | bits_[1 + kPositionBits + i]);
-      frame_.position = position;
-      frame_.crc_received = crc;
-      frame_.crc_expected = protocol::make_crc_pos(kPositionBits, frame_.error1, true, false, position);
-      frame_.outcome = crc == frame_.crc_expected ? master::FrameOutcome::Ok : master::FrameOutcome::CrcError;
-      if (frame_.outcome == master::FrameOutcome::Ok) positions_.push_back(position);
+      frame_.ok = crc == protocol::make_crc_pos(kPositionBits, error1, true, false, position);
+      if (frame_.ok) positions_.push_back(position);
       else ++crc_errors_;
     }
+    frame_.error_handling = start_bit_ == 0;  // A2: the next frame waits the longest t_m
     monitor_.on_frame_end(frame_);
     if (--frames_left_ > 0) kernel_.schedule(cycle_ - (kernel_.now() - frame_.start), sim::bind<&MyMaster::start_frame>(this));
   }
@@ -119,8 +115,8 @@ class MyMaster {
 
   sim::Kernel& kernel_;
   line::Line::MasterSide pins_;
-  master::MasterObserver& monitor_;
-  master::FrameResult frame_;
+  checker::TimingChecker& monitor_;
+  checker::DeclaredFrame frame_;
   std::uint64_t index_ = 0;
   unsigned frames_left_ = 0;
   sim::Time cycle_{0};
@@ -145,11 +141,19 @@ int main() {
   encoder_params.motion.counts_per_s = 2'000'000;  // a turning axis
   slave::Encoder encoder(kernel, line, encoder_params);
 
-  // The checker is told what the master intends (1 MHz, no compensation) and watches the pins.
-  master::MasterParams declared;
+  // The checker watches the pins. It is told what the encoder's datasheet declares (here the
+  // model's own values) and what the master intends (1 MHz, no compensation); the master also
+  // declares its frames and sampling instants, so that the sampling window is judged too.
+  checker::EncoderDeclaration datasheet;
+  datasheet.position_bits = encoder_params.position_bits;
+  datasheet.output_delay = encoder_params.output_delay;
+  datasheet.t_cal = encoder_params.t_cal;
+  datasheet.t_m = encoder_params.t_m;
+  datasheet.t_r = encoder_params.t_r;
+  checker::MasterDeclaration declared;
   declared.f_c = MyMaster::kClock;
   declared.position_bits = MyMaster::kPositionBits;
-  checker::TimingChecker checker(kernel, line, encoder_params, declared);
+  checker::TimingChecker checker(kernel, line, datasheet, declared);
 
   MyMaster master(kernel, line, checker);
   master.read(8, sim::us(100));

@@ -1,0 +1,52 @@
+#include "scenarios/declarations.hpp"
+
+#include <algorithm>
+
+#include "protocol/additional_data.hpp"
+
+namespace endatsim::scenarios {
+
+checker::EncoderDeclaration declared_encoder(const slave::EncoderParams& e) {
+  checker::EncoderDeclaration d;
+  d.position_bits = e.position_bits;
+  d.output_delay = e.output_delay;
+  d.t_cal = e.t_cal;
+  d.t_m = e.t_m;
+  d.t_m_short = e.t_m_short;
+  d.short_t_m_selected = e.short_t_m_selected;
+  d.t_r = e.t_r;
+  d.endat21_only = e.version == protocol::EndatVersion::V2_1;
+  d.switched_on_in_run = e.startup_time > sim::Time::zero();
+  d.supplement_ignore_clocks = e.supplement_ignore_clocks;
+  return d;
+}
+
+checker::MasterDeclaration declared_master(const master::MasterParams& m) {
+  return {.position_bits = m.position_bits, .f_c = m.f_c, .f_e = m.measurement.f_e, .measurements = m.measurement.count};
+}
+
+checker::DeclaredFrame declared_frame(const master::FrameResult& f) {
+  checker::DeclaredFrame d;
+  d.index = f.index;
+  d.start = f.start;
+  d.end = f.end;
+  d.command = f.command;
+  d.mode_bits = f.mode_bits;
+  d.supplement = f.supplement;
+  d.answer_bits = f.answer_bits;
+  d.position_bits = f.position_bits;
+  d.f_c = f.f_c;
+  d.measurement = f.measurement;
+  d.compensated = f.compensated;
+  d.t_d_used = f.t_d_used;
+  d.error_handling = f.outcome == master::FrameOutcome::Type1Error || f.outcome == master::FrameOutcome::NoStartBit;
+  d.ok = f.outcome == master::FrameOutcome::Ok;
+  const auto ai1 = std::find_if(f.additional_data.begin(), f.additional_data.end(), [](const master::AdditionalDatum& a) {
+    return !protocol::is_additional_data_2(a.information());
+  });
+  if (ai1 != f.additional_data.end()) d.busy = ai1->busy();
+  d.start_bit_clock = f.start_bit_clock;
+  return d;
+}
+
+}  // namespace endatsim::scenarios
