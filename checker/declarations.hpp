@@ -50,6 +50,7 @@ struct DeclaredFrame {
   Time end{0};    // the last rising edge
   protocol::ModeCommand command = protocol::ModeCommand::EncoderSendPositionValues;
   std::uint8_t mode_bits = 0;               // as sent
+  std::optional<std::uint32_t> payload;     // 8 + 16 bits after the mode bits (2.1 parameter commands)
   std::optional<std::uint32_t> supplement;  // the 2.2 command supplement, 8 + 16 bits
   unsigned answer_bits = 0;                 // what the master expects: start bit .. CRC and additional data
   unsigned position_bits = 0;               // as the master clocks them; 0: MasterDeclaration's

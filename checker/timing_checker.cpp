@@ -81,6 +81,25 @@ unsigned TimingChecker::bits_of(const DeclaredFrame& frame) const {
 
 std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
 
+std::string_view to_string(Verdict v) {
+  switch (v) {
+    case Verdict::Both: return "both";
+    case Verdict::SpecEnvelope: return "spec envelope";
+    case Verdict::ThisEncoder: return "this encoder";
+  }
+  return "?";
+}
+
+Conclusion conclude(std::span<const Violation> violations) {
+  Conclusion c;
+  for (const Violation& v : violations) {
+    if (v.severity != Severity::Error) continue;
+    if (v.verdict != Verdict::ThisEncoder) c.spec_envelope = false;
+    if (v.verdict != Verdict::SpecEnvelope) c.this_encoder = false;
+  }
+  return c;
+}
+
 std::string_view to_string(RowConformance::Status s) {
   switch (s) {
     case RowConformance::Status::Judged: return "judged";
@@ -108,6 +127,9 @@ std::vector<RowConformance> TimingChecker::conformance() const {
     } else if (needs_enables && !params_.driver_enables_observable) {
       c.status = RowConformance::Status::NotObservable;
       c.reason = "needs the DATA drivers' enables";
+    } else if (row.check == check::kContention && !params_.master_enable_observable) {
+      c.status = RowConformance::Status::NotObservable;
+      c.reason = "needs the master's DATA driver enable as well as the encoder's";
     } else {
       c.reason = "no frame or event it applies to";
     }
@@ -129,6 +151,7 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
           .t_m = encoder.short_t_m_selected && encoder.t_m_short ? std::min(encoder.t_m, *encoder.t_m_short) : encoder.t_m,
           .supplement_ignore_clocks = encoder.supplement_ignore_clocks,
       }),
+      settings_(encoder.short_t_m_selected),
       judged_(protocol::timing_rows().size(), 0) {
   line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
   auto encoder_pins = line.pins(ObservationPoint::EncoderPins);
@@ -318,6 +341,7 @@ void TimingChecker::begin_wire_frame(Time now) {
                                     [](const DecodedDatum& d) { return !d.additional_data_2(); });
       const bool data_ok = std::all_of(w.additional_data.begin(), w.additional_data.end(),
                                        [](const DecodedDatum& d) { return d.crc_ok; });
+      if (w.answer_complete && w.crc_ok) settings_.on_frame(*w.command, w.payload, w.supplement);
       check_busy_time({w.index, w.fe1, w.last_rise, *w.command, w.supplement, w.answer_complete && w.crc_ok && data_ok,
                        ai1 == w.additional_data.end() ? std::nullopt : std::optional<bool>(ai1->busy()),
                        current_.header.f_c});
@@ -371,7 +395,8 @@ void TimingChecker::refresh_wire_header() {
 }
 
 void TimingChecker::evaluate(const PinFrame& f) {
-  if (params_.driver_enables_observable) judge(protocol::check::row_index(check::kContention));
+  if (params_.driver_enables_observable && params_.master_enable_observable)
+    judge(protocol::check::row_index(check::kContention));
   check_pulse_widths(f);
   check_frequency(f);
   check_start_delay(f);
@@ -432,8 +457,9 @@ void TimingChecker::check_frequency(const PinFrame& f) {
               "100 kHz .. 200 kHz", Severity::Error, "delay measured with a clock outside the prescribed range"});
     return;
   }
-  if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected) judge(protocol::check::row_index(check::kShortRecoveryClock));
-  if (f.header.command_type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected &&
+  const bool short_tm = f.header.command_type == protocol::EndatVersion::V2_2 && settings_.short_t_m();
+  if (short_tm) judge(protocol::check::row_index(check::kShortRecoveryClock));
+  if (short_tm &&
       fit.below(limit::kShortRecoveryTimeFcMin, tol))
     report({std::string(check::kShortRecoveryClock), "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), ">= 1 MHz",
@@ -483,15 +509,30 @@ void TimingChecker::check_recovery(const PinFrame& next) {
             ">= 30 us", Severity::Error, "the next frame followed an error handling too soon"},
            "between frames");
   check_time_between_cycles(next, last_rise);
-  const bool short_tm = type == protocol::EndatVersion::V2_2 && encoder_.short_t_m_selected;
-  const Time t_m = short_tm ? *encoder_.t_m_short : encoder_.t_m;
+  // The declared encoder's t_m (short where word 3 has activated it) against the envelope's
+  // longest t_m for the same setting; t_R is "500 ns .. any" (note 9): the envelope takes 500 ns.
+  const bool short_tm = type == protocol::EndatVersion::V2_2 && settings_.short_t_m();
+  const Time declared = (short_tm && encoder_.t_m_short ? *encoder_.t_m_short : encoder_.t_m) + encoder_.t_r;
+  const Time envelope = (short_tm ? limit::kShortRecoveryTimeMax : limit::kRecoveryTimeMax) + limit::kRecoveryTime2Min;
   const Time gap = next.fe1 - last_rise;
-  if (gap >= t_m + encoder_.t_r) return;
+  const bool fails_encoder = gap < declared, fails_envelope = gap < envelope;
+  if (!fails_encoder && !fails_envelope) return;
+  std::string bound = fails_encoder ? ">= " + format_time(declared) + " (this encoder)" : "";
+  if (fails_envelope) bound += (fails_encoder ? ", " : "") + (">= " + format_time(envelope) + " (spec envelope)");
+  const Verdict verdict = fails_encoder && fails_envelope ? Verdict::Both
+                          : fails_encoder                 ? Verdict::ThisEncoder
+                                                          : Verdict::SpecEnvelope;
+  const std::string setting = short_tm ? " (short t_m, word 3)" : "";
+  std::string message = "next frame began " + format_time(gap) + " after the last rising edge";
+  if (fails_encoder)
+    message += ", before this encoder's t_m + t_R (" + format_time(declared) + ")" + setting + " had elapsed";
+  if (fails_envelope)
+    message += std::string(fails_encoder ? "; " : ": suits this encoder (t_m + t_R " + format_time(declared) + "), but ") +
+               "any compliant encoder may need t_m " + format_time(envelope - limit::kRecoveryTime2Min) + setting +
+               " + t_R 500 ns = " + format_time(envelope);
   report({std::string(check::kRecovery), "2.3.2 recovery time I (t_m) and II (t_R)", ObservationPoint::EncoderPins,
-          next.fe1, next.header.index, 1U, format_time(gap), ">= " + format_time(t_m + encoder_.t_r),
-          Severity::Error,
-          "next frame began " + format_time(gap) + " after the last rising edge, before t_m (" + format_time(t_m) +
-              ") + t_R (" + format_time(encoder_.t_r) + ") had elapsed"},
+          next.fe1, next.header.index, 1U, format_time(gap), bound, Severity::Error, message,
+          verdict},
          "between frames");
 }
 
@@ -539,6 +580,7 @@ void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
 
 void TimingChecker::on_frame_end(const DeclaredFrame& frame) {
   if (frame.error_handling) error_handling_frame_ = frame.index;
+  if (frame.ok) settings_.on_frame(frame.command, frame.payload, frame.supplement);
   check_busy_time({frame.index, frame.start, frame.end, frame.command, frame.supplement, frame.ok, frame.busy, frame.f_c});
 }
 
@@ -628,7 +670,7 @@ void TimingChecker::finish() {
     const Time end = c.end == Time::max() ? kernel_.now() : c.end;
     // One recorded DATA wire shows no collision; two drivers handing over at the same
     // picosecond do not collide.
-    if (!params_.driver_enables_observable || end == c.start) continue;
+    if (!params_.driver_enables_observable || !params_.master_enable_observable || end == c.start) continue;
     // The frame that had begun (FE1 at the master logic) when the contention began.
     std::optional<std::uint64_t> frame;
     for (const auto& [start, index] : frame_starts_)

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "line/line.hpp"
+#include "checker/activated_settings.hpp"
 #include "checker/declarations.hpp"
 #include "checker/frame_decoder.hpp"
 #include "protocol/timing.hpp"
@@ -28,6 +29,13 @@ using namespace protocol::check;
 std::span<const std::string_view> all();
 }  // namespace check
 
+// Which verdict a finding counts against. D297403 2.3.2 gives some of the encoder's times as a
+// range that each encoder fills in (t_m 10 .. 30 us, t_cal up to 1 ms, "t_ST maximum: see encoder
+// specifications"): a master must suit every compliant encoder (the spec envelope), or at least
+// the encoder it is used with (its declaration). A fixed limit of the spec counts against both.
+enum class Verdict : std::uint8_t { Both, SpecEnvelope, ThisEncoder };
+std::string_view to_string(Verdict v);
+
 // What a check found; a Violation adds where in the frame it happened.
 struct Finding {
   std::string check;
@@ -40,12 +48,21 @@ struct Finding {
   std::string limit;
   Severity severity = Severity::Error;
   std::string message;
+  Verdict verdict = Verdict::Both;
 };
 
 struct Violation : Finding {
   // Where in the frame: "start-bit polling", "start bit", "position", "CRC", "first LOW phase"...
   std::string field;
 };
+
+// The two verdicts of a run: does the master conform to the spec envelope, and to the declared
+// encoder? (Warnings count against neither.)
+struct Conclusion {
+  bool spec_envelope = true;
+  bool this_encoder = true;
+};
+Conclusion conclude(std::span<const Violation> violations);
 
 // How a row fared in a run: judged (how often, how many violations), or why it was not.
 struct RowConformance {
@@ -77,6 +94,9 @@ struct CheckerParams {
   // turnaround on (2.3), and the rows that need the enables (t_z, t_OE, floating data,
   // contention) are not observable.
   bool driver_enables_observable = true;
+  // The master's DATA driver enable is known too (a simulation, or a capture of both enables):
+  // without it a collision of the two drivers is not observable.
+  bool master_enable_observable = true;
 };
 
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
@@ -243,6 +263,7 @@ class TimingChecker final {
   std::deque<StartBitInFlight> start_bits_in_flight_;
   // Frames found on the wires when no master declares its own (decided at the first FE).
   FrameDecoder decoder_;
+  ActivatedSettings settings_;  // word 3 as the wires have set and activated it
   std::optional<WireFrame> last_wire_;  // the frame the decoder finished last
   bool power_on_judged_ = false;
   bool recovery_checked_ = true;

@@ -130,6 +130,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   line::Line line(kernel, lp);
   checker::CheckerParams params = o.checker;
   params.driver_enables_observable = o.data_enable.has_value();
+  params.master_enable_observable = false;  // one DATA wire and the encoder's enable at most
   checker::TimingChecker checker(kernel, line, o.encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
       .position_bits = o.encoder.position_bits, .clock_to_data = o.encoder.output_delay, .t_m = o.encoder.t_m});
@@ -199,6 +200,7 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
          "(sampling window, t_D used, measurement frames) are not observable in a capture\n";
   if (verbose) out << capture_log(r);
   write_violations(out, r.violations, verbose);
+  write_verdict(out, r.violations);
   write_conformance(out, r.conformance);
 }
 
@@ -220,18 +222,10 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
     if (f.supplement) j["supplement"] = *f.supplement;
     frames.push_back(j);
   }
-  json violations = json::array();
-  for (const auto& v : r.violations) {
-    json j{{"check", v.check}, {"spec", v.spec}, {"where", std::string(line::to_string(v.where))},
-           {"time_ps", v.time.count()}, {"measured", v.measured}, {"limit", v.limit},
-           {"severity", std::string(checker::to_string(v.severity))}, {"message", v.message}, {"field", v.field}};
-    if (v.frame) j["frame"] = *v.frame;
-    if (v.clock) j["clock"] = *v.clock;
-    violations.push_back(j);
-  }
   return {{"file", r.file},       {"resolution_ps", r.resolution.count()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
-          {"violations", violations}, {"conformance", conformance_json(r.conformance)}};
+          {"violations", violations_json(r.violations)}, {"verdict", verdict_json(r.violations)},
+          {"conformance", conformance_json(r.conformance)}};
 }
 
 }  // namespace endatsim::scenarios

@@ -32,6 +32,7 @@ checker::DeclaredFrame declared_frame(const master::FrameResult& f) {
   d.end = f.end;
   d.command = f.command;
   d.mode_bits = f.mode_bits;
+  d.payload = f.payload;
   d.supplement = f.supplement;
   d.answer_bits = f.answer_bits;
   d.position_bits = f.position_bits;

@@ -3,6 +3,7 @@
 #include "protocol/parameters.hpp"
 
 #include <map>
+#include <set>
 
 namespace endatsim::scenarios {
 namespace {
@@ -183,6 +184,51 @@ nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows
   return out;
 }
 
+nlohmann::json violations_json(const std::vector<checker::Violation>& violations) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& v : violations) {
+    nlohmann::json j{{"check", v.check},
+                     {"spec", v.spec},
+                     {"where", std::string(line::to_string(v.where))},
+                     {"time_ps", v.time.count()},
+                     {"measured", v.measured},
+                     {"limit", v.limit},
+                     {"severity", std::string(checker::to_string(v.severity))},
+                     {"verdict", std::string(checker::to_string(v.verdict))},
+                     {"message", v.message}};
+    if (v.frame) j["frame"] = *v.frame;
+    if (v.clock) j["clock"] = *v.clock;
+    if (!v.field.empty()) j["field"] = v.field;
+    out.push_back(j);
+  }
+  return out;
+}
+
+nlohmann::json verdict_json(const std::vector<checker::Violation>& violations) {
+  const auto c = checker::conclude(violations);
+  return {{"spec_envelope", c.spec_envelope}, {"this_encoder", c.this_encoder}};
+}
+
+// "conforms to this encoder; outside the spec envelope: t_m_t_r 11 us (>= 30.5 us (spec envelope))"
+void write_verdict(std::ostream& out, const std::vector<checker::Violation>& violations) {
+  const auto c = checker::conclude(violations);
+  out << "  verdict: ";
+  if (c.spec_envelope && c.this_encoder) {
+    out << "conforms to the spec envelope and to this encoder\n";
+    return;
+  }
+  if (!c.this_encoder) {
+    out << "does not conform to this encoder" << (c.spec_envelope ? " (its declared limits); within the spec envelope\n" : " nor to the spec envelope\n");
+    return;
+  }
+  out << "conforms to this encoder; outside the spec envelope:";
+  std::set<std::string> shown;
+  for (const auto& v : violations)
+    if (v.severity == checker::Severity::Error && v.verdict == checker::Verdict::SpecEnvelope && shown.insert(v.check).second)
+      out << " " << v.check << " " << v.measured << " (" << v.limit << ")";
+  out << "\n";
+}
+
 void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations, bool verbose) {
   std::map<std::string, std::vector<const checker::Violation*>> by_check;
   for (const auto& v : violations) by_check[v.check].push_back(&v);
@@ -196,7 +242,9 @@ void write_violations(std::ostream& out, const std::vector<checker::Violation>& 
       if (v.frame) out << ", frame #" << *v.frame;
       if (v.clock) out << ", clock " << *v.clock;
       if (!v.field.empty()) out << ", " << v.field;
-      out << "): measured " << v.measured << ", limit " << v.limit << " - " << v.message << "\n";
+      out << "): measured " << v.measured << ", limit " << v.limit << " - " << v.message;
+      if (v.verdict != checker::Verdict::Both) out << " [" << checker::to_string(v.verdict) << " only]";
+      out << "\n";
     }
   }
 }
@@ -250,6 +298,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     }
   }
   write_violations(out, r.violations, verbose);
+  if (!r.violations.empty() || verbose) write_verdict(out, r.violations);
   if (verbose) write_conformance(out, r.conformance);
   for (const auto& e : r.expectations)
     if (verbose || !e.passed) out << "  " << (e.passed ? "ok   " : "FAIL ") << e.name << ": " << e.detail << "\n";
@@ -399,17 +448,8 @@ nlohmann::json to_json(const ScenarioResult& r) {
     j["safety"] = js;
   }
   if (r.diagnosis) j["diagnosis"] = diagnosis_json(*r.diagnosis);
-  json vs = json::array();
-  for (const auto& v : r.violations) {
-    json jv{{"check", v.check},     {"spec", v.spec},       {"where", line::to_string(v.where)},
-            {"time_ps", v.time.count()}, {"measured", v.measured}, {"limit", v.limit},
-            {"severity", checker::to_string(v.severity)}, {"message", v.message}};
-    if (v.frame) jv["frame"] = *v.frame;
-    if (v.clock) jv["clock"] = *v.clock;
-    if (!v.field.empty()) jv["field"] = v.field;
-    vs.push_back(jv);
-  }
-  j["violations"] = vs;
+  j["violations"] = violations_json(r.violations);
+  j["verdict"] = verdict_json(r.violations);
   j["conformance"] = conformance_json(r.conformance);
   json es = json::array();
   for (const auto& e : r.expectations) es.push_back({{"name", e.name}, {"passed", e.passed}, {"detail", e.detail}});

@@ -14,6 +14,12 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose);
 // The violations grouped by check, the first three of each (all with `verbose`).
 void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations, bool verbose);
 
+// The violations as the stable JSON format has them; the two verdicts (spec envelope, this encoder).
+nlohmann::json violations_json(const std::vector<checker::Violation>& violations);
+nlohmann::json verdict_json(const std::vector<checker::Violation>& violations);
+// "verdict: conforms to this encoder; outside the spec envelope: ..." (checker::conclude).
+void write_verdict(std::ostream& out, const std::vector<checker::Violation>& violations);
+
 // The conformance table: each row judged (how often, violations, warnings) or why not.
 void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows);
 nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows);

@@ -24,21 +24,8 @@ struct MemoryImage {
   std::vector<std::vector<std::uint16_t>> section2_blocks;  // 256 words each (3.2)
 };
 
-// Word numbers used by the model (3.4, 3.5.1, 3.6.1, 3.9.1).
-namespace word {
-constexpr unsigned kErrors = 0, kWarnings = 1, kWriteProtection = 2, kFunctionInitialization = 3;  // B9
-constexpr unsigned kVersion = 8, kOemPartition = 9, kCompensationPartition = 11, kPositionFormat = 13,
-                   kEncoderType = 14, kSupportedErrors = 35, kSupportedWarnings = 36, kCommandSet = 37,
-                   kCalculationTime = 39, kManufacturerChecksum = 47;  // encoder manufacturer, 3.5.1
-constexpr unsigned kAdditionalData1Support = 0, kAdditionalData2Support = 1, kSection2Blocks = 24,
-                   kMaxClockFrequency = 25, kEndat22Checksum = 63;  // BD, 3.9.1
-constexpr unsigned kEncoderAddress = 4, kInstructions = 5;       // A7, 3.6.4 / 3.6.5
-constexpr unsigned kDatumShift = 0;                              // A7 words 0..2, 3.6.2
-constexpr unsigned kDiagnosticsConfiguration = 3;                // A7, 3.6.3
-constexpr unsigned kTemperatureWarningThreshold = 6;             // A7, 3.6.6 (0.1 K)
-constexpr unsigned kTemperatureScaling = 4, kDiagnosticStatus = 5, kMaxEncoderTemperature = 22;  // BD, 3.9.6 / 3.9.7 / 3.9.16
-constexpr unsigned kDirection = 30;                              // encoder manufacturer, 3.5.16
-}  // namespace word
+// Word numbers (protocol/parameters.hpp).
+namespace word = protocol::word;
 
 // 3.4.2 warning 2^1 "temperature exceeded"; 3.9.2 word 0 bit 3 "temperature sensor 2 (on board)".
 constexpr std::uint16_t kTemperatureExceeded = 0x0002, kTemperatureSensor2Support = 0x0008;

@@ -280,3 +280,54 @@ TEST(CheckerAccessWhileBusy, AnAccessBeforeBusyZeroIsReportedAfterItIsNot) {
       EXPECT_NE(v.limit.find("Busy = 0"), std::string::npos) << v.limit;
     }
 }
+
+// 3.4.4: word 3 selects recovery time I; "Encoder receive reset" activates it. The checker follows
+// the activation on the wires in both directions, and with it note 3's f_c >= 1 MHz condition.
+namespace {
+
+scenarios::Scenario word3_scenario(const std::string& f_c, const std::string& word3, bool reset, const std::string& wait) {
+  const std::string text = R"({
+    "name": "word3", "seed": 1, "line": { "cable_length_m": 2 },
+    "encoder": { "version": "2.2", "t_m": "20 us", "t_m_short": "2 us" },
+    "master": { "f_c": ")" + f_c + R"(", "t_m_wait": ")" + wait + R"(" },
+    "checker": { "f_c_tolerance_ppm": 0 },
+    "script": [
+      { "op": "select_memory_area", "mrs": "operating_status" },
+      { "op": "write_parameter", "address": 3, "value": ")" + word3 + R"(" },)" +
+                           (reset ? R"({ "op": "reset" },)" : R"({ "op": "wait", "duration": "50 ms" },)") + R"(
+      { "op": "read_position", "command": "encoder_send_position_values_with_additional_data", "count": 3, "cycle": "1 us" }
+    ] })";
+  return scenarios::load_scenario_text(text, "word3.json");
+}
+
+}  // namespace
+
+TEST(CheckerShortRecoveryTime, FollowsWordThreeOnlyOnceAResetHasActivatedIt) {
+  // Selected and activated: 4.5 us between 2.2 frames is enough (short t_m 2 us + t_R; envelope 3.75 us + t_R).
+  EXPECT_EQ(count_violations(scenarios::run_scenario(word3_scenario("2 MHz", "0x0001", true, "3750 ns")),
+                             checker::check::kRecovery),
+            0U);
+  // One picosecond less than the envelope's 3.75 us + t_R: this encoder (2 us) is still suited.
+  const auto short_by_1ps = scenarios::run_scenario(word3_scenario("2 MHz", "0x0001", true, "3749999 ps"));
+  EXPECT_EQ(count_violations(short_by_1ps, checker::check::kRecovery, checker::Verdict::SpecEnvelope), 2U);
+  // Written but not activated: the long t_m still holds.
+  EXPECT_GE(count_violations(scenarios::run_scenario(word3_scenario("2 MHz", "0x0001", false, "3750 ns")),
+                             checker::check::kRecovery, checker::Verdict::Both),
+            1U);
+  // Selected back to the long t_m and activated: the short wait breaks it again.
+  EXPECT_GE(count_violations(scenarios::run_scenario(word3_scenario("2 MHz", "0x0002", true, "3750 ns")),
+                             checker::check::kRecovery, checker::Verdict::Both),
+            1U);
+}
+
+TEST(CheckerShortRecoveryTime, NeedsOneMegahertzToTheHertzOnceActivated) {
+  const auto at = [](const std::string& f_c) {
+    return count_violations(scenarios::run_scenario(word3_scenario(f_c, "0x0001", true, "30 us")), checker::check::kShortRecoveryClock);
+  };
+  EXPECT_EQ(at("1 MHz"), 0U);
+  EXPECT_EQ(at("999999 Hz"), 3U);
+  // Not activated: the rule does not apply.
+  EXPECT_EQ(count_violations(scenarios::run_scenario(word3_scenario("999999 Hz", "0x0001", false, "30 us")),
+                             checker::check::kShortRecoveryClock),
+            0U);
+}

@@ -48,7 +48,8 @@ TEST(CheckerRecovery, NextFrameBeforeTmPlusTrIsReported) {
   EXPECT_NE(r.frames[1].outcome, master::FrameOutcome::Ok);
   for (const auto& v : r.violations)
     if (v.check == checker::check::kRecovery) {
-      EXPECT_EQ(v.limit, ">= 20.5 us");
+      EXPECT_EQ(v.limit, ">= 20.5 us (this encoder), >= 30.5 us (spec envelope)");
+      EXPECT_EQ(v.verdict, checker::Verdict::Both);
     }
 }
 
@@ -230,7 +231,9 @@ TEST(CheckerErrorRecovery, AfterTypeOneTheMasterWaitsThirtyMicroseconds) {
   s.master.error_wait = us(25);  // t_m of the encoder (20 us) + t_R is met, A2's 30 us is not
   const auto r = scenarios::run_scenario(s);
   EXPECT_EQ(count_violations(r, checker::check::kErrorRecovery), 1U);
-  EXPECT_EQ(count_violations(r, checker::check::kRecovery), 0U);
+  // The same gap suits this encoder but not the envelope's t_m of 30 us.
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery), 1U);
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery, checker::Verdict::SpecEnvelope), 1U);
 }
 
 TEST(CheckerDataDelayTolerance, ASetDelayWithinATenthOfThePeriodPasses) {
@@ -300,10 +303,23 @@ TEST(CheckerBrokenMasters, EachIsCaughtWithTheRightRow) {
 TEST(CheckerBoundaries, RecoveryTimeByOnePicosecond) {
   auto s = make_scenario(1, MHz(1), false, 2);
   s.script.back().cycle = Time::zero();
-  s.master.t_m_wait = us(20);  // gap = t_m_wait + t_r_wait = 20.5 us = the encoder's t_m + t_R
-  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kRecovery), 0U);
+  using checker::Verdict;
+  // This encoder: gap = t_m_wait + t_r_wait = 20.5 us = its t_m + t_R; the envelope wants 30.5 us.
+  s.master.t_m_wait = us(20);
+  auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery), 1U);
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery, Verdict::SpecEnvelope), 1U);
+  EXPECT_TRUE(checker::conclude(r.violations).this_encoder);
+  EXPECT_FALSE(checker::conclude(r.violations).spec_envelope);
   s.master.t_m_wait = us(20) - ps(1);
-  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kRecovery), 1U);
+  r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery, Verdict::Both), 1U);
+  EXPECT_FALSE(checker::conclude(r.violations).this_encoder);
+  // The envelope: t_m 30 us + t_R 500 ns.
+  s.master.t_m_wait = us(30);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kRecovery), 0U);
+  s.master.t_m_wait = us(30) - ps(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kRecovery, Verdict::SpecEnvelope), 1U);
 }
 
 TEST(CheckerBoundaries, WaitAfterErrorHandlingByOnePicosecond) {

@@ -203,10 +203,33 @@ TEST(PinMaster, NoRecoveryWaitIsCaught) {
   frames.push_back({end + us(3), MHz(8), 44, header(k22Position), us(2)});
   const auto r = run(frames, quick_encoder());
   EXPECT_EQ(r.count(checker::check::kRecovery), 1U) << r.list();
-  // With the wait it is clean.
-  frames.back().start = end + us(21);
+  // With the wait any compliant encoder may need (t_m 30 us + t_R) it is clean.
+  frames.back().start = end + us(31);
   const auto fixed = run(frames, quick_encoder());
   EXPECT_EQ(fixed.count(checker::check::kRecovery), 0U) << fixed.list();
+}
+
+TEST(PinMaster, AWaitThatSuitsATenMicrosecondEncoderOnlyIsOutsideTheEnvelope) {
+  // The encoder on the bench declares t_m = 10 us; the master waits 11 us between frames.
+  auto encoder = quick_encoder();
+  encoder.t_m = us(10);
+  auto frames = position_reads_22(1, us(100), MHz(8), us(2));
+  const Time end = frames[0].start + us(2) + period_of(MHz(8)) * (frames[0].clocks - 1);
+  frames.push_back({end + us(11), MHz(8), 44, header(k22Position), us(2)});
+  const auto r = run(frames, encoder);
+  ASSERT_EQ(r.count(checker::check::kRecovery), 1U) << r.list();
+  const auto& v = *std::find_if(r.violations.begin(), r.violations.end(),
+                                [](const auto& x) { return x.check == checker::check::kRecovery; });
+  EXPECT_EQ(v.verdict, checker::Verdict::SpecEnvelope);
+  EXPECT_EQ(v.measured, "11 us");
+  EXPECT_NE(v.message.find("t_m 30 us"), std::string::npos) << v.message;
+  const auto verdicts = checker::conclude(r.violations);
+  EXPECT_TRUE(verdicts.this_encoder);
+  EXPECT_FALSE(verdicts.spec_envelope);
+  // Declared t_m 20 us: the same wait fails this encoder as well.
+  encoder.t_m = us(20);
+  const auto longer = run(frames, encoder);
+  EXPECT_FALSE(checker::conclude(longer.violations).this_encoder) << longer.list();
 }
 
 TEST(PinMaster, TooFewClocksAreCaught) {

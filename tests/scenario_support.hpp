@@ -65,4 +65,11 @@ inline std::size_t count_violations(const scenarios::ScenarioResult& r, std::str
   return n;
 }
 
+// Findings of `check` that count against the given verdict.
+inline std::size_t count_violations(const scenarios::ScenarioResult& r, std::string_view check, checker::Verdict verdict) {
+  std::size_t n = 0;
+  for (const auto& v : r.violations) n += v.check == check && v.verdict == verdict;
+  return n;
+}
+
 }  // namespace endatsim::test_support
