@@ -41,6 +41,9 @@ class Reader {
   // The capture's time resolution: a VCD's timescale, a logic analyzer's sample period. A
   // timing limit closer than this to a measured value cannot be decided from the capture.
   virtual Time resolution() const = 0;
+  // True for a logic analyzer's samples (an edge happened up to one resolution before it shows);
+  // false for a simulator's event times, which are exact at the timescale.
+  virtual bool sampled() const = 0;
   // Only the signals with these indices are reported by next() (default: all). Readers may
   // skip work for the others.
   virtual void select(const std::vector<std::uint32_t>& wanted) = 0;

@@ -327,10 +327,12 @@ class CsvReader final : public QueuedReader {
     if (samplerate_ != 0) {
       // A period that is no whole number of picoseconds rounds up: no finer than the true one.
       resolution_ = Time{std::max<std::int64_t>(1, kPsPerSecond / samplerate_ + (kPsPerSecond % samplerate_ != 0 ? 1 : 0))};
+      sampled_ = true;
     } else {
       // A Saleae export does not state the sample rate, and the smallest step between its rows
       // is only known at the end of the file: the times are taken as exact to the picosecond.
-      // A "; Samplerate:" comment at the top of the file states the true resolution.
+      // A "; Samplerate:" comment at the top of the file states the true resolution, as does
+      // `endatsim check --resolution`.
       resolution_ = Time{1};
     }
     if (layout_ == Layout::kSigrokTime) {

@@ -14,6 +14,7 @@ class QueuedReader : public Reader {
  public:
   const std::vector<std::string>& signals() const override { return signals_; }
   Time resolution() const override { return resolution_; }
+  bool sampled() const override { return sampled_; }
   void select(const std::vector<std::uint32_t>& wanted) override;
   const std::string& path() const override { return path_; }
   std::uint64_t bytes_total() const override { return size_; }
@@ -33,6 +34,7 @@ class QueuedReader : public Reader {
   std::uint64_t size_ = 0;
   std::vector<std::string> signals_;
   Time resolution_{1};
+  bool sampled_ = false;
 
  private:
   std::vector<bool> selected_;

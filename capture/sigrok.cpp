@@ -98,6 +98,7 @@ class SigrokReader final : public Reader {
 
   const std::vector<std::string>& signals() const override { return signals_; }
   Time resolution() const override { return resolution_; }
+  bool sampled() const override { return true; }
   void select(const std::vector<std::uint32_t>& wanted) override {
     selected_ = 0;
     for (auto i : wanted)

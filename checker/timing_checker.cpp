@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 
 #include "protocol/memory_area.hpp"
 
@@ -79,7 +80,24 @@ unsigned TimingChecker::bits_of(const DeclaredFrame& frame) const {
   return frame.position_bits != 0 ? frame.position_bits : master_.position_bits;
 }
 
-std::string_view to_string(Severity s) { return s == Severity::Error ? "error" : "warning"; }
+std::string_view to_string(Severity s) {
+  switch (s) {
+    case Severity::Error: return "error";
+    case Severity::Warning: return "warning";
+    case Severity::Undecided: return "undecided";
+  }
+  return "?";
+}
+
+bool TimingChecker::report_unless_passed(Decision d, Finding f, std::string_view field) {
+  if (d == Decision::Pass) return false;
+  if (d == Decision::Undecided) {
+    f.severity = Severity::Undecided;
+    f.message = "undecided at the capture's resolution of " + format_time(params_.resolution) + " (" + f.message + ")";
+  }
+  report(std::move(f), field);
+  return true;
+}
 
 std::string_view to_string(Verdict v) {
   switch (v) {
@@ -116,10 +134,11 @@ std::vector<RowConformance> TimingChecker::conformance() const {
     c.check = std::string(row.check);
     c.judged = judged_[out.size()];
     for (const Violation& v : violations_)
-      if (v.check == row.check) ++(v.severity == Severity::Error ? c.violations : c.warnings);
+      if (v.check == row.check)
+        ++(v.severity == Severity::Error ? c.violations : v.severity == Severity::Warning ? c.warnings : c.undecided);
     const bool needs_enables = row.check == check::kDriverOff || row.check == check::kDriverOn ||
                                row.check == check::kFloatingData || row.check == check::kContention;
-    if (c.judged != 0 || c.violations + c.warnings != 0) {
+    if (c.judged != 0 || c.violations + c.warnings + c.undecided != 0) {
       c.status = RowConformance::Status::Judged;
     } else if (row.evidence == protocol::Evidence::MasterDeclaration && wires_only_) {
       c.status = RowConformance::Status::NotObservable;
@@ -185,10 +204,13 @@ void TimingChecker::check_measurement_procedure(const DeclaredFrame& frame) {
 void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
   const std::string spec = "2.3.3 power-on conditions (t1, t2, pulse > 125 ns, t3)";
   judge(protocol::check::row_index(check::kPowerOn));
-  const auto fail = [&](Time at, const std::string& measured, const std::string& bound, const std::string& message) {
-    report({std::string(check::kPowerOn), spec, ObservationPoint::MasterPins, at, index, std::nullopt, measured,
-            bound, Severity::Error, message}, "before the first frame");
+  const auto fail = [&](Time at, const std::string& measured, const std::string& bound, const std::string& message,
+                        Decision d = Decision::Fail) {
+    report_unless_passed(d, {std::string(check::kPowerOn), spec, ObservationPoint::MasterPins, at, index, std::nullopt,
+                             measured, bound, Severity::Error, message},
+                         "before the first frame");
   };
+  const Time r = params_.resolution;
   std::optional<std::pair<Time, Time>> pulse;  // the last LOW pulse: falling, rising
   for (std::size_t i = 0; i + 1 < power_on_edges_.size(); ++i)
     if (!power_on_edges_[i].second && power_on_edges_[i + 1].second)
@@ -199,14 +221,17 @@ void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
     return;
   }
   const Time width = pulse->second - pulse->first;
-  if (width <= limit::kPowerOnPulseMin)
-    fail(pulse->first, format_time(width), "> 125 ns", "the power-on pulse is too short");
-  if (pulse->first < limit::kPowerOnT1Min + limit::kPowerOnT2Min)
-    fail(pulse->first, format_time(pulse->first), ">= t1 + t2 = 800 ms + 80 ms",
-         "the power-on pulse came before t1 and t2 had passed");
+  fail(pulse->first, format_time(width), "> 125 ns", "the power-on pulse is too short",
+       more_than(width, limit::kPowerOnPulseMin, r));
+  fail(pulse->first, format_time(pulse->first), ">= t1 + t2 = 800 ms + 80 ms",
+       "the power-on pulse came before t1 and t2 had passed",
+       at_least(pulse->first, limit::kPowerOnT1Min + limit::kPowerOnT2Min, r));
   const Time t3 = first_request - pulse->second;
-  if (t3 < limit::kPowerOnT3Min || t3 > limit::kPowerOnT3Max)
-    fail(first_request, format_time(t3), "t3 = 380 .. 420 ms", "the first request does not follow the pulse after t3");
+  const Decision early = at_least(t3, limit::kPowerOnT3Min, r), late = at_most(t3, limit::kPowerOnT3Max, r);
+  fail(first_request, format_time(t3), "t3 = 380 .. 420 ms", "the first request does not follow the pulse after t3",
+       early == Decision::Fail || late == Decision::Fail ? Decision::Fail
+       : early == Decision::Undecided || late == Decision::Undecided ? Decision::Undecided
+                                                                        : Decision::Pass);
 }
 
 void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
@@ -410,31 +435,42 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
   const Time min = f.header.compensated ? period * (50 - limit::kOnOffRatioErrorPercent) / 100 : limit::kPulseWidthMin;
   const std::string spec = f.header.compensated ? "2.3.2 on-off ratio error (+/-10 % with delay compensation)"
                                          : "2.3.2 t_HI / t_LO minimum 0.2 us";
+  // The worst phase that fails its limit, or else the worst one undecided at the resolution.
   struct Worst {
-    Time width = Time::max();
+    Time width{0};
     unsigned clock = 0;
     Time at{0};
     unsigned count = 0;
+    Decision decision = Decision::Pass;
+    void add(Decision d, Time w, unsigned k, Time t, bool shorter_is_worse) {
+      if (d == Decision::Pass || (decision == Decision::Fail && d == Decision::Undecided)) return;
+      if (d == Decision::Fail && decision != Decision::Fail) count = 0;
+      const bool worse = count == 0 || (shorter_is_worse ? w < width : w > width);
+      ++count;
+      decision = d;
+      if (worse) std::tie(width, clock, at) = std::tuple{w, k, t};
+    }
   } low, high, long_high;
   if (!f.falling.empty()) {
     judge(protocol::check::row_index(check::kPulseLow));
     judge(protocol::check::row_index(check::kPulseHigh));
   }
+  const Time r = params_.resolution;
   for (std::size_t k = 0; k < f.rising.size() && k < f.falling.size(); ++k) {
     const Time w = f.rising[k] - f.falling[k];
-    if (w < min && ++low.count && w < low.width) low = {w, static_cast<unsigned>(k + 1), f.falling[k], low.count};
+    low.add(at_least(w, min, r), w, static_cast<unsigned>(k + 1), f.falling[k], true);
   }
   for (std::size_t k = 0; k + 1 < f.falling.size() && k < f.rising.size(); ++k) {
     const Time w = f.falling[k + 1] - f.rising[k];
-    if (w < min && ++high.count && w < high.width) high = {w, static_cast<unsigned>(k + 1), f.rising[k], high.count};
-    if (w > limit::kPulseHighMax && ++long_high.count) long_high = {w, static_cast<unsigned>(k + 1), f.rising[k], long_high.count};
+    high.add(at_least(w, min, r), w, static_cast<unsigned>(k + 1), f.rising[k], true);
+    long_high.add(at_most(w, limit::kPulseHighMax, r), w, static_cast<unsigned>(k + 1), f.rising[k], false);
   }
   const auto emit = [&](const Worst& w, std::string_view name, const std::string& bound, const std::string& s,
                         const char* what) {
-    if (w.count == 0) return;
-    report({std::string(name), s, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock, format_time(w.width), bound,
-            Severity::Error,
-            std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)"});
+    report_unless_passed(w.decision,
+                         {std::string(name), s, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock,
+                          format_time(w.width), bound, Severity::Error,
+                          std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)"});
   };
   emit(low, check::kPulseLow, ">= " + format_time(min), spec, "CLOCK LOW phase too short");
   emit(high, check::kPulseHigh, ">= " + format_time(min), spec, "CLOCK HIGH phase too short");
@@ -489,8 +525,8 @@ void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_ri
   if (next.header.command_type != protocol::EndatVersion::V2_1 || next.header.payload_bits == 0) return;
   judge(protocol::check::row_index(check::kTimeBetweenCycles));
   const Time gap = next.fe1 - last_rise;
-  if (gap > limit::kTimeBetweenCyclesMin) return;
-  report({std::string(check::kTimeBetweenCycles), "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
+  report_unless_passed(more_than(gap, limit::kTimeBetweenCyclesMin, params_.resolution),
+         {std::string(check::kTimeBetweenCycles), "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
           ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(gap), "> 1 ms", Severity::Error,
           "a 2.1 memory or parameter frame followed the previous frame too soon (read here: last rising edge to FE1 "
           "of 2.1 frames with 8 + 16 bits; other readings: start to start, or every 2.1 command)"},
@@ -503,11 +539,13 @@ void TimingChecker::check_recovery(const PinFrame& next) {
   judge(protocol::check::row_index(check::kRecovery));
   if (error_handling_frame_ == index) judge(protocol::check::row_index(check::kErrorRecovery));
   // A2: "After an error handling, the maximum t_m of 30 us must at least be waited".
-  if (error_handling_frame_ == index && next.fe1 - last_rise < limit::kErrorRecoveryWait)
-    report({std::string(check::kErrorRecovery), "A2 (wait the maximum t_m after an error handling)",
-            ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(next.fe1 - last_rise),
-            ">= 30 us", Severity::Error, "the next frame followed an error handling too soon"},
-           "between frames");
+  if (error_handling_frame_ == index)
+    report_unless_passed(at_least(next.fe1 - last_rise, limit::kErrorRecoveryWait, params_.resolution),
+                         {std::string(check::kErrorRecovery), "A2 (wait the maximum t_m after an error handling)",
+                          ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U,
+                          format_time(next.fe1 - last_rise), ">= 30 us", Severity::Error,
+                          "the next frame followed an error handling too soon"},
+                         "between frames");
   check_time_between_cycles(next, last_rise);
   // The declared encoder's t_m (short where word 3 has activated it) against the envelope's
   // longest t_m for the same setting; t_R is "500 ns .. any" (note 9): the envelope takes 500 ns.
@@ -515,8 +553,13 @@ void TimingChecker::check_recovery(const PinFrame& next) {
   const Time declared = (short_tm && encoder_.t_m_short ? *encoder_.t_m_short : encoder_.t_m) + encoder_.t_r;
   const Time envelope = (short_tm ? limit::kShortRecoveryTimeMax : limit::kRecoveryTimeMax) + limit::kRecoveryTime2Min;
   const Time gap = next.fe1 - last_rise;
-  const bool fails_encoder = gap < declared, fails_envelope = gap < envelope;
-  if (!fails_encoder && !fails_envelope) return;
+  const Decision to_encoder = at_least(gap, declared, params_.resolution);
+  const Decision to_envelope = at_least(gap, envelope, params_.resolution);
+  if (to_encoder == Decision::Pass && to_envelope == Decision::Pass) return;
+  // A failed bound is reported; an undecided one only where nothing failed.
+  const bool failed = to_encoder == Decision::Fail || to_envelope == Decision::Fail;
+  const Decision shown = failed ? Decision::Fail : Decision::Undecided;
+  const bool fails_encoder = to_encoder == shown, fails_envelope = to_envelope == shown;
   std::string bound = fails_encoder ? ">= " + format_time(declared) + " (this encoder)" : "";
   if (fails_envelope) bound += (fails_encoder ? ", " : "") + (">= " + format_time(envelope) + " (spec envelope)");
   const Verdict verdict = fails_encoder && fails_envelope ? Verdict::Both
@@ -530,10 +573,11 @@ void TimingChecker::check_recovery(const PinFrame& next) {
     message += std::string(fails_encoder ? "; " : ": suits this encoder (t_m + t_R " + format_time(declared) + "), but ") +
                "any compliant encoder may need t_m " + format_time(envelope - limit::kRecoveryTime2Min) + setting +
                " + t_R 500 ns = " + format_time(envelope);
-  report({std::string(check::kRecovery), "2.3.2 recovery time I (t_m) and II (t_R)", ObservationPoint::EncoderPins,
-          next.fe1, next.header.index, 1U, format_time(gap), bound, Severity::Error, message,
-          verdict},
-         "between frames");
+  report_unless_passed(shown,
+                       {std::string(check::kRecovery), "2.3.2 recovery time I (t_m) and II (t_R)",
+                        ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(gap), bound,
+                        Severity::Error, message, verdict},
+                       "between frames");
 }
 
 void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
@@ -648,12 +692,14 @@ void TimingChecker::check_busy_time(const AccessEvidence& frame) {
   }
   const Time busy_for = frame.start - *busy_since_;
   const Time bound = limit::kMemoryAccessMax + sim::period_of(frame.f_c);
-  if (busy_for <= bound || busy_reported_) return;
-  busy_reported_ = true;
-  report({std::string(check::kMemoryAccess), "2.3.2 t_ac maximum 12 ms (EnDat 2.2: busy bit)", ObservationPoint::MasterPins,
-          frame.start, frame.index, std::nullopt, "busy after " + format_time(busy_for), "<= 12 ms + T = " + format_time(bound),
-          Severity::Error, "the encoder's memory access outlasts the longest access time: Busy is still set"},
-         "additional data 1");
+  if (busy_reported_) return;
+  busy_reported_ = report_unless_passed(
+      at_most(busy_for, bound, params_.resolution),
+      {std::string(check::kMemoryAccess), "2.3.2 t_ac maximum 12 ms (EnDat 2.2: busy bit)", ObservationPoint::MasterPins,
+       frame.start, frame.index, std::nullopt, "busy after " + format_time(busy_for),
+       "<= 12 ms + T = " + format_time(bound), Severity::Error,
+       "the encoder's memory access outlasts the longest access time: Busy is still set"},
+      "additional data 1");
 }
 
 void TimingChecker::finish() {

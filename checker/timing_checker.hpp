@@ -10,6 +10,7 @@
 #include "line/line.hpp"
 #include "checker/activated_settings.hpp"
 #include "checker/declarations.hpp"
+#include "checker/decision.hpp"
 #include "checker/frame_decoder.hpp"
 #include "protocol/timing.hpp"
 
@@ -18,7 +19,8 @@ namespace endatsim::checker {
 using line::ObservationPoint;
 using sim::Time;
 
-enum class Severity : std::uint8_t { Error, Warning };
+// Undecided: the measured value is within the capture's resolution of the limit (decision.hpp).
+enum class Severity : std::uint8_t { Error, Warning, Undecided };
 std::string_view to_string(Severity s);
 
 // Names of the checks, as used in scenarios' expectations and in reports: one per row of the
@@ -71,6 +73,7 @@ struct RowConformance {
   std::uint64_t judged = 0;      // occasions the row was evaluated (frames, words, samples, accesses)
   std::uint64_t violations = 0;  // of error severity
   std::uint64_t warnings = 0;
+  std::uint64_t undecided = 0;   // within the capture's resolution of the limit
   std::string reason;            // for a row that was not judged
 };
 std::string_view to_string(RowConformance::Status s);
@@ -97,6 +100,9 @@ struct CheckerParams {
   // The master's DATA driver enable is known too (a simulation, or a capture of both enables):
   // without it a collision of the two drivers is not observable.
   bool master_enable_observable = true;
+  // Edge times are known to within this (a logic analyzer's sample period); 0: exact event
+  // times. A limit closer than this to the measured value is reported as undecided.
+  Time resolution{0};
 };
 
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
@@ -201,6 +207,8 @@ class TimingChecker final {
   void check_recovery(const PinFrame& next);
   void check_measurement_procedure(const DeclaredFrame& frame);
   void report(Finding f, std::string_view field = {}) { violations_.push_back({std::move(f), std::string(field)}); }
+  // Reports `f` if `d` fails, as undecided if it is undecided at the resolution; true if reported.
+  bool report_unless_passed(Decision d, Finding f, std::string_view field = {});
   // A row was evaluated once (whatever its verdict), for the conformance table.
   // Rows that are evaluated per sample count once per frame (word).
   void judge(std::size_t row) { ++judged_[row]; }

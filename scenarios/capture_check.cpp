@@ -113,8 +113,15 @@ std::string hex(std::uint64_t v, int digits) {
 }  // namespace
 
 bool CaptureCheckResult::conforms() const {
-  return std::none_of(violations.begin(), violations.end(),
-                      [](const checker::Violation& v) { return v.severity == checker::Severity::Error; });
+  return undecided() == 0 && std::none_of(violations.begin(), violations.end(), [](const checker::Violation& v) {
+           return v.severity == checker::Severity::Error;
+         });
+}
+
+std::size_t CaptureCheckResult::undecided() const {
+  return static_cast<std::size_t>(std::count_if(violations.begin(), violations.end(), [](const checker::Violation& v) {
+    return v.severity == checker::Severity::Undecided;
+  }));
 }
 
 CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
@@ -131,6 +138,8 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   checker::CheckerParams params = o.checker;
   params.driver_enables_observable = o.data_enable.has_value();
   params.master_enable_observable = false;  // one DATA wire and the encoder's enable at most
+  params.resolution = o.resolution.value_or(reader->sampled() ? reader->resolution() : Time::zero());
+  result.uncertainty = params.resolution;
   checker::TimingChecker checker(kernel, line, o.encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
       .position_bits = o.encoder.position_bits, .clock_to_data = o.encoder.output_delay, .t_m = o.encoder.t_m});
@@ -190,9 +199,15 @@ std::string capture_log(const CaptureCheckResult& r) {
 }
 
 void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool verbose) {
-  out << (r.conforms() ? "PASS " : "FAIL ") << r.file << "\n";
-  out << "  " << r.changes << " level changes over " << sim::format_time(r.end) << ", resolution "
-      << sim::format_time(r.resolution) << "; frames decoded: " << r.frames.size() << " (";
+  const bool failed = std::any_of(r.violations.begin(), r.violations.end(),
+                                  [](const checker::Violation& v) { return v.severity == checker::Severity::Error; });
+  out << (failed ? "FAIL " : r.undecided() != 0 ? "UNDECIDED " : "PASS ") << r.file << "\n";
+  out << "  " << r.changes << " level changes over " << sim::format_time(r.end) << "; ";
+  if (r.uncertainty == Time::zero())
+    out << "event times exact (timescale " << sim::format_time(r.resolution) << ")";
+  else
+    out << "resolution " << sim::format_time(r.uncertainty) << ": limits closer than that to a measured value are undecided";
+  out << "; frames decoded: " << r.frames.size() << " (";
   std::size_t clean = 0;
   for (const auto& f : r.frames) clean += f.answer_complete && f.crc_ok ? 1 : 0;
   out << clean << " with a complete answer and a good CRC)\n";
@@ -222,7 +237,8 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
     if (f.supplement) j["supplement"] = *f.supplement;
     frames.push_back(j);
   }
-  return {{"file", r.file},       {"resolution_ps", r.resolution.count()}, {"end_ps", r.end.count()},
+  return {{"file", r.file},       {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
+          {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
           {"violations", violations_json(r.violations)}, {"verdict", verdict_json(r.violations)},
           {"conformance", conformance_json(r.conformance)}};

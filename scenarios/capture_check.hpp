@@ -25,17 +25,23 @@ struct CaptureCheckOptions {
   // and its clock-to-data delay at the connector (receiver and driver included) in output_delay.
   checker::EncoderDeclaration encoder;
   checker::CheckerParams checker;
+  // How far each edge may be from its true time. Default: a logic analyzer's sample period for
+  // sampled captures (sigrok, CSV), exact for a simulator's VCD; set it for a VCD that a logic
+  // analyzer wrote.
+  std::optional<sim::Time> resolution;
 };
 
 struct CaptureCheckResult {
   std::string file;
-  sim::Time resolution{0};
+  sim::Time resolution{0};   // the capture's timescale or sample period
+  sim::Time uncertainty{0};  // what the checker allowed each edge (0: exact)
   sim::Time end{0};  // the last change
   std::uint64_t changes = 0;
   std::vector<checker::WireFrame> frames;
   std::vector<checker::Violation> violations;
   std::vector<checker::RowConformance> conformance;
-  bool conforms() const;  // no violation of error severity
+  bool conforms() const;           // no violation of error severity and nothing undecided
+  std::size_t undecided() const;   // findings undecided at the capture's resolution
 };
 
 // Throws capture::CaptureError for unreadable or malformed captures and missing signals.

@@ -162,13 +162,16 @@ void write_diagnosis(std::ostream& out, const ScenarioResult& r, bool verbose) {
 }
 
 void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows) {
-  out << "  conformance (row: judged / violations / warnings, or why not judged):\n";
+  out << "  conformance (row: judged / violations / warnings [/ undecided], or why not judged):\n";
   for (const auto& c : rows) {
     out << "    " << c.check << ": ";
-    if (c.status == checker::RowConformance::Status::Judged)
-      out << c.judged << " / " << c.violations << " / " << c.warnings << (c.violations == 0 ? "  ok" : "  BROKEN");
-    else
+    if (c.status == checker::RowConformance::Status::Judged) {
+      out << c.judged << " / " << c.violations << " / " << c.warnings;
+      if (c.undecided != 0) out << " / " << c.undecided;
+      out << (c.violations != 0 ? "  BROKEN" : c.undecided != 0 ? "  UNDECIDED" : "  ok");
+    } else {
       out << checker::to_string(c.status) << " (" << c.reason << ")";
+    }
     out << "\n";
   }
 }
@@ -177,7 +180,7 @@ nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows
   nlohmann::json out = nlohmann::json::array();
   for (const auto& c : rows) {
     nlohmann::json j{{"check", c.check}, {"status", std::string(checker::to_string(c.status))}, {"judged", c.judged},
-                     {"violations", c.violations}, {"warnings", c.warnings}};
+                     {"violations", c.violations}, {"warnings", c.warnings}, {"undecided", c.undecided}};
     if (!c.reason.empty()) j["reason"] = c.reason;
     out.push_back(j);
   }

@@ -10,14 +10,18 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "capture/capture.hpp"
 #include "scenarios/scenarios.hpp"
 
 namespace {
 
 using namespace endatsim;
+using sim::ns;
+using sim::Time;
 namespace fs = std::filesystem;
 
 std::vector<fs::path> scenarios_in(std::initializer_list<const char*> folders) {
@@ -85,6 +89,111 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureRoundTrip, ::testing::ValuesIn(scenar
                          [](const auto& param_info) {
                            std::string name = param_info.param.parent_path().filename().string() + "_" +
                                               param_info.param.stem().string();
+                           std::replace_if(name.begin(), name.end(),
+                                           [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+                           return name;
+                         });
+
+// The capture a logic analyzer sampling every `period` would make of a scenario's encoder pins:
+// each change shows at the first sample at or after it; a pulse shorter than a sample may vanish.
+// Written as a VCD at 1 ns.
+void resample(const fs::path& from, const fs::path& to, Time period) {
+  auto reader = capture::open_vcd(from.string());
+  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
+  std::vector<std::uint32_t> wanted;
+  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
+  reader->select(wanted);
+  std::ofstream out(to);
+  out << "$timescale 1 ns $end\n$scope module encoder $end\n"
+      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
+      << "$upscope $end\n$enddefinitions $end\n";
+  const char ids[] = {'c', 'd', 'e'};
+  std::vector<char> shown(3, '?'), pending(3, '?');
+  std::int64_t sample = -1;
+  const auto flush = [&] {
+    bool stamped = false;
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (pending[i] == shown[i] || pending[i] == '?') continue;
+      if (!stamped) out << "#" << sample * (period.count() / 1000) << "\n";
+      stamped = true;
+      out << pending[i] << ids[i] << "\n";
+      shown[i] = pending[i];
+    }
+  };
+  capture::Change c;
+  while (reader->next(c)) {
+    const std::int64_t at = (c.time.count() + period.count() - 1) / period.count();
+    if (at != sample) {
+      flush();
+      sample = at;
+    }
+    const auto i = static_cast<std::size_t>(std::find(wanted.begin(), wanted.end(), c.signal) - wanted.begin());
+    pending[i] = c.value;
+  }
+  flush();
+}
+
+class CaptureResampled : public ::testing::TestWithParam<fs::path> {};
+
+// A logic analyzer needs some four samples per clock period to show each phase: the scenarios
+// whose clock allows that at 100 MHz (10 ns) and 25 MHz (40 ns) are checked at those rates. The
+// frames decode the same; no row fails that the exact capture passes; every row the exact
+// capture fails is failed or undecided.
+TEST_P(CaptureResampled, LogicAnalyzerRatesGiveTheSameFramesAndUndecidedNearLimits) {
+  const auto scenario = scenarios::load_scenario_file(GetParam().string());
+  const fs::path vcd = temp(GetParam().stem().string() + "_exact.vcd");
+  scenarios::RunOptions options;
+  options.vcd_path = vcd.string();
+  scenarios::run_scenario(scenario, options);
+  scenarios::CaptureCheckOptions o;
+  o.clock = "encoder.clock";
+  o.data = "encoder.data";
+  o.data_enable = "encoder.data_driver_enable";
+  o.encoder = scenarios::declared_encoder(scenario.encoder);
+  o.encoder.output_delay = scenario.line.encoder.receiver_delay + scenario.encoder.output_delay +
+                           scenario.line.encoder.driver_delay;
+  o.checker = scenario.checker;
+  o.file = vcd.string();
+  const auto exact = scenarios::check_capture(o);
+  const auto errors = [](const scenarios::CaptureCheckResult& r, checker::Severity severity) {
+    std::map<std::string, std::size_t> counts;
+    for (const auto& v : r.violations)
+      if (v.severity == severity) ++counts[v.check];
+    return counts;
+  };
+  const auto decoded = [](const scenarios::CaptureCheckResult& r) {
+    std::vector<std::tuple<std::optional<protocol::ModeCommand>, bool, std::uint64_t>> out;
+    for (const auto& f : r.frames)
+      if (f.answer_complete) out.emplace_back(f.command, f.crc_ok, f.fields[static_cast<std::size_t>(protocol::Field::Position)]);
+    return out;
+  };
+  for (const Time period : {ns(10), ns(40)}) {
+    if (sim::period_of(scenario.master.f_c) < period * 4) continue;
+    const fs::path sampled = temp(GetParam().stem().string() + "_" + std::to_string(period.count()) + ".vcd");
+    resample(vcd, sampled, period);
+    o.file = sampled.string();
+    o.resolution = period;
+    const auto r = scenarios::check_capture(o);
+    fs::remove(sampled);
+    const std::string at = "at " + sim::format_time(period);
+    EXPECT_EQ(decoded(r), decoded(exact)) << at;
+    const auto exact_errors = errors(exact, checker::Severity::Error);
+    const auto sampled_errors = errors(r, checker::Severity::Error);
+    const auto sampled_undecided = errors(r, checker::Severity::Undecided);
+    for (const auto& [check, n] : sampled_errors)
+      EXPECT_LE(n, exact_errors.count(check) != 0 ? exact_errors.at(check) : 0U) << check << " fails only " << at;
+    for (const auto& [check, n] : exact_errors)
+      EXPECT_GE((sampled_errors.count(check) != 0 ? sampled_errors.at(check) : 0U) +
+                    (sampled_undecided.count(check) != 0 ? sampled_undecided.at(check) : 0U),
+                n)
+          << check << " lost " << at;
+  }
+  fs::remove(vcd);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureResampled, ::testing::ValuesIn(scenarios_in({"bundled"})),
+                         [](const auto& param_info) {
+                           std::string name = param_info.param.stem().string();
                            std::replace_if(name.begin(), name.end(),
                                            [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
                            return name;
@@ -165,3 +274,51 @@ TEST(CheckCommand, ADefectInACaptureExitsOneWithItsRow) {
 }
 
 }  // namespace
+
+TEST(CheckCommand, ALimitWithinOneSampleIsUndecidedNeverPassedOrFailed) {
+  // The project's master waits exactly t_m 30 us + t_R 500 ns, the envelope's bound: from a
+  // simulator's exact VCD that passes; sampled every 10 ns it can be neither passed nor failed.
+  auto scenario = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat21_1mhz_10m.json");
+  for (auto& op : scenario.script) op.cycle = Time::zero();  // frame after frame, as fast as the master's waits allow
+  const fs::path vcd = temp("undecided_exact.vcd"), sampled = temp("undecided_10ns.vcd");
+  scenarios::RunOptions options;
+  options.vcd_path = vcd.string();
+  scenarios::run_scenario(scenario, options);
+  resample(vcd, sampled, ns(10));
+  const std::string signals = " --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable";
+  auto r = cli("check '" + vcd.string() + "'" + signals);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("event times exact"), std::string::npos) << r.out;
+  r = cli("check '" + sampled.string() + "'" + signals + " --resolution 10ns");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_EQ(r.out.rfind("UNDECIDED ", 0), 0U) << r.out;
+  EXPECT_NE(r.out.find("resolution 10 ns"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("undecided at the capture's resolution of 10 ns"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("t_m_t_r:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("UNDECIDED\n"), std::string::npos) << r.out;  // the row's conformance
+  EXPECT_EQ(r.out.find("BROKEN"), std::string::npos) << r.out;
+  r = cli("check '" + sampled.string() + "'" + signals + " --resolution 2ms");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--resolution must be 0 .. 1 ms"), std::string::npos) << r.err;
+  fs::remove(vcd);
+  fs::remove(sampled);
+}
+
+TEST(Decision, ALimitWithinTheResolutionIsUndecided) {
+  using checker::Decision;
+  const Time r = ns(10);
+  EXPECT_EQ(checker::at_least(ns(100), ns(100), Time::zero()), Decision::Pass);
+  EXPECT_EQ(checker::at_least(ns(100) - sim::ps(1), ns(100), Time::zero()), Decision::Fail);
+  EXPECT_EQ(checker::more_than(ns(100), ns(100), Time::zero()), Decision::Fail);
+  EXPECT_EQ(checker::at_most(ns(100), ns(100), Time::zero()), Decision::Pass);
+  EXPECT_EQ(checker::at_most(ns(100) + sim::ps(1), ns(100), Time::zero()), Decision::Fail);
+  // Measured 110 ns at 10 ns: the true value lies in (100, 120) ns.
+  EXPECT_EQ(checker::at_least(ns(110), ns(100), r), Decision::Pass);
+  EXPECT_EQ(checker::at_least(ns(110) - sim::ps(1), ns(100), r), Decision::Undecided);
+  EXPECT_EQ(checker::at_least(ns(90), ns(100), r), Decision::Fail);
+  EXPECT_EQ(checker::at_least(ns(90) + sim::ps(1), ns(100), r), Decision::Undecided);
+  EXPECT_EQ(checker::at_most(ns(90), ns(100), r), Decision::Pass);
+  EXPECT_EQ(checker::at_most(ns(90) + sim::ps(1), ns(100), r), Decision::Undecided);
+  EXPECT_EQ(checker::at_most(ns(110), ns(100), r), Decision::Fail);
+  EXPECT_EQ(checker::at_most(ns(110) - sim::ps(1), ns(100), r), Decision::Undecided);
+}
