@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "scenarios/capture_check.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/xml.hpp"
 
@@ -48,6 +49,51 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
     x += "    </testcase>\n";
   }
   x += "  </testsuite>\n</testsuites>\n";
+  return x;
+}
+
+std::string junit_xml(const std::vector<CaptureCheckResult>& captures) {
+  std::size_t tests = 0, failures = 0;
+  const auto failed = [](const checker::RowConformance& c) { return c.violations + c.undecided != 0; };
+  for (const auto& r : captures)
+    for (const auto& c : r.conformance) {
+      ++tests;
+      failures += failed(c) ? 1 : 0;
+    }
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  x += "<testsuites name=\"endatsim check\" tests=\"" + std::to_string(tests) + "\" failures=\"" +
+       std::to_string(failures) + "\" errors=\"0\">\n";
+  for (const auto& r : captures) {
+    std::size_t suite_failures = 0, skipped = 0;
+    for (const auto& c : r.conformance) {
+      suite_failures += failed(c) ? 1 : 0;
+      skipped += c.status != checker::RowConformance::Status::Judged ? 1 : 0;
+    }
+    x += "  <testsuite name=\"" + xml_escape(r.file) + "\" tests=\"" + std::to_string(r.conformance.size()) +
+         "\" failures=\"" + std::to_string(suite_failures) + "\" errors=\"0\" skipped=\"" + std::to_string(skipped) +
+         "\">\n";
+    for (const auto& c : r.conformance) {
+      const auto row = protocol::timing_row(c.check);
+      x += "    <testcase classname=\"endatsim.check\" name=\"" + xml_escape(c.check) + "\" file=\"" + xml_escape(r.file) +
+           "\" assertions=\"" + std::to_string(c.judged) + "\">\n";
+      if (c.status != checker::RowConformance::Status::Judged) {
+        x += "      <skipped message=\"" + xml_escape(std::string(checker::to_string(c.status)) + ": " + c.reason) + "\"/>\n";
+      } else if (failed(c)) {
+        std::string body;
+        for (const auto& v : r.violations)
+          if (v.check == c.check && v.severity != checker::Severity::Warning)
+            body += std::string(checker::to_string(v.severity)) + " at " + sim::format_time(v.time) + ": measured " +
+                    v.measured + ", limit " + v.limit + " - " + v.message + "\n";
+        const std::string message = std::to_string(c.violations) + " violation(s), " + std::to_string(c.undecided) +
+                                    " undecided [" + (row ? std::string(row->section) : std::string()) + "]";
+        x += "      <failure type=\"" + std::string(c.violations != 0 ? "violation" : "undecided") + "\" message=\"" +
+             xml_escape(message) + "\">" + xml_escape(body) + "</failure>\n";
+      }
+      x += "    </testcase>\n";
+    }
+    x += "  </testsuite>\n";
+  }
+  x += "</testsuites>\n";
   return x;
 }
 

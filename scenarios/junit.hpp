@@ -7,11 +7,17 @@
 #include <string>
 #include <vector>
 
+#include "scenarios/capture_check.hpp"
 #include "scenarios/runner.hpp"
 
 namespace endatsim::scenarios {
 
 std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name = "endatsim");
+
+// `endatsim check`: one <testsuite> per capture, one <testcase> per row of the timing table; a
+// row with violations or undecided findings fails, a row not applicable or not observable in
+// that capture is skipped with the reason.
+std::string junit_xml(const std::vector<CaptureCheckResult>& captures);
 
 // Escapes text for XML attributes and character data; drops characters XML 1.0 forbids.
 std::string xml_escape(const std::string& text);

@@ -322,3 +322,41 @@ TEST(Decision, ALimitWithinTheResolutionIsUndecided) {
   EXPECT_EQ(checker::at_most(ns(110), ns(100), r), Decision::Fail);
   EXPECT_EQ(checker::at_most(ns(110) - sim::ps(1), ns(100), r), Decision::Undecided);
 }
+
+TEST(CheckCommand, SeveralCapturesGiveOneJunitSuiteEachAndTheWorstExitStatus) {
+  auto fast = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat21_1mhz_10m.json");
+  const fs::path clean = temp("junit_clean.vcd"), broken = temp("junit_broken.vcd"), missing = temp("junit_missing.vcd");
+  const fs::path junit = temp("check.xml"), json = temp("check.json");
+  scenarios::RunOptions options;
+  options.vcd_path = clean.string();
+  scenarios::run_scenario(fast, options);
+  for (auto& op : fast.script) op.cycle = Time::zero();
+  fast.master.t_m_wait = sim::us(5);  // into the encoder's t_m
+  options.vcd_path = broken.string();
+  scenarios::run_scenario(fast, options);
+  const std::string signals = " --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable";
+  auto r = cli("check '" + clean.string() + "' '" + broken.string() + "'" + signals + " --junit '" + junit.string() +
+               "' --json '" + json.string() + "'");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  std::ifstream in(junit);
+  std::stringstream xml;
+  xml << in.rdbuf();
+  EXPECT_NE(xml.str().find("<testsuite name=\"" + clean.string() + "\""), std::string::npos) << xml.str();
+  EXPECT_NE(xml.str().find("<testsuite name=\"" + broken.string() + "\""), std::string::npos) << xml.str();
+  EXPECT_NE(xml.str().find("<testcase classname=\"endatsim.check\" name=\"t_m_t_r\""), std::string::npos);
+  EXPECT_NE(xml.str().find("<failure type=\"violation\""), std::string::npos);
+  EXPECT_NE(xml.str().find("<skipped message=\"not observable: needs the master&apos;s declaration"), std::string::npos)
+      << xml.str();
+  std::ifstream json_in(json);
+  const auto j = nlohmann::json::parse(json_in);
+  ASSERT_EQ(j.at("captures").size(), 2U);
+  EXPECT_TRUE(j["captures"][0]["conforms"].get<bool>());
+  EXPECT_FALSE(j["captures"][1]["conforms"].get<bool>());
+  EXPECT_FALSE(j["captures"][1]["verdict"]["this_encoder"].get<bool>());
+  // A capture that cannot be read is bad input; the others are still checked.
+  r = cli("check '" + clean.string() + "' '" + missing.string() + "'" + signals);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("PASS " + clean.string()), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
+  for (const auto& p : {clean, broken, junit, json}) fs::remove(p);
+}

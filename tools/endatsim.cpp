@@ -49,9 +49,9 @@ const char* const kDiagramUsage =
     "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet]\n";
 const char* const kChecksUsage = "usage: endatsim checks\n";
 const char* const kCheckUsage =
-    "usage: endatsim check FILE --clock NAME --data NAME [--data-enable NAME [--enable-active-low]]\n"
+    "usage: endatsim check FILE... --clock NAME --data NAME [--data-enable NAME [--enable-active-low]]\n"
     "                      [--encoder PROFILE|SCENARIO.json] [--clock-to-data TIME] [--t-st-reduced-for-cable]\n"
-    "                      [--resolution TIME] [--json PATH] [--log PATH] [--verbose|--quiet]\n";
+    "                      [--resolution TIME] [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
 
 std::string usage() {
   return std::string(kRunUsage) + kSweepUsage + kValidateUsage + kDiagramUsage + kCheckUsage + kChecksUsage +
@@ -119,7 +119,9 @@ const char* const kCheckHelp =
     "and decoded on the wires (mode command, payload, start bit, answer, CRC, additional data,\n"
     "command supplement); --encoder takes the encoder's declared position width, t_m and t_R\n"
     "from a profile or a scenario (default: the model's encoder), --clock-to-data its delay from\n"
-    "CLOCK to DATA at the connector (default 130 ns). --log writes the decoded frames.\n"
+    "CLOCK to DATA at the connector (default 130 ns). --log writes the decoded frames, --junit a\n"
+    "test case per row of the timing table and capture; with several captures --json holds\n"
+    "{\"captures\": [...]}.\n"
     "Each finding counts against the spec envelope (what any compliant encoder may do), the\n"
     "declared encoder, or both; the verdict line says which. A limit closer to the measured value\n"
     "than the capture's resolution (the sample period of .sr and CSV; VCD times are exact unless\n"
@@ -180,6 +182,7 @@ po::options_description options_of(Command c) {
           "encoder", po::value<std::string>(), "the declared encoder: a profile or a scenario (JSON)")(
           "clock-to-data", po::value<std::string>(), "the encoder's CLOCK-to-DATA delay at its connector")(
           "t-st-reduced-for-cable", "accept a t_ST shorter than note 8 for a cable shorter than 100 m")(
+          "junit", po::value<std::string>(), "write JUnit XML (a test case per row and capture) to this file")(
           "resolution", po::value<std::string>(),
           "how far each edge may be from its true time (default: the sample period of .sr/CSV, exact for VCD)")(
           "json", po::value<std::string>(), "write the decoded frames and violations as JSON")(
@@ -206,10 +209,34 @@ std::optional<std::uint64_t> parse_uint(const std::string& text) {
   return v;
 }
 
+// Written next to its place and renamed into it: a reader never sees half a file, and an
+// interrupted run leaves the previous file (or none).
 void write_file(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write '" + path + "'");
+  std::error_code status_error;
+  const auto status = std::filesystem::status(path, status_error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {  // /dev/stdout, a pipe
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write '" + path + "'");
+    return;
+  }
+  const std::string part = path + ".part-" + std::to_string(::getpid());
+  {
+    std::ofstream out(part, std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(part, ignored);
+      throw std::runtime_error("cannot write '" + path + "'");
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(part, path, error);
+  if (error) {
+    std::filesystem::remove(part, error);
+    throw std::runtime_error("cannot write '" + path + "'");
+  }
 }
 
 // Colour for the summary's verdicts, only where a person reads it.
@@ -624,15 +651,14 @@ int check_command(const po::variables_map& vm) {
   const auto files = files_of(vm);
   scenarios::CaptureCheckOptions o;
   const auto clock = string_option(vm, "clock"), data = string_option(vm, "data");
-  if (files.size() != 1 || !clock || !data) {
-    std::cerr << "endatsim check: expected one capture file, --clock NAME and --data NAME\n" << kCheckUsage;
+  if (files.empty() || !clock || !data) {
+    std::cerr << "endatsim check: expected capture files, --clock NAME and --data NAME\n" << kCheckUsage;
     return kBadInput;
   }
   if (vm.count("verbose") != 0 && vm.count("quiet") != 0) {
     std::cerr << "endatsim check: --verbose and --quiet exclude each other\n";
     return kBadInput;
   }
-  o.file = files.front();
   o.clock = *clock;
   o.data = *data;
   o.data_enable = string_option(vm, "data-enable");
@@ -673,21 +699,43 @@ int check_command(const po::variables_map& vm) {
       return kBadInput;
     }
   }
-  const auto json = string_option(vm, "json"), log = string_option(vm, "log");
-  scenarios::CaptureCheckResult r;
-  try {
-    r = scenarios::check_capture(o);
-  } catch (const capture::CaptureError& e) {
-    std::cerr << "endatsim check: " << e.what() << "\n";
-    return kBadInput;
+  const auto json = string_option(vm, "json"), log = string_option(vm, "log"), junit = string_option(vm, "junit");
+  // Each capture in turn; a bad one is reported and the others still checked. The outputs cover
+  // the captures that could be read.
+  std::vector<scenarios::CaptureCheckResult> results;
+  bool bad_input = false, conforms = true;
+  std::string logs;
+  for (const auto& file : files) {
+    o.file = file;
+    try {
+      results.push_back(scenarios::check_capture(o));
+    } catch (const capture::CaptureError& e) {
+      std::cerr << "endatsim check: " << e.what() << "\n";
+      bad_input = true;
+      continue;
+    }
+    const auto& r = results.back();
+    conforms = conforms && r.conforms();
+    if (files.size() > 1) logs += "# " + r.file + "\n";
+    logs += scenarios::capture_log(r);
+    if (vm.count("quiet") == 0 || !r.conforms()) scenarios::write_capture_summary(std::cout, r, vm.count("verbose") != 0);
   }
-  if (json) write_file(*json, scenarios::capture_json(r).dump(2) + "\n");
+  if (json) {
+    if (files.size() == 1 && results.size() == 1) {
+      write_file(*json, scenarios::capture_json(results.front()).dump(2) + "\n");
+    } else {
+      nlohmann::json all = nlohmann::json::array();
+      for (const auto& r : results) all.push_back(scenarios::capture_json(r));
+      write_file(*json, nlohmann::json{{"captures", all}}.dump(2) + "\n");
+    }
+  }
+  if (junit) write_file(*junit, scenarios::junit_xml(results));
   if (log) {
-    if (*log == "-") std::cout << scenarios::capture_log(r);
-    else write_file(*log, scenarios::capture_log(r));
+    if (*log == "-") std::cout << logs;
+    else write_file(*log, logs);
   }
-  if (vm.count("quiet") == 0 || !r.conforms()) scenarios::write_capture_summary(std::cout, r, vm.count("verbose") != 0);
-  return r.conforms() ? kPass : kFail;
+  if (bad_input) return kBadInput;
+  return conforms ? kPass : kFail;
 }
 
 int checks_command(const po::variables_map& vm) {
