@@ -5,6 +5,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "checker/clock_fit.hpp"
 #include "protocol/memory_area.hpp"
 
 namespace endatsim::checker {
@@ -14,54 +15,6 @@ using sim::format_frequency;
 using sim::format_time;
 
 namespace limit = protocol::limit;
-
-// The frame's clock frequency from a least-squares fit over its rising edges from RE2 on (the
-// first period contains t_ST), at most kMaxFitEdges of them (a long continuous clock). A steady
-// clock is judged exactly; with jitter the limits widen by three standard errors of the fit,
-// so that a clock whose frequency is right is not flagged for the scatter of its edges.
-constexpr std::int64_t kMaxFitEdges = 4096;
-
-struct FittedFrequency {
-  __int128 num = 0;  // period = num / den [ps]; f = 1e12 * den / num [Hz]
-  __int128 den = 0;
-  std::int64_t uncertainty_ppm = 0;
-  sim::Hertz hertz() const { return static_cast<sim::Hertz>((__int128{1'000'000'000'000} * den + num / 2) / num); }
-  // f above (or below) bound by more than `ppm` parts per million plus the fit's uncertainty.
-  bool above(sim::Hertz bound, std::int64_t ppm) const {
-    return __int128{1'000'000'000'000} * den * 1'000'000 > __int128{bound} * (1'000'000 + ppm + uncertainty_ppm) * num;
-  }
-  bool below(sim::Hertz bound, std::int64_t ppm) const {
-    return __int128{1'000'000'000'000} * den * 1'000'000 < __int128{bound} * (1'000'000 - ppm - uncertainty_ppm) * num;
-  }
-};
-
-FittedFrequency fit_frequency(const std::vector<Time>& rising) {
-  const std::int64_t m = std::min<std::int64_t>(static_cast<std::int64_t>(rising.size()) - 1, kMaxFitEdges);
-  const Time origin = rising[1];
-  const auto y = [&](std::int64_t i) { return __int128{(rising[static_cast<std::size_t>(i + 1)] - origin).count()}; };
-  __int128 sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::int64_t i = 0; i < m; ++i) {
-    sx += i;
-    sy += y(i);
-    sxx += __int128{i} * i;
-    sxy += i * y(i);
-  }
-  FittedFrequency fit{m * sxy - sx * sy, m * sxx - sx * sx, 0};
-  if (m < 3 || fit.num <= 0) return fit;
-  // Residuals times den, exactly: den * y_i - (sy * sxx - sx * sxy) - i * num.
-  const __int128 intercept = sy * sxx - sx * sxy;
-  long double squares = 0;
-  for (std::int64_t i = 0; i < m; ++i) {
-    const auto r = static_cast<long double>(fit.den * y(i) - intercept - i * fit.num) / static_cast<long double>(fit.den);
-    squares += r * r;
-  }
-  if (squares == 0) return fit;
-  const long double slope_sd = std::sqrt(squares / static_cast<long double>(m - 2) /
-                                         (static_cast<long double>(fit.den) / static_cast<long double>(m)));
-  const long double period = static_cast<long double>(fit.num) / static_cast<long double>(fit.den);
-  fit.uncertainty_ppm = static_cast<std::int64_t>(std::ceil(3 * slope_sd / period * 1e6L));
-  return fit;
-}
 
 }  // namespace
 
@@ -500,6 +453,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
     report({std::string(check::kShortRecoveryClock), "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), ">= 1 MHz",
             Severity::Error, "the short recovery time is selected but the clock is slower than 1 MHz"});
+  check_frequency_for_encoder(f, fit);
   const bool compensated = f.header.compensated;
   const sim::Hertz max = compensated ? limit::kFcMaxWithCompensation : limit::kFcMaxWithoutCompensation;
   const std::string range = format_frequency(limit::kFcMin) + " .. " + format_frequency(max);
@@ -515,6 +469,32 @@ void TimingChecker::check_frequency(const PinFrame& f) {
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), range,
             Severity::Warning, "clock above 8 MHz: only for special applications with short cables (t_ST 1 us at 16 MHz)"});
   }
+}
+
+// What the declared encoder allows of f_c beyond the table: word 25's maximum (3.9.19), 2 MHz for
+// an EnDat 2.1 encoder (2.1.1: without delay compensation), and the cable the table's 8 MHz with
+// compensation is given for (2.1.2: "maximum: 100 m"; longer only after consulting the maker).
+void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedFrequency& fit) {
+  const sim::Hertz fc = fit.hertz();
+  const std::int64_t tol = params_.f_c_tolerance_ppm;
+  const Time at = f.rising[1];
+  const auto exceeds = [&](sim::Hertz bound, std::string spec, std::string message) {
+    report({std::string(check::kClockFrequency), std::move(spec), ObservationPoint::EncoderPins, at, f.header.index,
+            std::nullopt, format_frequency(fc), "<= " + format_frequency(bound), Severity::Error, std::move(message),
+            Verdict::ThisEncoder});
+  };
+  if (encoder_.f_c_max && fit.above(*encoder_.f_c_max, tol))
+    exceeds(*encoder_.f_c_max, "3.9.19 word 25 (the encoder's maximum clock frequency)",
+            "clock above the maximum this encoder declares in word 25");
+  if (encoder_.endat21_only && fit.above(limit::kFcMaxWithoutCompensation, tol))
+    exceeds(limit::kFcMaxWithoutCompensation, "2.1.1 (EnDat 2.1 encoder: 2 MHz)",
+            "clock above 2 MHz for an EnDat 2.1 encoder, which knows no delay compensation");
+  const double cable = line_.params().cable_length_m;
+  if (f.header.compensated && cable > limit::kCompensatedCableMaxMetres && fit.above(limit::kFcMaxWithoutCompensation, tol))
+    report({std::string(check::kClockFrequency), "2.1.2 (with delay compensation up to 100 m of cable)",
+            ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc) + " over " +
+            std::to_string(static_cast<long>(cable)) + " m", "100 m", Severity::Warning,
+            "a compensated clock above 2 MHz over more than 100 m of cable: only after consulting the encoder's maker"});
 }
 
 // 2.3.2 "time between cycle t_b, EnDat 2.1 commands: t_b > 1 ms". UNCERTAIN (timing-model §7):

@@ -9,6 +9,7 @@
 
 #include "line/line.hpp"
 #include "checker/activated_settings.hpp"
+#include "checker/clock_fit.hpp"
 #include "checker/declarations.hpp"
 #include "checker/decision.hpp"
 #include "checker/frame_decoder.hpp"
@@ -204,6 +205,7 @@ class TimingChecker final {
   void evaluate(const PinFrame& f);
   void check_pulse_widths(const PinFrame& f);
   void check_frequency(const PinFrame& f);
+  void check_frequency_for_encoder(const PinFrame& f, const FittedFrequency& fit);
   void check_recovery(const PinFrame& next);
   void check_measurement_procedure(const DeclaredFrame& frame);
   void report(Finding f, std::string_view field = {}) { violations_.push_back({std::move(f), std::string(field)}); }

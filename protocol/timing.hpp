@@ -45,6 +45,8 @@ inline constexpr Hertz kFcMin = sim::kHz(100);
 inline constexpr Hertz kFcMaxWithoutCompensation = sim::MHz(2);
 inline constexpr Hertz kFcMaxWithCompensation = sim::MHz(8);
 inline constexpr Hertz kFcMaxSpecial = sim::MHz(16);
+// 2.1.2: 8 MHz with delay compensation "regardless of the cable length (maximum: 100 m)".
+inline constexpr double kCompensatedCableMaxMetres = 100;
 // 2.1.2: the propagation delay is measured at 100 .. 200 kHz, with a counter of at least eight
 // times the intended f_c (f_e tolerance -10 %), averaged over at least three measurements.
 inline constexpr Hertz kMeasurementFcMin = sim::kHz(100);

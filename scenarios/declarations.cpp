@@ -18,6 +18,12 @@ checker::EncoderDeclaration declared_encoder(const slave::EncoderParams& e) {
   d.endat21_only = e.version == protocol::EndatVersion::V2_1;
   d.switched_on_in_run = e.startup_time > sim::Time::zero();
   d.supplement_ignore_clocks = e.supplement_ignore_clocks;
+  // Word 25 of the EnDat 2.2 area (3.9.19), in kHz; 0 states nothing.
+  const auto image = e.memory ? *e.memory : slave::default_memory_image(e);
+  const auto bd = image.areas.find(protocol::MemoryArea::ManufacturerEndat22);
+  if (bd != image.areas.end() && bd->second.size() > protocol::word::kMaxClockFrequency &&
+      bd->second[protocol::word::kMaxClockFrequency] != 0)
+    d.f_c_max = sim::kHz(bd->second[protocol::word::kMaxClockFrequency]);
   return d;
 }
 

@@ -331,3 +331,27 @@ TEST(CheckerShortRecoveryTime, NeedsOneMegahertzToTheHertzOnceActivated) {
                              checker::check::kShortRecoveryClock),
             0U);
 }
+
+// 3.9.19 word 25 and 2.1.1: what the declared encoder allows of f_c, to the hertz; it counts
+// against this encoder only (the table allows up to 8 MHz with compensation, 16 MHz specially).
+TEST(CheckerClockFrequency, AboveTheDeclaredEncodersMaximumToTheHertz) {
+  const auto this_encoder = [](Hertz f_c, bool v21, std::optional<std::uint16_t> word25_khz) {
+    auto s = make_scenario(1, f_c, f_c > MHz(2), 2);
+    s.checker.f_c_tolerance_ppm = 0;
+    if (v21) {
+      s.encoder.version = protocol::EndatVersion::V2_1;
+    }
+    if (word25_khz) {
+      auto image = slave::default_memory_image(s.encoder);
+      image.areas.at(protocol::MemoryArea::ManufacturerEndat22).at(protocol::word::kMaxClockFrequency) = *word25_khz;
+      s.encoder.memory = image;
+    }
+    return count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency, checker::Verdict::ThisEncoder);
+  };
+  // At 1 MHz one picosecond of period is one hertz; at 2 MHz the nearest clock above is 2 MHz + 4 Hz.
+  EXPECT_EQ(this_encoder(MHz(1), false, 1000), 0U);
+  EXPECT_EQ(this_encoder(MHz(1) + 1, false, 1000), 2U);  // each of the two reads
+  EXPECT_EQ(this_encoder(MHz(1) + 1, false, std::nullopt), 0U);  // the model's word 25: 16 MHz
+  EXPECT_EQ(this_encoder(MHz(2), true, std::nullopt), 0U);
+  EXPECT_EQ(this_encoder(MHz(2) + 4, true, std::nullopt), 2U);
+}

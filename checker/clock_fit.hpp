@@ -1,0 +1,35 @@
+// The clock frequency of a frame, fitted over its rising edges (clock_fit.cpp).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sim/time.hpp"
+
+namespace endatsim::checker {
+
+using sim::Time;
+
+// The frame's clock frequency from a least-squares fit over its rising edges from RE2 on (the
+// first period contains t_ST), at most kMaxFitEdges of them (a long continuous clock). A steady
+// clock is judged exactly; with jitter the limits widen by three standard errors of the fit,
+// so that a clock whose frequency is right is not flagged for the scatter of its edges.
+constexpr std::int64_t kMaxFitEdges = 4096;
+
+struct FittedFrequency {
+  __int128 num = 0;  // period = num / den [ps]; f = 1e12 * den / num [Hz]
+  __int128 den = 0;
+  std::int64_t uncertainty_ppm = 0;
+  sim::Hertz hertz() const { return static_cast<sim::Hertz>((__int128{1'000'000'000'000} * den + num / 2) / num); }
+  // f above (or below) bound by more than `ppm` parts per million plus the fit's uncertainty.
+  bool above(sim::Hertz bound, std::int64_t ppm) const {
+    return __int128{1'000'000'000'000} * den * 1'000'000 > __int128{bound} * (1'000'000 + ppm + uncertainty_ppm) * num;
+  }
+  bool below(sim::Hertz bound, std::int64_t ppm) const {
+    return __int128{1'000'000'000'000} * den * 1'000'000 < __int128{bound} * (1'000'000 - ppm - uncertainty_ppm) * num;
+  }
+};
+
+FittedFrequency fit_frequency(const std::vector<Time>& rising);
+
+}  // namespace endatsim::checker
