@@ -85,7 +85,20 @@ TEST_P(CaptureRoundTrip, CheckFindsWhatRunFoundOnTheWires) {
   EXPECT_GE(decoded, good) << "every frame the master read cleanly is on the wires";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureRoundTrip, ::testing::ValuesIn(scenarios_in({"bundled", "safety"})),
+// Every bundled, safety and field scenario but the four whose wires legitimately tell another
+// story than the master's declarations (docs/analyzer.md, "Where check and run differ").
+std::vector<fs::path> round_trip_scenarios() {
+  const std::vector<std::string> differ{"02_delay_measured_at_the_wrong_clock", "03_false_start_bit_after_a_frame",
+                                        "12_unshielded_cable_near_a_drive_inverter",
+                                        "14_additional_data_lost_after_a_power_dip"};
+  auto all = scenarios_in({"bundled", "safety", "field"});
+  std::erase_if(all, [&](const fs::path& p) {
+    return std::find(differ.begin(), differ.end(), p.stem().string()) != differ.end();
+  });
+  return all;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureRoundTrip, ::testing::ValuesIn(round_trip_scenarios()),
                          [](const auto& param_info) {
                            std::string name = param_info.param.parent_path().filename().string() + "_" +
                                               param_info.param.stem().string();
