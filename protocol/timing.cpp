@@ -31,9 +31,10 @@ using E = Evidence;
 // The spec's own words and numbers; the conditions say how a row is read where the text leaves
 // room (docs/model.md gives the reasons).
 constexpr std::array kRows{
-    TimingRow{check::kClockFrequency, "f_c", "Frequency", "2.3.2 note 4, 2.1.2", "100 kHz",
+    TimingRow{check::kClockFrequency, "f_c", "Frequency", "2.3.2 note 4, 2.1.1, 2.1.2, 3.9.19", "100 kHz",
               "2 MHz without, 8 MHz with delay compensation (16 MHz for special applications)",
-              "fitted over each frame's rising edges from RE2 on; measurement frames have their own row",
+              "fitted over each frame's rising edges from RE2 on; measurement frames have their own row; this "
+              "encoder: word 25 (3.9.19), 2 MHz for EnDat 2.1",
               "encoder pins", E::Wires},
     TimingRow{check::kCalculationTime, "t_cal", "Calculation time", "2.3.2 note 7, 2.3.1.1", "10.5/f_c",
               "1 ms (per encoder)",
@@ -47,7 +48,8 @@ constexpr std::array kRows{
               "encoder pins", E::Wires},
     TimingRow{check::kRecovery, "t_m, t_R", "Recovery time I and II", "2.3.2 notes 3, 5, 9",
               "t_m 10 us (1.25 us short, 2.2 commands) + t_R 500 ns", "t_m 30 us (3.75 us short)",
-              "last rising edge of a frame to FE1 of the next, against the encoder's t_m as activated",
+              "last rising edge of a frame to FE1 of the next, against this encoder's t_m as word 3 activates it and "
+              "against the envelope's 30 us (3.75 us short) + 500 ns",
               "encoder pins", E::Wires},
     TimingRow{check::kShortRecoveryClock, "t_m", "Recovery time I, short", "2.3.2 note 3, 3.4.4", "f_c >= 1 MHz", "",
               "while word 3 selects 1.25 .. 3.75 us, 2.2 commands need a clock of at least 1 MHz", "encoder pins",
