@@ -332,8 +332,44 @@ void TimingChecker::check_master_sample(const DeclaredFrame& frame, unsigned clo
 // the middle of the cycle; more are taken as a continuous clock (2.3.1), which only
 // "Encoder send position values" supports (HEIDENHAIN FAQ, timing-model §1.4), and make a 2.1
 // parameter frame an error (2.4.1). A 2.2 command supplement runs on after the answer.
+// 2.3.2: "Polling the start bit must be independent of t_CAL; this means clock pulses must be
+// continuously sent". A frame that ends without a start bit ended its polling after FE1 + the
+// time its last rising edge shows; an encoder may take t_cal (declared, word 39) and any
+// compliant one up to 1 ms (note 7). Only a frame whose DATA was still LOW at its last rising edge
+// is judged: the encoder was calculating. An encoder that answers HIGH at once (a type I error
+// handling, A2) lets the master stop. 2.1 parameter frames wait for t_ac instead (not judged).
+void TimingChecker::check_start_bit_polling(const PinFrame& f) {
+  if (f.rising.empty() || f.header.answer_bits == 0 || f.header.payload_bits != 0 || f.header.measurement ||
+      !low_at_last_rise_ || f.rising.size() <= protocol::frame_position::kTurnaround + 1 ||
+      master_found_start_bit_ == f.header.index)  // a declaring master read a start bit: it did not give up
+    return;
+  judge(protocol::check::row_index(check::kCalculationTime));
+  const Time polled = f.rising.back() - f.fe1;
+  const Decision to_encoder = at_least(polled, encoder_.t_cal, params_.resolution);
+  const Decision to_envelope = at_least(polled, limit::kCalculationTimeMax, params_.resolution);
+  if (to_envelope == Decision::Pass) return;
+  const bool encoder_fails = to_encoder != Decision::Pass;
+  const Decision shown = encoder_fails ? to_encoder : to_envelope;
+  report_unless_passed(shown,
+                       {std::string(check::kCalculationTime), "2.3.2 (start-bit polling independent of t_cal, note 7)",
+                        ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
+                        static_cast<unsigned>(f.rising.size()), format_time(polled),
+                        encoder_fails ? ">= " + format_time(encoder_.t_cal) + " (this encoder's t_cal)"
+                                      : ">= 1 ms (spec envelope)",
+                        Severity::Error,
+                        encoder_fails ? "the master stopped polling for the start bit before this encoder's t_cal"
+                                      : "the master stopped polling for the start bit after " + format_time(polled) +
+                                            ": suits this encoder (t_cal " + format_time(encoder_.t_cal) +
+                                            "), but any compliant encoder may take up to 1 ms",
+                        encoder_fails ? Verdict::Both : Verdict::SpecEnvelope},
+                       "start-bit polling");
+}
+
 void TimingChecker::check_clock_count(const PinFrame& f) {
-  if (start_clock_ == 0) return;  // no start bit: nothing to count against
+  if (start_clock_ == 0) {  // no start bit: nothing to count against, but the polling itself
+    check_start_bit_polling(f);
+    return;
+  }
   judge(protocol::check::row_index(check::kClockCount));
   const bool v22 = f.header.command_type == protocol::EndatVersion::V2_2;
   const bool parameter_frame = f.header.payload_bits != 0;

@@ -252,6 +252,7 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
   if (level != 0) {
     if (!in_frame_) return;
     current_.rising.push_back(now);
+    low_at_last_rise_ = !line_.pins(ObservationPoint::EncoderPins).data.read();
     note_encoder_low();
     check_encoder_sample(static_cast<unsigned>(current_.rising.size()));
     // The decoder has taken the last mode bit (on RE8) once the next edge comes.
@@ -604,6 +605,7 @@ void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
 
 void TimingChecker::on_frame_end(const DeclaredFrame& frame) {
   if (frame.error_handling) error_handling_frame_ = frame.index;
+  if (frame.start_bit_clock != 0) master_found_start_bit_ = frame.index;
   if (frame.ok) settings_.on_frame(frame.command, frame.payload, frame.supplement);
   check_busy_time({frame.index, frame.start, frame.end, frame.command, frame.supplement, frame.ok, frame.busy, frame.f_c});
 }

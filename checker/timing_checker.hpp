@@ -183,6 +183,7 @@ class TimingChecker final {
   void refresh_wire_header();
   Time clock_path() const;
   void check_clock_count(const PinFrame& f);
+  void check_start_bit_polling(const PinFrame& f);
   void check_time_between_cycles(const PinFrame& next, Time last_rise);
   // What t_ac needs of a frame, from the master's declaration or from the wires.
   struct AccessEvidence {
@@ -256,6 +257,8 @@ class TimingChecker final {
   bool released_ = false;
   bool driving_ = false;
   bool driven_low_ = false;
+  bool low_at_last_rise_ = false;  // DATA LOW at the frame's latest rising edge (start-bit polling)
+  std::optional<std::uint64_t> master_found_start_bit_;  // the last declared frame whose master read one
   unsigned start_clock_ = 0;
   unsigned word_start_clock_ = 0;
   unsigned word_ = 0;

@@ -39,7 +39,8 @@ constexpr std::array kRows{
     TimingRow{check::kCalculationTime, "t_cal", "Calculation time", "2.3.2 note 7, 2.3.1.1", "10.5/f_c",
               "1 ms (per encoder)",
               "minimum as a count: the start bit on RE11 or later; maximum to the rising edge that carries the start "
-              "bit; continuous clock: at most 7 LOW bits before a later word's start bit",
+              "bit; continuous clock: at most 7 LOW bits before a later word's start bit; the master polls while DATA "
+              "is LOW for this encoder's t_cal and the envelope's 1 ms",
               "encoder pins", E::Wires},
     TimingRow{check::kMemoryAccess, "t_ac", "Memory access time for read/write parameters", "2.3.2, 2.5.1, 2.6.1", "0",
               "12 ms",
