@@ -42,6 +42,23 @@ std::string_view to_string(Severity s) {
   return "?";
 }
 
+void TimingChecker::report(Finding f, std::string_view field) {
+  const auto& names = protocol::check::kAll;
+  const auto row = static_cast<std::size_t>(std::find(names.begin(), names.end(), f.check) - names.begin());
+  Tally& t = tally_.at(row);
+  const std::uint64_t kept = t.errors + t.warnings + t.undecided;
+  ++(f.severity == Severity::Error ? t.errors : f.severity == Severity::Warning ? t.warnings : t.undecided);
+  if (f.severity == Severity::Error) {
+    if (f.verdict != Verdict::ThisEncoder) conclusion_.spec_envelope = false;
+    if (f.verdict != Verdict::SpecEnvelope) conclusion_.this_encoder = false;
+  }
+  if (kept >= params_.max_findings_per_check) {
+    ++not_kept_;
+    return;
+  }
+  violations_.push_back({std::move(f), std::string(field)});
+}
+
 bool TimingChecker::report_unless_passed(Decision d, Finding f, std::string_view field) {
   if (d == Decision::Pass) return false;
   if (d == Decision::Undecided) {
@@ -86,9 +103,10 @@ std::vector<RowConformance> TimingChecker::conformance() const {
     RowConformance c;
     c.check = std::string(row.check);
     c.judged = judged_[out.size()];
-    for (const Violation& v : violations_)
-      if (v.check == row.check)
-        ++(v.severity == Severity::Error ? c.violations : v.severity == Severity::Warning ? c.warnings : c.undecided);
+    const Tally& t = tally_[out.size()];
+    c.violations = t.errors;
+    c.warnings = t.warnings;
+    c.undecided = t.undecided;
     const bool needs_enables = row.check == check::kDriverOff || row.check == check::kDriverOn ||
                                row.check == check::kFloatingData || row.check == check::kContention;
     if (c.judged != 0 || c.violations + c.warnings + c.undecided != 0) {
@@ -124,7 +142,8 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
           .supplement_ignore_clocks = encoder.supplement_ignore_clocks,
       }),
       settings_(encoder.short_t_m_selected),
-      judged_(protocol::timing_rows().size(), 0) {
+      judged_(protocol::timing_rows().size(), 0),
+      tally_(protocol::timing_rows().size()) {
   line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
   auto encoder_pins = line.pins(ObservationPoint::EncoderPins);
   encoder_pins.clock.on_change(sim::bind<&TimingChecker::on_encoder_clock>(this));

@@ -104,6 +104,9 @@ struct CheckerParams {
   // Edge times are known to within this (a logic analyzer's sample period); 0: exact event
   // times. A limit closer than this to the measured value is reported as undecided.
   Time resolution{0};
+  // Findings kept per check (all are counted): a long capture that breaks a row in every frame
+  // keeps its memory bounded.
+  std::size_t max_findings_per_check = SIZE_MAX;
 };
 
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
@@ -134,6 +137,10 @@ class TimingChecker final {
   // (frame_decoder.hpp), and only the rows that need nothing but wires were judged.
   bool judged_from_wires() const { return wires_only_; }
   const std::vector<Violation>& violations() const { return violations_; }
+  // The verdicts over every finding, kept or not.
+  const Conclusion& conclusion() const { return conclusion_; }
+  // Findings counted but not kept (max_findings_per_check).
+  std::uint64_t findings_not_kept() const { return not_kept_; }
   // Every row of the timing table, in its order, with how it fared (call after finish()).
   std::vector<RowConformance> conformance() const;
 
@@ -209,7 +216,9 @@ class TimingChecker final {
   void check_frequency_for_encoder(const PinFrame& f, const FittedFrequency& fit);
   void check_recovery(const PinFrame& next);
   void check_measurement_procedure(const DeclaredFrame& frame);
-  void report(Finding f, std::string_view field = {}) { violations_.push_back({std::move(f), std::string(field)}); }
+  // Counts the finding for its row and the verdicts, and keeps it unless its check already has
+  // CheckerParams::max_findings_per_check.
+  void report(Finding f, std::string_view field = {});
   // Reports `f` if `d` fails, as undecided if it is undecided at the resolution; true if reported.
   bool report_unless_passed(Decision d, Finding f, std::string_view field = {});
   // A row was evaluated once (whatever its verdict), for the conformance table.
@@ -284,6 +293,12 @@ class TimingChecker final {
   bool wires_only_ = false;
   std::vector<Violation> violations_;
   std::vector<std::uint64_t> judged_;  // per row of protocol::timing_rows()
+  struct Tally {
+    std::uint64_t errors = 0, warnings = 0, undecided = 0;
+  };
+  std::vector<Tally> tally_;  // findings per row, kept or not
+  Conclusion conclusion_;
+  std::uint64_t not_kept_ = 0;
   std::uint64_t sample_judged_frame_ = UINT64_MAX;
 };
 

@@ -29,6 +29,7 @@ class Replay {
         decoder_(log_decoder),
         result_(result),
         active_low_(o.enable_active_low),
+        progress_(o.progress),
         timer_(kernel, sim::bind<&Replay::step>(this)) {
     clock_ = capture::find_signal(reader, o.clock);
     data_ = capture::find_signal(reader, o.data);
@@ -52,7 +53,7 @@ class Replay {
   void step() {
     do {
       apply(next_);
-      ++result_.changes;
+      if ((++result_.changes & 0xFFFF) == 0 && progress_) progress_(reader_.bytes_read(), reader_.bytes_total());
       result_.end = next_.time + offset_;
       if (!reader_.next(next_)) return;
     } while (next_.time + offset_ == kernel_.now());
@@ -91,6 +92,7 @@ class Replay {
   checker::FrameDecoder& decoder_;
   CaptureCheckResult& result_;
   bool active_low_;
+  const std::function<void(std::uint64_t, std::uint64_t)>& progress_;
   sim::Timer timer_;
   std::uint32_t clock_ = 0;
   std::uint32_t data_ = 0;
@@ -113,15 +115,14 @@ std::string hex(std::uint64_t v, int digits) {
 }  // namespace
 
 bool CaptureCheckResult::conforms() const {
-  return undecided() == 0 && std::none_of(violations.begin(), violations.end(), [](const checker::Violation& v) {
-           return v.severity == checker::Severity::Error;
-         });
+  return std::all_of(conformance.begin(), conformance.end(),
+                     [](const checker::RowConformance& c) { return c.violations + c.undecided == 0; });
 }
 
 std::size_t CaptureCheckResult::undecided() const {
-  return static_cast<std::size_t>(std::count_if(violations.begin(), violations.end(), [](const checker::Violation& v) {
-    return v.severity == checker::Severity::Undecided;
-  }));
+  std::size_t n = 0;
+  for (const auto& c : conformance) n += c.undecided;
+  return n;
 }
 
 CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
@@ -138,6 +139,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   checker::CheckerParams params = o.checker;
   params.driver_enables_observable = o.data_enable.has_value();
   params.master_enable_observable = false;  // one DATA wire and the encoder's enable at most
+  params.max_findings_per_check = kMaxFindingsPerCheck;
   params.resolution = o.resolution.value_or(reader->sampled() ? reader->resolution() : Time::zero());
   result.uncertainty = params.resolution;
   checker::TimingChecker checker(kernel, line, o.encoder, {}, params);
@@ -150,6 +152,8 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   result.frames = log.take_finished();
   result.violations = checker.violations();
   result.conformance = checker.conformance();
+  result.conclusion = checker.conclusion();
+  result.findings_not_kept = checker.findings_not_kept();
   return result;
 }
 
@@ -199,8 +203,8 @@ std::string capture_log(const CaptureCheckResult& r) {
 }
 
 void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool verbose) {
-  const bool failed = std::any_of(r.violations.begin(), r.violations.end(),
-                                  [](const checker::Violation& v) { return v.severity == checker::Severity::Error; });
+  const bool failed = std::any_of(r.conformance.begin(), r.conformance.end(),
+                                  [](const checker::RowConformance& c) { return c.violations != 0; });
   out << (failed ? "FAIL " : r.undecided() != 0 ? "UNDECIDED " : "PASS ") << r.file << "\n";
   out << "  " << r.changes << " level changes over " << sim::format_time(r.end) << "; ";
   if (r.uncertainty == Time::zero())
@@ -215,7 +219,10 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
          "(sampling window, t_D used, measurement frames) are not observable in a capture\n";
   if (verbose) out << capture_log(r);
   write_violations(out, r.violations, verbose);
-  write_verdict(out, r.violations);
+  if (r.findings_not_kept != 0)
+    out << "  " << r.findings_not_kept << " further finding(s) beyond the first " << kMaxFindingsPerCheck
+        << " of a check are counted in the conformance table, not listed\n";
+  write_verdict(out, r.conclusion, r.violations);
   write_conformance(out, r.conformance);
 }
 
@@ -240,7 +247,8 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
   return {{"file", r.file},       {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
-          {"violations", violations_json(r.violations)}, {"verdict", verdict_json(r.violations)},
+          {"violations", violations_json(r.violations)}, {"findings_not_kept", r.findings_not_kept},
+          {"verdict", verdict_json(r.conclusion)},
           {"conformance", conformance_json(r.conformance)}};
 }
 

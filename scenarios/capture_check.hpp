@@ -5,6 +5,7 @@
 // (checker/frame_decoder.hpp) and judges every row that needs nothing but wires.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
@@ -29,6 +30,8 @@ struct CaptureCheckOptions {
   // sampled captures (sigrok, CSV), exact for a simulator's VCD; set it for a VCD that a logic
   // analyzer wrote.
   std::optional<sim::Time> resolution;
+  // Called now and then with the bytes read and the file's size (progress on a terminal).
+  std::function<void(std::uint64_t read, std::uint64_t total)> progress;
 };
 
 struct CaptureCheckResult {
@@ -39,10 +42,15 @@ struct CaptureCheckResult {
   std::uint64_t changes = 0;
   std::vector<checker::WireFrame> frames;
   std::vector<checker::Violation> violations;
-  std::vector<checker::RowConformance> conformance;
+  std::vector<checker::RowConformance> conformance;  // counts every finding
+  checker::Conclusion conclusion;                     // over every finding
+  std::uint64_t findings_not_kept = 0;                // beyond kMaxFindingsPerCheck of a check
   bool conforms() const;           // no violation of error severity and nothing undecided
   std::size_t undecided() const;   // findings undecided at the capture's resolution
 };
+
+// Findings kept per check of a capture (all are counted in the conformance table).
+inline constexpr std::size_t kMaxFindingsPerCheck = 1000;
 
 // Throws capture::CaptureError for unreadable or malformed captures and missing signals.
 CaptureCheckResult check_capture(const CaptureCheckOptions& options);

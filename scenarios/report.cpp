@@ -207,14 +207,12 @@ nlohmann::json violations_json(const std::vector<checker::Violation>& violations
   return out;
 }
 
-nlohmann::json verdict_json(const std::vector<checker::Violation>& violations) {
-  const auto c = checker::conclude(violations);
+nlohmann::json verdict_json(const checker::Conclusion& c) {
   return {{"spec_envelope", c.spec_envelope}, {"this_encoder", c.this_encoder}};
 }
 
 // "conforms to this encoder; outside the spec envelope: t_m_t_r 11 us (>= 30.5 us (spec envelope))"
-void write_verdict(std::ostream& out, const std::vector<checker::Violation>& violations) {
-  const auto c = checker::conclude(violations);
+void write_verdict(std::ostream& out, const checker::Conclusion& c, const std::vector<checker::Violation>& violations) {
   out << "  verdict: ";
   if (c.spec_envelope && c.this_encoder) {
     out << "conforms to the spec envelope and to this encoder\n";
@@ -301,7 +299,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     }
   }
   write_violations(out, r.violations, verbose);
-  if (!r.violations.empty() || verbose) write_verdict(out, r.violations);
+  if (!r.violations.empty() || verbose) write_verdict(out, checker::conclude(r.violations), r.violations);
   if (verbose) write_conformance(out, r.conformance);
   for (const auto& e : r.expectations)
     if (verbose || !e.passed) out << "  " << (e.passed ? "ok   " : "FAIL ") << e.name << ": " << e.detail << "\n";
@@ -452,7 +450,7 @@ nlohmann::json to_json(const ScenarioResult& r) {
   }
   if (r.diagnosis) j["diagnosis"] = diagnosis_json(*r.diagnosis);
   j["violations"] = violations_json(r.violations);
-  j["verdict"] = verdict_json(r.violations);
+  j["verdict"] = verdict_json(checker::conclude(r.violations));
   j["conformance"] = conformance_json(r.conformance);
   json es = json::array();
   for (const auto& e : r.expectations) es.push_back({{"name", e.name}, {"passed", e.passed}, {"detail", e.detail}});

@@ -16,9 +16,11 @@ void write_violations(std::ostream& out, const std::vector<checker::Violation>& 
 
 // The violations as the stable JSON format has them; the two verdicts (spec envelope, this encoder).
 nlohmann::json violations_json(const std::vector<checker::Violation>& violations);
-nlohmann::json verdict_json(const std::vector<checker::Violation>& violations);
-// "verdict: conforms to this encoder; outside the spec envelope: ..." (checker::conclude).
-void write_verdict(std::ostream& out, const std::vector<checker::Violation>& violations);
+nlohmann::json verdict_json(const checker::Conclusion& conclusion);
+// "verdict: conforms to this encoder; outside the spec envelope: ..."; the violations name the
+// envelope-only findings.
+void write_verdict(std::ostream& out, const checker::Conclusion& conclusion,
+                   const std::vector<checker::Violation>& violations);
 
 // The conformance table: each row judged (how often, violations, warnings) or why not.
 void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows);

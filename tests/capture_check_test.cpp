@@ -373,3 +373,30 @@ TEST(CheckCommand, SeveralCapturesGiveOneJunitSuiteEachAndTheWorstExitStatus) {
   EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
   for (const auto& p : {clean, broken, junit, json}) fs::remove(p);
 }
+
+TEST(CheckCapture, ReportsProgressThroughTheFile) {
+  const fs::path vcd = temp("progress.vcd");
+  {
+    std::ofstream out(vcd);
+    out << "$timescale 1 ns $end\n$scope module encoder $end\n$var wire 1 c clock $end\n$var wire 1 d data $end\n"
+           "$upscope $end\n$enddefinitions $end\n#0\n1c\n1d\n";
+    for (int i = 1; i <= 200'000; ++i) out << "#" << i * 500 << "\n" << (i % 2 != 0 ? '0' : '1') << "c\n";
+  }
+  scenarios::CaptureCheckOptions o;
+  o.file = vcd.string();
+  o.clock = "clock";
+  o.data = "data";
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> calls;
+  o.progress = [&](std::uint64_t read, std::uint64_t total) { calls.emplace_back(read, total); };
+  const auto r = scenarios::check_capture(o);
+  EXPECT_EQ(r.changes, 200'002U);
+  ASSERT_EQ(calls.size(), 3U);  // every 65536 changes
+  for (std::size_t i = 0; i < calls.size(); ++i) {
+    EXPECT_EQ(calls[i].second, fs::file_size(vcd));
+    EXPECT_LE(calls[i].first, calls[i].second);
+    if (i > 0) {
+      EXPECT_GE(calls[i].first, calls[i - 1].first);
+    }
+  }
+  fs::remove(vcd);
+}

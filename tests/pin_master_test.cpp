@@ -322,3 +322,24 @@ TEST(PinMaster, GivingUpTheStartBitBeforeTCalIsCaughtToThePicosecond) {
   ASSERT_EQ(v.size(), 1U);
   EXPECT_EQ(v[0].verdict, checker::Verdict::Both);
 }
+
+TEST(PinMaster, FindingsBeyondTheCapAreCountedNotKept) {
+  checker::CheckerParams params;
+  params.max_findings_per_check = 2;
+  Kernel k;
+  line::Line line(k, line::LineParams{});
+  slave::Encoder e(k, line, quick_encoder());
+  checker::TimingChecker checker(k, line, scenarios::declared_encoder(quick_encoder()), {}, params);
+  PinMaster m(k, line, position_reads_22(5, us(100), MHz(20), us(1)));  // every frame above the table
+  k.run(ms(1));
+  checker.finish();
+  std::size_t kept = 0;
+  for (const auto& v : checker.violations()) kept += v.check == checker::check::kClockFrequency;
+  EXPECT_EQ(kept, 2U);
+  const auto rows = checker.conformance();
+  const auto f_c = std::find_if(rows.begin(), rows.end(), [](const auto& c) { return c.check == checker::check::kClockFrequency; });
+  EXPECT_EQ(f_c->violations, 10U);  // five frames, each above the table and above word 25
+  EXPECT_EQ(checker.findings_not_kept(), 8U);
+  EXPECT_FALSE(checker.conclusion().spec_envelope);
+  EXPECT_FALSE(checker.conclusion().this_encoder);
+}

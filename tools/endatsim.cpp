@@ -702,14 +702,32 @@ int check_command(const po::variables_map& vm) {
   const auto json = string_option(vm, "json"), log = string_option(vm, "log"), junit = string_option(vm, "junit");
   // Each capture in turn; a bad one is reported and the others still checked. The outputs cover
   // the captures that could be read.
+  // Progress on a terminal, at most twice a second, erased before the summary.
+  const bool show_progress = vm.count("quiet") == 0 && isatty(STDERR_FILENO) != 0;
+  auto last_shown = std::chrono::steady_clock::now();
+  bool progress_shown = false;
+  std::string current;
+  if (show_progress)
+    o.progress = [&](std::uint64_t read, std::uint64_t total) {
+      const auto now = std::chrono::steady_clock::now();
+      if (total == 0 || now - last_shown < std::chrono::milliseconds(500)) return;
+      last_shown = now;
+      progress_shown = true;
+      std::cerr << "\r" << current << ": " << read * 100 / total << " %" << std::flush;
+    };
   std::vector<scenarios::CaptureCheckResult> results;
   bool bad_input = false, conforms = true;
   std::string logs;
   for (const auto& file : files) {
     o.file = file;
+    current = file;
     try {
       results.push_back(scenarios::check_capture(o));
+      if (progress_shown) std::cerr << "\r\033[K" << std::flush;
+      progress_shown = false;
     } catch (const capture::CaptureError& e) {
+      if (progress_shown) std::cerr << "\n";
+      progress_shown = false;
       std::cerr << "endatsim check: " << e.what() << "\n";
       bad_input = true;
       continue;
