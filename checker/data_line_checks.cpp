@@ -78,6 +78,7 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
 
 void TimingChecker::on_encoder_data(std::uint64_t level) {
   if (wires_only_ || !mode_decided_) decoder_.on_data(kernel_.now(), level != 0);
+  if (level != 0) last_data_rise_ = kernel_.now();
   if (!in_frame_) return;
   if (level == 0) {
     note_encoder_low();
@@ -123,11 +124,18 @@ void TimingChecker::first_start_bit() {
   check_calculation_time_maximum();
 }
 
-// The same from the decoder's sampled start bit (captures without driver enables). t_D needs the
-// master's side of the cable, which such a capture does not have.
+// The same from the decoder's sampled start bit (captures without driver enables). At the master's
+// connector t_D runs from the rising edge that carried the start bit to the DATA edge that
+// brought it, the latest rising one before the decoder sampled it.
 void TimingChecker::start_bit_from_decoder(unsigned clock) {
   refresh_wire_header();
   start_clock_ = word_start_clock_ = clock;
+  if (params_.round_trip_observable && clock <= master_rising_.size() && last_data_rise_ > master_rising_[clock - 1]) {
+    const StartBitInFlight s{last_data_rise_, master_rising_[clock - 1], current_.header.index, clock,
+                             current_.header.compensated, current_.header.t_d_used,
+                             sim::period_of(current_.header.f_c)};
+    check_data_delay(s, last_data_rise_ - master_rising_[clock - 1]);
+  }
   if (current_.header.payload_bits != 0) {
     check_memory_access_time();
     return;
@@ -236,8 +244,9 @@ void TimingChecker::on_master_data(std::uint64_t level) {
 // t_D (2.3.2, 2.1.2): from the rising clock edge that carried the start bit to the start bit's
 // edge, both at the master logic; at most 0.2 us + 0.01 us/m x cable length.
 void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
+  if (!params_.round_trip_observable) return;
   judge(protocol::check::row_index(check::kDataDelay));
-  const Time bound = limit::data_delay_max(line_.params().cable_length_m);
+  const Time bound = limit::data_delay_max(cable_length_m());
   report_unless_passed(at_most(t_d, bound, params_.resolution), {std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,
             kernel_.now(), start.frame, start.clock, format_time(t_d), "<= " + format_time(bound), Severity::Error,
             "the round trip of the line and the encoder is longer than the spec allows"}, "start bit");
@@ -285,7 +294,7 @@ void TimingChecker::check_start_delay(const PinFrame& f) {
   judge(protocol::check::row_index(check::kStartDelay));
   const Time t_st = f.rising.front() - f.fe1;
   const bool reduced = params_.t_st_reduced_for_cable;
-  const Time required = required_start_delay(f.header.f_c, line_.params().cable_length_m, reduced);
+  const Time required = required_start_delay(f.header.f_c, cable_length_m(), reduced);
   report_unless_passed(at_least(t_st, required, params_.resolution), {std::string(check::kStartDelay),
             reduced ? "2.3.2 t_ST and note 8, reduced for the cable (option t_st_reduced_for_cable)"
                     : "2.3.2 t_ST and note 8",

@@ -117,6 +117,9 @@ std::vector<RowConformance> TimingChecker::conformance() const {
     } else if (needs_enables && !params_.driver_enables_observable) {
       c.status = RowConformance::Status::NotObservable;
       c.reason = "needs the DATA drivers' enables";
+    } else if (row.check == check::kDataDelay && !params_.round_trip_observable) {
+      c.status = RowConformance::Status::NotObservable;
+      c.reason = "the round trip shows only at the master's connector";
     } else if (row.check == check::kContention && !params_.master_enable_observable) {
       c.status = RowConformance::Status::NotObservable;
       c.reason = "needs the master's DATA driver enable as well as the encoder's";
@@ -509,7 +512,7 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
   if (encoder_.endat21_only && fit.above(limit::kFcMaxWithoutCompensation, tol))
     exceeds(limit::kFcMaxWithoutCompensation, "2.1.1 (EnDat 2.1 encoder: 2 MHz)",
             "clock above 2 MHz for an EnDat 2.1 encoder, which knows no delay compensation");
-  const double cable = line_.params().cable_length_m;
+  const double cable = cable_length_m();
   if (f.header.compensated && cable > limit::kCompensatedCableMaxMetres && fit.above(limit::kFcMaxWithoutCompensation, tol))
     report({std::string(check::kClockFrequency), "2.1.2 (with delay compensation up to 100 m of cable)",
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc) + " over " +

@@ -107,6 +107,12 @@ struct CheckerParams {
   // Findings kept per check (all are counted): a long capture that breaks a row in every frame
   // keeps its memory bounded.
   std::size_t max_findings_per_check = SIZE_MAX;
+  // The cable between master and encoder, when the line the checker watches is not it (a
+  // capture replayed without delays): t_D's bound, t_ST and f_c's 100 m follow it.
+  std::optional<double> cable_length_m;
+  // The round trip (t_D) shows only where the master's DATA receiver is: not at the encoder's
+  // connector.
+  bool round_trip_observable = true;
 };
 
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
@@ -189,6 +195,7 @@ class TimingChecker final {
   void begin_wire_frame(Time now);
   void refresh_wire_header();
   Time clock_path() const;
+  double cable_length_m() const { return params_.cable_length_m.value_or(line_.params().cable_length_m); }
   void check_clock_count(const PinFrame& f);
   void check_start_bit_polling(const PinFrame& f);
   void check_time_between_cycles(const PinFrame& next, Time last_rise);
@@ -266,7 +273,8 @@ class TimingChecker final {
   bool released_ = false;
   bool driving_ = false;
   bool driven_low_ = false;
-  bool low_at_last_rise_ = false;  // DATA LOW at the frame's latest rising edge (start-bit polling)
+  bool low_at_last_rise_ = false;
+  Time last_data_rise_{0};  // DATA's latest rising edge at the pins watched  // DATA LOW at the frame's latest rising edge (start-bit polling)
   std::optional<std::uint64_t> master_found_start_bit_;  // the last declared frame whose master read one
   unsigned start_clock_ = 0;
   unsigned word_start_clock_ = 0;

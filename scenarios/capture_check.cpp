@@ -1,6 +1,7 @@
 #include "scenarios/capture_check.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
@@ -139,12 +140,27 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   checker::CheckerParams params = o.checker;
   params.driver_enables_observable = o.data_enable.has_value();
   params.master_enable_observable = false;  // one DATA wire and the encoder's enable at most
+  params.cable_length_m = o.cable_m.value_or(0);
+  checker::EncoderDeclaration encoder = o.encoder;
+  result.at = o.at;
+  if (o.at == CaptureCheckOptions::At::Master) {
+    if (!o.cable_m) throw capture::CaptureError(o.file + ": a capture at the master's connector needs the cable's length");
+    if (o.data_enable)
+      throw capture::CaptureError(o.file + ": --data-enable names the encoder's driver enable, which a capture at the "
+                                           "master's connector does not hold");
+    // The encoder's bits show at the master one round trip after the rising edge that sends them.
+    const line::LineParams model;
+    encoder.output_delay = o.t_d.value_or(o.encoder.output_delay + model.cable_delay_per_m * static_cast<std::int64_t>(
+                                                                     std::llround(2 * *o.cable_m)));
+  } else {
+    params.round_trip_observable = false;
+  }
   params.max_findings_per_check = kMaxFindingsPerCheck;
   params.resolution = o.resolution.value_or(reader->sampled() ? reader->resolution() : Time::zero());
   result.uncertainty = params.resolution;
-  checker::TimingChecker checker(kernel, line, o.encoder, {}, params);
+  checker::TimingChecker checker(kernel, line, encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
-      .position_bits = o.encoder.position_bits, .clock_to_data = o.encoder.output_delay, .t_m = o.encoder.t_m});
+      .position_bits = encoder.position_bits, .clock_to_data = encoder.output_delay, .t_m = encoder.t_m});
   Replay replay(kernel, line, *reader, o, log, result);
   kernel.run();
   checker.finish();
@@ -215,8 +231,9 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
   std::size_t clean = 0;
   for (const auto& f : r.frames) clean += f.answer_complete && f.crc_ok ? 1 : 0;
   out << clean << " with a complete answer and a good CRC)\n";
-  out << "  judged from the wires at the encoder's connector; rows that need the master's declaration "
-         "(sampling window, t_D used, measurement frames) are not observable in a capture\n";
+  out << "  judged from the wires at the " << (r.at == CaptureCheckOptions::At::Master ? "master's" : "encoder's")
+      << " connector; rows that need the master's declaration (sampling window, t_D used, measurement frames) are not "
+         "observable in a capture\n";
   if (verbose) out << capture_log(r);
   write_violations(out, r.violations, verbose);
   if (r.findings_not_kept != 0)
@@ -244,7 +261,7 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
     if (f.supplement) j["supplement"] = *f.supplement;
     frames.push_back(j);
   }
-  return {{"file", r.file},       {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
+  return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
           {"violations", violations_json(r.violations)}, {"findings_not_kept", r.findings_not_kept},

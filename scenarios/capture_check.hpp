@@ -17,6 +17,13 @@
 namespace endatsim::scenarios {
 
 struct CaptureCheckOptions {
+  // Where CLOCK and DATA were recorded. At the master's connector the encoder's bits come one
+  // round trip (t_D) after each rising edge, and t_D itself is measured; at the encoder's they
+  // come after its own delay, and t_D is not observable.
+  enum class At : std::uint8_t { Encoder, Master } at = At::Encoder;
+  std::optional<double> cable_m;   // the cable's length: t_D's bound, t_ST, f_c over 100 m
+  std::optional<sim::Time> t_d;    // at the master: the round trip (default: the encoder's
+                                   // delay + twice the cable at 5 ns/m)
   std::string file;
   std::string clock;                        // signal names: full path or an unambiguous suffix
   std::string data;
@@ -38,6 +45,7 @@ struct CaptureCheckResult {
   std::string file;
   sim::Time resolution{0};   // the capture's timescale or sample period
   sim::Time uncertainty{0};  // what the checker allowed each edge (0: exact)
+  CaptureCheckOptions::At at = CaptureCheckOptions::At::Encoder;
   sim::Time end{0};  // the last change
   std::uint64_t changes = 0;
   std::vector<checker::WireFrame> frames;

@@ -400,3 +400,38 @@ TEST(CheckCapture, ReportsProgressThroughTheFile) {
   }
   fs::remove(vcd);
 }
+
+// t_D is the round trip as the master sees it: only a capture at the master's connector shows
+// it. An encoder that takes 300 ns from CLOCK to DATA on 10 m of cable makes t_D about 470 ns,
+// over the bound of 0.2 + 0.01 x 10 = 0.3 us.
+TEST(CheckCommand, AtTheMastersConnectorTheRoundTripIsJudged) {
+  auto scenario = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat21_1mhz_10m.json");
+  scenario.encoder.output_delay = ns(300);
+  const fs::path vcd = temp("at_master.vcd");
+  scenarios::RunOptions options;
+  options.vcd_path = vcd.string();
+  const auto run = scenarios::run_scenario(scenario, options);
+  std::size_t t_d_in_run = 0;
+  for (const auto& v : run.violations) t_d_in_run += v.check == checker::check::kDataDelay;
+  ASSERT_GE(t_d_in_run, 1U);
+  const std::string encoder_side = " --clock encoder.clock --data encoder.data --clock-to-data 370ns";
+  auto r = cli("check '" + vcd.string() + "'" + encoder_side + " --verbose");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("t_d: not observable (the round trip shows only at the master's connector)"), std::string::npos)
+      << r.out;
+  const std::string master_side = " --clock master.clock --data master.data --at master --cable 10 --clock-to-data 370ns";
+  r = cli("check '" + vcd.string() + "'" + master_side + " --verbose");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("violation t_d x" + std::to_string(t_d_in_run)), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("at the master's connector"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("5 with a complete answer and a good CRC"), std::string::npos) << r.out;
+  // Usage: --at master needs the cable; --t-d belongs to it; a bad length.
+  EXPECT_EQ(cli("check '" + vcd.string() + "' --clock master.clock --data master.data --at master").status, 2);
+  r = cli("check '" + vcd.string() + "'" + encoder_side + " --t-d 400ns");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--t-d is the round trip at the master's connector"), std::string::npos) << r.err;
+  r = cli("check '" + vcd.string() + "'" + master_side.substr(0, master_side.find(" --cable")) + " --cable ten");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--cable must be a length"), std::string::npos) << r.err;
+  fs::remove(vcd);
+}

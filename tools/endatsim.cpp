@@ -51,7 +51,8 @@ const char* const kChecksUsage = "usage: endatsim checks\n";
 const char* const kCheckUsage =
     "usage: endatsim check FILE... --clock NAME --data NAME [--data-enable NAME [--enable-active-low]]\n"
     "                      [--encoder PROFILE|SCENARIO.json] [--clock-to-data TIME] [--t-st-reduced-for-cable]\n"
-    "                      [--resolution TIME] [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
+    "                      [--at encoder|master] [--cable LENGTH] [--t-d TIME] [--resolution TIME]\n"
+    "                      [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
 
 std::string usage() {
   return std::string(kRunUsage) + kSweepUsage + kValidateUsage + kDiagramUsage + kCheckUsage + kChecksUsage +
@@ -119,7 +120,10 @@ const char* const kCheckHelp =
     "and decoded on the wires (mode command, payload, start bit, answer, CRC, additional data,\n"
     "command supplement); --encoder takes the encoder's declared position width, t_m and t_R\n"
     "from a profile or a scenario (default: the model's encoder), --clock-to-data its delay from\n"
-    "CLOCK to DATA at the connector (default 130 ns). --log writes the decoded frames, --junit a\n"
+    "CLOCK to DATA at the connector (default 130 ns). With --at master the signals are the levels\n"
+    "at the master's connector: --cable gives the cable's length, and the encoder's bits are read\n"
+    "one round trip (--t-d, default from --cable) after each rising edge; t_D is then judged, which\n"
+    "a capture at the encoder's connector cannot show. --log writes the decoded frames, --junit a\n"
     "test case per row of the timing table and capture; with several captures --json holds\n"
     "{\"captures\": [...]}.\n"
     "Each finding counts against the spec envelope (what any compliant encoder may do), the\n"
@@ -183,6 +187,9 @@ po::options_description options_of(Command c) {
           "clock-to-data", po::value<std::string>(), "the encoder's CLOCK-to-DATA delay at its connector")(
           "t-st-reduced-for-cable", "accept a t_ST shorter than note 8 for a cable shorter than 100 m")(
           "junit", po::value<std::string>(), "write JUnit XML (a test case per row and capture) to this file")(
+          "at", po::value<std::string>(), "where CLOCK and DATA were recorded: encoder (default) or master")(
+          "cable", po::value<std::string>(), "the cable's length in metres (needed --at master)")(
+          "t-d", po::value<std::string>(), "--at master: the round trip t_D (default from --cable)")(
           "resolution", po::value<std::string>(),
           "how far each edge may be from its true time (default: the sample period of .sr/CSV, exact for VCD)")(
           "json", po::value<std::string>(), "write the decoded frames and violations as JSON")(
@@ -687,6 +694,50 @@ int check_command(const po::variables_map& vm) {
     }
   }
   o.checker.t_st_reduced_for_cable = vm.count("t-st-reduced-for-cable") != 0;
+  if (const auto at = string_option(vm, "at")) {
+    if (*at != "encoder" && *at != "master") {
+      std::cerr << "endatsim check: --at must be 'encoder' or 'master', got '" << *at << "'\n";
+      return kBadInput;
+    }
+    o.at = *at == "master" ? scenarios::CaptureCheckOptions::At::Master : scenarios::CaptureCheckOptions::At::Encoder;
+  }
+  if (const auto cable = string_option(vm, "cable")) {
+    std::string text = *cable;
+    if (text.size() > 1 && text.back() == 'm') text.pop_back();
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    double metres = -1;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), metres);
+    if (error != std::errc() || end != text.data() + text.size() || !(metres >= 0 && metres <= 1000)) {
+      std::cerr << "endatsim check: --cable must be a length of 0 .. 1000 m (\"25\" or \"25 m\"), got '" << *cable << "'\n";
+      return kBadInput;
+    }
+    o.cable_m = metres;
+  }
+  if (const auto t_d = string_option(vm, "t-d")) {
+    if (o.at != scenarios::CaptureCheckOptions::At::Master) {
+      std::cerr << "endatsim check: --t-d is the round trip at the master's connector: it needs --at master\n";
+      return kBadInput;
+    }
+    try {
+      o.t_d = sim::parse_duration(*t_d);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "endatsim check: --t-d: " << e.what() << "\n";
+      return kBadInput;
+    }
+    if (*o.t_d > sim::us(100)) {
+      std::cerr << "endatsim check: --t-d must be 0 .. 100 us, got " << *t_d << "\n";
+      return kBadInput;
+    }
+  }
+  if (o.at == scenarios::CaptureCheckOptions::At::Master && !o.cable_m) {
+    std::cerr << "endatsim check: --at master needs --cable LENGTH (t_D's bound and the round trip follow it)\n";
+    return kBadInput;
+  }
+  if (o.at == scenarios::CaptureCheckOptions::At::Master && o.data_enable) {
+    std::cerr << "endatsim check: --data-enable is the encoder's driver enable, which a capture at the master's "
+                 "connector does not hold\n";
+    return kBadInput;
+  }
   if (const auto r = string_option(vm, "resolution")) {
     try {
       o.resolution = sim::parse_duration(*r);
