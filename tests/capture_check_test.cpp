@@ -54,15 +54,15 @@ fs::path temp(const std::string& name) {
   return fs::temp_directory_path() / ("endatsim_capture_check_" + std::to_string(getpid()) + "_" + name);
 }
 
-class CaptureRoundTrip : public ::testing::TestWithParam<fs::path> {};
-
-TEST_P(CaptureRoundTrip, CheckFindsWhatRunFoundOnTheWires) {
-  const auto scenario = scenarios::load_scenario_file(GetParam().string());
-  const fs::path vcd = temp(GetParam().stem().string() + ".vcd");
+// A scenario run to a VCD, and the options that check it at the encoder's connector as the
+// scenario declares its encoder (its transceivers in the delay at the connector).
+scenarios::ScenarioResult run_to_vcd(const scenarios::Scenario& scenario, const fs::path& vcd) {
   scenarios::RunOptions options;
   options.vcd_path = vcd.string();
-  const auto run = scenarios::run_scenario(scenario, options);
+  return scenarios::run_scenario(scenario, options);
+}
 
+scenarios::CaptureCheckOptions encoder_pins_of(const scenarios::Scenario& scenario, const fs::path& vcd) {
   scenarios::CaptureCheckOptions o;
   o.file = vcd.string();
   o.clock = "encoder.clock";
@@ -72,7 +72,16 @@ TEST_P(CaptureRoundTrip, CheckFindsWhatRunFoundOnTheWires) {
   o.encoder.output_delay = scenario.line.encoder.receiver_delay + scenario.encoder.output_delay +
                            scenario.line.encoder.driver_delay;
   o.checker = scenario.checker;
-  const auto check = scenarios::check_capture(o);
+  return o;
+}
+
+class CaptureRoundTrip : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(CaptureRoundTrip, CheckFindsWhatRunFoundOnTheWires) {
+  const auto scenario = scenarios::load_scenario_file(GetParam().string());
+  const fs::path vcd = temp(GetParam().stem().string() + ".vcd");
+  const auto run = run_to_vcd(scenario, vcd);
+  const auto check = scenarios::check_capture(encoder_pins_of(scenario, vcd));
   fs::remove(vcd);
 
   EXPECT_EQ(wire_rows(check.violations, check.conformance), wire_rows(run.violations, check.conformance));
@@ -155,18 +164,8 @@ class CaptureResampled : public ::testing::TestWithParam<fs::path> {};
 TEST_P(CaptureResampled, LogicAnalyzerRatesGiveTheSameFramesAndUndecidedNearLimits) {
   const auto scenario = scenarios::load_scenario_file(GetParam().string());
   const fs::path vcd = temp(GetParam().stem().string() + "_exact.vcd");
-  scenarios::RunOptions options;
-  options.vcd_path = vcd.string();
-  scenarios::run_scenario(scenario, options);
-  scenarios::CaptureCheckOptions o;
-  o.clock = "encoder.clock";
-  o.data = "encoder.data";
-  o.data_enable = "encoder.data_driver_enable";
-  o.encoder = scenarios::declared_encoder(scenario.encoder);
-  o.encoder.output_delay = scenario.line.encoder.receiver_delay + scenario.encoder.output_delay +
-                           scenario.line.encoder.driver_delay;
-  o.checker = scenario.checker;
-  o.file = vcd.string();
+  run_to_vcd(scenario, vcd);
+  auto o = encoder_pins_of(scenario, vcd);
   const auto exact = scenarios::check_capture(o);
   const auto errors = [](const scenarios::CaptureCheckResult& r, checker::Severity severity) {
     std::map<std::string, std::size_t> counts;

@@ -654,6 +654,23 @@ checker::EncoderDeclaration encoder_declaration_file(const std::string& path) {
   return d;
 }
 
+// A duration option of `check` within 0 .. max; a message and false when it is not one.
+bool check_duration(const po::variables_map& vm, const char* name, sim::Time max, std::optional<sim::Time>& out) {
+  const auto text = string_option(vm, name);
+  if (!text) return true;
+  try {
+    out = sim::parse_duration(*text);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "endatsim check: --" << name << ": " << e.what() << "\n";
+    return false;
+  }
+  if (*out > max) {
+    std::cerr << "endatsim check: --" << name << " must be 0 .. " << sim::format_time(max) << ", got " << *text << "\n";
+    return false;
+  }
+  return true;
+}
+
 int check_command(const po::variables_map& vm) {
   const auto files = files_of(vm);
   scenarios::CaptureCheckOptions o;
@@ -681,18 +698,9 @@ int check_command(const po::variables_map& vm) {
     o.encoder.output_delay = lp.encoder.receiver_delay + model.output_delay + lp.encoder.driver_delay;
   }
   if (const auto e = string_option(vm, "encoder")) o.encoder = encoder_declaration_file(*e);
-  if (const auto d = string_option(vm, "clock-to-data")) {
-    try {
-      o.encoder.output_delay = sim::parse_duration(*d);
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "endatsim check: --clock-to-data: " << e.what() << "\n";
-      return kBadInput;
-    }
-    if (o.encoder.output_delay > sim::us(10)) {
-      std::cerr << "endatsim check: --clock-to-data must be 0 .. 10 us, got " << *d << "\n";
-      return kBadInput;
-    }
-  }
+  std::optional<sim::Time> clock_to_data;
+  if (!check_duration(vm, "clock-to-data", sim::us(10), clock_to_data)) return kBadInput;
+  if (clock_to_data) o.encoder.output_delay = *clock_to_data;
   o.checker.t_st_reduced_for_cable = vm.count("t-st-reduced-for-cable") != 0;
   if (const auto at = string_option(vm, "at")) {
     if (*at != "encoder" && *at != "master") {
@@ -713,21 +721,10 @@ int check_command(const po::variables_map& vm) {
     }
     o.cable_m = metres;
   }
-  if (const auto t_d = string_option(vm, "t-d")) {
-    if (o.at != scenarios::CaptureCheckOptions::At::Master) {
-      std::cerr << "endatsim check: --t-d is the round trip at the master's connector: it needs --at master\n";
-      return kBadInput;
-    }
-    try {
-      o.t_d = sim::parse_duration(*t_d);
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "endatsim check: --t-d: " << e.what() << "\n";
-      return kBadInput;
-    }
-    if (*o.t_d > sim::us(100)) {
-      std::cerr << "endatsim check: --t-d must be 0 .. 100 us, got " << *t_d << "\n";
-      return kBadInput;
-    }
+  if (!check_duration(vm, "t-d", sim::us(100), o.t_d)) return kBadInput;
+  if (o.t_d && o.at != scenarios::CaptureCheckOptions::At::Master) {
+    std::cerr << "endatsim check: --t-d is the round trip at the master's connector: it needs --at master\n";
+    return kBadInput;
   }
   if (o.at == scenarios::CaptureCheckOptions::At::Master && !o.cable_m) {
     std::cerr << "endatsim check: --at master needs --cable LENGTH (t_D's bound and the round trip follow it)\n";
@@ -738,18 +735,7 @@ int check_command(const po::variables_map& vm) {
                  "connector does not hold\n";
     return kBadInput;
   }
-  if (const auto r = string_option(vm, "resolution")) {
-    try {
-      o.resolution = sim::parse_duration(*r);
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "endatsim check: --resolution: " << e.what() << "\n";
-      return kBadInput;
-    }
-    if (*o.resolution > sim::ms(1)) {
-      std::cerr << "endatsim check: --resolution must be 0 .. 1 ms, got " << *r << "\n";
-      return kBadInput;
-    }
-  }
+  if (!check_duration(vm, "resolution", sim::ms(1), o.resolution)) return kBadInput;
   const auto json = string_option(vm, "json"), log = string_option(vm, "log"), junit = string_option(vm, "junit");
   // Each capture in turn; a bad one is reported and the others still checked. The outputs cover
   // the captures that could be read.
