@@ -39,7 +39,13 @@ class Replay {
       enable_ = capture::find_signal(reader, *o.data_enable);
       wanted.push_back(*enable_);
     }
-    if (clock_ == data_ || (enable_ && (*enable_ == clock_ || *enable_ == data_)))
+    if (o.data_out) {
+      out_ = capture::find_signal(reader, *o.data_out);
+      wanted.push_back(*out_);
+    }
+    std::vector<std::uint32_t> distinct = wanted;
+    std::sort(distinct.begin(), distinct.end());
+    if (std::adjacent_find(distinct.begin(), distinct.end()) != distinct.end())
       throw capture::CaptureError(reader.path() + ": CLOCK, DATA and the enable must be different signals");
     reader.select(wanted);
     if (reader_.next(next_)) {
@@ -69,6 +75,10 @@ class Replay {
       decoder_.on_clock(now, c.value == '1');
       return;
     }
+    if (out_) {
+      apply_split(c);
+      return;
+    }
     if (c.signal == data_) data_level_ = c.value;
     else encoder_on_ = c.value != 'x' && ((c.value == '1') != active_low_);
     const bool known = data_level_ != 'x';
@@ -86,6 +96,23 @@ class Replay {
     if (c.signal == data_ && known) decoder_.on_data(now, data_level_ == '1');
   }
 
+  // An RTL master's data_out, data_in and data_oe: the line at its connector carries data_out
+  // while data_oe is on, else what data_in shows (without data_oe, data_in is taken as the bus:
+  // a receiver that hears both directions).
+  void apply_split(const capture::Change& c) {
+    if (c.signal == data_) in_level_ = c.value;
+    else if (c.signal == *out_) out_level_ = c.value;
+    else master_on_ = c.value != 'x' && ((c.value == '1') != active_low_);
+    const char level = enable_ && master_on_ ? out_level_ : in_level_;
+    if (level == data_level_) return;
+    data_level_ = level;
+    const bool known = level != 'x';
+    encoder_.data_enable.write(false);  // the master's connector: one level, put on the line from its side
+    master_.data_out.write(level == '1');
+    master_.data_enable.write(known);
+    if (known) decoder_.on_data(kernel_.now(), level == '1');
+  }
+
   sim::Kernel& kernel_;
   line::Line::MasterSide master_;
   line::Line::EncoderSide encoder_;
@@ -98,6 +125,10 @@ class Replay {
   std::uint32_t clock_ = 0;
   std::uint32_t data_ = 0;
   std::optional<std::uint32_t> enable_;
+  std::optional<std::uint32_t> out_;  // an RTL master's data_out (then data_ is its data_in)
+  char in_level_ = '1';
+  char out_level_ = '1';
+  bool master_on_ = false;
   capture::Change next_;
   Time offset_{0};
   char data_level_ = '1';
@@ -138,14 +169,14 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   lp.master = lp.encoder = line::TransceiverParams{Time::zero(), Time::zero(), Time::zero(), Time::zero()};
   line::Line line(kernel, lp);
   checker::CheckerParams params = o.checker;
-  params.driver_enables_observable = o.data_enable.has_value();
+  params.driver_enables_observable = o.data_enable.has_value() && !o.data_out;
   params.master_enable_observable = false;  // one DATA wire and the encoder's enable at most
   params.cable_length_m = o.cable_m.value_or(0);
   checker::EncoderDeclaration encoder = o.encoder;
   result.at = o.at;
   if (o.at == CaptureCheckOptions::At::Master) {
     if (!o.cable_m) throw capture::CaptureError(o.file + ": a capture at the master's connector needs the cable's length");
-    if (o.data_enable)
+    if (o.data_enable && !o.data_out)
       throw capture::CaptureError(o.file + ": --data-enable names the encoder's driver enable, which a capture at the "
                                            "master's connector does not hold");
     // The encoder's bits show at the master one round trip after the rising edge that sends them.

@@ -28,6 +28,9 @@ struct CaptureCheckOptions {
   std::string clock;                        // signal names: full path or an unambiguous suffix
   std::string data;
   std::optional<std::string> data_enable;   // the encoder's DATA driver enable at its pins, if recorded
+  // An RTL master's split DATA: `data` is then its data_in, this its data_out and `data_enable`
+  // its data_oe (at the master's connector).
+  std::optional<std::string> data_out;
   bool enable_active_low = false;
   // What the encoder declares (a profile or a scenario's encoder): position width, t_m, t_R,
   // and its clock-to-data delay at the connector (receiver and driver included) in output_delay.

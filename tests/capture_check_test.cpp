@@ -434,3 +434,49 @@ TEST(CheckCommand, AtTheMastersConnectorTheRoundTripIsJudged) {
   EXPECT_NE(r.err.find("--cable must be a length"), std::string::npos) << r.err;
   fs::remove(vcd);
 }
+
+// An RTL master's own signals: data_out with data_oe, data_in (here unknown while the master
+// drives, to show it is not used then; data_out is 0 while released, to show it is ignored).
+TEST(CheckCommand, AnRtlMastersSplitDataIsJudgedAtItsConnector) {
+  const auto scenario = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat21_1mhz_10m.json");
+  const fs::path vcd = temp("split_sim.vcd"), split = temp("split_rtl.vcd");
+  run_to_vcd(scenario, vcd);
+  {
+    auto reader = capture::open_vcd(vcd.string());
+    const std::vector<std::uint32_t> wanted{capture::find_signal(*reader, "master.clock"),
+                                            capture::find_signal(*reader, "master.data"),
+                                            capture::find_signal(*reader, "master.data_driver_enable")};
+    reader->select(wanted);
+    std::ofstream out(split);
+    out << "$timescale 1 ps $end\n$scope module tb $end\n$scope module dut $end\n$var wire 1 ! clk $end\n"
+           "$var wire 1 \" data_out $end\n$var wire 1 # data_in $end\n$var wire 1 $ data_oe $end\n$upscope $end\n"
+           "$upscope $end\n$enddefinitions $end\n";
+    char clock = '1', data = '1', oe = '0';
+    capture::Change c;
+    std::int64_t stamp = -1;
+    while (reader->next(c)) {
+      if (c.time.count() != stamp) out << "#" << (stamp = c.time.count()) << "\n";
+      if (c.signal == wanted[0]) clock = c.value;
+      else if (c.signal == wanted[1]) data = c.value;
+      else oe = c.value;
+      out << clock << "!\n" << (oe == '1' ? data : '0') << "\"\n" << (oe == '1' ? 'x' : data) << "#\n" << oe << "$\n";
+    }
+  }
+  const std::string signals = " --clock dut.clk --data-out data_out --data-in data_in --data-enable data_oe --cable 10";
+  auto r = cli("check '" + split.string() + "'" + signals + " --verbose");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("5 with a complete answer and a good CRC"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("at the master's connector"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("t_d: 5 / 0 / 0  ok"), std::string::npos) << r.out;
+  r = cli("check '" + split.string() + "' --clock dut.clk --data data_in --data-out data_out --cable 10");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("give one or the other"), std::string::npos) << r.err;
+  r = cli("check '" + split.string() + "' --clock dut.clk --data-out data_out --cable 10");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--data-out and --data-in go together"), std::string::npos) << r.err;
+  r = cli("check '" + split.string() + "'" + signals + " --at encoder");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("they are at the master"), std::string::npos) << r.err;
+  fs::remove(vcd);
+  fs::remove(split);
+}

@@ -49,7 +49,8 @@ const char* const kDiagramUsage =
     "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet]\n";
 const char* const kChecksUsage = "usage: endatsim checks\n";
 const char* const kCheckUsage =
-    "usage: endatsim check FILE... --clock NAME --data NAME [--data-enable NAME [--enable-active-low]]\n"
+    "usage: endatsim check FILE... --clock NAME (--data NAME | --data-out NAME --data-in NAME)\n"
+    "                      [--data-enable NAME [--enable-active-low]]\n"
     "                      [--encoder PROFILE|SCENARIO.json] [--clock-to-data TIME] [--t-st-reduced-for-cable]\n"
     "                      [--at encoder|master] [--cable LENGTH] [--t-d TIME] [--resolution TIME]\n"
     "                      [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
@@ -123,7 +124,9 @@ const char* const kCheckHelp =
     "CLOCK to DATA at the connector (default 130 ns). With --at master the signals are the levels\n"
     "at the master's connector: --cable gives the cable's length, and the encoder's bits are read\n"
     "one round trip (--t-d, default from --cable) after each rising edge; t_D is then judged, which\n"
-    "a capture at the encoder's connector cannot show. --log writes the decoded frames, --junit a\n"
+    "a capture at the encoder's connector cannot show. --data-out, --data-in and --data-enable\n"
+    "name an RTL master's data_out, data_in and data_oe (at the master: --cable is needed).\n"
+    "--log writes the decoded frames, --junit a\n"
     "test case per row of the timing table and capture; with several captures --json holds\n"
     "{\"captures\": [...]}.\n"
     "Each finding counts against the spec envelope (what any compliant encoder may do), the\n"
@@ -187,6 +190,8 @@ po::options_description options_of(Command c) {
           "clock-to-data", po::value<std::string>(), "the encoder's CLOCK-to-DATA delay at its connector")(
           "t-st-reduced-for-cable", "accept a t_ST shorter than note 8 for a cable shorter than 100 m")(
           "junit", po::value<std::string>(), "write JUnit XML (a test case per row and capture) to this file")(
+          "data-out", po::value<std::string>(), "an RTL master's data_out (with --data-in; --data-enable is its data_oe)")(
+          "data-in", po::value<std::string>(), "an RTL master's data_in (with --data-out)")(
           "at", po::value<std::string>(), "where CLOCK and DATA were recorded: encoder (default) or master")(
           "cable", po::value<std::string>(), "the cable's length in metres (needed --at master)")(
           "t-d", po::value<std::string>(), "--at master: the round trip t_D (default from --cable)")(
@@ -674,9 +679,21 @@ bool check_duration(const po::variables_map& vm, const char* name, sim::Time max
 int check_command(const po::variables_map& vm) {
   const auto files = files_of(vm);
   scenarios::CaptureCheckOptions o;
-  const auto clock = string_option(vm, "clock"), data = string_option(vm, "data");
+  const auto clock = string_option(vm, "clock"), data_in = string_option(vm, "data-in");
+  const auto data_out = string_option(vm, "data-out");
+  const auto data = data_in ? data_in : string_option(vm, "data");
+  if (vm.count("data") != 0 && (data_in || data_out)) {
+    std::cerr << "endatsim check: --data is one DATA wire; --data-out and --data-in are an RTL master's split DATA: "
+                 "give one or the other\n";
+    return kBadInput;
+  }
+  if (data_in.has_value() != data_out.has_value()) {
+    std::cerr << "endatsim check: --data-out and --data-in go together\n";
+    return kBadInput;
+  }
   if (files.empty() || !clock || !data) {
-    std::cerr << "endatsim check: expected capture files, --clock NAME and --data NAME\n" << kCheckUsage;
+    std::cerr << "endatsim check: expected capture files, --clock NAME and --data NAME (or --data-out and --data-in)\n"
+              << kCheckUsage;
     return kBadInput;
   }
   if (vm.count("verbose") != 0 && vm.count("quiet") != 0) {
@@ -685,6 +702,7 @@ int check_command(const po::variables_map& vm) {
   }
   o.clock = *clock;
   o.data = *data;
+  o.data_out = data_out;
   o.data_enable = string_option(vm, "data-enable");
   o.enable_active_low = vm.count("enable-active-low") != 0;
   if (o.enable_active_low && !o.data_enable) {
@@ -702,9 +720,14 @@ int check_command(const po::variables_map& vm) {
   if (!check_duration(vm, "clock-to-data", sim::us(10), clock_to_data)) return kBadInput;
   if (clock_to_data) o.encoder.output_delay = *clock_to_data;
   o.checker.t_st_reduced_for_cable = vm.count("t-st-reduced-for-cable") != 0;
+  if (o.data_out) o.at = scenarios::CaptureCheckOptions::At::Master;  // an RTL master's own signals
   if (const auto at = string_option(vm, "at")) {
     if (*at != "encoder" && *at != "master") {
       std::cerr << "endatsim check: --at must be 'encoder' or 'master', got '" << *at << "'\n";
+      return kBadInput;
+    }
+    if (o.data_out && *at != "master") {
+      std::cerr << "endatsim check: --data-out and --data-in are a master's signals: they are at the master\n";
       return kBadInput;
     }
     o.at = *at == "master" ? scenarios::CaptureCheckOptions::At::Master : scenarios::CaptureCheckOptions::At::Encoder;
@@ -730,7 +753,7 @@ int check_command(const po::variables_map& vm) {
     std::cerr << "endatsim check: --at master needs --cable LENGTH (t_D's bound and the round trip follow it)\n";
     return kBadInput;
   }
-  if (o.at == scenarios::CaptureCheckOptions::At::Master && o.data_enable) {
+  if (o.at == scenarios::CaptureCheckOptions::At::Master && o.data_enable && !o.data_out) {
     std::cerr << "endatsim check: --data-enable is the encoder's driver enable, which a capture at the master's "
                  "connector does not hold\n";
     return kBadInput;
