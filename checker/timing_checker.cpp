@@ -187,9 +187,12 @@ void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
   };
   const Time r = params_.resolution;
   std::optional<std::pair<Time, Time>> pulse;  // the last LOW pulse: falling, rising
+  std::optional<Time> t2_from;                   // the rising edge before it, where t2 began
   for (std::size_t i = 0; i + 1 < power_on_edges_.size(); ++i)
-    if (!power_on_edges_[i].second && power_on_edges_[i + 1].second)
+    if (!power_on_edges_[i].second && power_on_edges_[i + 1].second) {
+      if (pulse) t2_from = pulse->second;
       pulse = std::pair{power_on_edges_[i].first, power_on_edges_[i + 1].first};
+    }
   if (!pulse) {
     fail(first_request, "no pulse", "one LOW pulse > 125 ns, then t3",
          "the master requested data after switching on without the power-on clock sequence");
@@ -201,6 +204,16 @@ void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
   fail(pulse->first, format_time(pulse->first), ">= t1 + t2 = 800 ms + 80 ms",
        "the power-on pulse came before t1 and t2 had passed",
        at_least(pulse->first, limit::kPowerOnT1Min + limit::kPowerOnT2Min, r));
+  // CLOCK HIGH since switching on shows no boundary between t1 and t2; after a LOW phase, the
+  // HIGH before the pulse is t2 and lasts 80 .. 120 ms.
+  if (t2_from) {
+    const Time t2 = pulse->first - *t2_from;
+    const Decision short_t2 = at_least(t2, limit::kPowerOnT2Min, r), long_t2 = at_most(t2, limit::kPowerOnT2Max, r);
+    fail(pulse->first, format_time(t2), "t2 = 80 .. 120 ms", "CLOCK was not HIGH for t2 before the power-on pulse",
+         short_t2 == Decision::Fail || long_t2 == Decision::Fail ? Decision::Fail
+         : short_t2 == Decision::Undecided || long_t2 == Decision::Undecided ? Decision::Undecided
+                                                                                : Decision::Pass);
+  }
   const Time t3 = first_request - pulse->second;
   const Decision early = at_least(t3, limit::kPowerOnT3Min, r), late = at_most(t3, limit::kPowerOnT3Max, r);
   fail(first_request, format_time(t3), "t3 = 380 .. 420 ms", "the first request does not follow the pulse after t3",

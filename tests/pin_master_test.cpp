@@ -343,3 +343,25 @@ TEST(PinMaster, FindingsBeyondTheCapAreCountedNotKept) {
   EXPECT_FALSE(checker.conclusion().spec_envelope);
   EXPECT_FALSE(checker.conclusion().this_encoder);
 }
+
+// 2.3.3: after CLOCK was LOW, the HIGH phase before the power-on pulse is t2, 80 .. 120 ms.
+TEST(PinMaster, PowerOnT2IsJudgedToThePicosecondAfterALowClock) {
+  auto p = quick_encoder();
+  p.startup_time = ms(500);
+  const auto power_on_with_t2 = [&](Time t2) {
+    // CLOCK LOW until 850 ms (a first LOW phase of that length), HIGH for t2, the pulse, t3 = 400 ms.
+    std::vector<PinFrame> frames{{Time::zero(), MHz(1), 1, "", ms(850)}, {ms(850) + t2, MHz(1), 1, ""}};
+    auto reads = position_reads_21(1, us(100));
+    reads[0].start = ms(850) + t2 + ns(500) + ms(400);
+    frames.insert(frames.end(), reads.begin(), reads.end());
+    const auto r = run(frames, p, 1, reads[0].start + ms(1));
+    std::size_t t2_findings = 0;
+    for (const auto& v : r.violations) t2_findings += v.check == checker::check::kPowerOn && v.limit == "t2 = 80 .. 120 ms";
+    return t2_findings;
+  };
+  EXPECT_EQ(power_on_with_t2(ms(100)), 0U);
+  EXPECT_EQ(power_on_with_t2(ms(120)), 0U);
+  EXPECT_EQ(power_on_with_t2(ms(120) + ps(1)), 1U);
+  EXPECT_EQ(power_on_with_t2(ms(80)), 0U);
+  EXPECT_EQ(power_on_with_t2(ms(80) - ps(1)), 1U);
+}
