@@ -133,7 +133,7 @@ void TimingChecker::start_bit_from_decoder(unsigned clock) {
   if (params_.round_trip_observable && clock <= master_rising_.size() && last_data_rise_ > master_rising_[clock - 1]) {
     const StartBitInFlight s{last_data_rise_, master_rising_[clock - 1], current_.header.index, clock,
                              current_.header.compensated, current_.header.t_d_used,
-                             sim::period_of(current_.header.f_c)};
+                             sim::period_of(current_.header.f_c), measures_delay(current_.header)};
     check_data_delay(s, last_data_rise_ - master_rising_[clock - 1]);
   }
   if (current_.header.payload_bits != 0) {
@@ -214,7 +214,7 @@ void TimingChecker::note_start_bit_for_t_d() {
   start_bits_in_flight_.push_back({kernel_.now() + lp.cable_delay() + lp.master.receiver_delay,
                                    master_rising_[clock - 1], current_.header.index + word_, clock,
                                    current_.header.compensated, current_.header.t_d_used,
-                                   sim::period_of(current_.header.f_c)});
+                                   sim::period_of(current_.header.f_c), word_ == 0 && measures_delay(current_.header)});
 }
 
 // The start bit's edge is the first rising edge at the master logic from half a slot before it is
@@ -245,6 +245,7 @@ void TimingChecker::on_master_data(std::uint64_t level) {
 // edge, both at the master logic; at most 0.2 us + 0.01 us/m x cable length.
 void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
   if (!params_.round_trip_observable) return;
+  if (start.measurement) delay_measurements_.measured(start.frame, t_d);
   judge(protocol::check::row_index(check::kDataDelay));
   const Time bound = limit::data_delay_max(cable_length_m());
   report_unless_passed(at_most(t_d, bound, params_.resolution), {std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,

@@ -117,7 +117,8 @@ std::vector<RowConformance> TimingChecker::conformance() const {
     } else if (needs_enables && !params_.driver_enables_observable) {
       c.status = RowConformance::Status::NotObservable;
       c.reason = "needs the DATA drivers' enables";
-    } else if (row.check == check::kDataDelay && !params_.round_trip_observable) {
+    } else if ((row.check == check::kDataDelay || row.check == check::kMeasurementSpread) &&
+               !params_.round_trip_observable) {
       c.status = RowConformance::Status::NotObservable;
       c.reason = "the round trip shows only at the master's connector";
     } else if (row.check == check::kContention && !params_.master_enable_observable) {
@@ -170,6 +171,52 @@ void TimingChecker::check_measurement_procedure(const DeclaredFrame& frame) {
     report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
             std::nullopt, std::to_string(master_.measurements) + " measurement(s)", ">= 3", Severity::Error,
             "fewer than three measurements averaged"});
+}
+
+// A frame that measures t_D (2.1.2): declared so by the master, or, on the wires, an "Encoder send
+// position values" frame at the reduced clock of at most 200 kHz.
+bool TimingChecker::measures_delay(const FrameHeader& h) const {
+  if (!wires_only_) return h.measurement;
+  const sim::Hertz allowance = limit::kMeasurementFcMax * params_.f_c_tolerance_ppm / 1'000'000;
+  return h.continuous && h.f_c > 0 && h.f_c <= limit::kMeasurementFcMax + allowance;
+}
+
+// 2.1.2: at least three measurements, each within T/8 of their mean, before compensating; judged
+// at the master's pins from the t_D each measurement frame shows there (delay_measurements.hpp).
+void TimingChecker::check_measurement_spread(const PinFrame& f) {
+  if (!f.header.compensated || f.header.f_c == 0 || !params_.round_trip_observable) return;
+  const std::string spec = "2.1.2 (at least three measurements, each within T/8 of their mean)";
+  if (!delay_measurements_.any()) {
+    // Without a master's declaration (delay_measurement) the wires say it, when the run shows
+    // the encoder switched on: a capture that begins later may have missed the measurements.
+    if (!wires_only_ || !encoder_.switched_on_in_run || unmeasured_on_wires_reported_) return;
+    unmeasured_on_wires_reported_ = true;
+    judge(protocol::check::row_index(check::kMeasurementSpread));
+    report({std::string(check::kMeasurementSpread), spec, ObservationPoint::MasterPins, f.fe1, f.header.index,
+            std::nullopt, "no measurement", ">= 3 measurements at 100 .. 200 kHz", Severity::Error,
+            "the master compensates (f_c " + format_frequency(f.header.f_c) +
+                ") without measuring t_D after switching on"});
+    return;
+  }
+  const auto j = delay_measurements_.compensated(sim::period_of(f.header.f_c), params_.resolution);
+  if (!j) return;
+  judge(protocol::check::row_index(check::kMeasurementSpread));
+  // A capture that begins inside the measurements may hold only the last of them.
+  const bool count_observable = encoder_.switched_on_in_run || j->first_frame != first_frame_;
+  if (!j->enough && count_observable)
+    report({std::string(check::kMeasurementSpread), spec, ObservationPoint::MasterPins, f.fe1, f.header.index,
+            std::nullopt, std::to_string(j->measurements) + " measurement(s)", ">= 3", Severity::Error,
+            "the master compensates after fewer than three measurements of t_D"});
+  if (j->consistent) return;
+  const std::string which = "measurement " + std::to_string(j->worst + 1) + " of " + std::to_string(j->measurements) +
+                            " (frame " + std::to_string(j->worst_frame) + ")";
+  report_unless_passed(j->undecided ? Decision::Undecided : Decision::Fail,
+                       {std::string(check::kMeasurementSpread), spec, ObservationPoint::MasterPins, f.fe1,
+                        f.header.index, std::nullopt, format_time(j->deviation) + " from the mean",
+                        "<= T/8 = " + format_time(j->limit) + " (f_c " + format_frequency(f.header.f_c) + ")",
+                        Severity::Error,
+                        "the master compensates with delay measurements that disagree: " + which +
+                            " deviates from the mean of the latest three"});
 }
 
 // 2.3.3 (seed 002 figure, TI's reading, timing-model §3.3), judged when the run models switching
@@ -254,6 +301,7 @@ void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
   }
   last_frame_was_measurement_ = frame.measurement;
   frame_starts_.emplace_back(frame.start, frame.index);
+  if (!first_frame_) first_frame_ = frame.index;
   // The answer as the encoder sends it: its own position width, the additional data the master
   // selected.
   // (A FrameResult from another master may leave answer_bits and position_bits at 0.)
@@ -375,6 +423,7 @@ void TimingChecker::begin_wire_frame(Time now) {
   const Time master_fe1 = now - clock_path();
   std::erase_if(master_rising_, [&](Time t) { return t < master_fe1; });
   frame_starts_.emplace_back(master_fe1, started->index);
+  if (!first_frame_) first_frame_ = started->index;
   start_data_line_checks();
   recovery_checked_ = false;  // once the mode command is known (t_b depends on it)
 }
@@ -415,6 +464,7 @@ void TimingChecker::evaluate(const PinFrame& f) {
   check_frequency(f);
   check_start_delay(f);
   check_clock_count(f);
+  check_measurement_spread(f);
   if (!f.rising.empty()) previous_end_ = FrameEnd{f.rising.back(), f.header.command_type, f.header.index};
 }
 

@@ -11,6 +11,7 @@
 #include "checker/activated_settings.hpp"
 #include "checker/clock_fit.hpp"
 #include "checker/declarations.hpp"
+#include "checker/delay_measurements.hpp"
 #include "checker/decision.hpp"
 #include "checker/frame_decoder.hpp"
 #include "protocol/timing.hpp"
@@ -223,6 +224,8 @@ class TimingChecker final {
   void check_frequency_for_encoder(const PinFrame& f, const FittedFrequency& fit);
   void check_recovery(const PinFrame& next);
   void check_measurement_procedure(const DeclaredFrame& frame);
+  bool measures_delay(const FrameHeader& h) const;
+  void check_measurement_spread(const PinFrame& f);
   // Counts the finding for its row and the verdicts, and keeps it unless its check already has
   // CheckerParams::max_findings_per_check.
   void report(Finding f, std::string_view field = {});
@@ -289,11 +292,15 @@ class TimingChecker final {
     bool compensated;
     Time t_d_used;
     Time period;
+    bool measurement;  // the first word of a propagation-delay measurement frame (2.1.2)
   };
   std::deque<StartBitInFlight> start_bits_in_flight_;
   // Frames found on the wires when no master declares its own (decided at the first FE).
   FrameDecoder decoder_;
   ActivatedSettings settings_;  // word 3 as the wires have set and activated it
+  DelayMeasurements delay_measurements_;  // t_D of each measurement frame, at the master's pins
+  std::optional<std::uint64_t> first_frame_;  // the first frame the checker saw
+  bool unmeasured_on_wires_reported_ = false;
   std::optional<WireFrame> last_wire_;  // the frame the decoder finished last
   bool power_on_judged_ = false;
   bool recovery_checked_ = true;

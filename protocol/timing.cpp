@@ -78,6 +78,11 @@ constexpr std::array kRows{
               "3 measurements; counter f_e >= 8 f_c - 10 %", "",
               "measured before compensating, again after every change of the transmission path", "master pins",
               E::MasterDeclaration},
+    TimingRow{check::kMeasurementSpread, "t_D", "Propagation-delay measurements agree", "2.1.2",
+              "3 measurements before compensating", "each within T/8 of their mean (T at the compensated f_c)",
+              "the t_D each measurement frame (000111 at 100 .. 200 kHz) shows, judged at the next compensated "
+              "frame; the latest three or more must agree",
+              "master pins", E::Wires},
     TimingRow{check::kDataDelayTolerance, "t_D", "Set data delay time", "2.3", "", "+/-10 % x T",
               "the t_D the master compensates with against the line's", "master pins", E::MasterDeclaration},
     TimingRow{check::kSamplingWindow, "t_D", "Data taken at the falling edge plus t_D", "2.3, 2.1.2", "", "",

@@ -110,6 +110,7 @@ namespace check {
 inline constexpr std::string_view kClockFrequency = "f_c";
 inline constexpr std::string_view kMeasurementClock = "delay_measurement_f_c";
 inline constexpr std::string_view kMeasurementProcedure = "delay_measurement";
+inline constexpr std::string_view kMeasurementSpread = "delay_measurement_spread";
 inline constexpr std::string_view kPulseHigh = "t_hi";
 inline constexpr std::string_view kPulseLow = "t_lo";
 inline constexpr std::string_view kSamplingWindow = "sampling_window";
@@ -133,7 +134,7 @@ inline constexpr std::string_view kAccessWhileBusy = "busy_access";
 inline constexpr std::array kAll{kClockFrequency,  kCalculationTime,    kMemoryAccess,         kRecovery,
                                  kShortRecoveryClock, kDataDelay,       kStartDelay,           kPulseHigh,
                                  kPulseLow,        kDriverOff,          kDriverOn,             kTimeBetweenCycles,
-                                 kMeasurementClock, kMeasurementProcedure, kDataDelayTolerance, kSamplingWindow,
+                                 kMeasurementClock, kMeasurementProcedure, kMeasurementSpread, kDataDelayTolerance, kSamplingWindow,
                                  kClockCount,      kFloatingData,       kContention,           kErrorRecovery,
                                  kPowerOn,         kAccessWhileBusy};
 // The row of a check name, at compile time.

@@ -100,8 +100,14 @@ struct Run {
   }
 };
 
+// The cable's delay changes between frames: at each `at`, to this delay (in metres of 1 ns).
+struct CableChange {
+  Time at;
+  Time delay;
+};
+
 Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, double cable_m = 1, Time until = ms(2),
-        const checker::CheckerParams& params = {}) {
+        const checker::CheckerParams& params = {}, const std::vector<CableChange>& cable_changes = {}) {
   Kernel k;
   line::LineParams lp;
   lp.cable_length_m = cable_m;
@@ -109,6 +115,10 @@ Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, 
   slave::Encoder e(k, line, encoder);
   checker::TimingChecker checker(k, line, scenarios::declared_encoder(encoder), {}, params);
   PinMaster m(k, line, frames);
+  for (const auto& change : cable_changes) {
+    k.run(change.at);
+    line.set_cable(static_cast<double>(change.delay.count()) / 1000, ns(1));
+  }
   k.run(until);
   checker.finish();
   return {checker.violations(), checker.conformance(), checker.judged_from_wires()};
@@ -364,4 +374,59 @@ TEST(PinMaster, PowerOnT2IsJudgedToThePicosecondAfterALowClock) {
   EXPECT_EQ(power_on_with_t2(ms(120) + ps(1)), 1U);
   EXPECT_EQ(power_on_with_t2(ms(80)), 0U);
   EXPECT_EQ(power_on_with_t2(ms(80) - ps(1)), 1U);
+}
+
+// 2.1.2: three measurements at 200 kHz, then frames at 4 MHz (T/8 = 31.25 ns) with compensation.
+// Between measurements the cable's delay changes, so the round trips the master counts differ:
+// t_D, t_D, t_D + 2c (c the added cable delay, crossed twice). The third deviates 4c/3 from the
+// mean.
+namespace measurements {
+
+// A position read at 1 MHz first: the measurements that follow are all on the wires.
+std::vector<PinFrame> frames(unsigned measured) {
+  std::vector<PinFrame> out{{us(10), MHz(1), 43, header(k21Position)}};
+  for (unsigned i = 0; i < measured; ++i) out.push_back({us(100) + us(300) * i, kHz(200), 43, header(k21Position)});
+  for (unsigned i = 0; i < 2; ++i) out.push_back({us(1300) + us(100) * i, MHz(4), 43, header(k21Position), us(2)});
+  return out;
+}
+
+Run with_third_later_by(Time c, unsigned measured = 3) {
+  const Time base = ns(5);
+  const std::vector<CableChange> changes{{us(5), base}, {us(650), base + c}};
+  return run(frames(measured), quick_encoder(), 1, ms(2), {}, changes);
+}
+
+}  // namespace measurements
+
+TEST(PinMaster, DelayMeasurementsMustAgreeWithinAnEighthOfThePeriod) {
+  // 4c/3 against 31250 ps: c = 23437 ps deviates 31249.3 ps, c = 23438 ps 31250.7 ps.
+  const auto inside = measurements::with_third_later_by(ps(23437));
+  EXPECT_TRUE(inside.violations.empty()) << inside.list();
+  EXPECT_EQ(inside.row(checker::check::kMeasurementSpread).judged, 1U);
+  const auto outside = measurements::with_third_later_by(ps(23438));
+  ASSERT_EQ(outside.count(checker::check::kMeasurementSpread), 1U) << outside.list();
+  const auto& v = outside.violations.front();
+  EXPECT_EQ(v.where, line::ObservationPoint::MasterPins);
+  EXPECT_EQ(v.limit, "<= T/8 = 31.25 ns (f_c 4 MHz)");
+  EXPECT_EQ(v.measured, "31.251 ns from the mean");
+  EXPECT_NE(v.message.find("measurement 3 of 3"), std::string::npos) << v.message;
+  EXPECT_EQ(v.verdict, checker::Verdict::Both);
+}
+
+TEST(PinMaster, AMasterThatMeasuresAgainAfterAnOutlierPasses) {
+  // Four measurements: the first before the cable settled, the latest three agree.
+  const std::vector<CableChange> changes{{us(5), ns(45)}, {us(350), ns(5)}};
+  const auto r = run(measurements::frames(4), quick_encoder(), 1, ms(2), {}, changes);
+  EXPECT_TRUE(r.violations.empty()) << r.list();
+  // The same four, the outlier last: the latest three disagree.
+  const std::vector<CableChange> late{{us(5), ns(5)}, {us(950), ns(45)}};
+  const auto bad = run(measurements::frames(4), quick_encoder(), 1, ms(2), {}, late);
+  EXPECT_EQ(bad.count(checker::check::kMeasurementSpread), 1U) << bad.list();
+}
+
+TEST(PinMaster, CompensatingAfterTwoMeasurementsIsCaught) {
+  const auto two = measurements::with_third_later_by(ps(0), 2);
+  ASSERT_EQ(two.count(checker::check::kMeasurementSpread), 1U) << two.list();
+  EXPECT_EQ(two.violations.front().measured, "2 measurement(s)");
+  EXPECT_TRUE(measurements::with_third_later_by(ps(0), 3).violations.empty());
 }
