@@ -341,7 +341,9 @@ void TimingChecker::check_master_sample(const DeclaredFrame& frame, unsigned clo
 // which carries the HIGH end of data (timing-model §1.7). Fewer leave the encoder hanging in
 // the middle of the cycle; more are taken as a continuous clock (2.3.1), which only
 // "Encoder send position values" supports (HEIDENHAIN FAQ, timing-model §1.4), and make a 2.1
-// parameter frame an error (2.4.1). A 2.2 command supplement runs on after the answer.
+// parameter frame an error (2.4.1). A 2.2 command supplement runs on after the answer; a pulse
+// after the one that takes its last bit makes the encoder answer with an error (2.4.2.1, A2).
+// Where that bit was is known from the wires (frame_decoder.hpp).
 // 2.3.2: "Polling the start bit must be independent of t_CAL; this means clock pulses must be
 // continuously sent". A frame that ends without a start bit ended its polling after FE1 + the
 // time its last rising edge shows; an encoder may take t_cal (declared, word 39) and any
@@ -396,6 +398,12 @@ void TimingChecker::check_clock_count(const PinFrame& f) {
             parameter_frame ? Severity::Error : Severity::Warning,
             parameter_frame ? "more clock pulses than required: the encoder discards the access (2.4.1)"
                             : "clock pulses beyond the end of the frame"}, "end of frame");
+  else if (f.header.supplement && f.header.supplement_last_clock != 0 && clocks > f.header.supplement_last_clock)
+    report({std::string(check::kClockCount), "2.4.2.1 (more clock pulses than necessary after the command supplement)",
+            ObservationPoint::EncoderPins, f.rising.back(), f.header.index, clocks, std::to_string(clocks) + " pulses",
+            "<= " + std::to_string(f.header.supplement_last_clock) + " (the supplement's last bit)", Severity::Error,
+            "more clock pulses than necessary after the command supplement: the encoder outputs an error message "
+            "(A2)"}, "command supplement");
 }
 
 }  // namespace endatsim::checker

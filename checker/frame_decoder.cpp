@@ -158,6 +158,7 @@ void FrameDecoder::on_master_bit(unsigned clock, bool bit) {
       shift_ = shift_ << 1 | (bit ? 1U : 0U);
       if (++shifted_ == protocol::kPayloadBits) {
         frame_.supplement = shift_;
+        frame_.supplement_last_clock = clock;
         note_selection();
         frame_.complete = true;
         state_ = State::Done;

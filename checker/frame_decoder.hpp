@@ -60,6 +60,7 @@ struct WireFrame {
   bool crc_ok = false;
   std::vector<DecodedDatum> additional_data;     // wire order: additional data 2 first
   std::optional<std::uint32_t> supplement;
+  unsigned supplement_last_clock = 0;            // the rising edge that took its last bit
   unsigned continuous_words = 0;                 // further words of a continuous clock
   bool complete = false;                         // every bit the frame needs was clocked
 };

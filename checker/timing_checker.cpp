@@ -442,6 +442,7 @@ void TimingChecker::refresh_wire_header() {
     h.payload_bits = info.payload_bits;
     h.answer_bits = w->answer_bits;
     h.supplement = info.supplement;
+    h.supplement_last_clock = w->supplement_last_clock;
     h.continuous = *w->command == protocol::ModeCommand::EncoderSendPositionValues;
   }
   const auto& rising = current_.rising;

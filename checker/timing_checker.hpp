@@ -163,6 +163,7 @@ class TimingChecker final {
     bool continuous = false;    // "Encoder send position values": clocks beyond the word are a continuous clock (2.3.1)
     sim::Hertz f_c = 0;
     Time t_d_used{0};
+    unsigned supplement_last_clock = 0;  // found on the wires: the rising edge that took its last bit
   };
   // The clock edges of one frame at the encoder pins; the buffers are reused frame after frame.
   struct PinFrame {

@@ -23,7 +23,7 @@ using test_support::bits_msb;
 
 // One frame of a pin-driving master: FE1 at `start` (master logic), the first LOW phase `t_st`
 // (0: half a period), then `clocks` pulses of period 1/f_c; on FE_k the DATA driver does what
-// drive[k-1] says ('0'/'1' drive, anything else release).
+// drive[k-1] says ('0'/'1' drive, anything else release); the last rising edge releases DATA.
 struct PinFrame {
   Time start;
   Hertz f_c;
@@ -48,7 +48,7 @@ class PinMaster {
         const char c = n <= f.drive.size() ? f.drive[n - 1] : '-';
         edges_.push_back({t, false, c});
         t += n == 1 && f.t_st > Time::zero() ? f.t_st : half;
-        edges_.push_back({t, true, ' '});
+        edges_.push_back({t, true, n == f.clocks ? 'r' : ' '});  // 'r': DATA released with the last edge
         t += half;
       }
     }
@@ -65,6 +65,7 @@ class PinMaster {
   void step() {
     const Edge e = edges_[next_++];
     m_.clock_out.write(e.clock);
+    if (e.drive == 'r') m_.data_enable.write(false);
     if (!e.clock) {
       m_.data_enable.write(e.drive == '0' || e.drive == '1');
       if (e.drive == '0' || e.drive == '1') m_.data_out.write(e.drive == '1');
@@ -429,4 +430,20 @@ TEST(PinMaster, CompensatingAfterTwoMeasurementsIsCaught) {
   ASSERT_EQ(two.count(checker::check::kMeasurementSpread), 1U) << two.list();
   EXPECT_EQ(two.violations.front().measured, "2 measurement(s)");
   EXPECT_TRUE(measurements::with_third_later_by(ps(0), 3).violations.empty());
+}
+
+TEST(PinMaster, ClocksAfterTheCommandSupplementAreCaughtToTheCount) {
+  // "Encoder send position values and selection of the memory area" (001001) at 1 MHz: the
+  // answer on RE11..RE43, the master's supplement after five undriven and two LOW lead bits: its
+  // start bit on RE51, MRS code B9 (operating status, 2.4.2.1) and 16 bits on RE52..RE75.
+  const std::string supplement = std::string(5, '-') + "001" + bits_msb(0xB9, 8) + bits_msb(0, 16);
+  const std::string drive = header(0b001001) + std::string(43 - 8, '-') + supplement;
+  ASSERT_EQ(drive.size(), 75U);
+  const auto exact = run({{us(10), MHz(1), 75, drive}}, quick_encoder());
+  EXPECT_TRUE(exact.violations.empty()) << exact.list();
+  EXPECT_EQ(exact.row(checker::check::kClockCount).judged, 1U);
+  const auto one_more = run({{us(10), MHz(1), 76, drive}}, quick_encoder());
+  ASSERT_EQ(one_more.count(checker::check::kClockCount), 1U) << one_more.list();
+  EXPECT_EQ(one_more.violations.front().limit, "<= 75 (the supplement's last bit)");
+  EXPECT_EQ(one_more.violations.front().severity, checker::Severity::Error);
 }
