@@ -304,6 +304,14 @@ void TimingChecker::check_start_delay(const PinFrame& f) {
             "first LOW phase shorter than t_ST for this clock" + std::string(reduced ? " and cable" : "") +
                 ": the encoder's driver may still be on when the master drives DATA"},
            "first LOW phase");
+  // The maximum is the encoder's own ("see encoder specifications"): no envelope to judge.
+  if (!encoder_.t_st_max) return;
+  report_unless_passed(at_most(t_st, *encoder_.t_st_max, params_.resolution),
+                       {std::string(check::kStartDelay), "2.3.2 t_ST maximum (see encoder specifications)",
+                        ObservationPoint::EncoderPins, f.fe1, f.header.index, 1U, format_time(t_st),
+                        "<= " + format_time(*encoder_.t_st_max) + " (this encoder's t_ST maximum)", Severity::Error,
+                        "first LOW phase longer than this encoder's datasheet allows", Verdict::ThisEncoder},
+                       "first LOW phase");
 }
 
 void TimingChecker::on_master_driven(std::uint64_t driven) {

@@ -490,7 +490,7 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
       decision = d;
       if (worse) std::tie(width, clock, at) = std::tuple{w, k, t};
     }
-  } low, high, long_high;
+  } low, high, long_high, long_low;
   if (!f.falling.empty()) {
     judge(protocol::check::row_index(check::kPulseLow));
     judge(protocol::check::row_index(check::kPulseHigh));
@@ -499,6 +499,9 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
   for (std::size_t k = 0; k < f.rising.size() && k < f.falling.size(); ++k) {
     const Time w = f.rising[k] - f.falling[k];
     low.add(at_least(w, min, r), w, static_cast<unsigned>(k + 1), f.falling[k], true);
+    // t_LO maximum, "see encoder specifications"; with compensation the first LOW phase is t_ST.
+    if (encoder_.t_lo_max && (k > 0 || !f.header.compensated))
+      long_low.add(at_most(w, *encoder_.t_lo_max, r), w, static_cast<unsigned>(k + 1), f.falling[k], false);
   }
   for (std::size_t k = 0; k + 1 < f.falling.size() && k < f.rising.size(); ++k) {
     const Time w = f.falling[k + 1] - f.rising[k];
@@ -506,16 +509,21 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
     long_high.add(at_most(w, limit::kPulseHighMax, r), w, static_cast<unsigned>(k + 1), f.rising[k], false);
   }
   const auto emit = [&](const Worst& w, std::string_view name, const std::string& bound, const std::string& s,
-                        const char* what) {
+                        const char* what, Verdict verdict = Verdict::Both) {
     report_unless_passed(w.decision,
                          {std::string(name), s, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock,
                           format_time(w.width), bound, Severity::Error,
-                          std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)"});
+                          std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)",
+                          verdict});
   };
   emit(low, check::kPulseLow, ">= " + format_time(min), spec, "CLOCK LOW phase too short");
   emit(high, check::kPulseHigh, ">= " + format_time(min), spec, "CLOCK HIGH phase too short");
   emit(long_high, check::kPulseHigh, "<= " + format_time(limit::kPulseHighMax), "2.3.2 t_HI maximum 10 us",
        "CLOCK HIGH phase inside a frame too long: the encoder may end the transfer (t_m)");
+  if (encoder_.t_lo_max)
+    emit(long_low, check::kPulseLow, "<= " + format_time(*encoder_.t_lo_max) + " (this encoder's t_LO maximum)",
+         "2.3.2 t_LO maximum (see encoder specifications)", "CLOCK LOW phase longer than this encoder's datasheet allows",
+         Verdict::ThisEncoder);
 }
 
 void TimingChecker::check_frequency(const PinFrame& f) {

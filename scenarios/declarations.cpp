@@ -15,6 +15,8 @@ checker::EncoderDeclaration declared_encoder(const slave::EncoderParams& e) {
   d.t_m_short = e.t_m_short;
   d.short_t_m_selected = e.short_t_m_selected;
   d.t_r = e.t_r;
+  d.t_st_max = e.t_st_max;
+  d.t_lo_max = e.t_lo_max;
   d.endat21_only = e.version == protocol::EndatVersion::V2_1;
   d.switched_on_in_run = e.startup_time > sim::Time::zero();
   d.supplement_ignore_clocks = e.supplement_ignore_clocks;

@@ -388,6 +388,8 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("t_m_short")) p.t_m_short = v->as_duration(sim::ns(1250), sim::ns(3750));
   if (auto v = o.opt("short_t_m_selected")) p.short_t_m_selected = v->as_bool();
   if (auto v = o.opt("t_r")) p.t_r = v->as_duration(Time::zero(), sim::us(100));
+  if (auto v = o.opt("t_st_max")) p.t_st_max = v->as_duration(protocol::limit::kStartDelayAt16MHz, sim::ms(10));
+  if (auto v = o.opt("t_lo_max")) p.t_lo_max = v->as_duration(protocol::limit::kPulseWidthMin, sim::ms(10));
   if (auto v = o.opt("startup_time")) p.startup_time = v->as_duration(Time::zero(), sim::ms(10'000));
   if (auto v = o.opt("reset_time")) p.reset_time = v->as_duration(Time::zero(), sim::ms(1000));
   if (auto v = o.opt("output_delay")) p.output_delay = v->as_duration(Time::zero(), sim::us(1));

@@ -101,6 +101,10 @@ struct EncoderParams {
   std::optional<Time> t_m_short;               // 1.25 .. 3.75 us, 2.2 commands only (word 3, 3.4.4)
   bool short_t_m_selected = false;             // as if word 3 selected it at power-on
   Time t_r = sim::ns(500);                     // 2.3.2: t_R, time before the next query can be received
+  // 2.3.2 t_ST and t_LO maxima, "see encoder specifications": a datasheet's values, judged by the
+  // checker against this encoder; the model itself takes any longer LOW phase.
+  std::optional<Time> t_st_max;
+  std::optional<Time> t_lo_max;
   // 2.3.3 / seeds 001, 002: run-up after switching on, about 1 s (1.3 s in seed 004); DATA is
   // high-impedance and clocks are ignored meanwhile. 0: the run starts with the encoder up.
   Time startup_time{0};

@@ -44,6 +44,13 @@ TEST(ScenarioLoader, AcceptsAMinimalScenarioWithDocumentedDefaults) {
   EXPECT_EQ(s.script[0].command, protocol::ModeCommand::EncoderSendPositionValues);
 }
 
+TEST(ScenarioLoader, ReadsTheDatasheetsTstAndTloMaxima) {
+  const auto s = load_scenario_text(valid_with("\"master\"", "\"encoder\": {\"t_st_max\": \"3 us\", \"t_lo_max\": \"5 us\"}, \"master\""), "ok.json");
+  EXPECT_EQ(s.encoder.t_st_max, sim::us(3));
+  EXPECT_EQ(s.encoder.t_lo_max, sim::us(5));
+  EXPECT_FALSE(load_scenario_text(kValid, "ok.json").encoder.t_st_max.has_value());
+}
+
 struct BadCase {
   const char* label;
   std::string text;
@@ -84,6 +91,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"empty_script", valid_with("[{\"op\": \"read_position\"}]", "[]"), {"/script", "non-empty array"}},
         BadCase{"t_m_out_of_range", valid_with("\"master\"", "\"encoder\": {\"t_m\": \"5 us\"}, \"master\""),
                 {"/encoder/t_m", "10 us .. 30 us"}},
+        BadCase{"t_st_max_below_the_table", valid_with("\"master\"", "\"encoder\": {\"t_st_max\": \"500 ns\"}, \"master\""),
+                {"/encoder/t_st_max", "1 us .. 10 ms"}},
+        BadCase{"t_lo_max_below_the_table", valid_with("\"master\"", "\"encoder\": {\"t_lo_max\": \"100 ns\"}, \"master\""),
+                {"/encoder/t_lo_max", "200 ns .. 10 ms"}},
         BadCase{"multiturn_without_bits", valid_with("\"master\"", "\"encoder\": {\"kind\": \"multiturn\"}, \"master\""),
                 {"/encoder", "multiturn_bits"}},
         BadCase{"deep_nesting", valid_with("\"ok\",", "\"ok\", \"description\": " + std::string(100, '[') + std::string(100, ']') + ","),

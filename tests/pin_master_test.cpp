@@ -447,3 +447,28 @@ TEST(PinMaster, ClocksAfterTheCommandSupplementAreCaughtToTheCount) {
   EXPECT_EQ(one_more.violations.front().limit, "<= 75 (the supplement's last bit)");
   EXPECT_EQ(one_more.violations.front().severity, checker::Severity::Error);
 }
+
+TEST(PinMaster, TstAndTloMaximaAreThoseOfTheDeclaredEncoder) {
+  // 2.3.2 "t_ST maximum, t_LO maximum: see encoder specifications". A datasheet's 3 us t_ST and
+  // 500 ns t_LO, against frames at 8 MHz with a first LOW phase of 3 us (+ 1 ps) and 2.1 reads at
+  // 1 MHz, whose LOW phases are 500 ns.
+  auto encoder = quick_encoder();
+  encoder.t_st_max = us(3);
+  encoder.t_lo_max = ns(500);
+  const auto inside = run(position_reads_22(2, us(100), MHz(8), us(3)), encoder);
+  EXPECT_TRUE(inside.violations.empty()) << inside.list();
+  const auto outside = run(position_reads_22(2, us(100), MHz(8), us(3) + ps(1)), encoder);
+  ASSERT_EQ(outside.count(checker::check::kStartDelay), 2U) << outside.list();
+  EXPECT_EQ(outside.violations.front().verdict, checker::Verdict::ThisEncoder);
+  EXPECT_EQ(outside.violations.front().limit, "<= 3 us (this encoder's t_ST maximum)");
+  EXPECT_TRUE(checker::conclude(outside.violations).spec_envelope);
+
+  EXPECT_TRUE(run(position_reads_21(2, us(100)), encoder).violations.empty());
+  encoder.t_lo_max = ns(500) - ps(1);
+  const auto low = run(position_reads_21(2, us(100)), encoder);
+  ASSERT_EQ(low.count(checker::check::kPulseLow), 2U) << low.list();
+  EXPECT_EQ(low.violations.front().verdict, checker::Verdict::ThisEncoder);
+  // Without a declared maximum the envelope has none: the same frames are clean.
+  encoder.t_lo_max.reset();
+  EXPECT_TRUE(run(position_reads_21(2, us(100)), encoder).violations.empty());
+}
