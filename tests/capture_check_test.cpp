@@ -16,6 +16,7 @@
 
 #include "capture/capture.hpp"
 #include "scenarios/scenarios.hpp"
+#include "capture_support.hpp"
 
 namespace {
 
@@ -31,23 +32,6 @@ std::vector<fs::path> scenarios_in(std::initializer_list<const char*> folders) {
       if (e.path().extension() == ".json") out.push_back(e.path());
   std::sort(out.begin(), out.end());
   return out;
-}
-
-// Rows a capture at the encoder's connector can judge: wire rows the capture's conformance does
-// not call unobservable (bus_contention needs the master's enable too). floating_data is left
-// out: its master half needs the master's declared sampling instants.
-std::map<std::string, std::size_t> wire_rows(const std::vector<checker::Violation>& violations,
-                                             const std::vector<checker::RowConformance>& observable) {
-  std::map<std::string, std::size_t> counts;
-  for (const auto& v : violations) {
-    const auto row = protocol::timing_row(v.check);
-    const bool seen = std::any_of(observable.begin(), observable.end(), [&](const auto& c) {
-      return c.check == v.check && c.status != checker::RowConformance::Status::NotObservable;
-    });
-    if (row && row->evidence == protocol::Evidence::Wires && seen && v.check != checker::check::kFloatingData)
-      ++counts[v.check];
-  }
-  return counts;
 }
 
 fs::path temp(const std::string& name) {
@@ -84,7 +68,8 @@ TEST_P(CaptureRoundTrip, CheckFindsWhatRunFoundOnTheWires) {
   const auto check = scenarios::check_capture(encoder_pins_of(scenario, vcd));
   fs::remove(vcd);
 
-  EXPECT_EQ(wire_rows(check.violations, check.conformance), wire_rows(run.violations, check.conformance));
+  EXPECT_EQ(test_support::wire_rows(check.violations, check.conformance),
+            test_support::wire_rows(run.violations, check.conformance));
   const auto good = static_cast<std::size_t>(std::count_if(run.frames.begin(), run.frames.end(), [](const auto& f) {
     return f.word == 0 && f.outcome == master::FrameOutcome::Ok && f.crc_received == f.crc_expected;
   }));

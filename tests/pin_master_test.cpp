@@ -1,17 +1,25 @@
 // Masters that only drive pins, written here edge by edge from the spec (no master model, no
 // declarations to the checker): the checker must find their frames on the wires and judge every
 // row that needs nothing but wires. Each defective master breaks one rule and is caught by that
-// rule's row; the same master without the defect draws no violation.
+// rule's row; the same master without the defect draws no violation. Every run is recorded to a
+// VCD too, and `check` of that capture must break the same rows as often as the live run did:
+// at the encoder's connector every row observable there, at the master's the round trip's.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
+#include "capture_support.hpp"
 #include "checker/timing_checker.hpp"
 #include "line/line.hpp"
+#include "scenarios/capture_check.hpp"
 #include "scenarios/declarations.hpp"
+#include "sim/vcd.hpp"
 #include "slave/encoder.hpp"
 #include "test_support.hpp"
 
@@ -20,6 +28,7 @@ namespace {
 using namespace endatsim;
 using namespace endatsim::sim;
 using test_support::bits_msb;
+namespace position = protocol::frame_position;
 
 // One frame of a pin-driving master: FE1 at `start` (master logic), the first LOW phase `t_st`
 // (0: half a period), then `clocks` pulses of period 1/f_c; on FE_k the DATA driver does what
@@ -107,8 +116,44 @@ struct CableChange {
   Time delay;
 };
 
+// The capture of a live run, checked at the encoder's connector (with its driver enable) and at
+// the master's (the round trip's rows); both must find what the live checker found.
+void expect_capture_agrees(const std::filesystem::path& vcd, const Run& live, const slave::EncoderParams& encoder,
+                           const line::LineParams& lp, const checker::CheckerParams& params) {
+  scenarios::CaptureCheckOptions at_encoder;
+  at_encoder.file = vcd.string();
+  at_encoder.clock = "encoder.clock";
+  at_encoder.data = "encoder.data";
+  at_encoder.data_enable = "encoder.data_driver_enable";
+  at_encoder.encoder = scenarios::declared_encoder(encoder);
+  at_encoder.encoder.output_delay = lp.encoder.receiver_delay + encoder.output_delay + lp.encoder.driver_delay;
+  at_encoder.checker = params;
+  at_encoder.cable_m = lp.cable_length_m;
+  const auto e = scenarios::check_capture(at_encoder);
+  EXPECT_EQ(test_support::wire_rows(e.violations, e.conformance), test_support::wire_rows(live.violations, e.conformance))
+      << "the capture at the encoder's connector";
+
+  auto at_master = at_encoder;
+  at_master.at = scenarios::CaptureCheckOptions::At::Master;
+  at_master.clock = "master.clock";
+  at_master.data = "master.data";
+  at_master.data_enable.reset();
+  const auto m = scenarios::check_capture(at_master);
+  const auto round_trip_rows = [&](const std::vector<checker::Violation>& v) {
+    auto rows = test_support::wire_rows(v, m.conformance);
+    std::erase_if(rows, [](const auto& r) {
+      return r.first != checker::check::kDataDelay && r.first != checker::check::kMeasurementSpread;
+    });
+    return rows;
+  };
+  EXPECT_EQ(round_trip_rows(m.violations), round_trip_rows(live.violations)) << "the capture at the master's connector";
+}
+
 Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, double cable_m = 1, Time until = ms(2),
         const checker::CheckerParams& params = {}, const std::vector<CableChange>& cable_changes = {}) {
+  static unsigned runs = 0;
+  const auto vcd = std::filesystem::temp_directory_path() /
+                   ("endatsim_pin_master_" + std::to_string(::getpid()) + "_" + std::to_string(++runs) + ".vcd");
   Kernel k;
   line::LineParams lp;
   lp.cable_length_m = cable_m;
@@ -116,13 +161,29 @@ Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, 
   slave::Encoder e(k, line, encoder);
   checker::TimingChecker checker(k, line, scenarios::declared_encoder(encoder), {}, params);
   PinMaster m(k, line, frames);
+  sim::VcdWriter recording(k, vcd.string());
+  for (auto where : {line::ObservationPoint::MasterPins, line::ObservationPoint::EncoderPins}) {
+    const std::string scope = where == line::ObservationPoint::MasterPins ? "master" : "encoder";
+    auto pins = line.pins(where);
+    recording.add(pins.clock, scope, "clock");
+    recording.add(pins.data, scope, "data");
+    recording.add(pins.driver_enable, scope, "data_driver_enable");
+  }
+  recording.start();
   for (const auto& change : cable_changes) {
     k.run(change.at);
     line.set_cable(static_cast<double>(change.delay.count()) / 1000, ns(1));
   }
   k.run(until);
   checker.finish();
-  return {checker.violations(), checker.conformance(), checker.judged_from_wires()};
+  recording.finish();
+  Run live{checker.violations(), checker.conformance(), checker.judged_from_wires()};
+  // The capture knows the line as it was at the end; a capture with the cable changing under it
+  // is judged at the master's connector only through the round trip it shows.
+  lp.cable_length_m = line.params().cable_length_m;
+  expect_capture_agrees(vcd, live, encoder, lp, params);
+  std::filesystem::remove(vcd);
+  return live;
 }
 
 slave::EncoderParams quick_encoder() {
@@ -432,20 +493,55 @@ TEST(PinMaster, CompensatingAfterTwoMeasurementsIsCaught) {
   EXPECT_TRUE(measurements::with_third_later_by(ps(0), 3).violations.empty());
 }
 
+// A 2.2 frame with a command supplement at 1 MHz: the answer from RE11 (`answer_bits` long), then
+// five undriven and two LOW lead bits, the supplement's start bit and 8 + 16 bits, the last on
+// the frame's last rising edge.
+PinFrame with_supplement(Time start, std::uint8_t mode_bits, std::uint8_t mrs, std::uint16_t value,
+                         unsigned answer_bits = 33) {
+  const unsigned last_answer_bit = position::kEarliestStartBit - 1 + answer_bits;
+  const std::string drive = header(mode_bits) + std::string(last_answer_bit - position::kLastModeBit, '-') +
+                            std::string(5, '-') + "001" + bits_msb(mrs, 8) + bits_msb(value, 16);
+  return {start, MHz(1), static_cast<unsigned>(drive.size()), drive};
+}
+
+constexpr std::uint8_t k22Selection = 0b001001;        // "... and selection of the memory area"
+constexpr std::uint8_t k22ReceiveParameter = 0b011011;  // "... and receive parameter"
+constexpr std::uint8_t kOperatingStatus = 0xB9;         // MRS code (2.4.2.1)
+constexpr unsigned kWithAdditionalData1 = 33 + 30;     // 2.2 position answer and one datum
+
 TEST(PinMaster, ClocksAfterTheCommandSupplementAreCaughtToTheCount) {
-  // "Encoder send position values and selection of the memory area" (001001) at 1 MHz: the
-  // answer on RE11..RE43, the master's supplement after five undriven and two LOW lead bits: its
-  // start bit on RE51, MRS code B9 (operating status, 2.4.2.1) and 16 bits on RE52..RE75.
-  const std::string supplement = std::string(5, '-') + "001" + bits_msb(0xB9, 8) + bits_msb(0, 16);
-  const std::string drive = header(0b001001) + std::string(43 - 8, '-') + supplement;
-  ASSERT_EQ(drive.size(), 75U);
-  const auto exact = run({{us(10), MHz(1), 75, drive}}, quick_encoder());
+  // Operating status selected (MRS B9): the supplement's start bit on RE51, its last bit on RE75.
+  const PinFrame frame = with_supplement(us(10), k22Selection, kOperatingStatus, 0);
+  ASSERT_EQ(frame.clocks, 75U);
+  const auto exact = run({frame}, quick_encoder());
   EXPECT_TRUE(exact.violations.empty()) << exact.list();
   EXPECT_EQ(exact.row(checker::check::kClockCount).judged, 1U);
-  const auto one_more = run({{us(10), MHz(1), 76, drive}}, quick_encoder());
+  PinFrame longer = frame;
+  ++longer.clocks;
+  const auto one_more = run({longer}, quick_encoder());
   ASSERT_EQ(one_more.count(checker::check::kClockCount), 1U) << one_more.list();
   EXPECT_EQ(one_more.violations.front().limit, "<= 75 (the supplement's last bit)");
   EXPECT_EQ(one_more.violations.front().severity, checker::Severity::Error);
+}
+
+TEST(PinMaster, AWriteWhileBusyIsCaught) {
+  // Additional data 1 selected (MRS 40h, 2.4.2.2), then a memory area selected: a 2.2 memory
+  // access, after which the encoder shows Busy in additional data 1 (2.6.1).
+  std::vector<PinFrame> frames{with_supplement(us(10), k22Selection, 0x40, 0),
+                               with_supplement(us(200), k22Selection, kOperatingStatus, 0, kWithAdditionalData1)};
+  // A write 100 us after the access: nothing has shown Busy = 0.
+  auto hasty = frames;
+  hasty.push_back(with_supplement(us(400), k22ReceiveParameter, 0x00, 0x0000, kWithAdditionalData1));
+  const auto r = run(hasty, quick_encoder());
+  ASSERT_EQ(r.count(checker::check::kAccessWhileBusy), 1U) << r.list();
+  EXPECT_EQ(r.violations.front().frame, 2U);
+  // The careful master reads the position with additional data 1 until Busy = 0, then writes.
+  auto careful = frames;
+  careful.push_back({us(1000), MHz(1), 10 + kWithAdditionalData1 + 1, header(0b111000)});
+  careful.push_back(with_supplement(us(1200), k22ReceiveParameter, 0x00, 0x0000, kWithAdditionalData1));
+  const auto fine = run(careful, quick_encoder());
+  EXPECT_EQ(fine.count(checker::check::kAccessWhileBusy), 0U) << fine.list();
+  EXPECT_EQ(fine.row(checker::check::kAccessWhileBusy).judged, 2U);
 }
 
 TEST(PinMaster, TstAndTloMaximaAreThoseOfTheDeclaredEncoder) {
