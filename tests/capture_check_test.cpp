@@ -17,6 +17,7 @@
 #include "capture/capture.hpp"
 #include "scenarios/scenarios.hpp"
 #include "capture_support.hpp"
+#include "sigrok_cli.hpp"
 
 namespace {
 
@@ -140,6 +141,37 @@ void resample(const fs::path& from, const fs::path& to, Time period) {
   flush();
 }
 
+// The frames a check decoded: command, CRC and position of each complete answer.
+std::vector<std::tuple<std::optional<protocol::ModeCommand>, bool, std::uint64_t>> decoded(
+    const scenarios::CaptureCheckResult& r) {
+  std::vector<std::tuple<std::optional<protocol::ModeCommand>, bool, std::uint64_t>> out;
+  for (const auto& f : r.frames)
+    if (f.answer_complete) out.emplace_back(f.command, f.crc_ok, f.fields[static_cast<std::size_t>(protocol::Field::Position)]);
+  return out;
+}
+
+// A sampled capture against the exact one: the same frames; no row fails that the exact capture
+// passes; every row the exact capture fails is failed or undecided.
+void expect_like_exact(const scenarios::CaptureCheckResult& exact, const scenarios::CaptureCheckResult& r,
+                       const std::string& what) {
+  const auto findings = [](const scenarios::CaptureCheckResult& c, checker::Severity severity) {
+    std::map<std::string, std::size_t> counts;
+    for (const auto& v : c.violations)
+      if (v.severity == severity) ++counts[v.check];
+    return counts;
+  };
+  const auto count = [](const std::map<std::string, std::size_t>& m, const std::string& check) {
+    return m.count(check) != 0 ? m.at(check) : 0U;
+  };
+  EXPECT_EQ(decoded(r), decoded(exact)) << what;
+  const auto exact_errors = findings(exact, checker::Severity::Error);
+  const auto sampled_errors = findings(r, checker::Severity::Error);
+  const auto sampled_undecided = findings(r, checker::Severity::Undecided);
+  for (const auto& [check, n] : sampled_errors) EXPECT_LE(n, count(exact_errors, check)) << check << " fails only " << what;
+  for (const auto& [check, n] : exact_errors)
+    EXPECT_GE(count(sampled_errors, check) + count(sampled_undecided, check), n) << check << " lost " << what;
+}
+
 class CaptureResampled : public ::testing::TestWithParam<fs::path> {};
 
 // A logic analyzer needs some four samples per clock period to show each phase: the scenarios
@@ -152,18 +184,6 @@ TEST_P(CaptureResampled, LogicAnalyzerRatesGiveTheSameFramesAndUndecidedNearLimi
   run_to_vcd(scenario, vcd);
   auto o = encoder_pins_of(scenario, vcd);
   const auto exact = scenarios::check_capture(o);
-  const auto errors = [](const scenarios::CaptureCheckResult& r, checker::Severity severity) {
-    std::map<std::string, std::size_t> counts;
-    for (const auto& v : r.violations)
-      if (v.severity == severity) ++counts[v.check];
-    return counts;
-  };
-  const auto decoded = [](const scenarios::CaptureCheckResult& r) {
-    std::vector<std::tuple<std::optional<protocol::ModeCommand>, bool, std::uint64_t>> out;
-    for (const auto& f : r.frames)
-      if (f.answer_complete) out.emplace_back(f.command, f.crc_ok, f.fields[static_cast<std::size_t>(protocol::Field::Position)]);
-    return out;
-  };
   for (const Time period : {ns(10), ns(40)}) {
     if (sim::period_of(scenario.master.f_c) < period * 4) continue;
     const fs::path sampled = temp(GetParam().stem().string() + "_" + std::to_string(period.count()) + ".vcd");
@@ -172,18 +192,7 @@ TEST_P(CaptureResampled, LogicAnalyzerRatesGiveTheSameFramesAndUndecidedNearLimi
     o.resolution = period;
     const auto r = scenarios::check_capture(o);
     fs::remove(sampled);
-    const std::string at = "at " + sim::format_time(period);
-    EXPECT_EQ(decoded(r), decoded(exact)) << at;
-    const auto exact_errors = errors(exact, checker::Severity::Error);
-    const auto sampled_errors = errors(r, checker::Severity::Error);
-    const auto sampled_undecided = errors(r, checker::Severity::Undecided);
-    for (const auto& [check, n] : sampled_errors)
-      EXPECT_LE(n, exact_errors.count(check) != 0 ? exact_errors.at(check) : 0U) << check << " fails only " << at;
-    for (const auto& [check, n] : exact_errors)
-      EXPECT_GE((sampled_errors.count(check) != 0 ? sampled_errors.at(check) : 0U) +
-                    (sampled_undecided.count(check) != 0 ? sampled_undecided.at(check) : 0U),
-                n)
-          << check << " lost " << at;
+    expect_like_exact(exact, r, "at " + sim::format_time(period));
   }
   fs::remove(vcd);
 }
@@ -195,6 +204,56 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureResampled, ::testing::ValuesIn(scenar
                                            [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
                            return name;
                          });
+
+// The same waveforms as a logic analyzer's files: sigrok-cli (Debian's) turns the 10 ns and 40 ns
+// captures into sigrok session files, and those into CSV; `check` reads each with its sample
+// period as the resolution and finds what the exact capture showed, as above.
+class CaptureThroughSigrok : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CaptureThroughSigrok, SessionsAndCsvGiveTheSameFramesAndVerdicts) {
+  const std::string cli = test_support::sigrok_cli();
+  ASSERT_FALSE(cli.empty()) << test_support::kNoSigrokCli;
+  const auto scenario = scenarios::load_scenario_file(
+      (fs::path(ENDATSIM_SOURCE_DIR) / "scenarios" / "bundled" / (std::string(GetParam()) + ".json")).string());
+  const fs::path vcd = temp(std::string(GetParam()) + "_sigrok_exact.vcd");
+  run_to_vcd(scenario, vcd);
+  auto o = encoder_pins_of(scenario, vcd);
+  const auto exact = scenarios::check_capture(o);
+  ASSERT_FALSE(decoded(exact).empty());
+  unsigned rates = 0;
+  for (const Time period : {ns(10), ns(40)}) {
+    if (sim::period_of(scenario.master.f_c) < period * 4) continue;
+    ++rates;
+    const std::string stem = std::string(GetParam()) + "_" + std::to_string(period.count());
+    const fs::path sampled = temp(stem + ".vcd"), sr = temp(stem + ".sr"), csv = temp(stem + ".csv"),
+                   log = temp(stem + ".log");
+    resample(vcd, sampled, period);
+    // The resampled VCD is at 1 ns: sigrok samples it at 1 GHz, downsampled to the period.
+    const std::string downsample = std::to_string(period / ns(1));
+    const auto sigrok = [&](const std::string& args) {
+      return std::system((cli + " " + args + " >" + log.string() + " 2>&1").c_str());
+    };
+    ASSERT_EQ(sigrok("-I vcd:downsample=" + downsample + " -i " + sampled.string() + " -o " + sr.string()), 0);
+    ASSERT_EQ(sigrok("-i " + sr.string() + " -O csv -o " + csv.string()), 0);
+    for (const fs::path& file : {sr, csv}) {
+      auto from = o;
+      from.file = file.string();
+      from.clock = "clock";
+      from.data = "data";
+      from.data_enable = "data_driver_enable";
+      const auto r = scenarios::check_capture(from);
+      EXPECT_EQ(r.resolution, period) << file;
+      expect_like_exact(exact, r, file.extension().string() + " at " + sim::format_time(period));
+    }
+    for (const auto& f : {sampled, sr, csv, log}) fs::remove(f);
+  }
+  fs::remove(vcd);
+  EXPECT_GT(rates, 0U);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureThroughSigrok,
+                         ::testing::Values("endat21_1mhz_10m", "parameters_endat22_busy_polling",
+                                           "endat22_8mhz_100m_compensated"));
 
 struct Cli {
   int status = -1;

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "capture/capture.hpp"
+#include "../sigrok_cli.hpp"
 
 namespace fs = std::filesystem;
 using endatsim::capture::Change;
@@ -131,20 +132,8 @@ void expect_mentions(const std::string& message, const std::vector<std::string>&
   for (const auto& part : parts) EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
 }
 
-std::string sigrok_cli() {
-  for (const char* p : {"/usr/bin/sigrok-cli", "/usr/local/bin/sigrok-cli"})
-    if (::access(p, X_OK) == 0) return p;
-  if (const char* path = std::getenv("PATH")) {
-    std::stringstream dirs(path);
-    for (std::string dir; std::getline(dirs, dir, ':');)
-      if (!dir.empty() && ::access((dir + "/sigrok-cli").c_str(), X_OK) == 0) return dir + "/sigrok-cli";
-  }
-  return "";
-}
-
-constexpr const char* kNoSigrokCli =
-    "sigrok-cli is not installed: these tests make their sigrok session files and CSV with Debian's sigrok-cli "
-    "(apt-get install sigrok-cli; tools/quickstart installs it)";
+using endatsim::test_support::kNoSigrokCli;
+using endatsim::test_support::sigrok_cli;
 
 // Zip entries (name, bytes), deflated unless `store`.
 void write_zip(const std::string& path, const std::vector<std::pair<std::string, std::string>>& entries, bool store = false) {
