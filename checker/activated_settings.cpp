@@ -25,12 +25,21 @@ void ActivatedSettings::on_frame(protocol::ModeCommand command, std::optional<st
       if (supplement) write(address(*supplement), value(*supplement));
       break;
     case MC::EncoderReceiveReset:
-      if (written_)
-        short_t_m_ = protocol::parameters::function_activated(*written_, protocol::parameters::EncoderFunction::ShortRecoveryTime);
-      written_.reset();
+      activate();
       break;
     default: break;
   }
+}
+
+void ActivatedSettings::on_switched_on() {
+  activate();
+  area_.reset();
+}
+
+void ActivatedSettings::activate() {
+  if (written_)
+    short_t_m_ = protocol::parameters::function_activated(*written_, protocol::parameters::EncoderFunction::ShortRecoveryTime);
+  written_.reset();
 }
 
 void ActivatedSettings::select(std::uint8_t mrs) { area_ = mrs; }

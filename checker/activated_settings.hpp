@@ -20,12 +20,17 @@ class ActivatedSettings {
   // after the mode bits (2.1 parameter commands) and the 2.2 command supplement.
   void on_frame(protocol::ModeCommand command, std::optional<std::uint32_t> payload,
                 std::optional<std::uint32_t> supplement);
+  // Switching the supply off and on activates word 3 as a reset does (D297403 3.4.3 and 3.4.4:
+  // "send the Encoder receive reset mode command or switch the power supply off and on") and
+  // forgets the selected memory area.
+  void on_switched_on();
   // Recovery time I 1.25 .. 3.75 us for 2.2 mode commands (3.4.4 bits 0 and 1).
   bool short_t_m() const { return short_t_m_; }
   // Word 3 has been written since the last activation: a reset would change the setting.
   bool pending() const { return written_.has_value(); }
 
  private:
+  void activate();
   void select(std::uint8_t mrs);
   void write(std::uint8_t address, std::uint16_t value);
 

@@ -14,6 +14,7 @@
 #include "checker/delay_measurements.hpp"
 #include "checker/decision.hpp"
 #include "checker/frame_decoder.hpp"
+#include "checker/power_on.hpp"
 #include "protocol/timing.hpp"
 
 namespace endatsim::checker {
@@ -137,6 +138,10 @@ class TimingChecker final {
 
   // The transmission path changed (cable, connector): t_D must be measured again (2.1.2).
   void on_line_change() { t_d_stale_ = true; }
+  // The encoder's supply came back after an interruption: t_D must be measured again (2.1.2),
+  // word 3 as written is active (3.4.4), and the power-on conditions (2.3.3) apply again unless
+  // the run does not model switching on (`judge_power_on` false).
+  void on_switched_on(bool judge_power_on = true);
 
   // Evaluates what is still open (last frame, running contention). Call once after the run.
   void finish();
@@ -193,7 +198,8 @@ class TimingChecker final {
   void check_delay_tolerance(const StartBitInFlight& s, Time t_d);
   void check_memory_access_time();
   void check_calculation_time_minimum();
-  void check_power_on(std::uint64_t index, Time first_request);
+  void power_on_request(std::uint64_t index, Time start);
+  void report_power_on(const std::optional<PowerOnSequence::Judgement>& j);
   void begin_wire_frame(Time now);
   void refresh_wire_header();
   Time clock_path() const;
@@ -262,7 +268,6 @@ class TimingChecker final {
   std::vector<std::pair<Time, bool>> master_driven_;
   bool floating_reported_ = false;
   std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
-  std::vector<std::pair<Time, bool>> power_on_edges_;  // CLOCK at the master logic before the first frame
   bool sampling_reported_ = false;
   bool last_frame_was_measurement_ = false;
   bool t_d_stale_ = false;
@@ -303,7 +308,6 @@ class TimingChecker final {
   std::optional<std::uint64_t> first_frame_;  // the first frame the checker saw
   bool unmeasured_on_wires_reported_ = false;
   std::optional<WireFrame> last_wire_;  // the frame the decoder finished last
-  bool power_on_judged_ = false;
   bool recovery_checked_ = true;
   bool mode_decided_ = false;
   bool wires_only_ = false;
@@ -313,6 +317,7 @@ class TimingChecker final {
     std::uint64_t errors = 0, warnings = 0, undecided = 0;
   };
   std::vector<Tally> tally_;  // findings per row, kept or not
+  PowerOnSequence power_on_;
   Conclusion conclusion_;
   std::uint64_t not_kept_ = 0;
   std::uint64_t sample_judged_frame_ = UINT64_MAX;

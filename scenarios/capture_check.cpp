@@ -22,8 +22,9 @@ using sim::Time;
 class Replay {
  public:
   Replay(sim::Kernel& kernel, line::Line& line, capture::Reader& reader, const CaptureCheckOptions& o,
-         checker::FrameDecoder& log_decoder, CaptureCheckResult& result)
+         checker::TimingChecker& checker, checker::FrameDecoder& log_decoder, CaptureCheckResult& result)
       : kernel_(kernel),
+        checker_(checker),
         master_(line.master()),
         encoder_(line.encoder()),
         reader_(reader),
@@ -43,10 +44,14 @@ class Replay {
       out_ = capture::find_signal(reader, *o.data_out);
       wanted.push_back(*out_);
     }
+    if (o.power) {
+      power_ = capture::find_signal(reader, *o.power);
+      wanted.push_back(*power_);
+    }
     std::vector<std::uint32_t> distinct = wanted;
     std::sort(distinct.begin(), distinct.end());
     if (std::adjacent_find(distinct.begin(), distinct.end()) != distinct.end())
-      throw capture::CaptureError(reader.path() + ": CLOCK, DATA and the enable must be different signals");
+      throw capture::CaptureError(reader.path() + ": CLOCK, DATA, the enable and the supply must be different signals");
     reader.select(wanted);
     if (reader_.next(next_)) {
       offset_ = next_.time < Time::zero() ? -next_.time : Time::zero();  // pre-trigger samples
@@ -69,6 +74,12 @@ class Replay {
 
   void apply(const capture::Change& c) {
     const Time now = kernel_.now();
+    if (power_ && c.signal == *power_) {
+      // Switched on: a rise from LOW. A supply HIGH from the capture's start shows no switch-on.
+      if (c.value == '1' && power_level_ == '0') checker_.on_switched_on();
+      power_level_ = c.value;
+      return;
+    }
     if (c.signal == clock_) {
       if (c.value == 'x') return;  // an unknown clock level changes nothing
       master_.clock_out.write(c.value == '1');
@@ -114,6 +125,7 @@ class Replay {
   }
 
   sim::Kernel& kernel_;
+  checker::TimingChecker& checker_;
   line::Line::MasterSide master_;
   line::Line::EncoderSide encoder_;
   capture::Reader& reader_;
@@ -126,6 +138,8 @@ class Replay {
   std::uint32_t data_ = 0;
   std::optional<std::uint32_t> enable_;
   std::optional<std::uint32_t> out_;  // an RTL master's data_out (then data_ is its data_in)
+  std::optional<std::uint32_t> power_;
+  char power_level_ = 'x';
   char in_level_ = '1';
   char out_level_ = '1';
   bool master_on_ = false;
@@ -192,7 +206,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   checker::TimingChecker checker(kernel, line, encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
       .position_bits = encoder.position_bits, .clock_to_data = encoder.output_delay, .t_m = encoder.t_m});
-  Replay replay(kernel, line, *reader, o, log, result);
+  Replay replay(kernel, line, *reader, o, checker, log, result);
   kernel.run();
   checker.finish();
   log.finish();

@@ -32,6 +32,9 @@ struct CaptureCheckOptions {
   // its data_oe (at the master's connector).
   std::optional<std::string> data_out;
   bool enable_active_low = false;
+  // The encoder's supply, HIGH while powered, if recorded (a supply monitor or power-good
+  // line): each rise from LOW is a switch-on after which 2.3.3 is judged again.
+  std::optional<std::string> power;
   // What the encoder declares (a profile or a scenario's encoder): position width, t_m, t_R,
   // and its clock-to-data delay at the connector (receiver and driver included) in output_delay.
   checker::EncoderDeclaration encoder;

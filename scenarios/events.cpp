@@ -111,6 +111,7 @@ void EventDriver::apply_to_encoder(const Event& e) {
     case K::PowerInterruption:
       encoder_.power_interruption(*e.duration);
       checker_.on_line_change();  // 2.1.2: "after power interruption" as after a change of the line
+      kernel_.schedule(*e.duration, sim::bind<&EventDriver::supply_back>(this));
       // The drive's supply monitor: the encoder is back after the dip and its run-up.
       kernel_.schedule(*e.duration + encoder_.params().startup_time, sim::bind<&EventDriver::power_back>(this));
       break;

@@ -32,6 +32,8 @@ class EventDriver final : public master::MasterObserver {
   void end_of(std::uint64_t index);
   void release_probe() { encoder_.set_probe_deflected(false); }
   void power_back() { master_.encoder_power_interrupted(); }
+  // A run whose encoder has no run-up models neither the first switch-on nor this one (2.3.3).
+  void supply_back() { checker_.on_switched_on(encoder_.params().startup_time > sim::Time::zero()); }
   void on_master_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::MasterPins, level); }
   void on_encoder_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::EncoderPins, level); }
   void on_rising_edge(line::ObservationPoint end, std::uint64_t level);

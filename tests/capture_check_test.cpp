@@ -524,3 +524,90 @@ TEST(CheckCommand, AnRtlMastersSplitDataIsJudgedAtItsConnector) {
   fs::remove(vcd);
   fs::remove(split);
 }
+
+namespace {
+
+// A capture at the encoder's connector, in ns, with the encoder's supply: `events` are
+// (time, signal, level) with signal c (CLOCK), d (DATA) or p (supply). DATA stays LOW (idle).
+struct PowerCapture {
+  std::vector<std::tuple<std::int64_t, char, char>> events;
+  void request(std::int64_t at) {  // a frame of 12 pulses at 1 MHz: it carries mode bits
+    for (int k = 0; k < 12; ++k) {
+      events.emplace_back(at + 1000 * k, 'c', '0');
+      events.emplace_back(at + 1000 * k + 500, 'c', '1');
+    }
+  }
+  void pulse(std::int64_t at, std::int64_t width) {
+    events.emplace_back(at, 'c', '0');
+    events.emplace_back(at + width, 'c', '1');
+  }
+  fs::path write(const std::string& name) {
+    std::sort(events.begin(), events.end());
+    const fs::path vcd = temp(name);
+    std::ofstream out(vcd);
+    out << "$timescale 1 ns $end\n$scope module bench $end\n$var wire 1 c clock $end\n$var wire 1 d data $end\n"
+           "$var wire 1 p up $end\n$upscope $end\n$enddefinitions $end\n#0\n1c\n0d\n0p\n";
+    for (const auto& [t, s, v] : events) out << "#" << t << "\n" << v << s << "\n";
+    return vcd;
+  }
+};
+
+constexpr std::int64_t kMs = 1'000'000;  // in ns
+
+std::size_t power_on_findings(const scenarios::CaptureCheckResult& r) {
+  return static_cast<std::size_t>(
+      std::count_if(r.violations.begin(), r.violations.end(), [](const auto& v) { return v.check == checker::check::kPowerOn; }));
+}
+
+scenarios::CaptureCheckResult check_with_power(const fs::path& vcd, bool power = true) {
+  scenarios::CaptureCheckOptions o;
+  o.file = vcd.string();
+  o.clock = "clock";
+  o.data = "data";
+  if (power) o.power = "up";
+  return scenarios::check_capture(o);
+}
+
+}  // namespace
+
+// 2.3.3 after each switch-on a recorded supply shows: up at 10 ms, the pulse 900 ms later, the
+// first request t3 after it. A dip at 2 s: the master reads on 1.2 s after it without a pulse,
+// twice 100 us apart (the first read is the wake-up cycle, the second comes before t3).
+TEST(CheckCapture, TheSupplyShowsEachSwitchOnAndPowerOnIsJudgedAfterEach) {
+  const auto capture = [](std::int64_t t3_ns, bool dip) {
+    PowerCapture c;
+    c.events.emplace_back(10 * kMs, 'p', '1');
+    c.pulse(910 * kMs, 1000);
+    c.request(910 * kMs + 1000 + t3_ns);
+    c.request(910 * kMs + 1000 + t3_ns + 100'000);
+    if (dip) {
+      c.events.emplace_back(2000 * kMs, 'p', '0');
+      c.events.emplace_back(2010 * kMs, 'p', '1');
+      c.request(3210 * kMs);
+      c.request(3210 * kMs + 100'000);
+    }
+    return c;
+  };
+  auto vcd = capture(400 * kMs, false).write("power_clean.vcd");
+  EXPECT_EQ(power_on_findings(check_with_power(vcd)), 0U);
+  const auto judged = [](const scenarios::CaptureCheckResult& r) {
+    for (const auto& row : r.conformance)
+      if (row.check == checker::check::kPowerOn) return row.judged;
+    return std::uint64_t{0};
+  };
+  EXPECT_EQ(judged(check_with_power(vcd)), 1U);
+  EXPECT_EQ(judged(check_with_power(vcd, false)), 0U) << "without the supply no switch-on is seen";
+  vcd = capture(380 * kMs - 1, false).write("power_t3.vcd");
+  EXPECT_EQ(power_on_findings(check_with_power(vcd)), 1U);
+  EXPECT_EQ(power_on_findings(check_with_power(vcd, false)), 0U);
+  vcd = capture(400 * kMs, true).write("power_dip.vcd");
+  const auto r = check_with_power(vcd);
+  ASSERT_EQ(power_on_findings(r), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kPowerOn) {
+      EXPECT_EQ(v.limit, "t3 = 380 .. 420 ms");
+      EXPECT_GT(v.time, sim::ms(3210));
+    }
+  EXPECT_EQ(judged(r), 2U);
+  for (const char* name : {"power_clean.vcd", "power_t3.vcd", "power_dip.vcd"}) fs::remove(temp(name));
+}

@@ -198,7 +198,9 @@ TEST(MasterStartup, RoutineReadsWord13AndMeasuresTheDelayWhenCompensating) {
 
 namespace {
 
-scenarios::ScenarioResult switched_on(Time t1_t2, Time pulse, Time t3, bool sequence = true) {
+// Without the sequence, `reads` requests 100 us apart from `first`.
+scenarios::ScenarioResult switched_on(Time t1_t2, Time pulse, Time t3, bool sequence = true, unsigned reads = 1,
+                                      Time first = sim::ms(1500)) {
   auto s = scenario(10, MHz(1), false, {op(MC::EncoderSendPositionValuesWithAdditionalData)});
   s.encoder.startup_time = sim::ms(1000);
   s.master.power_on = {t1_t2, pulse, t3};
@@ -208,7 +210,9 @@ scenarios::ScenarioResult switched_on(Time t1_t2, Time pulse, Time t3, bool sequ
     on.kind = Kind::PowerOnSequence;
     s.script.insert(s.script.begin(), on);
   } else {
-    s.script.front().at = sim::ms(1500);
+    s.script.front().at = first;
+    s.script.front().count = reads;
+    s.script.front().cycle = sim::us(100);
   }
   return scenarios::run_scenario(s);
 }
@@ -227,12 +231,72 @@ TEST(CheckerPowerOn, TheSequenceOfTheFigureIsClean) {
   EXPECT_TRUE(r.violations.empty()) << violations(r);
 }
 
-TEST(CheckerPowerOn, EachLimitOfTheSequenceIsJudged) {
+TEST(CheckerPowerOn, EachLimitOfTheSequenceIsJudgedToThePicosecond) {
+  // Judged at the encoder's pins (2.3.3: "measurements at the encoder"), where CLOCK arrives
+  // after the master's driver and 10 m of cable; the supply came up there at 0.
+  const auto line = scenario(10, MHz(1), false, {}).line;
+  const Time path = line.master.driver_delay + line.cable_delay();
   EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::ns(125), sim::ms(400))), 1U) << "pulse not > 125 ns";
-  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::ns(126), sim::ms(400))), 0U);
-  EXPECT_EQ(power_on_findings(switched_on(sim::ms(879), sim::us(1), sim::ms(400))), 1U) << "before t1 + t2";
-  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(379))), 1U) << "t3 too short";
-  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(421))), 1U) << "t3 too long";
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::ns(125) + sim::ps(1), sim::ms(400))), 0U);
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(880) - path - sim::ps(1), sim::us(1), sim::ms(400))), 1U) << "before t1 + t2";
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(880) - path, sim::us(1), sim::ms(400))), 0U);
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(380) - sim::ps(1))), 1U) << "t3 too short";
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(380))), 0U);
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(420) + sim::ps(1))), 1U) << "t3 too long";
   EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(420))), 0U);
-  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(400), false)), 1U) << "no sequence";
+}
+
+TEST(CheckerPowerOn, JudgedAgainAfterEveryPowerInterruption) {
+  // 2.3.3 after the supply comes back at 1.51 s: a master that goes on reading without the
+  // sequence has its first read taken for the wake-up cycle and its second long before t3; one
+  // that runs the sequence again is clean.
+  auto s = scenario(10, MHz(1), false, {op(MC::EncoderSendPositionValuesWithAdditionalData)});
+  s.encoder.startup_time = sim::ms(1000);
+  s.master.power_on = {sim::ms(900), sim::us(1), sim::ms(400)};
+  s.max_time = sim::ms(5000);
+  master::Operation on;
+  on.kind = Kind::PowerOnSequence;
+  master::Operation again = s.script.front();
+  again.at = sim::ms(2600);  // the encoder has run up again
+  again.count = 2;
+  again.cycle = sim::us(100);
+  s.script = {on, s.script.front(), again};
+  scenarios::Event cut;
+  cut.kind = scenarios::Event::Kind::PowerInterruption;
+  cut.at = sim::ms(1500);
+  cut.duration = sim::ms(10);
+  s.events.push_back(cut);
+  auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(power_on_findings(r), 1U) << violations(r);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kPowerOn) {
+      EXPECT_EQ(v.limit, "t3 = 380 .. 420 ms");
+      EXPECT_GT(v.time, sim::ms(2600));
+    }
+  master::Operation on_again = on;
+  on_again.at = sim::ms(1510);
+  again.at.reset();
+  s.script = {on, s.script[1], on_again, again};
+  r = scenarios::run_scenario(s);
+  EXPECT_EQ(power_on_findings(r), 0U) << violations(r);
+  EXPECT_EQ(last_of(r, 1).outcome, master::FrameOutcome::Ok);
+}
+
+TEST(CheckerPowerOn, WithoutAPulseTheFirstRequestIsTheWakeUpCycleAndTheNextEndsT3) {
+  // 2.3.3: "at least one pulse (> 125 ns) or one request cycle (data not valid)". A master that
+  // requests twice, 100 us apart, at 1.5 s: its first request is the wake-up, the second comes
+  // 100 us after it instead of t3.
+  auto r = switched_on(sim::ms(900), sim::us(1), sim::ms(400), false, 2);
+  ASSERT_EQ(power_on_findings(r), 1U) << violations(r);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kPowerOn) {
+      EXPECT_EQ(v.limit, "t3 = 380 .. 420 ms");
+      EXPECT_EQ(v.frame, 1U);
+    }
+  // Requested at once after switching on: the wake-up also came before t1 + t2.
+  r = switched_on(sim::ms(900), sim::us(1), sim::ms(400), false, 2, sim::ms(1));
+  EXPECT_EQ(power_on_findings(r), 2U) << violations(r);
+  // One request alone shows no t3: only t1 + t2 are judged, and kept.
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(400), false, 1)), 0U);
+  EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(400), false, 1, sim::ms(1))), 1U);
 }

@@ -50,7 +50,7 @@ const char* const kDiagramUsage =
 const char* const kChecksUsage = "usage: endatsim checks\n";
 const char* const kCheckUsage =
     "usage: endatsim check FILE... --clock NAME (--data NAME | --data-out NAME --data-in NAME)\n"
-    "                      [--data-enable NAME [--enable-active-low]]\n"
+    "                      [--data-enable NAME [--enable-active-low]] [--power NAME]\n"
     "                      [--encoder PROFILE|SCENARIO.json] [--clock-to-data TIME] [--t-st-reduced-for-cable]\n"
     "                      [--at encoder|master] [--cable LENGTH] [--t-d TIME] [--resolution TIME]\n"
     "                      [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
@@ -126,6 +126,8 @@ const char* const kCheckHelp =
     "one round trip (--t-d, default from --cable) after each rising edge; t_D is then judged, which\n"
     "a capture at the encoder's connector cannot show. --data-out, --data-in and --data-enable\n"
     "name an RTL master's data_out, data_in and data_oe (at the master: --cable is needed).\n"
+    "--power names the encoder's supply (HIGH while powered): after each switch-on it shows, the\n"
+    "power-on conditions of 2.3.3 are judged again.\n"
     "--log writes the decoded frames, --junit a\n"
     "test case per row of the timing table and capture; with several captures --json holds\n"
     "{\"captures\": [...]}.\n"
@@ -186,6 +188,7 @@ po::options_description options_of(Command c) {
           "data", po::value<std::string>(), "the DATA signal at the encoder's connector")(
           "data-enable", po::value<std::string>(), "the encoder's DATA driver enable, if recorded")(
           "enable-active-low", "the enable is LOW while the encoder drives")(
+          "power", po::value<std::string>(), "the encoder's supply, HIGH while powered, if recorded")(
           "encoder", po::value<std::string>(), "the declared encoder: a profile or a scenario (JSON)")(
           "clock-to-data", po::value<std::string>(), "the encoder's CLOCK-to-DATA delay at its connector")(
           "t-st-reduced-for-cable", "accept a t_ST shorter than note 8 for a cable shorter than 100 m")(
@@ -704,6 +707,7 @@ int check_command(const po::variables_map& vm) {
   o.data = *data;
   o.data_out = data_out;
   o.data_enable = string_option(vm, "data-enable");
+  o.power = string_option(vm, "power");
   o.enable_active_low = vm.count("enable-active-low") != 0;
   if (o.enable_active_low && !o.data_enable) {
     std::cerr << "endatsim check: --enable-active-low needs --data-enable NAME\n";

@@ -1,0 +1,114 @@
+#include "checker/power_on.hpp"
+
+#include <algorithm>
+
+#include "protocol/timing.hpp"
+
+namespace endatsim::checker {
+
+namespace limit = protocol::limit;
+using sim::Time;
+
+namespace {
+
+// More than enough for the pulses of a request before its mode bits show it is one.
+constexpr std::size_t kPulsesKept = 16;
+const std::string kRequestCycle = "the wake-up request cycle";
+
+Decision both(Decision a, Decision b) {
+  if (a == Decision::Fail || b == Decision::Fail) return Decision::Fail;
+  if (a == Decision::Undecided || b == Decision::Undecided) return Decision::Undecided;
+  return Decision::Pass;
+}
+
+}  // namespace
+
+void PowerOnSequence::switched_on(Time at) {
+  due_ = true;
+  on_at_ = at;
+  fall_.reset();
+  pulses_.clear();
+  wake_.reset();
+}
+
+void PowerOnSequence::clock(Time at, bool level) {
+  if (!due_) return;
+  if (!level) {
+    fall_ = at;
+    return;
+  }
+  if (!fall_) return;  // HIGH from a LOW that began before switching on: no pulse of the sequence
+  pulses_.push_back({*fall_, at});
+  fall_.reset();
+  if (pulses_.size() > kPulsesKept) pulses_.pop_front();
+}
+
+std::optional<Time> PowerOnSequence::last_rise_before(Time t) const {
+  for (auto it = pulses_.rbegin(); it != pulses_.rend(); ++it)
+    if (it->rise <= t) return it->rise;
+  return std::nullopt;
+}
+
+std::optional<PowerOnSequence::Judgement> PowerOnSequence::request(std::uint64_t index, Time start) {
+  if (!due_) return std::nullopt;
+  std::erase_if(pulses_, [&](const Pulse& p) { return p.fall >= start; });
+  if (wake_) {  // the request after a wake-up request cycle ends t3
+    Judgement j;
+    judge_t1_t2(j, wake_->frame, wake_->start, wake_->t2_from, kRequestCycle);
+    judge_t3(j, index, last_rise_before(start).value_or(wake_->start), start);
+    due_ = false;
+    wake_.reset();
+    return j;
+  }
+  if (pulses_.empty()) {  // no pulse: this request is the wake-up, its data not valid
+    wake_ = Wake{index, start, last_rise_before(start)};
+    return std::nullopt;
+  }
+  const Pulse pulse = pulses_.back();
+  pulses_.pop_back();
+  const std::optional<Time> t2_from = last_rise_before(pulse.fall);
+  due_ = false;
+  return judge_pulse(index, start, pulse, t2_from);
+}
+
+std::optional<PowerOnSequence::Judgement> PowerOnSequence::finish() {
+  if (!due_ || !wake_) return std::nullopt;
+  Judgement j;
+  judge_t1_t2(j, wake_->frame, wake_->start, wake_->t2_from, kRequestCycle);
+  due_ = false;
+  wake_.reset();
+  return j;
+}
+
+PowerOnSequence::Judgement PowerOnSequence::judge_pulse(std::uint64_t index, Time start, const Pulse& pulse,
+                                                        std::optional<Time> t2_from) const {
+  Judgement j;
+  const Time width = pulse.rise - pulse.fall;
+  j.push_back({index, pulse.fall, sim::format_time(width), "> 125 ns", "the power-on pulse is too short",
+                        more_than(width, limit::kPowerOnPulseMin, resolution_)});
+  judge_t1_t2(j, index, pulse.fall, t2_from, "the power-on pulse");
+  judge_t3(j, index, pulse.rise, start);
+  return j;
+}
+
+// The wake-up (pulse or request cycle) comes after t1 and t2. CLOCK HIGH since switching on
+// shows no boundary between them; after a LOW phase, the HIGH before the wake-up is t2.
+void PowerOnSequence::judge_t1_t2(Judgement& j, std::uint64_t index, Time wake, std::optional<Time> t2_from,
+                                  const std::string& what) const {
+  j.push_back({index, wake, sim::format_time(wake - on_at_) + " after switching on", ">= t1 + t2 = 800 ms + 80 ms",
+                        what + " came before t1 and t2 had passed",
+                        at_least(wake - on_at_, limit::kPowerOnT1Min + limit::kPowerOnT2Min, resolution_)});
+  if (!t2_from) return;
+  const Time t2 = wake - *t2_from;
+  j.push_back({index, wake, sim::format_time(t2), "t2 = 80 .. 120 ms", "CLOCK was not HIGH for t2 before " + what,
+                        both(at_least(t2, limit::kPowerOnT2Min, resolution_), at_most(t2, limit::kPowerOnT2Max, resolution_))});
+}
+
+void PowerOnSequence::judge_t3(Judgement& j, std::uint64_t index, Time from, Time request) const {
+  const Time t3 = request - from;
+  j.push_back({index, request, sim::format_time(t3), "t3 = 380 .. 420 ms",
+                        "the first request does not follow the pulse or request cycle after t3",
+                        both(at_least(t3, limit::kPowerOnT3Min, resolution_), at_most(t3, limit::kPowerOnT3Max, resolution_))});
+}
+
+}  // namespace endatsim::checker
