@@ -219,10 +219,10 @@ void TimingChecker::check_measurement_spread(const PinFrame& f) {
                             " deviates from the mean of the latest three"});
 }
 
-// 2.3.3 (seed 002 figure, TI's reading, timing-model §3.3), judged when the run models switching
-// on (EncoderDeclaration::switched_on_in_run): CLOCK at a valid level for t1 >= 800 ms and HIGH for t2 =
-// 80 .. 120 ms, so the pulse comes no earlier than 880 ms; at least one LOW pulse > 125 ns; then
-// HIGH for t3 = 380 .. 420 ms before the first request.
+// 2.3.3 (the figure's labels in the German brochure, TI's reading; docs/model.md §8), judged when
+// the run models switching on (EncoderDeclaration::switched_on_in_run): CLOCK at a valid level for
+// t1 >= 800 ms and HIGH for t2 = 80 .. 120 ms, so the pulse comes no earlier than 880 ms; at least
+// one LOW pulse > 125 ns; then HIGH for t3 = 380 .. 420 ms before the first request.
 void TimingChecker::check_power_on(std::uint64_t index, Time first_request) {
   const std::string spec = "2.3.3 power-on conditions (t1, t2, pulse > 125 ns, t3)";
   judge(protocol::check::row_index(check::kPowerOn));
@@ -592,7 +592,7 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
             "a compensated clock above 2 MHz over more than 100 m of cable: only after consulting the encoder's maker"});
 }
 
-// 2.3.2 "time between cycle t_b, EnDat 2.1 commands: t_b > 1 ms". UNCERTAIN (timing-model §7):
+// 2.3.2 "time between cycle t_b, EnDat 2.1 commands: t_b > 1 ms". UNCERTAIN (docs/model.md §7):
 // read as the gap from the previous frame's last rising edge to FE1 of a 2.1 memory or parameter
 // frame (mode commands with 8 + 16 bits). The alternatives (start to start; every 2.1 command,
 // position reads too) are named in the report: the latter would forbid the 2.1 continuous clock.
