@@ -36,7 +36,7 @@ slave::EncoderParams encoder_params(protocol::EndatVersion v, unsigned bits, std
 
 }  // namespace
 
-// Hand-derived from spec 2.3 and timing-model §1.2/1.3: slots 9 and 10 LOW (turnaround),
+// Hand-derived from spec 2.3 and docs/model.md §1/§2: slots 9 and 10 LOW (turnaround),
 // start bit at RE11, F1, position LSB first, CRC, then DATA HIGH (end of data).
 TEST(EncoderPositionFrame, EnDat21FrameIsBitExact) {
   Bench b(encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5));
