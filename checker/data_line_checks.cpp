@@ -30,7 +30,7 @@ void TimingChecker::start_data_line_checks() {
 
 // The encoder's LOW after the turnaround, seen as a falling edge or, when DATA was LOW already
 // (fail-safe LOW), on a rising clock edge. Only a HIGH after it is a start bit: a type I answer
-// that drives HIGH at once (A2, hypothesis A) is not.
+// that drives HIGH at once (A2, docs/model.md §10) is not.
 void TimingChecker::note_encoder_low() {
   if (driving_ && !line_.pins(ObservationPoint::EncoderPins).data.read()) driven_low_ = true;
 }
@@ -38,7 +38,7 @@ void TimingChecker::note_encoder_low() {
 // t_z and t_OE are the two turnarounds of DATA around the mode command: the encoder releases DATA
 // for the master's mode bits and takes it back after them (2.3). A continuous clock sends the mode
 // command once, "only with the first data query" (2.3.1), and the encoder drives on from word to
-// word (HIGH bit, LOW bits, the next start bit; 2.3.1.1 Figure 15, timing-model §2): later words
+// word (HIGH bit, LOW bits, the next start bit; 2.3.1.1 Figure 15, docs/model.md §6): later words
 // have no turnaround, so neither row applies to them. A driver that goes off between words leaves
 // DATA undriven while the master samples, which floating_data reports.
 void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
@@ -157,13 +157,13 @@ void TimingChecker::check_calculation_time_maximum() {
 }
 
 // 2.3.1.1, continuous clock: after the CRC the encoder drives one HIGH bit, LOW bits and the next
-// word's start bit; "independently of the t_CAL, a maximum of 7 Low Bits (internal
-// synchronization) are inserted" (Figure 15). The t_cal row runs from FE1 of a mode command and
-// belongs to the first word: its minimum 10.5/f_c does not apply to later words, which follow
-// after as little as one LOW bit (the continuous clock "reduces the length of the clock-pulse
-// group by 10 periods per position value", timing-model §2), and this bound takes the place of
-// its maximum. Counted as the LOW run before the start bit, so that a HIGH bit of two clocks
-// (TI's reading, timing-model §2) is not counted as LOW.
+// word's start bit; "independently of the t_CAL, a maximum of 7 Low Bits (internal synchronization)
+// are inserted" (Figure 15). The t_cal row runs from FE1 of a mode command and belongs to the first
+// word: its minimum 10.5/f_c does not apply to later words, which follow after as little as one LOW
+// bit (the continuous clock "reduces the length of the clock-pulse group by 10 periods per position
+// value", HEIDENHAIN's encoder catalogue; docs/model.md §6), and this bound takes the place of its
+// maximum. Counted as the LOW run before the start bit, so that a HIGH bit of two clocks (TI's
+// reading, docs/model.md §6) is not counted as LOW.
 void TimingChecker::next_word_start_bit(unsigned clock) {
   ++word_;
   word_start_clock_ = clock;
@@ -182,7 +182,7 @@ void TimingChecker::next_word_start_bit(unsigned clock) {
 
 // 2.3.2 t_cal minimum 10.5/f_c: with the clock's first LOW half a period, RE11 comes 10.5 periods
 // after FE1, so the row is read as a count (the start bit on RE11 or later) and holds for any
-// duty cycle or t_ST (timing-model §1.2).
+// duty cycle or t_ST (docs/model.md §1, §7).
 void TimingChecker::check_calculation_time_minimum() {
   if (start_clock_ >= position::kEarliestStartBit) return;
   report({std::string(check::kCalculationTime), "2.3.2 t_cal minimum 10.5/f_c", ObservationPoint::EncoderPins,
@@ -192,7 +192,7 @@ void TimingChecker::check_calculation_time_minimum() {
 }
 
 // 2.1 parameter frames: the acknowledgment's start bit waits for the memory access, which
-// begins with the last bit of the master's 8 + 16 (timing-model §7, "in the frame").
+// begins with the last bit of the master's 8 + 16 (docs/model.md §7, "in the frame").
 void TimingChecker::check_memory_access_time() {
   const unsigned last_payload = position::kTurnaround - 1 + current_.header.payload_bits;
   if (start_clock_ <= last_payload) return;
@@ -346,9 +346,9 @@ void TimingChecker::check_master_sample(const DeclaredFrame& frame, unsigned clo
 }
 
 // The frame needs its last bit clocked out (RE_(s + width - 1)) and may have one more pulse,
-// which carries the HIGH end of data (timing-model §1.7). Fewer leave the encoder hanging in
+// which carries the HIGH end of data (docs/model.md §5). Fewer leave the encoder hanging in
 // the middle of the cycle; more are taken as a continuous clock (2.3.1), which only
-// "Encoder send position values" supports (HEIDENHAIN FAQ, timing-model §1.4), and make a 2.1
+// "Encoder send position values" supports (HEIDENHAIN's EnDat FAQ, docs/model.md §5), and make a 2.1
 // parameter frame an error (2.4.1). A 2.2 command supplement runs on after the answer; a pulse
 // after the one that takes its last bit makes the encoder answer with an error (2.4.2.1, A2).
 // Where that bit was is known from the wires (frame_decoder.hpp).

@@ -1,7 +1,7 @@
 // D297403 2.3.3, the power-on conditions as CLOCK shows them at the encoder ("the information
-// refers to measurements at the encoder"). The figure is lost; docs/model.md (power-on) gives
-// the reading used: after the supply comes up, CLOCK at a valid level for t1 >= 800 ms, HIGH for
-// t2 = 80 .. 120 ms, then at least one LOW pulse longer than 125 ns *or one request cycle*
+// refers to measurements at the encoder"). The figure is lost; the reading used (docs/model.md
+// §8): after the supply comes up, CLOCK at a valid level for t1 >= 800 ms, HIGH for t2 = 80 ..
+// 120 ms, then at least one LOW pulse longer than 125 ns *or one request cycle*
 // (whose data are not valid), then HIGH for t3 = 380 .. 420 ms before the first request.
 //
 // Judged once per switch-on: at the start of a run or capture that shows it, and again after

@@ -561,7 +561,7 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
             "a compensated clock above 2 MHz over more than 100 m of cable: only after consulting the encoder's maker"});
 }
 
-// 2.3.2 "time between cycle t_b, EnDat 2.1 commands: t_b > 1 ms". UNCERTAIN (timing-model §7):
+// 2.3.2 "time between cycle t_b, EnDat 2.1 commands: t_b > 1 ms". UNCERTAIN (docs/model.md §7):
 // read as the gap from the previous frame's last rising edge to FE1 of a 2.1 memory or parameter
 // frame (mode commands with 8 + 16 bits). The alternatives (start to start; every 2.1 command,
 // position reads too) are named in the report: the latter would forbid the 2.1 continuous clock.

@@ -80,7 +80,7 @@ class PinResolver {
   bool& failsafe_;
 };
 
-// Faults at one end's pins (issue 5): the level there is the line's level, inverted while a
+// Faults at one end's pins: the level there is the line's level, inverted while a
 // glitch lasts, or stuck at a level. The fault stays at that end (noise coupled into one
 // connector): the cable carries the undisturbed level.
 class PinFault {
@@ -167,7 +167,7 @@ struct EncoderTap {
 struct Line::Impl {
   Impl(sim::Kernel& k, const LineParams& p, std::vector<Contention>& log)
       : failsafe(p.failsafe_level),
-        // Idle: CLOCK driven HIGH by the master, DATA driven LOW by the encoder (timing-model §8).
+        // Idle: CLOCK driven HIGH by the master, DATA driven LOW by the encoder (docs/model.md §11).
         m_clock_out(k, "m_clock_out", true), m_data_out(k, "m_data_out", false),
         m_data_enable(k, "m_data_enable", false), m_data_in(k, "m_data_in", false),
         e_clock_in(k, "e_clock_in", true), e_data_out(k, "e_data_out", false),

@@ -30,13 +30,13 @@ struct TransceiverParams {
 };
 
 struct LineParams {
-  // Cable length in metres and one-way propagation delay per metre (timing-model §8:
+  // Cable length in metres and one-way propagation delay per metre (docs/model.md §11:
   // 0.01 us/m in the t_D formula is the round trip, so ~5 ns/m one way).
   double cable_length_m = 1.0;
   Time cable_delay_per_m = sim::ns(5);
   TransceiverParams master{sim::ns(20), sim::ns(30), sim::ns(30), sim::ns(50)};
   TransceiverParams encoder{sim::ns(30), sim::ns(30), sim::ns(30), sim::ns(40)};
-  // Level a true fail-safe receiver reads on undriven DATA (timing-model §8: HIGH).
+  // Level a true fail-safe receiver reads on undriven DATA (docs/model.md §11: HIGH).
   bool failsafe_level = true;
 
   static constexpr double kMaxCableLengthM = 300.0;  // 2.1.2: "up to 300 m on request"
@@ -110,7 +110,7 @@ class Line {
   void set_cable(double length_m, Time delay_per_m);
   void set_failsafe_level(bool level);
 
-  // Faults (issue 5), at one end's pins only: what that end's receiver and the checker there
+  // Faults, at one end's pins only: what that end's receiver and the checker there
   // see. invert: the level is inverted for `width` (a glitch; one clock period flips a bit);
   // stick: held at a level until stick(nullopt).
   void invert(Wire wire, ObservationPoint end, Time width);

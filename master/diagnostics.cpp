@@ -170,7 +170,7 @@ void Master::roll_additional_data_1() {
 
 // ---- the setup ----------------------------------------------------------------------------------
 
-// Seed 002, "Aktivieren der Diagnose": read what the encoder supports (3.9.2, 3.9.7) and how it
+// The German brochure, "Aktivieren der Diagnose": read what the encoder supports (3.9.2, 3.9.7) and how it
 // scales temperatures (3.9.6, 3.9.16; word 36 for the warnings), and the operating parameters
 // in force (3.6.3, 3.6.6); DiagnosisActivate then writes word 3 if needed.
 void Master::expand_diagnosis_setup() {
@@ -225,7 +225,7 @@ void Master::activate_diagnosis() {
       plan.frame(MC::EncoderReceiveReset);
     }
   }
-  // Seed 002's flow chart: then "Encoder send position values with additional data" with the
+  // Its flow chart: then "Encoder send position values with additional data" with the
   // diagnosis selected (the reads of the 2.2 area left memory parameters selected).
   plan.frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::Diagnosis));
   run_first(plan);

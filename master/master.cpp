@@ -12,7 +12,7 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-constexpr unsigned kFirstPolledClock = 9;       // the encoder drives DATA from the turnaround (timing-model §1.2)
+constexpr unsigned kFirstPolledClock = 9;       // the encoder drives DATA from the turnaround (docs/model.md §1)
 constexpr unsigned kFirstCounterClock = 11;     // 2.1.2: counter started at each RE after 10 periods
 
 bool of_startup_routine(Operation::Purpose p) {
@@ -223,7 +223,7 @@ void Master::power_on_pulse(std::uint64_t phase) {
 }
 
 void Master::expand_startup_routine() {
-  // Seed 002, "Spannungsversorgung und Einschalten": EnDat 2.1 mode commands only.
+  // The German brochure, "Spannungsversorgung und Einschalten": EnDat 2.1 mode commands only.
   using P = Operation::Purpose;
   using MC = ModeCommand;
   Sequence routine = sequence();
@@ -240,7 +240,7 @@ void Master::expand_startup_routine() {
   step(MC::EncoderSendParameters, 13, 0, P::Word13);
   step(MC::SelectionOfMemoryArea, 0xA5);
   step(MC::EncoderSendParameters, 37 - 32, 0, P::Word37);
-  // Seed 002 / 2.1.2: then the propagation delay is measured.
+  // The same routine / 2.1.2: then the propagation delay is measured.
   if (params_.delay_compensation) routine.add(Operation::Kind::MeasureDelay);
   startup_ = {};
   startup_.completed = true;
@@ -294,7 +294,7 @@ void Master::note_checksum_word(const FrameResult& f) {
   checksum_->computed = sum;
 }
 
-// ---- a careful master (issue 5) -----------------------------------------------------------
+// ---- a careful master ---------------------------------------------------------------------
 
 void Master::line_changed() {
   if (params_.careful.remeasure_after_line_change && params_.delay_compensation) remeasure_due_ = true;
@@ -501,8 +501,8 @@ void Master::falling_edge() {
   clock_low_ = true;
   pins_.clock_out.write(false);
   // 2.3: the master enables its driver with the second falling edge, sends a dummy 0 and the
-  // six mode bits M2 first on falling edges 3 .. 8, then (2.1 parameter frames, timing-model
-  // §1.4) 8 + 16 bits MSB first, and releases DATA after them.
+  // six mode bits M2 first on falling edges 3 .. 8, then (2.1 parameter frames, docs/model.md
+  // §3) 8 + 16 bits MSB first, and releases DATA after them.
   const unsigned payload = command_->payload_bits;
   const unsigned release = kFirstPolledClock + payload;
   if (clock_ == 2) {
@@ -696,7 +696,7 @@ FrameOutcome Master::check_echo(FrameOutcome outcome) const {
 }
 
 void Master::drive_supplement_bit() {
-  // Timing-model §1.6: lead LOW bits, a start bit 1, then 8 + 16 bits MSB first, on falling edges.
+  // docs/model.md §4: lead LOW bits, a start bit 1, then 8 + 16 bits MSB first, on falling edges.
   if (supplement_start_ == 0) {
     supplement_start_ = clock_;
     last_clock_ = clock_ + params_.supplement_lead_bits + protocol::kPayloadBits;

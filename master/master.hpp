@@ -40,23 +40,23 @@ struct DelayMeasurementParams {
 
 // How the master finds the start bit while it polls (2.3: "observe the data line to detect the
 // start bit"). Fail-safe receivers read HIGH on the undriven line during the turnaround
-// (timing-model §8), so a careful master first waits for the encoder's LOW (HPM-SEI: "wait 0,
-// then wait 1"); a simple one takes the first HIGH sample after the mode bits.
+// (docs/model.md §1, §11), so a careful master first waits for the encoder's LOW (HPMicro's SEI
+// sample: "wait 0, then wait 1"); a simple one takes the first HIGH sample after the mode bits.
 enum class StartBitDetection : std::uint8_t { WaitLowThenHigh, FirstHigh };
 
-// How the master checks CRCs (issue 5: masters in the field got each of these wrong). The
-// defaults are the spec's (appendix A4).
+// How the master checks CRCs (masters in the field got each of these wrong, docs/model.md §12).
+// The defaults are the spec's (appendix A4).
 struct CrcCheck {
   protocol::CrcConfig generator;     // preset and final inversion
   bool endat22_rule_for_21 = false;  // 2.1 frames checked with F2 included, as 2.2 frames are
   // A table-driven CRC whose loop ends one bit early at this position width (0 = none):
-  // masters-in-the-field §6.4, a library wrong only for 31 position clocks.
+  // a library reported wrong only for 31 position clocks (docs/model.md §12).
   unsigned table_fault_width = 0;
   // A comparator stuck at "equal": every CRC passes (what the CRC self-test is for).
   bool accept_any = false;
 };
 
-// What a careful master does when things go wrong (issue 5). Each reaction can be switched off
+// What a careful master does when things go wrong. Each reaction can be switched off
 // to reproduce a careless master.
 struct CarefulMaster {
   unsigned retries = 0;            // a failed frame of a script operation is repeated up to this often
@@ -82,19 +82,19 @@ struct MasterParams {
   std::optional<Time> fixed_t_d;
   DelayMeasurementParams measurement;
   unsigned position_bits = 25;   // word 13 as the master has it configured
-  // Timing-model §1.7: one more clock pulse after the last bit (its falling edge samples the
+  // docs/model.md §5: one more clock pulse after the last bit (its falling edge samples the
   // last bit) — or none, sampling the last bit half a period after the last rising edge.
   bool extra_clock_after_last_bit = true;
   Time t_m_wait = sim::us(30);   // CLOCK held HIGH after a frame: at least t_m of the encoder
   Time t_r_wait = sim::ns(500);  // then t_R before the next FE1 (2.3.2)
   Time error_wait = sim::us(30); // A2: "after an error handling, the maximum t_m of 30 us must be waited"
-  Time reset_wait = sim::ms(50); // seed 002 start-up routine: "50 ms warten" after "Encoder receive reset"
+  Time reset_wait = sim::ms(50); // German brochure's start-up routine: "50 ms warten" after the reset
   // 2.3.2 t_b > 1 ms before a 2.1 memory or parameter frame (read as end of the previous frame
   // to FE1; see the checker's t_b row).
   Time t_b_wait = sim::us(1100);
-  // 2.3.3, seed 002 figure (TI's reading, timing-model §3.3): after switching on, CLOCK stays at
-  // a valid level for t1 >= 800 ms and HIGH for t2 = 80 .. 120 ms, then at least one LOW pulse
-  // > 125 ns, then HIGH for t3 = 380 .. 420 ms before the first request.
+  // 2.3.3 (the figure's labels in the German brochure, TI's reading; docs/model.md §8): after
+  // switching on, CLOCK stays at a valid level for t1 >= 800 ms and HIGH for t2 = 80 .. 120 ms,
+  // then at least one LOW pulse > 125 ns, then HIGH for t3 = 380 .. 420 ms before the first request.
   struct PowerOnSequence {
     Time t1_t2 = sim::ms(900);
     Time pulse = sim::us(1);
@@ -108,13 +108,13 @@ struct MasterParams {
   Time start_bit_timeout = sim::ms(1);  // t_cal max (2.3.2); polling gives up after this
   // 2.1 parameter frames: polling after the 24 bits gives up after t_ac max (12 ms, 2.3.2) + 1 ms.
   Time memory_access_timeout = sim::ms(13);
-  // Timing-model §1.6 (TI's choice, "can optimize"): LOW bits the master drives before the start
+  // docs/model.md §4 (TI's choice, "can optimize"): LOW bits the master drives before the start
   // bit of a 2.2 command supplement, from the first falling edge after it has checked the answer.
   unsigned supplement_lead_bits = 7;
   // Of those, the master drives only the last ones: before them DATA is left undriven, so that
   // the encoder's release can travel the cable back first (a turnaround like t_ST's).
   unsigned supplement_driven_lead_bits = 2;
-  unsigned type1_detect_samples = 8;    // HIGH samples after the turnaround, no LOW: type I (A2, hypothesis A)
+  unsigned type1_detect_samples = 8;    // HIGH samples after the turnaround, no LOW: type I (docs/model.md §10)
   StartBitDetection start_bit_detection = StartBitDetection::WaitLowThenHigh;
   CrcCheck crc;
   CarefulMaster careful;
@@ -201,9 +201,9 @@ struct Operation {
   // ReadPosition sends `command` (any mode command, with `address`/`parameter` as the 2.1
   // payload or the 2.2 supplement); AwaitNotBusy sends "Encoder send position values with
   // additional data" until additional data 1 shows Busy = 0 (2.5.1, 2.6.1), at most `count` times.
-  // PowerOnSequence drives CLOCK as 2.3.3 asks after switching on; StartupRoutine is the
-  // switch-on routine of seed 002 with EnDat 2.1 commands only (reset, wait 50 ms, read and clear
-  // alarms and warnings, read words 13 and 37).
+  // PowerOnSequence drives CLOCK as 2.3.3 asks after switching on; StartupRoutine is the German
+  // brochure's switch-on routine with EnDat 2.1 commands only (reset, wait 50 ms, read and clear
+  // alarms and warnings, read words 13 and 37; docs/model.md §8).
   // VerifyChecksum reads the encoder manufacturer's words 4 .. 47 with 2.1 frames and compares
   // word 47 with their sum (3.5.26).
   // SafetyStartup runs the switched-on safety checks before the axis is released (safety.hpp):
@@ -253,7 +253,7 @@ struct ChecksumCheck {
   bool ok() const { return complete && stored == computed; }
 };
 
-// What the start-up routine found (seed 002).
+// What the start-up routine found (docs/model.md §8).
 struct StartupInfo {
   bool completed = false;  // every frame of the routine answered without error
   std::optional<std::uint16_t> errors;    // operating status word 0, before clearing (3.4.1)

@@ -37,8 +37,8 @@ std::optional<std::uint32_t> scaled(std::uint16_t word) {
   return static_cast<std::uint32_t>(word & 0x1FFF) << code;
 }
 
-// Known results (A4 examples; masters-in-the-field §4.2, checked there against TI's code and an
-// independent LFSR).
+// Known results (A4 examples; the vectors of docs/model.md §12, computed with TI's open-source
+// CRC code and an independent LFSR).
 constexpr CrcVector kCrcVectors[] = {
     {25, false, true, true, 104462, 3},  // A4.4.2 MakeCrcPos example
     {31, false, false, true, 0x7FFFFFFF, 22},
@@ -210,9 +210,10 @@ void Master::expand_endat22_read() {
   run_first(plan);
 }
 
-// Seed 001: "the CRC generation in the receiver chip ... must be ensured through a targeted
-// execution of bit sequences with known result": each known sequence must pass, and with one bit
-// of its CRC inverted must fail. Vectors at the master's own width come from the A4 algorithm.
+// The English brochure, "Safety Techniques": "the CRC generation in the receiver chip ... must be
+// ensured through a targeted execution of bit sequences with known result": each known sequence
+// must pass, and with one bit of its CRC inverted must fail. Vectors at the master's own width come
+// from the A4 algorithm.
 void Master::run_crc_self_test() {
   std::vector<CrcVector> vectors(crc_known_results().begin(), crc_known_results().end());
   vectors.push_back({position_bits_, false, true, true, 0x5A5A5A5A5A5AULL & ((std::uint64_t{1} << position_bits_) - 1), 0});

@@ -1,7 +1,7 @@
 // master/safety.hpp — what subsequent electronics for safety-oriented designs do beyond reading
-// positions (seed 001 "Safety Techniques"; spec 1, 2.3.1, 3.5.3, 3.5.19, 3.5.26, 3.9.11, 3.9.20,
-// 3.9.24, 3.9.37). Each function can be switched off, so that a scenario shows what a master
-// without it misses; what a function catches is a SafetyFinding.
+// positions (the English EnDat 2.2 brochure's "Safety Techniques"; spec 1, 2.3.1, 3.5.3, 3.5.19,
+// 3.5.26, 3.9.11, 3.9.20, 3.9.24, 3.9.37). Each function can be switched off, so that a scenario
+// shows what a master without it misses; what a function catches is a SafetyFinding.
 #pragma once
 
 #include <array>
@@ -114,8 +114,8 @@ struct SafetyReport {
 };
 
 // The bit sequences of known result the CRC self-test feeds to the master's CRC evaluation: the
-// spec's examples (A4) and the reference notes' vectors for other widths (masters-in-the-field
-// §4.2). A manufacturer keeps such a table; here it is data.
+// spec's examples (A4) and vectors for other widths (docs/model.md §12). A manufacturer keeps such
+// a table; here it is data.
 struct CrcVector {
   unsigned bits;
   bool error1, error2, endat22;

@@ -8,7 +8,7 @@
 
 namespace endatsim::protocol {
 
-// Byte 0 of an additional datum: WRN RM Busy I4..I0, WRN first (2.3.5; bit weights timing-model §1.5).
+// Byte 0 of an additional datum: WRN RM Busy I4..I0, WRN first (2.3.5; bit weights docs/model.md §2).
 struct AdditionalDataStatus {
   static constexpr std::uint8_t kWarning = 0x80;
   static constexpr std::uint8_t kReferenceMark = 0x40;

@@ -8,8 +8,8 @@
 namespace endatsim::protocol {
 
 // How a CRC generator is set up. The spec's (A4.4.1): flip-flops preset to 1, output inverted.
-// Masters in the field got these wrong (reference notes, masters-in-the-field §6.6: preset 0 and
-// no inversion, which two devices built from the same wrong settings do not notice).
+// Masters in the field got these wrong (docs/model.md §12: preset 0 and no inversion, which two
+// devices built from the same wrong settings do not notice).
 struct CrcConfig {
   std::uint8_t preset = 0x1F;
   bool final_inversion = true;

@@ -66,11 +66,11 @@ struct PositionWord {
 };
 
 // The answer bits in wire order, start bit first, CRC computed per appendix A4.
-// `crc`: the generator's setup (the spec's by default; an emulator built wrong, issue 5).
+// `crc`: the generator's setup (the spec's by default; an emulator built wrong, docs/model.md §12).
 std::vector<std::uint8_t> encode_position_frame(EndatVersion command_type, unsigned position_bits,
                                                 const PositionWord& word, const CrcConfig& crc = {});
 
-// 2.4 .. 2.10, timing-model §1.4: S, address/MRS/port (8), parameter (16), CRC = MakeCrcNorm.
+// 2.4 .. 2.10, docs/model.md §3: S, address/MRS/port (8), parameter (16), CRC = MakeCrcNorm.
 // The same 8 + 16 bits (without S and CRC) are what the master sends after a 2.1 mode command.
 Layout parameter_frame_layout();
 Layout payload_layout();  // master -> encoder: address (8), parameter (16)
@@ -89,7 +89,7 @@ std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint
 // The encoder's answer to `command` without additional data: position, test-value or parameter frame.
 Layout answer_layout(const ModeCommandInfo& command, unsigned position_bits);
 
-// Timing-model §1.6 (likely): the 2.2 command supplement is a start bit 1, then 8 + 16 bits MSB
+// docs/model.md §4 (likely): the 2.2 command supplement is a start bit 1, then 8 + 16 bits MSB
 // first, and no CRC from the master.
 Layout supplement_layout();
 

@@ -28,7 +28,7 @@ enum class ModeCommand : std::uint8_t {
   EncoderReceiveCommunicationCommand,
 };
 
-// What the encoder answers with (2.3.1, 2.4–2.10; timing-model §1.4).
+// What the encoder answers with (2.3.1, 2.4–2.10; docs/model.md §3).
 enum class AnswerFormat : std::uint8_t {
   Position,    // S F1 [F2] position CRC [AI2] [AI1]
   TestValues,  // S F1 test value (40 bits) CRC — 2.9, A4.4.2 "the data width is always 40 bits"
@@ -43,7 +43,7 @@ struct ModeCommandInfo {
   std::string_view key;     // snake_case name used in scenarios and reports
   unsigned payload_bits;    // master -> encoder right after the mode bits: 0 or 8 + 16
   AnswerFormat answer;
-  bool supplement;          // 2.2: 8 + 16 bits from the master after the encoder's data (timing-model §1.6)
+  bool supplement;          // 2.2: 8 + 16 bits from the master after the encoder's data (docs/model.md §4)
 };
 
 constexpr unsigned kPayloadBits = 24;  // address / MRS code / port (8) + parameter (16)

@@ -1,4 +1,4 @@
-// Carries out a scenario's events (issue 5): changes and faults of the line and the encoder at a
+// Carries out a scenario's events: changes and faults of the line and the encoder at a
 // time, at a frame or at a clock edge of a frame. It tells the master and the checker what the
 // installation would tell them (2.1.2: a new delay measurement is due after a change of the
 // transmission path or a power interruption).

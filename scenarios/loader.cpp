@@ -798,7 +798,7 @@ void read_script(const Node& n, std::vector<master::Operation>& script,
   }
 }
 
-// ---- events (issue 5) ----------------------------------------------------------------------
+// ---- events --------------------------------------------------------------------------------
 
 constexpr std::string_view kEventKinds =
     "set_cable, bit_flip, glitch, stuck, random_bit_errors, late_driver_release, loss_of_failsafe, error_sources, "

@@ -44,7 +44,7 @@ std::string hex4(std::uint16_t v) {
   return s + "h";
 }
 
-// What the master's start-up routine (seed 002) read, decoded (3.4, 3.5.6, 3.5.22).
+// What the master's start-up routine (docs/model.md §8) read, decoded (3.4, 3.5.6, 3.5.22).
 void write_startup(std::ostream& out, const master::StartupInfo& s) {
   namespace pm = protocol::parameters;
   if (!s.completed && s.failed_frames == 0 && !s.word13) return;
@@ -56,7 +56,7 @@ void write_startup(std::ostream& out, const master::StartupInfo& s) {
   out << "\n";
 }
 
-// What the careful master did (issue 5) and what its checksum check found (3.5.26).
+// What the careful master did and what its checksum check found (3.5.26).
 void write_careful_master(std::ostream& out, const ScenarioResult& r) {
   if (r.retries != 0 || r.remeasurements != 0)
     out << "  careful master: " << r.retries << " frame(s) repeated, " << r.remeasurements
@@ -68,7 +68,7 @@ void write_careful_master(std::ostream& out, const ScenarioResult& r) {
            << hex4(r.checksum->computed) << "\n";
 }
 
-// What the safety functions found and decided (issue 7), for a safety assessment.
+// What the safety functions found and decided, for a safety assessment.
 void write_safety(std::ostream& out, const ScenarioResult& r, bool verbose) {
   namespace pm = protocol::parameters;
   const auto& s = r.safety;
@@ -116,7 +116,7 @@ std::string range_of(const master::DiagnosisReading& x, bool temperature) {
   return s + ", " + std::to_string(x.count) + " reading(s)";
 }
 
-// What the master's diagnosis collected (issue 7; appendix A3), for a service engineer.
+// What the master's diagnosis collected (appendix A3), for a service engineer.
 void write_diagnosis(std::ostream& out, const ScenarioResult& r, bool verbose) {
   namespace pm = protocol::parameters;
   namespace dg = protocol::diagnosis;

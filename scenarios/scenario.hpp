@@ -56,14 +56,14 @@ struct MemoryExpectation {
   std::uint16_t value = 0;
 };
 
-// What the start-up routine of seed 002 must have read.
+// What the start-up routine (docs/model.md §8) must have read.
 struct StartupExpectation {
   std::optional<bool> completed;
   std::optional<std::uint16_t> errors, warnings, word13, word37;
 };
 
-// What the master's safety functions must have found and decided (issue 7). Functions not listed
-// in `findings` must have found nothing.
+// What the master's safety functions must have found and decided. Functions not listed in
+// `findings` must have found nothing.
 struct SafetyExpectation {
   std::map<std::string, CountMatcher> findings;  // by master::to_string(SafetyFunction)
   std::optional<bool> axis_released;
@@ -72,7 +72,7 @@ struct SafetyExpectation {
   std::optional<CountMatcher> position_comparisons;
 };
 
-// What the master's diagnosis must have collected (issue 7). Note kinds not listed in `notes`
+// What the master's diagnosis must have collected. Note kinds not listed in `notes`
 // must not have occurred; values are the last ones read.
 struct DiagnosisExpectation {
   std::map<std::string, CountMatcher> notes;                // by master::to_string(DiagnosisNoteKind)
@@ -102,7 +102,7 @@ struct Expectations {
   std::optional<DiagnosisExpectation> diagnosis;
 };
 
-// Something that happens while the script runs (issue 5): a change of the line or a fault of
+// Something that happens while the script runs: a change of the line or a fault of
 // line or encoder. It happens at a time, or at frame k (the master's FE1 of its k-th frame,
 // delay-measurement frames included, counted from 0), optionally at the n-th rising CLOCK
 // edge of that frame at `end`'s pins, plus `offset`.
@@ -110,7 +110,7 @@ struct Event {
   enum class Kind : std::uint8_t {
     SetCable, BitFlip, Glitch, Stuck, RandomBitErrors, LateDriverRelease, LossOfFailsafe,  // line
     ErrorSources, MemoryAccessTime, TCal, PowerInterruption, CorruptWord, ProbeTrigger,    // encoder
-    StuckErrorMessages, Slip, Position2Fault, SensorValues,                                // encoder (issue 7)
+    StuckErrorMessages, Slip, Position2Fault, SensorValues,                                // encoder (safety, diagnosis)
   };
   Kind kind = Kind::SetCable;
   std::optional<Time> at;

@@ -267,8 +267,9 @@ std::optional<ErrorCause> Encoder::not_initiated(std::optional<MemoryArea> area)
   return ErrorCause::EibNotInitialised;
 }
 
-// 2.3.3 (figure labels, seed 002: "*) hochohmig"): during run-up DATA is high-impedance and the
-// encoder takes no clock; afterwards DATA is driven LOW, the EnDat idle level (2.3).
+// 2.3.3 (the figure's labels in the German brochure: "*) hochohmig"; docs/model.md §8): during
+// run-up DATA is high-impedance and the encoder takes no clock; afterwards DATA is driven LOW,
+// the EnDat idle level (2.3).
 void Encoder::go_offline(Time duration) {
   offline_ = true;
   state_ = State::Idle;
@@ -385,7 +386,7 @@ void Encoder::on_rising_edge() {
       }
       break;
     case State::SupplementHunt:
-      // Timing-model §1.6: the line floats (fail-safe HIGH) until the master drives its lead
+      // docs/model.md §4: the line floats (fail-safe HIGH) until the master drives its lead
       // bits, so the encoder waits for a LOW before it takes a HIGH as the start bit. Right
       // after its release it still sees its own last bit, so it ignores a few edges.
       if (clock_ <= release_clock_ + params_.supplement_ignore_clocks) break;
@@ -518,7 +519,7 @@ void Encoder::answer_position() {
   answer_ = protocol::encode_position_frame(command_->version, position_bits_,
                                             {error_message_1(), !error_message_2(), f.position}, params_.crc);
   if (command_->version != EndatVersion::V2_2) return;
-  // Timing-model §1.3: additional data 2 comes before additional data 1.
+  // docs/model.md §2: additional data 2 comes before additional data 1.
   if (selection_[1]) append_additional_datum(*selection_[1], 1);
   if (selection_[0]) append_additional_datum(*selection_[0], 0);
 }
@@ -616,7 +617,7 @@ void Encoder::answer_parameter_frame() {
 void Encoder::emit_answer_bit() {
   EncoderFrame& f = frames_.back();
   if (next_bit_ == 0 && f.continuous_words == 0) {
-    // Timing-model §1.2: LOW until t_cal (or t_ac) has elapsed, start bit no earlier than RE11
+    // docs/model.md §1: LOW until t_cal (or t_ac) has elapsed, start bit no earlier than RE11
     // (RE35 after a 2.1 parameter frame).
     if (clock_ < first_answer_clock_ || kernel_.now() < answer_not_before_) {
       drive(false);
@@ -629,14 +630,14 @@ void Encoder::emit_answer_bit() {
     return;
   }
   if (command_->supplement) {
-    // Timing-model §1.6: the encoder hands DATA to the master for the command supplement.
+    // docs/model.md §4: the encoder hands DATA to the master for the command supplement.
     release();
     state_ = State::SupplementHunt;
     release_clock_ = clock_;
     seen_low_ = false;
     return;
   }
-  // Timing-model §1.3: after the last CRC bit DATA goes HIGH and stays HIGH for t_m.
+  // docs/model.md §2: after the last CRC bit DATA goes HIGH and stays HIGH for t_m.
   drive(true);
   state_ = State::EndOfData;
 }
@@ -915,7 +916,7 @@ void Encoder::reset() {
 }
 
 void Encoder::restart_state() {
-  // 2.7 ("same reaction as from switching power on and off", seed 001): additional data
+  // 2.7 ("same reaction as from switching power on and off", the English brochure): additional data
   // deselected (2.4.2.2), word 2, word 3 and the operating parameters activated (3.4.3, 3.4.4, 3.6).
   memory_.activate_on_reset();
   activate_functions();
@@ -940,7 +941,7 @@ void Encoder::restart_state() {
   in_progress_ = {};
 }
 
-// ---- faults (issue 5) ------------------------------------------------------------------------
+// ---- faults (scenario events) ---------------------------------------------------------------
 
 void Encoder::set_error_sources(std::uint16_t errors, std::uint16_t warnings) {
   params_.error_sources = errors;

@@ -24,18 +24,18 @@ using sim::Time;
 enum class EncoderKind : std::uint8_t { Singleturn, Multiturn, Linear, TouchProbe, Eib };
 
 // What the encoder puts on DATA after a mode command with a broken redundancy or one it does
-// not support (type I, appendix A2). The wire behaviour is not documented in any readable
-// source (timing-model §6): A = abort with DATA HIGH until CLOCK stays HIGH for t_m;
+// not support (type I, appendix A2). The wire behaviour was in A2's Figures 55/56, which are
+// lost (docs/model.md §10): A = abort with DATA HIGH until CLOCK stays HIGH for t_m;
 // B = DATA stays LOW, no start bit ever comes.
 enum class Type1Handling : std::uint8_t { AbortHigh, NoStartBit };
 
-// Where the memory access time t_ac of a 2.1 parameter frame lies (timing-model §7: the figure
-// is missing). InFrame: the acknowledgment's start bit waits for t_ac while the master keeps
+// Where the memory access time t_ac of a 2.1 parameter frame lies (docs/model.md §7: the figure
+// is lost). InFrame: the acknowledgment's start bit waits for t_ac while the master keeps
 // clocking. AfterFrame: the acknowledgment comes at once and the encoder is busy for t_ac after
 // the frame; a 2.1 memory access meanwhile is answered with type II (2.3.1 note 1).
 enum class MemoryAccessPlacement : std::uint8_t { InFrame, AfterFrame };
 
-// What a word holds when the supply fails while the encoder programs it (issue 5; the spec says
+// What a word holds when the supply fails while the encoder programs it (a fault; the spec says
 // nothing). KeepOld: the NVM programs a word at once at the end of t_ac, before that the old
 // value stays. Torn: the high byte is programmed, the low byte is not. Either way write
 // protection bits already stored survive (3.4.3: irreversible).
@@ -105,17 +105,18 @@ struct EncoderParams {
   // checker against this encoder; the model itself takes any longer LOW phase.
   std::optional<Time> t_st_max;
   std::optional<Time> t_lo_max;
-  // 2.3.3 / seeds 001, 002: run-up after switching on, about 1 s (1.3 s in seed 004); DATA is
-  // high-impedance and clocks are ignored meanwhile. 0: the run starts with the encoder up.
+  // 2.3.3, docs/model.md §8: run-up after switching on, about 1 s (the older brochures; 1.3 s in
+  // the newer German edition); DATA is high-impedance and clocks are ignored meanwhile. 0: the
+  // run starts with the encoder up.
   Time startup_time{0};
   // 2.7 "same reaction as switching the power off and on": the encoder restarts for this long
-  // after "Encoder receive reset" (guess; the brochures' routine waits 50 ms, seed 002).
+  // after "Encoder receive reset" (guess; the German brochure's start-up routine waits 50 ms).
   Time reset_time = sim::ms(20);
   Time t_ac_read = sim::us(500);               // 2.3.2: memory access time t_ac (0 .. 12 ms) for reads, selections
   Time t_ac_write = sim::ms(3);                // ... and for writes
   MemoryAccessPlacement t_ac_placement = MemoryAccessPlacement::InFrame;
   InterruptedNvmWrite interrupted_nvm_write = InterruptedNvmWrite::KeepOld;
-  // Timing-model §1.6 (guess): after the master's supplement the encoder drives the HIGH end
+  // docs/model.md §4 (guess): after the master's supplement the encoder drives the HIGH end
   // marker this long after the last supplement bit (the master has released DATA by then).
   Time supplement_end_marker_delay = sim::us(1);
   // ... and before it, ignores DATA for this many rising edges after handing the line over,
@@ -130,11 +131,11 @@ struct EncoderParams {
   // none, 2^2 "position faulty" is the closest.
   unsigned multiturn_overflow_error_bit = 2;
   // The CRC generator's setup: the spec's (A4) for an encoder; an emulator built with a master's
-  // wrong settings (issue 5) agrees with that master and with no real encoder.
+  // wrong settings (docs/model.md §12) agrees with that master and with no real encoder.
   protocol::CrcConfig crc;
   unsigned continuous_low_bits = 1;            // 2.3.1.1: "a maximum of 7 Low Bits" between words
-  unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (timing-model §1.2)
-  // Timing-model §1.2 (likely): the start bit comes no earlier than RE11 (2.3.2: t_cal >= 10.5/f_c);
+  unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (docs/model.md §1)
+  // docs/model.md §1 (likely): the start bit comes no earlier than RE11 (2.3.2: t_cal >= 10.5/f_c);
   // encoders in the field differ (an emulator sends it after five zeros). RE11 + 24 after a payload.
   unsigned earliest_start_bit_clock = 11;
   Type1Handling type1 = Type1Handling::AbortHigh;
@@ -156,12 +157,12 @@ struct EncoderParams {
   // first one crossed is taken as the first mark (guess: 2.3.4.3 needs "a reference mark").
   std::optional<std::uint64_t> selected_reference_mark;
   bool error1 = false;              // F1 = 1 / F2 = 0 regardless of word 0
-  // A failed error path (safety functions, issue 7): this error message stays at its inactive
+  // A failed error path (a fault the safety functions catch): this error message stays at its inactive
   // level (F1 LOW, F2 HIGH) whatever the error sources and forced dynamic sampling (3.5.3) say.
   bool error_message_1_stuck = false;
   bool error_message_2_stuck = false;
   // The first this many position answers after switching on or a reset carry an unsettled value
-  // (a fault that multiple transmission at start-up catches; seed 001 "Safety Techniques").
+  // (a fault that multiple transmission at start-up catches; the English brochure's "Safety Techniques").
   unsigned unsettled_positions = 0;
   std::uint16_t error_sources = 0;  // word 0 bits (3.4.1) that a fault keeps setting
   std::uint16_t warning_sources = 0;  // word 1 bits (3.4.2)
@@ -222,7 +223,7 @@ class Encoder {
   bool referenced() const { return referenced_; }  // RM (2.3.4.3); always for absolute encoders
   const ReferenceScheme& reference_scheme() const { return reference_; }
 
-  // Faults (issue 5), while running.
+  // Faults, while running (scenario events).
   void set_error_sources(std::uint16_t errors, std::uint16_t warnings);  // words 0 and 1 (3.4.1, 3.4.2)
   void set_memory_access_times(Time read, Time write);                  // t_ac, also beyond 12 ms
   void set_t_cal(Time t_cal);                                           // also beyond 1 ms
@@ -232,7 +233,7 @@ class Encoder {
   // A touch probe (word 14 type 5) deflected or released (2.3.4.4: the trigger status).
   void set_probe_deflected(bool deflected);
   // Error paths that fail (or recover) while running; a coupling that slips by `steps`; the second
-  // position sensing drifting by `deviation` (safety functions, issue 7).
+  // position sensing drifting by `deviation` (faults the safety functions catch).
   void set_stuck_error_messages(bool error1_stuck, bool error2_stuck);
   void slip(std::int64_t steps);
   void set_position2_fault(std::int64_t deviation);
@@ -333,7 +334,7 @@ class Encoder {
   const protocol::ModeCommandInfo* command_ = nullptr;
   std::uint32_t shift_ = 0;
   unsigned shifted_ = 0;
-  unsigned first_answer_clock_ = 11;  // timing-model §1.2 / §1.4: RE11, or RE35 after a payload
+  unsigned first_answer_clock_ = 11;  // docs/model.md §1 / §3: RE11, or RE35 after a payload
   Time answer_not_before_{0};
   bool seen_low_ = false;
   unsigned release_clock_ = 0;  // RE at which the encoder handed DATA to the master's supplement
@@ -361,7 +362,7 @@ class Encoder {
   std::uint8_t async_time_delay_ = 0;           // 2.4.2.3: 0 after switch-on or reset
   __int128 counter_origin_ = 0;                 // 3.4.4: measuring steps where a counter reset zeroed the multiturn count
   bool multiturn_overflow_ = false;             // 3.4.4: overflow message (unlatched) in this frame
-  // The word the NVM is programming (issue 5: what a power interruption leaves).
+  // The word the NVM is programming (what a power interruption leaves).
   struct NvmWrite {
     Selection selection;
     std::uint8_t address = 0;

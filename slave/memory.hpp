@@ -64,7 +64,7 @@ class Memory {
   std::optional<ErrorCause> write(const Selection& s, std::uint8_t address, std::uint16_t value);
   std::optional<ErrorCause> check_write(const Selection& s, std::uint8_t address, std::uint16_t value) const;
 
-  // Faults (issue 5): a word changed past the access rules, by an interrupted NVM write or a
+  // Faults (scenario events): a word changed past the access rules, by an interrupted NVM write or a
   // corruption. Write protection bits already stored survive (3.4.3: irreversible). Throws
   // std::invalid_argument for a word the area does not hold.
   void force(const Selection& s, std::uint8_t address, std::uint16_t value);

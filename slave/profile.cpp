@@ -305,7 +305,7 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
   }
   if (const auto d = pm::decode_ordering_designation(m[40])) {
     const bool printable = (*d)[5] > 0x20 && (*d)[5] < 0x7F && (*d)[6] > 0x20 && (*d)[6] < 0x7F;
-    const bool needs22 = (*d)[6] == '2';  // EnDat02 / EnDat22: command set 2.2 (brochure 004)
+    const bool needs22 = (*d)[6] == '2';  // EnDat02 / EnDat22: command set 2.2 (the German brochure, newer edition)
     expect(printable && (!needs22 || p.version == EndatVersion::V2_2), manufacturer_path(40),
            "\"EnDat\" and two printable characters, x2 only with version 2.2 (3.5.25)", m[40]);
   }

@@ -1,4 +1,4 @@
-// Master faults and the careful master's reactions (issue 5): each fault shows on the wire or in
+// Master faults and the careful master's reactions: each fault shows on the wire or in
 // the master's results the way a broken master in the field shows it, and each reaction of a
 // careful master works and can be switched off.
 #include <gtest/gtest.h>
@@ -30,7 +30,7 @@ std::size_t count(const scenarios::ScenarioResult& r, O outcome) {
 
 }  // namespace
 
-// ---- CRC faults (masters-in-the-field §6.4 - 6.6) ---------------------------------------------
+// ---- CRC faults (docs/model.md §12) -----------------------------------------------------------
 
 TEST(MasterCrcFault, PresetZeroWithoutInversionFailsEveryFrameOfARealEncoder) {
   auto s = reads();

@@ -266,7 +266,8 @@ TEST(CheckerDataDelay, StartBitIsAttributedToItsOwnEdgeAtSixteenMegahertz) {
     }
 }
 
-// Issue 4's list of deliberately broken masters: each is caught by the row it breaks.
+// Deliberately broken masters, one for each way a master can break the timing table: each is
+// caught by the row it breaks.
 TEST(CheckerBrokenMasters, EachIsCaughtWithTheRightRow) {
   struct Case {
     const char* what;

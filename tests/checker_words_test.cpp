@@ -36,7 +36,7 @@ std::vector<checker::Violation> of(const scenarios::ScenarioResult& r, std::stri
   return v;
 }
 
-// An encoder written out by hand from 2.3.1.1 (Figure 15) and timing-model §2 for "Encoder send
+// An encoder written out by hand from 2.3.1.1 (Figure 15) and docs/model.md §6 for "Encoder send
 // position values" with a continuous clock: DATA released at FE1, driven LOW from FE9, the first
 // start bit on RE11, and after each word's CRC one HIGH bit, `low_bits` LOW bits and the next
 // word, each level `output_delay` after the rising edge reached its logic, as the encoder model
@@ -56,14 +56,14 @@ class HandWrittenEncoder {
       }
       for (auto bit : word) plan_.push_back(bit != 0 ? kHigh : kLow);
     }
-    plan_.push_back(kHigh);  // end of data (timing-model §1.3)
-    drive(kLow);             // idle: DATA driven LOW (timing-model §1.3)
+    plan_.push_back(kHigh);  // end of data (docs/model.md §2)
+    drive(kLow);             // idle: DATA driven LOW (docs/model.md §2)
     pins_.clock_in.on_change(bind<&HandWrittenEncoder::on_clock>(this));
   }
 
  private:
   static constexpr std::uint64_t kLow = 0, kHigh = 1, kReleased = 2;
-  static constexpr unsigned kFirstAnswerClock = 11;  // timing-model §1.2
+  static constexpr unsigned kFirstAnswerClock = 11;  // docs/model.md §1
 
   void on_clock(std::uint64_t level) {
     if (level == 0) {

@@ -1,5 +1,5 @@
 // Every mode command, bit by bit in both directions, against sequences written out from the
-// spec (2.3–2.10, timing-model §1.4–§1.6) with a hand-written master (ScriptedFrame). The CRC
+// spec (2.3–2.10, docs/model.md §3, §4) with a hand-written master (ScriptedFrame). The CRC
 // values come from protocol::make_crc_*, which crc_test checks against the examples of A4.
 #include <gtest/gtest.h>
 
@@ -56,7 +56,7 @@ std::string payload(std::uint8_t address, std::uint16_t parameter) {
   return bits_msb(address, 8) + bits_msb(parameter, 16);
 }
 
-// 2.1 parameter frame (timing-model §1.4): master FE2..FE32, turnaround 33/34, start bit RE35,
+// 2.1 parameter frame (docs/model.md §3): master FE2..FE32, turnaround 33/34, start bit RE35,
 // 8 + 16 bits, CRC on slots 60..64. 65 clocks: the last falling edge samples the CRC's last bit
 // (one more pulse would be "more clock pulses than required", 2.4.1).
 std::string parameter_frame_slots(std::uint8_t mode, std::uint32_t sent, std::uint8_t address, std::uint16_t param) {
@@ -208,7 +208,7 @@ TEST(TypeTwo, TooManyClocksDiscardTheWrite) {
 }
 
 TEST(ModeCommandInFrameMemoryAccess, StartBitWaitsForTac) {
-  // Timing-model §7 (InFrame, the default): the acknowledgment's start bit waits t_ac after the
+  // docs/model.md §7 (InFrame, the default): the acknowledgment's start bit waits t_ac after the
   // last payload bit (RE32 at 31.5 us at 1 MHz).
   auto p = params();
   p.t_ac_read = us(10);
@@ -221,7 +221,7 @@ TEST(ModeCommandInFrameMemoryAccess, StartBitWaitsForTac) {
 
 namespace {
 
-// Timing-model §1.6 for an 8-bit position and no additional data: the encoder's S F1 F2 pos CRC
+// docs/model.md §4 for an 8-bit position and no additional data: the encoder's S F1 F2 pos CRC
 // on slots 11..26, its driver off from RE27; the master's 7 lead LOW bits on FE28..34, start bit
 // FE35, 24 bits FE36..59. Each selected additional datum shifts this by 30 clocks.
 std::string supplement_frame(std::uint8_t mode, std::uint8_t address, std::uint16_t parameter, unsigned k = 0) {
@@ -398,7 +398,7 @@ TEST(ModeCommandType1, A21EncoderAnswers22CommandsAsNotSupported) {
   b.frame(30, ScriptedFrame::header(0b111000));
   EXPECT_TRUE(b.last().type1_error);
   EXPECT_EQ(*b.last().error, ErrorCause::ModeCommandDisrupted);
-  EXPECT_EQ(b.sampler.slots(10, 20), "11111111111");  // hypothesis A: DATA HIGH
+  EXPECT_EQ(b.sampler.slots(10, 20), "11111111111");  // docs/model.md §10, hypothesis A: DATA HIGH
 }
 
 TEST(ModeCommandCommunicationCommand, HighImpedanceBroadcastSilencesTheEncoder) {

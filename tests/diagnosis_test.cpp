@@ -1,4 +1,4 @@
-// Diagnosis (issue 7; appendix A3, 2.3.5.1, 3.4.2, 3.6.3, 3.6.6, 3.9.6, 3.9.7, 3.9.16): the
+// Diagnosis (appendix A3, 2.3.5.1, 3.4.2, 3.6.3, 3.6.6, 3.9.6, 3.9.7, 3.9.16): the
 // spec's scaling examples, the encoder's temperature warning and the master's collection.
 #include <gtest/gtest.h>
 

@@ -36,7 +36,7 @@ slave::EncoderParams encoder_params(protocol::EndatVersion v, unsigned bits, std
 
 }  // namespace
 
-// Hand-derived from spec 2.3 and timing-model §1.2/1.3: slots 9 and 10 LOW (turnaround),
+// Hand-derived from spec 2.3 and docs/model.md §1/§2: slots 9 and 10 LOW (turnaround),
 // start bit at RE11, F1, position LSB first, CRC, then DATA HIGH (end of data).
 TEST(EncoderPositionFrame, EnDat21FrameIsBitExact) {
   Bench b(encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5));
@@ -98,8 +98,9 @@ TEST(EncoderPositionFrame, DataFallsLowExactlyTmAfterTheLastRisingEdge) {
 }
 
 TEST(EncoderContinuousClock, EnDat21SendsTheNextWordAfterOneHighAndOneLowBit) {
-  // 2.3.1 / HH-CAT: HIGH for one clock after the CRC, then LOW; the new position is saved with
-  // the next falling edge and follows S and F1 (no new mode command).
+  // 2.3.1 / HEIDENHAIN's encoder catalogue (docs/model.md §6): HIGH for one clock after the CRC,
+  // then LOW; the new position is saved with the next falling edge and follows S and F1 (no new
+  // mode command).
   auto p = encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5);
   Bench b(p);
   ScriptedClock clock(b.k, b.line, us(1), 44, 0b000111);

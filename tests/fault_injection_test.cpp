@@ -1,4 +1,4 @@
-// Scenario events (issue 5): faults of the line and the encoder at a time, at a frame or at a
+// Scenario events: faults of the line and the encoder at a time, at a frame or at a
 // clock edge of a frame, as a field engineer scripts them; each shows on the wire the way the
 // real fault would.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The field-bug library (scenarios/field/, issue 5): every bug comes as a pair, NAME.json that
+// The field-bug library (scenarios/field/): every bug comes as a pair, NAME.json that
 // reproduces what the field saw and NAME_fixed.json with the fix. Each file's own expectations
 // say how it fails (ctest runs them through the CLI); this test checks the library as a whole:
 // the headers, the pairs, and that a bug shows and its fix is clean.

@@ -139,7 +139,7 @@ TEST(LineCable, ChangingTheCableChangesLaterEdgesOnly) {
   EXPECT_THROW(l.set_cable(301, ns(5)), std::invalid_argument);
 }
 
-// ---- faults at one end's pins (issue 5) -----------------------------------------------------
+// ---- faults at one end's pins -------------------------------------------------------------
 
 namespace {
 

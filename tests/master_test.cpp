@@ -48,7 +48,7 @@ INSTANTIATE_TEST_SUITE_P(CableAndClock, DelayMeasurement,
                          });
 
 TEST(MasterFrame, ClockCountIsOneMoreThanTheLastBitByDefault) {
-  // Timing-model §1.7: 2.2, n = 25, s = 11 -> last bit at RE43, 44 pulses; 43 without the extra one.
+  // docs/model.md §5: 2.2, n = 25, s = 11 -> last bit at RE43, 44 pulses; 43 without the extra one.
   auto s = make_scenario(1, MHz(1), false, 1);
   auto r = scenarios::run_scenario(s);
   ASSERT_EQ(count_ok(r), 1U);

@@ -1,4 +1,4 @@
-// The master's safety functions (issue 7): each pair in scenarios/safety/ holds a fault that the
+// The master's safety functions: each pair in scenarios/safety/ holds a fault that the
 // function catches. Switched on, the function reports it; the same scenario with the function
 // off reports nothing; an encoder without faults gives no finding with every function on.
 #include <gtest/gtest.h>

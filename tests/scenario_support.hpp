@@ -45,7 +45,7 @@ inline void prepend_disturbed_read(scenarios::Scenario& s, std::uint8_t mode_bit
   s.script.insert(s.script.begin(), bad);
 }
 
-// Every VCD a test writes goes through the lint, with sigrok's restrictions (issue 6).
+// Every VCD a test writes goes through the lint, with sigrok's restrictions.
 inline void expect_clean_vcd(const std::string& text, const std::string& what) {
   const auto f = scenarios::parse_vcd(text, {.sigrok = true});
   EXPECT_TRUE(f.issues.empty()) << what << ": line " << (f.issues.empty() ? 0 : f.issues[0].line) << ": "

@@ -150,7 +150,7 @@ TEST(SweepCli, OutputIsIdenticalForAnyNumberOfJobs) {
   EXPECT_EQ(json_text[0], json_text[2]);
 }
 
-// (b) The spec's Figure 2 against the curve the reference notes derive.
+// (b) The spec's Figure 2 against the curve derived in docs/model.md §9.
 class Figure2 : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

@@ -100,7 +100,7 @@ try:
     jsonschema.validate(results, schema, cls=jsonschema.Draft202012Validator)
 except jsonschema.ValidationError as e:
     failures.append("results.json does not validate against schema/results.schema.json: %s at %s" % (e.message, list(e.absolute_path)))
-# The safety and diagnosis sections (issue 7) validate too.
+# The safety and diagnosis sections validate too.
 r7 = run("run", os.path.join(bundled, "diagnosis_service_read.json"),
          os.path.join(source, "scenarios", "safety", "01_error_messages.json"), "--quiet", "--json", path("results7.json"))
 check(r7.returncode == 0, "the diagnosis and safety scenarios pass", r7)
