@@ -101,8 +101,10 @@ constexpr std::array kRows{
               "last rising edge of a frame with a type I error or no start bit to FE1 of the next", "encoder pins",
               E::Wires},
     TimingRow{check::kPowerOn, "t1, t2, t3", "Power-on conditions", "2.3.3",
-              "t1 800 ms, t2 80 ms, a LOW pulse > 125 ns, t3 380 ms", "t2 120 ms, t3 420 ms",
-              "CLOCK from switching on to the first frame", "master pins", E::Wires},
+              "t1 800 ms, t2 80 ms, a LOW pulse > 125 ns or a request cycle, t3 380 ms", "t2 120 ms, t3 420 ms",
+              "CLOCK from each switch-on (the run's start, a power interruption, a recorded supply) to the first "
+              "request",
+              "encoder pins", E::Wires},
     TimingRow{check::kAccessWhileBusy, "", "No memory access while Busy", "2.5.1, 2.6.1, 2.3.1 note 1", "", "",
               "after a 2.2 memory access, no further read, write or reset (2.1 commands included) before a frame "
               "whose additional data 1 shows Busy = 0",
