@@ -211,11 +211,11 @@ void FrameDecoder::on_encoder_bit(unsigned clock, bool bit) {
       if (!frame_.answer_complete && bits_.size() >= layout_.width() &&
           (bits_.size() - layout_.width()) % protocol::kAdditionalDatumBits == 0 && bit) {
         frame_.answer_bits = static_cast<unsigned>(bits_.size());
-        decode_answer();
+        decode_answer(clock - 1);
         return;
       }
       bits_.push_back(bit ? 1 : 0);
-      if (bits_.size() == (frame_.answer_complete ? layout_.width() : frame_.answer_bits)) decode_answer();
+      if (bits_.size() == (frame_.answer_complete ? layout_.width() : frame_.answer_bits)) decode_answer(clock);
       return;
     case State::MoreData:
       // After the data the decoder expected, a LOW opens a datum it did not know was selected.
@@ -233,8 +233,8 @@ void FrameDecoder::on_encoder_bit(unsigned clock, bool bit) {
   }
 }
 
-void FrameDecoder::decode_answer() {
-  const unsigned clock = static_cast<unsigned>(rising_.size());
+// last_clock: the slot of the answer's last bit.
+void FrameDecoder::decode_answer(unsigned last_clock) {
   if (frame_.answer_complete) {  // a further word of a continuous clock
     ++frame_.continuous_words;
     seen_low_ = false;
@@ -261,8 +261,10 @@ void FrameDecoder::decode_answer() {
     for (const auto& d : frame_.additional_data) selected_[d.additional_data_2() ? 1 : 0] = true;
   }
   if (info.supplement) {
-    // The encoder releases DATA after its last bit; the master sends the supplement.
-    release_clock_ = clock;
+    // The encoder releases DATA on the rising edge after its last bit's slot; the master sends
+    // the supplement. Counted from the slot, not from the edges seen by the time the bit was
+    // sampled: those depend on the clock-to-data delay against the period.
+    release_clock_ = last_clock + 1;
     seen_low_ = false;
     state_ = State::SupplementHunt;
     return;

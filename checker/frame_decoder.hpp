@@ -27,7 +27,7 @@ using sim::Time;
 struct DecoderParams {
   unsigned position_bits = 25;
   // CLOCK edge at the encoder pins -> DATA edge at the encoder pins (receiver, logic, driver).
-  Time clock_to_data = sim::ns(130);
+  Time clock_to_data = sim::ns(60);
   // The encoder's recovery time I: a HIGH phase this long ends any frame (2.3.2).
   Time t_m = sim::us(10);
   // Rising edges the encoder lets pass after releasing DATA before it hunts for the
@@ -99,7 +99,7 @@ class FrameDecoder {
   void on_encoder_bit(unsigned clock, bool bit);
   void decode_mode_command();
   void begin_answer(unsigned clock);
-  void decode_answer();
+  void decode_answer(unsigned last_clock);
   void note_selection();
   unsigned expected_additional_data() const;
 

@@ -6,9 +6,11 @@
 //
 // Defaults make the round trip seen by the master (clock edge out -> data edge back)
 // equal the spec's bound t_D = 0.2 us + 0.01 us/m x L (2.3.2) together with the encoder's
-// own clock-to-data delay (slave::EncoderParams::output_delay, 60 ns):
-// 20 (master driver) + 40 (encoder receiver) + 60 (encoder logic) + 30 (encoder driver)
-// + 50 (master receiver) = 200 ns, plus 2 x 5 ns/m of cable.
+// own clock-to-data delay (slave::EncoderParams::output_delay, 20 ns):
+// 40 (master driver) + 20 (encoder receiver) + 20 (encoder logic) + 20 (encoder driver)
+// + 100 (master receiver) = 200 ns, plus 2 x 5 ns/m of cable. The encoder turns DATA around
+// (falling edge at its pins -> its driver on or off there: receiver + logic + enable or disable
+// delay) in 60 ns, within one clock period up to 16 MHz (t_z, t_OE, 2.3.2 note 6).
 #pragma once
 
 #include <memory>
@@ -34,8 +36,8 @@ struct LineParams {
   // 0.01 us/m in the t_D formula is the round trip, so ~5 ns/m one way).
   double cable_length_m = 1.0;
   Time cable_delay_per_m = sim::ns(5);
-  TransceiverParams master{sim::ns(20), sim::ns(30), sim::ns(30), sim::ns(50)};
-  TransceiverParams encoder{sim::ns(30), sim::ns(30), sim::ns(30), sim::ns(40)};
+  TransceiverParams master{sim::ns(40), sim::ns(30), sim::ns(30), sim::ns(100)};
+  TransceiverParams encoder{sim::ns(20), sim::ns(20), sim::ns(20), sim::ns(20)};
   // Level a true fail-safe receiver reads on undriven DATA (docs/model.md §11: HIGH).
   bool failsafe_level = true;
 

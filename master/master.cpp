@@ -547,7 +547,16 @@ void Master::rising_edge() {
   if (rx_ == Rx::Polling && kernel_.now() - poll_start_ > timeout) {
     end_reception(FrameOutcome::NoStartBit);
   }
-  if (supplement_start_ != 0 && clock_ == last_clock_) pins_.data_enable.write(false);
+  // The encoder takes the supplement's last bit on this edge, so DATA must stay valid after it.
+  // Released with the edge itself, the release would race the edge to the encoder, which takes
+  // the fail-safe HIGH whenever the master's driver turns off faster than its CLOCK driver
+  // switches. Every other bit the master sends stays until the next falling edge, half a period
+  // after the encoder's edge, and at the highest f_c (16 MHz, D297403 2.3.2) that is all any
+  // encoder can rely on: the last bit is held that long too (or half this frame's period, if
+  // shorter), and the master is off the line long before the encoder takes DATA back for t_m.
+  if (supplement_start_ != 0 && clock_ == last_clock_)
+    kernel_.schedule(std::min(high_, sim::period_of(MasterParams::kMaxFc) / 2),
+                     sim::bind<&Master::release_supplement>(this));
   const bool answered = rx_ == Rx::Done && !supplement_due_ && (last_clock_ == 0 || clock_ >= last_clock_);
   if (answered || (last_clock_ != 0 && clock_ >= last_clock_ && words_left_ == 0)) {
     clocking_done_ = true;
@@ -709,6 +718,8 @@ void Master::drive_supplement_bit() {
   else if (k > lead) bit = ((*frame_.supplement >> (protocol::kPayloadBits - (k - lead))) & 1U) != 0;
   pins_.data_out.write(bit);
 }
+
+void Master::release_supplement() { pins_.data_enable.write(false); }
 
 void Master::note_selection() {
   // What the master expects after its own selections (2.4.2.2); a reset clears them (2.7).

@@ -372,6 +372,7 @@ class Master {
   void incomplete(std::uint64_t tag);
   void decode_answer();
   void drive_supplement_bit();
+  void release_supplement();
   void note_selection();
   unsigned answer_width() const;
   Time counter_tick() const;

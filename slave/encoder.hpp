@@ -122,7 +122,7 @@ struct EncoderParams {
   // ... and before it, ignores DATA for this many rising edges after handing the line over,
   // while its own last bit fades (guess; the master's lead bits must be more).
   unsigned supplement_ignore_clocks = 3;
-  Time output_delay = sim::ns(60);             // clock input -> data output inside the encoder
+  Time output_delay = sim::ns(20);             // clock input -> data output inside the encoder
   // 2.4.2.3 / 3.4.4 (guess: "the exact evaluation of the oversampling is described in the
   // specifications"): with oversampling activated, "time delay k" selects the position sampled
   // k steps of this length before the frame's latch.

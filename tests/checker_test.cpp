@@ -149,14 +149,14 @@ TEST(CheckerDataDelay, RoundTripAtTheSpecBoundPassesOnePicosecondMoreFails) {
 }
 
 TEST(CheckerDriverTimes, TzAndToeAgainstOneFramePeriodReading) {
-  // Encoder release after FE1 and drive after FE9 both take receiver 40 + logic + driver 30 ns.
+  // Encoder release after FE1 and drive after FE9 both take receiver 20 + logic + driver 20 ns.
   auto s = make_scenario(1, MHz(8), true, 1);
   s.checker.t_z_per_frame_period = true;
-  s.encoder.output_delay = ns(55);  // 125 ns = T at 8 MHz: just inside
+  s.encoder.output_delay = ns(85);  // 125 ns = T at 8 MHz: just inside
   auto r = scenarios::run_scenario(s);
   EXPECT_EQ(count_violations(r, checker::check::kDriverOff), 0U);
   EXPECT_EQ(count_violations(r, checker::check::kDriverOn), 0U);
-  s.encoder.output_delay = ns(55) + ps(1);
+  s.encoder.output_delay = ns(85) + ps(1);
   r = scenarios::run_scenario(s);
   EXPECT_EQ(count_violations(r, checker::check::kDriverOff), 1U);  // the 200 kHz measurement frames have T = 5 us
   EXPECT_EQ(count_violations(r, checker::check::kDriverOn), 1U);
@@ -400,9 +400,9 @@ TEST(CheckerTypeOne, AnAnswerThatDrivesHighAtOnceIsNoStartBit) {
   // type I answer must not be taken for a start bit (no t_D, clock-count or t_cal report).
   auto s = make_scenario(10, MHz(1), false, 1);
   s.line.failsafe_level = false;
-  s.line.encoder.driver_delay = ns(40);
-  s.line.encoder.enable_delay = ns(20);
-  s.encoder.output_delay = ns(50);  // keeps the round trip at the t_D bound
+  s.line.encoder.driver_delay = ns(30);
+  s.line.encoder.enable_delay = ns(10);
+  s.encoder.output_delay = ns(10);  // keeps the round trip at the t_D bound
   test_support::prepend_disturbed_read(s, 0b001111);
   const auto r = scenarios::run_scenario(s);
   ASSERT_EQ(r.frames.size(), 2U);

@@ -209,7 +209,7 @@ TEST(CheckerContinuousClock, DriverRowsBelongToTheModeCommandOnly) {
   // once for the frame's turnarounds, not for each of its five words, which have none.
   auto s = continuous_reads(1, MHz(8), true, 5);
   s.checker.t_z_per_frame_period = true;
-  s.encoder.output_delay = ns(55) + ps(1);
+  s.encoder.output_delay = ns(85) + ps(1);
   const auto r = scenarios::run_scenario(s);
   EXPECT_EQ(test_support::count_ok(r), 5U);
   EXPECT_EQ(count_violations(r, checker::check::kDriverOff), 1U);

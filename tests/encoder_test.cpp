@@ -90,10 +90,10 @@ TEST(EncoderPositionFrame, DataFallsLowExactlyTmAfterTheLastRisingEdge) {
   ScriptedClock clock(b.k, b.line, us(1), 26, 0b000111);
   b.k.run();
   ASSERT_FALSE(fall.t.empty());
-  // Last RE at the master logic + driver 20 ns + cable 50 ns + encoder receiver 40 ns, then t_m,
-  // then the encoder's output delay 60 ns and driver 30 ns.
-  const Time last_re_at_encoder_logic = clock.rising().back() + ns(20) + ns(50) + ns(40);
-  EXPECT_EQ(fall.t.back(), last_re_at_encoder_logic + us(12) + ns(60) + ns(30));
+  // Last RE at the master logic + driver 40 ns + cable 50 ns + encoder receiver 20 ns, then t_m,
+  // then the encoder's output delay 20 ns and driver 20 ns.
+  const Time last_re_at_encoder_logic = clock.rising().back() + ns(40) + ns(50) + ns(20);
+  EXPECT_EQ(fall.t.back(), last_re_at_encoder_logic + us(12) + ns(20) + ns(20));
   EXPECT_TRUE(b.encoder.idle());
 }
 

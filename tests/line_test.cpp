@@ -35,19 +35,20 @@ TEST(LineDelays, ClockReachesEachPointAfterItsDelaysExactly) {
   k.schedule(us(1), bind<&Poke::go>(&fall));
   k.run();
   ASSERT_EQ(master_pin.times.size(), 1U);
-  EXPECT_EQ(master_pin.times[0], us(1) + ns(20));
-  EXPECT_EQ(encoder_pin.times[0], us(1) + ns(20) + ps(187'500));  // 37.5 m x 5 ns/m
-  EXPECT_EQ(encoder_logic.times[0], us(1) + ns(20) + ps(187'500) + ns(40));
+  EXPECT_EQ(master_pin.times[0], us(1) + ns(40));  // the master's driver delay
+  EXPECT_EQ(encoder_pin.times[0], us(1) + ns(40) + ps(187'500));  // 37.5 m x 5 ns/m
+  EXPECT_EQ(encoder_logic.times[0], us(1) + ns(40) + ps(187'500) + ns(20));  // + the encoder's receiver delay
 }
 
 TEST(LineDelays, DefaultRoundTripEqualsTheSpecBoundForTD) {
-  // 2.3.2: t_D max = (0.2 + 0.01 x L) us, with the encoder's 60 ns clock-to-data delay.
+  // 2.3.2: t_D max = (0.2 + 0.01 x L) us, with the encoder's 20 ns clock-to-data delay:
+  // 40 (master driver) + 20 (encoder receiver) + 20 + 20 (encoder driver) + 100 (master receiver).
   for (double length : {0.0, 1.0, 10.0, 20.0, 50.0, 100.0, 150.0}) {
     Kernel k;
     line::LineParams p;
     p.cable_length_m = length;
     line::Line l(k, p);
-    EXPECT_EQ(l.round_trip(ns(60)), ns(200) + ns(10) * static_cast<std::int64_t>(length)) << length << " m";
+    EXPECT_EQ(l.round_trip(ns(20)), ns(200) + ns(10) * static_cast<std::int64_t>(length)) << length << " m";
   }
 }
 
@@ -62,7 +63,7 @@ TEST(LineDelays, EncoderDataReachesTheMasterAfterDriverCableAndReceiver) {
   k.schedule(us(2), bind<&Poke::go>(&high));
   k.run();
   ASSERT_EQ(seen.times.size(), 1U);
-  EXPECT_EQ(seen.times[0], us(2) + ns(30) + ns(50) + ns(50));
+  EXPECT_EQ(seen.times[0], us(2) + ns(20) + ns(50) + ns(100));  // encoder driver, 10 m, master receiver
   EXPECT_TRUE(l.master().data_in.read());
 }
 
@@ -133,9 +134,9 @@ TEST(LineCable, ChangingTheCableChangesLaterEdgesOnly) {
   k.schedule(us(2), bind<&Poke::go>(&rise));   // sent after the change
   k.run();
   ASSERT_EQ(at_encoder.times.size(), 2U);
-  EXPECT_EQ(at_encoder.times[0], us(1) + ns(20) + ns(500));
-  EXPECT_EQ(at_encoder.times[1], us(2) + ns(20) + ns(50));
-  EXPECT_EQ(l.round_trip(ns(60)), ns(300));
+  EXPECT_EQ(at_encoder.times[0], us(1) + ns(40) + ns(500));
+  EXPECT_EQ(at_encoder.times[1], us(2) + ns(40) + ns(50));
+  EXPECT_EQ(l.round_trip(ns(20)), ns(300));
   EXPECT_THROW(l.set_cable(301, ns(5)), std::invalid_argument);
 }
 
@@ -171,8 +172,8 @@ TEST(LineFault, AGlitchOnDataAtTheMasterEndInvertsOnlyWhatTheMasterSees) {
   k.schedule(us(1), bind<&Glitch::go>(&g));
   k.run();
   ASSERT_EQ(master_logic.times.size(), 2U);
-  EXPECT_EQ(master_logic.times[0], us(1) + ns(50));  // + the master's receiver delay
-  EXPECT_EQ(master_logic.times[1], us(1) + ns(90));
+  EXPECT_EQ(master_logic.times[0], us(1) + ns(100));  // + the master's receiver delay
+  EXPECT_EQ(master_logic.times[1], us(1) + ns(140));
   EXPECT_FALSE(l.master().data_in.read());
   EXPECT_TRUE(encoder_pins.times.empty()) << "the glitch stays at its end";
 }
@@ -238,7 +239,7 @@ TEST(LineFault, AMasterDriverThatReleasesLateCollidesWithTheEncoder) {
   l.set_driver_disable_delay(ObservationPoint::MasterPins, us(2));
   k.run();
   ASSERT_FALSE(l.contentions().empty());
-  EXPECT_EQ(l.contentions()[0].start, us(4) + ns(30));
+  EXPECT_EQ(l.contentions()[0].start, us(4) + ns(20));  // the encoder's enable delay
   EXPECT_EQ(l.contentions()[0].end, us(5));
   EXPECT_THROW(l.set_driver_disable_delay(ObservationPoint::MasterPins, ms(1)), std::invalid_argument);
 }
@@ -248,5 +249,5 @@ TEST(LineFault, ALateReleaseBeyondTheTransceiverLimitSurvivesACableChange) {
   line::Line l(k, line::LineParams{});
   l.set_driver_disable_delay(ObservationPoint::EncoderPins, us(5));
   EXPECT_NO_THROW(l.set_cable(60, ns(5)));
-  EXPECT_EQ(l.params().encoder.disable_delay, ns(30)) << "the configured transceiver is unchanged";
+  EXPECT_EQ(l.params().encoder.disable_delay, ns(20)) << "the configured transceiver is unchanged";
 }

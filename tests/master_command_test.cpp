@@ -93,6 +93,31 @@ TEST(MasterParameterAccess, EnDat22ReadThroughTheSupplementWithBusyPolling) {
   EXPECT_TRUE(r.violations.empty()) << violations(r);
 }
 
+TEST(MasterParameterAccess, TheSupplementsLastBitOutlastsTheEdgeThatTakesIt) {
+  // The encoder takes the supplement's last bit on the master's last rising edge. A master whose
+  // driver turns off faster than its CLOCK driver switches must still hold that bit past the
+  // edge at the encoder, and be off DATA before the encoder drives its end marker, at a slow
+  // clock as at the fastest.
+  for (const Hertz f_c : {kHz(200), MHz(16)}) {
+    auto s = scenario(1, f_c, f_c > MHz(2),
+                      {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x45),
+                       op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0xA9), await_not_busy(),
+                       op(MC::EncoderSendPositionValuesAndReceiveParameter, 0x10, 0x1234), await_not_busy()});
+    s.line.master = {ns(40), ns(30), ns(30), ns(100)};  // driver off 10 ns before CLOCK switches
+    const auto r = scenarios::run_scenario(s);
+    ASSERT_TRUE(r.finished) << f_c;
+    std::vector<std::uint32_t> sent, taken;
+    for (const auto& f : r.frames)
+      if (f.supplement) sent.push_back(*f.supplement);
+    for (const auto& f : r.encoder_frames)
+      if (f.supplement) taken.push_back(*f.supplement);
+    EXPECT_EQ(taken, sent) << f_c;
+    EXPECT_EQ(r.encoder_memory.areas.at(protocol::MemoryArea::Oem1).at(0x10), 0x1234) << f_c;
+    for (const auto& v : r.violations)  // 16 MHz is a warning of its own (2.3.2)
+      EXPECT_EQ(v.check, checker::check::kClockFrequency) << f_c << ": " << v.message;
+  }
+}
+
 TEST(MasterParameterAccess, EnDat22WriteThenReadBack) {
   const auto s = scenario(
       50, MHz(8), true,

@@ -2,7 +2,11 @@
 // so that the encoder can be tested without the master model.
 #pragma once
 
+#include <algorithm>
+#include <iterator>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "line/line.hpp"
@@ -118,12 +122,18 @@ inline std::string bits_lsb(std::uint64_t v, unsigned n) {
   return s;
 }
 
-// Records DATA at the encoder's pins at each falling CLOCK edge there: entry k-1 is the bit
-// the encoder put out after RE_(k-1), i.e. slot k-1 (entry 0 is taken at FE1).
+// Records DATA at the encoder's pins once per clock period: entry k-1 is slot k-1, the bit the
+// encoder put out after RE_(k-1) or the one the master put out at FE_(k-1) for the encoder to
+// take at RE_(k-1) (entry 0 is taken at FE1). It is read half-way through the HIGH phase between
+// RE_(k-1) and FE_k, where both are stable: the encoder's bit shows one internal delay after
+// RE_(k-1), the master's changes at FE_k (its next bit, its driver on or off) may reach the
+// pins before FE_k does when its driver switches off or on faster than its CLOCK driver.
 class PinSampler {
  public:
   PinSampler(sim::Kernel& k, line::Line& line) : k_(k), pins_(line.pins(line::ObservationPoint::EncoderPins)) {
     pins_.clock.on_change(sim::bind<&PinSampler::on_clock>(this));
+    pins_.data.on_change(sim::bind<&PinSampler::on_data>(this));
+    data_.emplace_back(sim::Time::min(), pins_.data.read());
   }
   // Bits of slots first..last (inclusive) as a string of '0'/'1'.
   std::string slots(unsigned first, unsigned last) const {
@@ -142,12 +152,22 @@ class PinSampler {
 
  private:
   void on_clock(std::uint64_t level) {
-    if (level != 0) return;
-    samples_.push_back(pins_.data.read());
+    if (level != 0) {
+      rise_ = k_.now();
+      return;
+    }
+    const sim::Time at = rise_ ? *rise_ + (k_.now() - *rise_) / 2 : k_.now();
+    rise_.reset();
+    auto after = std::upper_bound(data_.begin(), data_.end(), at,
+                                  [](sim::Time t, const auto& change) { return t < change.first; });
+    samples_.push_back(std::prev(after)->second);
     times_.push_back(k_.now());
   }
+  void on_data(std::uint64_t level) { data_.emplace_back(k_.now(), level != 0); }
   sim::Kernel& k_;
   line::Line::Pins pins_;
+  std::optional<sim::Time> rise_;  // the rising edge before the next falling one
+  std::vector<std::pair<sim::Time, bool>> data_;  // every DATA change at the pins
   std::vector<bool> samples_;
   std::vector<sim::Time> times_;
 };

@@ -121,7 +121,7 @@ const char* const kCheckHelp =
     "and decoded on the wires (mode command, payload, start bit, answer, CRC, additional data,\n"
     "command supplement); --encoder takes the encoder's declared position width, t_m and t_R\n"
     "from a profile or a scenario (default: the model's encoder), --clock-to-data its delay from\n"
-    "CLOCK to DATA at the connector (default 130 ns). With --at master the signals are the levels\n"
+    "CLOCK to DATA at the connector (default 60 ns). With --at master the signals are the levels\n"
     "at the master's connector: --cable gives the cable's length, and the encoder's bits are read\n"
     "one round trip (--t-d, default from --cable) after each rising edge; t_D is then judged, which\n"
     "a capture at the encoder's connector cannot show. --data-out, --data-in and --data-enable\n"

@@ -124,10 +124,10 @@ TEST(Diagram, DrawsTheFrameWithMeasuredTimingAndViolations) {
   const auto s = scenarios::load_scenario_file(kBundled + "endat22_2mhz_100m_uncompensated.json");
   const auto d = scenarios::frame_diagram(s, {});
   EXPECT_EQ(d.svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0), 0U);
-  // At the master's pins the round trip lacks the master's own driver and receiver (20 + 50 ns).
-  EXPECT_NE(d.svg.find(">t_D = 1.13 us</text>"), std::string::npos);
+  // At the master's pins the round trip lacks the master's own driver and receiver (40 + 100 ns).
+  EXPECT_NE(d.svg.find(">t_D = 1.06 us</text>"), std::string::npos);
   EXPECT_NE(d.svg.find(">t_ST = 2 us</text>"), std::string::npos);
-  EXPECT_NE(d.svg.find(">t_m = 20.13 us</text>"), std::string::npos);
+  EXPECT_NE(d.svg.find(">t_m = 20.06 us</text>"), std::string::npos);
   EXPECT_NE(d.svg.find(">t_cal = "), std::string::npos);
   EXPECT_NE(d.svg.find(">mode bits 111000</text>"), std::string::npos);
   for (const char* field : {">S</text>", ">F1</text>", ">F2</text>", ">position (25 bits, LSB first)</text>"})
@@ -142,7 +142,7 @@ TEST(Diagram, DrawsTheFrameWithMeasuredTimingAndViolations) {
 TEST(Diagram, CleanCompensatedFrameHasTheCrcAndNoRed) {
   const auto s = scenarios::load_scenario_file(kBundled + "endat22_8mhz_100m_compensated.json");
   const auto d = scenarios::frame_diagram(s, {});
-  EXPECT_NE(d.svg.find(">t_D = 1.13 us</text>"), std::string::npos);  // 8 MHz: t_D is nine periods
+  EXPECT_NE(d.svg.find(">t_D = 1.06 us</text>"), std::string::npos);  // 8 MHz: t_D is 8.5 periods
   EXPECT_NE(d.svg.find(">CRC"), std::string::npos);  // "CRC (5 bits)" or, when narrow, "CRC"
   EXPECT_EQ(d.svg.find("#c00000\" font-size"), std::string::npos);
 }
