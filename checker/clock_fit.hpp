@@ -25,6 +25,10 @@ struct FittedFrequency {
   bool above(sim::Hertz bound, std::int64_t ppm) const {
     return __int128{1'000'000'000'000} * den * 1'000'000 > __int128{bound} * (1'000'000 + ppm + uncertainty_ppm) * num;
   }
+  // The period shorter than `min` by more than `ppm` plus the fit's uncertainty.
+  bool period_below(sim::Time min, std::int64_t ppm) const {
+    return num * 1'000'000 < __int128{min.count()} * den * (1'000'000 - ppm - uncertainty_ppm);
+  }
   bool below(sim::Hertz bound, std::int64_t ppm) const {
     return __int128{1'000'000'000'000} * den * 1'000'000 < __int128{bound} * (1'000'000 - ppm - uncertainty_ppm) * num;
   }

@@ -1,6 +1,7 @@
 #include "checker/timing_checker.hpp"
 
 #include <algorithm>
+#include <sstream>
 #include <array>
 #include <cmath>
 #include <tuple>
@@ -503,6 +504,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   const std::int64_t tol = params_.f_c_tolerance_ppm;
   const Time at = f.rising[1];
   judge(f.header.measurement ? protocol::check::row_index(check::kMeasurementClock) : protocol::check::row_index(check::kClockFrequency));
+  if (measures_delay(f.header)) measurement_seen_ = true;
   if (f.header.measurement) {
     if (fit.below(limit::kMeasurementFcMin, tol) || fit.above(limit::kMeasurementFcMax, tol))
       report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
@@ -518,6 +520,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), ">= 1 MHz",
             Severity::Error, "the short recovery time is selected but the clock is slower than 1 MHz"});
   check_frequency_for_encoder(f, fit);
+  check_frequency_for_cable(f, fit);
   const bool compensated = f.header.compensated;
   const sim::Hertz max = compensated ? limit::kFcMaxWithCompensation : limit::kFcMaxWithoutCompensation;
   const std::string range = format_frequency(limit::kFcMin) + " .. " + format_frequency(max);
@@ -533,6 +536,38 @@ void TimingChecker::check_frequency(const PinFrame& f) {
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), range,
             Severity::Warning, "clock above 8 MHz: only for special applications with short cables (t_ST 1 us at 16 MHz)"});
   }
+}
+
+// Without delay compensation the cable bounds f_c (2.1.1 note 4, Figure 2 as docs/model.md §9
+// derives it): a master that samples on its falling edge takes bits before they arrive. On the
+// wires, a clock of 2 MHz or less with no delay measurement before it is taken as uncompensated:
+// a master that compensates with a t_D it never measured breaks 2.1.2 instead.
+namespace {
+std::string format_length(double metres) {
+  std::ostringstream out;
+  out << metres << " m";
+  return out.str();
+}
+}  // namespace
+
+void TimingChecker::check_frequency_for_cable(const PinFrame& f, const FittedFrequency& fit) {
+  if (f.header.compensated || (wires_only_ && measurement_seen_)) return;
+  const double cable = cable_length_m();
+  const Time min = limit::uncompensated_period_min(cable);
+  // Up to the cable where 2 t_D reaches 500 ns, and above 2 MHz, the f_c row's 2 MHz says it.
+  const auto tol = params_.f_c_tolerance_ppm;
+  if (min <= sim::period_of(limit::kFcMaxWithoutCompensation) || fit.above(limit::kFcMaxWithoutCompensation, tol))
+    return;
+  if (!fit.period_below(min, tol)) return;
+  const auto fc = fit.hertz();
+  report({std::string(check::kClockFrequency), "2.1.1 note 4, Figure 2 (without delay compensation: f_c <= 1 / (2 t_D(L)))",
+          ObservationPoint::EncoderPins, f.rising[1], f.header.index, std::nullopt,
+          format_frequency(fc) + " over " + format_length(cable), "period >= 2 t_D = " + format_time(min),
+          Severity::Error,
+          wires_only_ ? "a clock too fast for the cable without delay compensation, and no delay measurement before it: "
+                        "the master samples before the data arrive"
+                      : "a clock too fast for the cable without delay compensation: the master samples before the data "
+                        "arrive"});
 }
 
 // What the declared encoder allows of f_c beyond the table: word 25's maximum (3.9.19), 2 MHz for

@@ -229,6 +229,7 @@ class TimingChecker final {
   void evaluate(const PinFrame& f);
   void check_pulse_widths(const PinFrame& f);
   void check_frequency(const PinFrame& f);
+  void check_frequency_for_cable(const PinFrame& f, const FittedFrequency& fit);
   void check_frequency_for_encoder(const PinFrame& f, const FittedFrequency& fit);
   void check_recovery(const PinFrame& next);
   void check_measurement_procedure(const DeclaredFrame& frame);
@@ -319,6 +320,7 @@ class TimingChecker final {
   };
   std::vector<Tally> tally_;  // findings per row, kept or not
   PowerOnSequence power_on_;
+  bool measurement_seen_ = false;  // a delay-measurement frame (2.1.2) on the wires
   Conclusion conclusion_;
   std::uint64_t not_kept_ = 0;
   std::uint64_t sample_judged_frame_ = UINT64_MAX;

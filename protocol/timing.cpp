@@ -12,6 +12,10 @@ Time data_delay_max(double length_m) {
   return kDataDelayBase + Time{static_cast<std::int64_t>(std::llround(length_m * static_cast<double>(kDataDelayPerMetre.count())))};
 }
 
+Time uncompensated_period_min(double length_m) {
+  return std::max(2 * data_delay_max(length_m), sim::period_of(kFcMaxWithoutCompensation));
+}
+
 Time start_delay(Hertz f_c) {
   const Hertz over = std::clamp<Hertz>(f_c - kFcMaxWithCompensation, 0, kFcMaxSpecial - kFcMaxWithCompensation);
   const Time span = kStartDelay - kStartDelayAt16MHz;
@@ -33,8 +37,9 @@ using E = Evidence;
 constexpr std::array kRows{
     TimingRow{check::kClockFrequency, "f_c", "Frequency", "2.3.2 note 4, 2.1.1, 2.1.2, 3.9.19", "100 kHz",
               "2 MHz without, 8 MHz with delay compensation (16 MHz for special applications)",
-              "fitted over each frame's rising edges from RE2 on; measurement frames have their own row; this "
-              "encoder: word 25 (3.9.19), 2 MHz for EnDat 2.1",
+              "fitted over each frame's rising edges from RE2 on; measurement frames have their own row; without "
+              "compensation also 1 / (2 t_D max) for the cable (2.1.1 note 4, Figure 2); this encoder: word 25 "
+              "(3.9.19), 2 MHz for EnDat 2.1",
               "encoder pins", E::Wires},
     TimingRow{check::kCalculationTime, "t_cal", "Calculation time", "2.3.2 note 7, 2.3.1.1", "10.5/f_c",
               "1 ms (per encoder)",

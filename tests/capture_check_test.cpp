@@ -57,6 +57,7 @@ scenarios::CaptureCheckOptions encoder_pins_of(const scenarios::Scenario& scenar
   o.encoder.output_delay = scenario.line.encoder.receiver_delay + scenario.encoder.output_delay +
                            scenario.line.encoder.driver_delay;
   o.checker = scenario.checker;
+  o.cable_m = scenario.line.cable_length_m;
   return o;
 }
 

@@ -80,9 +80,10 @@ TEST(CheckerMeasurementClock, DelayMeasuredAt1MHzIsReported) {
 }
 
 TEST(CheckerClockFrequency, EdgeJitterOnAClockAtTheLimitIsNotAViolation) {
-  for (auto [f_c, jitter, seed] : {std::tuple{MHz(2), ns(100), 1}, std::tuple{MHz(8), ns(30), 2},
-                                    std::tuple{MHz(16), ns(15), 4}}) {
-    auto s = make_scenario(10, f_c, f_c > MHz(2), 20);
+  // 2 MHz without compensation over 1 m (over 10 m the cable allows 1.67 MHz, 2.1.1 note 4).
+  for (auto [cable, f_c, jitter, seed] : {std::tuple{1, MHz(2), ns(100), 1}, std::tuple{10, MHz(8), ns(30), 2},
+                                          std::tuple{10, MHz(16), ns(15), 4}}) {
+    auto s = make_scenario(cable, f_c, f_c > MHz(2), 20);
     if (f_c == MHz(16)) s.master.t_st = us(1);
     s.master.jitter = jitter;
     s.seed = static_cast<std::uint64_t>(seed);
@@ -338,6 +339,22 @@ TEST(CheckerBoundaries, ClockFrequencyByOnePicosecondOfPeriod) {
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 0U);
   s.master.f_c = Hertz{2'000'004};  // period 499999 ps
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 1U);
+}
+
+TEST(CheckerBoundaries, ClockFrequencyForTheCableByOnePicosecondOfPeriod) {
+  // 30 m without compensation: 2 t_D max = 2 x (0.2 + 0.01 x 30) us = 1 us (2.1.1 note 4).
+  auto s = make_scenario(30, MHz(1), false, 1);
+  s.checker.f_c_tolerance_ppm = 0;
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 0U);
+  s.master.f_c = Hertz{1'000'001};  // period 999999 ps
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_violations(r, checker::check::kClockFrequency), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kClockFrequency) {
+      EXPECT_EQ(v.limit, "period >= 2 t_D = 1 us");
+      EXPECT_EQ(v.measured, "1.000001 MHz over 30 m");
+      EXPECT_NE(v.spec.find("2.1.1 note 4"), std::string::npos) << v.spec;
+    }
 }
 
 TEST(CheckerBoundaries, PulseWidthByOnePicosecond) {

@@ -73,6 +73,7 @@ class PinMaster {
   };
   void step() {
     const Edge e = edges_[next_++];
+    if (!e.clock) sampled_ += m_.data_in.read() ? '1' : '0';  // this master samples on its falling edges
     m_.clock_out.write(e.clock);
     if (e.drive == 'r') m_.data_enable.write(false);
     if (!e.clock) {
@@ -81,6 +82,13 @@ class PinMaster {
     }
     if (next_ < edges_.size()) timer_.start(edges_[next_].at - k_.now());
   }
+
+ public:
+  // DATA at the master's logic at each of its falling edges, every frame's in a row.
+  const std::string& sampled() const { return sampled_; }
+
+ private:
+  std::string sampled_;
   Kernel& k_;
   line::Line::MasterSide m_;
   Timer timer_;
@@ -95,10 +103,14 @@ constexpr std::uint8_t k21SendParameter = 0b001110;  // "Encoder send parameters
 struct Run {
   std::vector<checker::Violation> violations;
   std::vector<checker::RowConformance> conformance;
+  bool from_wires = false;
+  // DATA at each falling edge: at the master's logic, what the master sampled; at the encoder's
+  // pins, what the encoder had put out by then (the bit of the slot).
+  std::string sampled;
+  std::string sent;
   const checker::RowConformance& row(std::string_view check) const {
     return *std::find_if(conformance.begin(), conformance.end(), [&](const auto& c) { return c.check == check; });
   }
-  bool from_wires = false;
   std::size_t count(std::string_view check) const {
     return static_cast<std::size_t>(std::count_if(violations.begin(), violations.end(),
                                                   [&](const auto& v) { return v.check == check; }));
@@ -161,6 +173,7 @@ Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, 
   slave::Encoder e(k, line, encoder);
   checker::TimingChecker checker(k, line, scenarios::declared_encoder(encoder), {}, params);
   PinMaster m(k, line, frames);
+  test_support::PinSampler at_encoder(k, line);
   sim::VcdWriter recording(k, vcd.string());
   for (auto where : {line::ObservationPoint::MasterPins, line::ObservationPoint::EncoderPins}) {
     const std::string scope = where == line::ObservationPoint::MasterPins ? "master" : "encoder";
@@ -177,7 +190,8 @@ Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, 
   k.run(until);
   checker.finish();
   recording.finish();
-  Run live{checker.violations(), checker.conformance(), checker.judged_from_wires()};
+  Run live{checker.violations(), checker.conformance(), checker.judged_from_wires(), m.sampled(),
+           at_encoder.slots(0, UINT32_MAX - 1)};
   // The capture knows the line as it was at the end; a capture with the cable changing under it
   // is judged at the master's connector only through the round trip it shows.
   lp.cable_length_m = line.params().cable_length_m;
@@ -448,9 +462,10 @@ TEST(PinMaster, PowerOnT2IsJudgedToThePicosecondAfterALowClock) {
 // mean.
 namespace measurements {
 
-// A position read at 1 MHz first: the measurements that follow are all on the wires.
+// A position read at 750 kHz first (without compensation, within 2 t_D up to 46 m of cable): the
+// measurements that follow are all on the wires.
 std::vector<PinFrame> frames(unsigned measured) {
-  std::vector<PinFrame> out{{us(10), MHz(1), 43, header(k21Position)}};
+  std::vector<PinFrame> out{{us(10), kHz(750), 43, header(k21Position)}};
   for (unsigned i = 0; i < measured; ++i) out.push_back({us(100) + us(300) * i, kHz(200), 43, header(k21Position)});
   for (unsigned i = 0; i < 2; ++i) out.push_back({us(1300) + us(100) * i, MHz(4), 43, header(k21Position), us(2)});
   return out;
@@ -571,4 +586,27 @@ TEST(PinMaster, TstAndTloMaximaAreThoseOfTheDeclaredEncoder) {
   // Without a declared maximum the envelope has none: the same frames are clean.
   encoder.t_lo_max.reset();
   EXPECT_TRUE(run(position_reads_21(2, us(100)), encoder).violations.empty());
+}
+
+// Without delay compensation a master samples DATA on its falling edge: on 100 m the encoder's
+// bit comes back t_D = 1.2 us after the rising edge that sent it, later than that edge at 2 MHz
+// (T/2 = 250 ns), so the master samples before t_D and reads the bits of earlier slots. The
+// wires show it as a clock above what the cable allows without compensation (2.1.1, Figure 2:
+// 1/(2 t_D), docs/model.md §9); 400 kHz (T/2 = 1.25 us) samples every bit after it arrives.
+TEST(PinMaster, SamplingBeforeTheDataDelayIsCaughtAsAClockTooFastForTheCable) {
+  const auto reads = [](Hertz f_c) {
+    std::vector<PinFrame> out;
+    // A first LOW of 2 us lets the encoder's release come back over 100 m before FE2 (note 8).
+    for (unsigned i = 0; i < 2; ++i) out.push_back({us(10) + us(300) * i, f_c, 11 + 32, header(k21Position), us(2)});
+    return out;
+  };
+  const auto answer = [](const std::string& s, unsigned frame) { return s.substr(frame * 43 + 10, 33); };
+  const auto fast = run(reads(MHz(2)), quick_encoder(), 100);
+  EXPECT_EQ(fast.count(checker::check::kClockFrequency), 2U) << fast.list();
+  ASSERT_EQ(fast.sampled.size(), 2U * 43);
+  for (unsigned i = 0; i < 2; ++i) EXPECT_NE(answer(fast.sampled, i), answer(fast.sent, i)) << "frame " << i;
+  const auto slow = run(reads(kHz(400)), quick_encoder(), 100);
+  EXPECT_EQ(slow.count(checker::check::kClockFrequency), 0U) << slow.list();
+  EXPECT_TRUE(slow.violations.empty()) << slow.list();
+  for (unsigned i = 0; i < 2; ++i) EXPECT_EQ(answer(slow.sampled, i), answer(slow.sent, i)) << "frame " << i;
 }

@@ -132,10 +132,12 @@ TEST(Diagram, DrawsTheFrameWithMeasuredTimingAndViolations) {
   EXPECT_NE(d.svg.find(">mode bits 111000</text>"), std::string::npos);
   for (const char* field : {">S</text>", ">F1</text>", ">F2</text>", ">position (25 bits, LSB first)</text>"})
     EXPECT_NE(d.svg.find(field), std::string::npos) << field;
-  // The checker's findings for frame 0, in red.
+  // The checker's findings for frame 0, in red: f_c too fast for 100 m without compensation,
+  // sampling_window, floating_data, clock_count.
   EXPECT_NE(d.svg.find("fill=\"#c00000\" font-size=\"11\">error sampling_window at 6.25 us"), std::string::npos);
-  EXPECT_EQ(count(d.svg, "stroke=\"#c00000\" stroke-width=\"1.5\""), 3U);
-  EXPECT_NE(d.caption.find("3 violations"), std::string::npos) << d.caption;
+  EXPECT_NE(d.svg.find("fill=\"#c00000\" font-size=\"11\">error f_c at "), std::string::npos);
+  EXPECT_EQ(count(d.svg, "stroke=\"#c00000\" stroke-width=\"1.5\""), 4U);
+  EXPECT_NE(d.caption.find("4 violations"), std::string::npos) << d.caption;
   EXPECT_EQ(d.svg, scenarios::frame_diagram(s, {}).svg);  // same input, same bytes
 }
 
