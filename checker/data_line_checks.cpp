@@ -20,6 +20,7 @@ namespace position = protocol::frame_position;
 
 void TimingChecker::start_data_line_checks() {
   released_ = false;
+  pending_release_.reset();
   driving_ = false;
   driven_low_ = false;
   start_clock_ = 0;
@@ -35,6 +36,31 @@ void TimingChecker::note_encoder_low() {
   if (driving_ && !line_.pins(ObservationPoint::EncoderPins).data.read()) driven_low_ = true;
 }
 
+std::optional<Time> TimingChecker::turnaround_bound() const {
+  if (!params_.t_z_per_frame_period) return limit::kPeriodAtFcMin;
+  if (current_.header.f_c > 0) return sim::period_of(current_.header.f_c);
+  return std::nullopt;
+}
+
+void TimingChecker::judge_release(const Release& r, Time bound) {
+  report_unless_passed(at_most(r.t_z, bound, params_.resolution),
+                       {std::string(check::kDriverOff), "2.3.2 t_z (clock low to data inactive)",
+                        ObservationPoint::EncoderPins, r.at, current_.header.index, r.clock, format_time(r.t_z),
+                        "<= T = " + format_time(bound), Severity::Error,
+                        "the encoder released DATA too late after FE1: the master drives from FE2"},
+                       "FE1 release");
+}
+
+// On the wires alone the frame's f_c shows from its second rising edge, after the release: the
+// release waits for it, and is judged against 10 us only in a frame that never shows one.
+void TimingChecker::settle_pending_release() {
+  if (!pending_release_) return;
+  refresh_wire_header();
+  const auto bound = turnaround_bound();
+  judge_release(*pending_release_, bound.value_or(limit::kPeriodAtFcMin));
+  pending_release_.reset();
+}
+
 // t_z and t_OE are the two turnarounds of DATA around the mode command: the encoder releases DATA
 // for the master's mode bits and takes it back after them (2.3). A continuous clock sends the mode
 // command once, "only with the first data query" (2.3.1), and the encoder drives on from word to
@@ -45,19 +71,18 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
   if (!in_frame_) return;
   refresh_wire_header();
   const Time now = kernel_.now();
-  const Time period = params_.t_z_per_frame_period && current_.header.f_c > 0 ? sim::period_of(current_.header.f_c)
-                                                                             : limit::kPeriodAtFcMin;
   const auto clock = static_cast<unsigned>(current_.falling.size());
   if (enabled == 0 && !released_) {
     released_ = true;
     judge(protocol::check::row_index(check::kDriverOff));
-    const Time t_z = now - current_.fe1;
-    report_unless_passed(at_most(t_z, period, params_.resolution), {std::string(check::kDriverOff), "2.3.2 t_z (clock low to data inactive)", ObservationPoint::EncoderPins,
-              now, current_.header.index, clock, format_time(t_z), "<= T = " + format_time(period), Severity::Error,
-              "the encoder released DATA too late after FE1: the master drives from FE2"}, "FE1 release");
+    const Release r{now - current_.fe1, now, clock};
+    if (const auto bound = turnaround_bound()) judge_release(r, *bound);
+    else pending_release_ = r;
   } else if (enabled != 0 && released_ && !driving_) {
     driving_ = true;
     judge(protocol::check::row_index(check::kDriverOn));
+    settle_pending_release();
+    const Time period = turnaround_bound().value_or(limit::kPeriodAtFcMin);
     const unsigned turnaround = position::kTurnaround + current_.header.payload_bits;
     if (current_.falling.size() < turnaround) {
       report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,

@@ -429,6 +429,7 @@ void TimingChecker::refresh_wire_header() {
 }
 
 void TimingChecker::evaluate(const PinFrame& f) {
+  settle_pending_release();
   if (params_.driver_enables_observable && params_.master_enable_observable)
     judge(protocol::check::row_index(check::kContention));
   check_pulse_widths(f);

@@ -88,9 +88,10 @@ struct CheckerParams {
   // f_c limits are applied with this allowance (oscillator tolerance); 0 checks them exactly.
   std::int64_t f_c_tolerance_ppm = 1000;
   // t_z and t_OE "max T = 1/f_c min" (2.3.2 note 6): read as one period of the frame's own clock
-  // (default; docs/model.md §7, met by an encoder that turns DATA around in 60 ns up
-  // to 16 MHz, as the model's default encoder does), or literally as the period at the lowest
-  // f_c, 10 us (false). A frame whose f_c is not known yet at FE1 is judged against 10 us.
+  // (default; docs/model.md §7, met by an encoder that turns DATA around in 60 ns up to 16 MHz,
+  // as the model's default encoder does), or literally as the period at the lowest f_c, 10 us
+  // (false). On the wires alone the release after FE1 waits for the frame's f_c; a frame that
+  // never shows two rising edges is judged against 10 us.
   bool t_z_per_frame_period = true;
   // t_ST (2.3.2 note 8): "the 2 us relate to a cable length of 100 m and can be reduced with a
   // shorter cable". By default the note's own values are required (2 us up to 8 MHz, 1 us at
@@ -182,6 +183,17 @@ class TimingChecker final {
   void on_encoder_clock(std::uint64_t level);
   // Encoder-side rows of 2.3.2, at the encoder pins (data_line_checks.cpp).
   void on_encoder_driver(std::uint64_t enabled);
+  // The encoder's release after FE1 (t_z): measured, at, on clock.
+  struct Release {
+    Time t_z;
+    Time at;
+    unsigned clock;
+  };
+  // The bound of t_z and t_OE: one period of the frame's clock, or 10 us read literally; none
+  // while the frame's f_c is not known yet.
+  std::optional<Time> turnaround_bound() const;
+  void judge_release(const Release& r, Time bound);
+  void settle_pending_release();
   void on_encoder_data(std::uint64_t level);
   unsigned carrying_clock() const;
   void first_start_bit();
@@ -284,8 +296,11 @@ class TimingChecker final {
   bool released_ = false;
   bool driving_ = false;
   bool driven_low_ = false;
-  bool low_at_last_rise_ = false;
-  Time last_data_rise_{0};  // DATA's latest rising edge at the pins watched  // DATA LOW at the frame's latest rising edge (start-bit polling)
+  bool low_at_last_rise_ = false;  // DATA LOW at the frame's latest rising edge (start-bit polling)
+  Time last_data_rise_{0};  // DATA's latest rising edge at the pins watched
+  // The encoder's release after FE1, measured before the wires showed the frame's f_c (its second
+  // rising edge): judged once they do (t_z per frame period, 2.3.2 note 6).
+  std::optional<Release> pending_release_;
   std::optional<std::uint64_t> master_found_start_bit_;  // the last declared frame whose master read one
   unsigned start_clock_ = 0;
   unsigned word_start_clock_ = 0;

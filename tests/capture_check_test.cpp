@@ -17,6 +17,7 @@
 #include "capture/capture.hpp"
 #include "scenarios/scenarios.hpp"
 #include "capture_support.hpp"
+#include "scenario_support.hpp"
 #include "sigrok_cli.hpp"
 
 namespace {
@@ -574,6 +575,30 @@ scenarios::CaptureCheckResult check_with_power(const fs::path& vcd, bool power =
 // 2.3.3 after each switch-on a recorded supply shows: up at 10 ms, the pulse 900 ms later, the
 // first request t3 after it. A dip at 2 s: the master reads on 1.2 s after it without a pulse,
 // twice 100 us apart (the first read is the wake-up cycle, the second comes before t3).
+// t_z and t_OE bounded by one period of the frame's clock (2.3.2 note 6), from the wires alone:
+// the release after FE1 comes before the frame's second rising edge shows its f_c, so it is
+// judged once the edges do. The encoder turns DATA around in receiver 20 + logic + driver 20 ns.
+TEST(CheckCapture, TzAndToeFromTheWiresAreBoundedByTheFramesOwnPeriodToThePicosecond) {
+  for (const auto& [logic, expected] : {std::pair{ns(85), 0U}, std::pair{ns(85) + sim::ps(1), 1U}}) {
+    auto s = test_support::make_scenario(1, sim::MHz(8), true, 1);  // T = 125 ns
+    s.encoder.output_delay = logic;
+    const fs::path vcd = temp("tz.vcd");
+    run_to_vcd(s, vcd);
+    const auto c = scenarios::check_capture(encoder_pins_of(s, vcd));
+    fs::remove(vcd);
+    const auto count = [&](std::string_view row) {
+      return std::count_if(c.violations.begin(), c.violations.end(), [&](const auto& v) { return v.check == row; });
+    };
+    EXPECT_EQ(count(checker::check::kDriverOff), expected) << logic.count();  // 200 kHz frames: T = 5 us
+    EXPECT_EQ(count(checker::check::kDriverOn), expected) << logic.count();
+    for (const auto& v : c.violations) {
+      if (v.check == checker::check::kDriverOff) {
+        EXPECT_EQ(v.limit, "<= T = 125 ns");
+      }
+    }
+  }
+}
+
 TEST(CheckCapture, TheSupplyShowsEachSwitchOnAndPowerOnIsJudgedAfterEach) {
   const auto capture = [](std::int64_t t3_ns, bool dip) {
     PowerCapture c;
