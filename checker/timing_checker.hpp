@@ -78,6 +78,7 @@ struct RowConformance {
   std::uint64_t warnings = 0;
   std::uint64_t undecided = 0;   // within the capture's resolution of the limit
   std::string reason;            // for a row that was not judged
+  std::string relaxed_by;        // a named option that loosened the row's limit in this run
 };
 std::string_view to_string(RowConformance::Status s);
 

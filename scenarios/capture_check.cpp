@@ -32,6 +32,7 @@ class Replay {
         result_(result),
         active_low_(o.enable_active_low),
         progress_(o.progress),
+        on_frame_(o.on_frame),
         timer_(kernel, sim::bind<&Replay::step>(this)) {
     clock_ = capture::find_signal(reader, o.clock);
     data_ = capture::find_signal(reader, o.data);
@@ -67,10 +68,27 @@ class Replay {
       apply(next_);
       if ((++result_.changes & 0xFFFF) == 0 && progress_) progress_(reader_.bytes_read(), reader_.bytes_total());
       result_.end = next_.time + offset_;
-      if (!reader_.next(next_)) return;
+      if (!reader_.next(next_)) {
+        drain();
+        return;
+      }
     } while (next_.time + offset_ == kernel_.now());
+    drain();
     schedule();
   }
+
+ public:
+  // The frames the decoder has finished: counted, passed on, the first few kept.
+  void drain() {
+    for (auto& f : decoder_.take_finished()) {
+      ++result_.frames_decoded;
+      if (f.answer_complete && f.crc_ok) ++result_.frames_clean;
+      if (on_frame_) on_frame_(f);
+      if (result_.frames.size() < kMaxFramesKept) result_.frames.push_back(std::move(f));
+    }
+  }
+
+ private:
 
   void apply(const capture::Change& c) {
     const Time now = kernel_.now();
@@ -133,6 +151,7 @@ class Replay {
   CaptureCheckResult& result_;
   bool active_low_;
   const std::function<void(std::uint64_t, std::uint64_t)>& progress_;
+  const std::function<void(const checker::WireFrame&)>& on_frame_;
   sim::Timer timer_;
   std::uint32_t clock_ = 0;
   std::uint32_t data_ = 0;
@@ -186,6 +205,8 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   params.driver_enables_observable = o.data_enable.has_value() && !o.data_out;
   params.master_enable_observable = false;  // one DATA wire and the encoder's enable at most
   params.cable_length_m = o.cable_m.value_or(0);
+  result.cable_m = *params.cable_length_m;
+  result.cable_given = o.cable_m.has_value();
   checker::EncoderDeclaration encoder = o.encoder;
   result.at = o.at;
   if (o.at == CaptureCheckOptions::At::Master) {
@@ -210,56 +231,69 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   kernel.run();
   checker.finish();
   log.finish();
-  result.frames = log.take_finished();
+  replay.drain();
   result.violations = checker.violations();
   result.conformance = checker.conformance();
   result.conclusion = checker.conclusion();
   result.findings_not_kept = checker.findings_not_kept();
+  const bool found_wrong = std::any_of(result.conformance.begin(), result.conformance.end(),
+                                       [](const checker::RowConformance& c) { return c.violations + c.undecided != 0; });
+  // A capture in which CLOCK never framed anything judges nothing: almost always the wrong signal or an
+  // empty recording, so it is bad input rather than a pass. Frames without a clean answer still had their
+  // clock, turnaround and mode bits judged; the summary says so (see capture_summary).
+  if (result.frames_decoded == 0 && !found_wrong)
+    throw capture::CaptureError(o.file + ": no EnDat frame began on CLOCK '" + o.clock + "' (no falling edge after " +
+                                "CLOCK rested HIGH, or DATA '" + (o.data_out ? *o.data_out + "' / '" + o.data : o.data) +
+                                "' never answered): nothing to judge; are these the right signals?");
   return result;
 }
 
 std::string capture_log(const CaptureCheckResult& r) {
+  std::string out;
+  for (const auto& f : r.frames) out += frame_log_line(f);
+  return out;
+}
+
+std::string frame_log_line(const checker::WireFrame& f) {
   std::ostringstream out;
-  for (const auto& f : r.frames) {
-    out << "#" << f.index << " " << sim::format_time(f.fe1) << " ";
-    if (!f.command) {
-      out << "mode bits " << (f.mode_bits_seen == protocol::frame_position::kModeBits ? hex(f.mode_bits, 2) : "incomplete")
-          << " (no mode command), " << f.clocks << " clocks\n";
-      continue;
-    }
-    const auto& info = protocol::info(*f.command);
-    out << info.key;
-    if (f.payload) out << " address " << hex(*f.payload >> 16, 2) << " parameter " << hex(*f.payload & 0xFFFF, 4);
-    if (f.start_bit_clock == 0) {
-      out << ": no start bit, " << f.clocks << " clocks\n";
-      continue;
-    }
-    out << ": start bit RE" << f.start_bit_clock;
-    if (!f.answer_complete) {
-      out << ", answer incomplete after " << f.clocks << " clocks\n";
-      continue;
-    }
-    using protocol::Field;
-    const auto field = [&](Field x) { return f.fields[static_cast<std::size_t>(x)]; };
-    switch (info.answer) {
-      case protocol::AnswerFormat::Position:
-        out << ", F1 " << field(Field::Error1);
-        if (info.version == protocol::EndatVersion::V2_2) out << " F2 " << field(Field::Error2);
-        out << ", position " << field(Field::Position);
-        break;
-      case protocol::AnswerFormat::TestValues: out << ", test value " << hex(field(Field::TestValue), 10); break;
-      case protocol::AnswerFormat::Parameter:
-        out << ", echo " << hex(field(Field::Address), 2) << " " << hex(field(Field::Parameter), 4);
-        break;
-    }
-    out << ", CRC " << (f.crc_ok ? "ok" : "BAD");
-    for (const auto& d : f.additional_data)
-      out << ", additional data I=" << (d.status & 0x1F) << " status " << hex(d.status, 2) << " data " << hex(d.data, 4)
-          << " CRC " << (d.crc_ok ? "ok" : "BAD");
-    if (f.supplement) out << ", supplement " << hex(*f.supplement >> 16, 2) << " " << hex(*f.supplement & 0xFFFF, 4);
-    if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";
-    out << "\n";
+  out << "#" << f.index << " " << sim::format_time(f.fe1) << " ";
+  if (!f.command) {
+    out << "mode bits " << (f.mode_bits_seen == protocol::frame_position::kModeBits ? hex(f.mode_bits, 2) : "incomplete")
+        << " (no mode command), " << f.clocks << " clocks\n";
+    return out.str();
   }
+  const auto& info = protocol::info(*f.command);
+  out << info.key;
+  if (f.payload) out << " address " << hex(*f.payload >> 16, 2) << " parameter " << hex(*f.payload & 0xFFFF, 4);
+  if (f.start_bit_clock == 0) {
+    out << ": no start bit, " << f.clocks << " clocks\n";
+    return out.str();
+  }
+  out << ": start bit RE" << f.start_bit_clock;
+  if (!f.answer_complete) {
+    out << ", answer incomplete after " << f.clocks << " clocks\n";
+    return out.str();
+  }
+  using protocol::Field;
+  const auto field = [&](Field x) { return f.fields[static_cast<std::size_t>(x)]; };
+  switch (info.answer) {
+    case protocol::AnswerFormat::Position:
+      out << ", F1 " << field(Field::Error1);
+      if (info.version == protocol::EndatVersion::V2_2) out << " F2 " << field(Field::Error2);
+      out << ", position " << field(Field::Position);
+      break;
+    case protocol::AnswerFormat::TestValues: out << ", test value " << hex(field(Field::TestValue), 10); break;
+    case protocol::AnswerFormat::Parameter:
+      out << ", echo " << hex(field(Field::Address), 2) << " " << hex(field(Field::Parameter), 4);
+      break;
+  }
+  out << ", CRC " << (f.crc_ok ? "ok" : "BAD");
+  for (const auto& d : f.additional_data)
+    out << ", additional data I=" << (d.status & 0x1F) << " status " << hex(d.status, 2) << " data " << hex(d.data, 4)
+        << " CRC " << (d.crc_ok ? "ok" : "BAD");
+  if (f.supplement) out << ", supplement " << hex(*f.supplement >> 16, 2) << " " << hex(*f.supplement & 0xFFFF, 4);
+  if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";
+  out << "\n";
   return out.str();
 }
 
@@ -272,19 +306,30 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
     out << "event times exact (timescale " << sim::format_time(r.resolution) << ")";
   else
     out << "resolution " << sim::format_time(r.uncertainty) << ": limits closer than that to a measured value are undecided";
-  out << "; frames decoded: " << r.frames.size() << " (";
-  std::size_t clean = 0;
-  for (const auto& f : r.frames) clean += f.answer_complete && f.crc_ok ? 1 : 0;
-  out << clean << " with a complete answer and a good CRC)\n";
+  out << "; frames decoded: " << r.frames_decoded << " (" << r.frames_clean
+      << " with a complete answer and a good CRC)\n";
+  if (r.frames_clean == 0)
+    out << "  no frame had a complete answer with a good CRC: position, CRC, additional data and the rows timed "
+           "from them were not judged; are these the right signals, and is --encoder's position width right?\n";
+  if (r.cable_given)
+    out << "  cable " << r.cable_m << " m: t_D's bound, t_ST beyond 100 m and f_c without compensation follow it\n";
+  else
+    out << "  cable not given (--cable): taken as 0 m, so f_c without compensation is held to 2 MHz only, not to "
+           "1 / (2 t_D) of a longer cable\n";
   out << "  judged from the wires at the " << (r.at == CaptureCheckOptions::At::Master ? "master's" : "encoder's")
       << " connector; rows that need the master's declaration (sampling window, t_D used, measurement frames) are not "
          "observable in a capture\n";
-  if (verbose) out << capture_log(r);
+  if (verbose) {
+    out << capture_log(r);
+    if (r.frames_decoded > r.frames.size())
+      out << "  " << r.frames_decoded - r.frames.size() << " further frame(s) decoded, not listed (--log lists all)\n";
+  }
   write_violations(out, r.violations, verbose);
   if (r.findings_not_kept != 0)
     out << "  " << r.findings_not_kept << " further finding(s) beyond the first " << kMaxFindingsPerCheck
         << " of a check are counted in the conformance table, not listed\n";
   write_verdict(out, r.conclusion, r.violations);
+  write_relaxations(out, r.conformance);
   write_conformance(out, r.conformance);
 }
 
@@ -309,6 +354,9 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
   return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
+          {"frames_decoded", r.frames_decoded}, {"frames_clean", r.frames_clean},
+          {"frames_not_kept", r.frames_decoded - r.frames.size()},
+          {"cable_m", r.cable_given ? json(r.cable_m) : json(nullptr)},
           {"violations", violations_json(r.violations)}, {"findings_not_kept", r.findings_not_kept},
           {"verdict", verdict_json(r.conclusion)},
           {"conformance", conformance_json(r.conformance)}};

@@ -45,7 +45,12 @@ struct CaptureCheckOptions {
   std::optional<sim::Time> resolution;
   // Called now and then with the bytes read and the file's size (progress on a terminal).
   std::function<void(std::uint64_t read, std::uint64_t total)> progress;
+  // Called with each frame as soon as it is decoded (a log streamed while the capture is read).
+  std::function<void(const checker::WireFrame&)> on_frame;
 };
+
+// Decoded frames kept in a result (for --json); all are counted, and all reach `on_frame`.
+inline constexpr std::size_t kMaxFramesKept = 10000;
 
 struct CaptureCheckResult {
   std::string file;
@@ -54,7 +59,11 @@ struct CaptureCheckResult {
   CaptureCheckOptions::At at = CaptureCheckOptions::At::Encoder;
   sim::Time end{0};  // the last change
   std::uint64_t changes = 0;
-  std::vector<checker::WireFrame> frames;
+  std::vector<checker::WireFrame> frames;  // the first kMaxFramesKept
+  std::uint64_t frames_decoded = 0;
+  std::uint64_t frames_clean = 0;       // with a complete answer and a good CRC
+  double cable_m = 0;                   // the cable the limits assume (0 m unless given)
+  bool cable_given = false;
   std::vector<checker::Violation> violations;
   std::vector<checker::RowConformance> conformance;  // counts every finding
   checker::Conclusion conclusion;                     // over every finding
@@ -66,10 +75,14 @@ struct CaptureCheckResult {
 // Findings kept per check of a capture (all are counted in the conformance table).
 inline constexpr std::size_t kMaxFindingsPerCheck = 1000;
 
-// Throws capture::CaptureError for unreadable or malformed captures and missing signals.
+// Throws capture::CaptureError for unreadable or malformed captures, missing signals, and a
+// capture in which no frame has a complete answer with a good CRC and nothing was found wrong
+// (wrong signals, or no EnDat traffic: nothing to judge is never a pass).
 CaptureCheckResult check_capture(const CaptureCheckOptions& options);
 
 // One line per decoded frame: time, mode command, payload, answer fields, CRC, additional data.
+std::string frame_log_line(const checker::WireFrame& f);
+// The lines of the frames kept in `r`.
 std::string capture_log(const CaptureCheckResult& r);
 // The summary `endatsim check` prints.
 void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool verbose);

@@ -52,7 +52,7 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
   return x;
 }
 
-std::string junit_xml(const std::vector<CaptureCheckResult>& captures) {
+std::string junit_xml(const std::vector<CaptureCheckResult>& captures, const std::vector<CaptureReadError>& unreadable) {
   std::size_t tests = 0, failures = 0;
   const auto failed = [](const checker::RowConformance& c) { return c.violations + c.undecided != 0; };
   for (const auto& r : captures)
@@ -61,8 +61,14 @@ std::string junit_xml(const std::vector<CaptureCheckResult>& captures) {
       failures += failed(c) ? 1 : 0;
     }
   std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  x += "<testsuites name=\"endatsim check\" tests=\"" + std::to_string(tests) + "\" failures=\"" +
-       std::to_string(failures) + "\" errors=\"0\">\n";
+  x += "<testsuites name=\"endatsim check\" tests=\"" + std::to_string(tests + unreadable.size()) + "\" failures=\"" +
+       std::to_string(failures) + "\" errors=\"" + std::to_string(unreadable.size()) + "\">\n";
+  for (const auto& e : unreadable) {
+    x += "  <testsuite name=\"" + xml_escape(e.file) + "\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\">\n";
+    x += "    <testcase classname=\"endatsim.check\" name=\"read\" file=\"" + xml_escape(e.file) + "\">\n";
+    x += "      <error type=\"bad input\" message=\"" + xml_escape(e.message) + "\"/>\n";
+    x += "    </testcase>\n  </testsuite>\n";
+  }
   for (const auto& r : captures) {
     std::size_t suite_failures = 0, skipped = 0;
     for (const auto& c : r.conformance) {

@@ -17,7 +17,14 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
 // `endatsim check`: one <testsuite> per capture, one <testcase> per row of the timing table; a
 // row with violations or undecided findings fails, a row not applicable or not observable in
 // that capture is skipped with the reason.
-std::string junit_xml(const std::vector<CaptureCheckResult>& captures);
+// A capture that could not be read is a <testsuite> of its own with one errored <testcase>, so
+// that a CI server never shows it as green or leaves it out.
+struct CaptureReadError {
+  std::string file;
+  std::string message;
+};
+std::string junit_xml(const std::vector<CaptureCheckResult>& captures,
+                      const std::vector<CaptureReadError>& unreadable = {});
 
 // Escapes text for XML attributes and character data; drops characters XML 1.0 forbids.
 std::string xml_escape(const std::string& text);

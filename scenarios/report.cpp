@@ -161,6 +161,11 @@ void write_diagnosis(std::ostream& out, const ScenarioResult& r, bool verbose) {
   if (d.notes.size() > limit) out << "    ... " << d.notes.size() - limit << " more note(s)\n";
 }
 
+void write_relaxations(std::ostream& out, const std::vector<checker::RowConformance>& rows) {
+  for (const auto& c : rows)
+    if (!c.relaxed_by.empty()) out << "  relaxed by option: " << c.check << " (" << c.relaxed_by << ")\n";
+}
+
 void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows) {
   out << "  conformance (row: judged / violations / warnings [/ undecided], or why not judged):\n";
   for (const auto& c : rows) {
@@ -182,6 +187,7 @@ nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows
     nlohmann::json j{{"check", c.check}, {"status", std::string(checker::to_string(c.status))}, {"judged", c.judged},
                      {"violations", c.violations}, {"warnings", c.warnings}, {"undecided", c.undecided}};
     if (!c.reason.empty()) j["reason"] = c.reason;
+    if (!c.relaxed_by.empty()) j["relaxed_by"] = c.relaxed_by;
     out.push_back(j);
   }
   return out;
@@ -300,6 +306,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   }
   write_violations(out, r.violations, verbose);
   if (!r.violations.empty() || verbose) write_verdict(out, checker::conclude(r.violations), r.violations);
+  write_relaxations(out, r.conformance);
   if (verbose) write_conformance(out, r.conformance);
   for (const auto& e : r.expectations)
     if (verbose || !e.passed) out << "  " << (e.passed ? "ok   " : "FAIL ") << e.name << ": " << e.detail << "\n";

@@ -22,6 +22,9 @@ nlohmann::json verdict_json(const checker::Conclusion& conclusion);
 void write_verdict(std::ostream& out, const checker::Conclusion& conclusion,
                    const std::vector<checker::Violation>& violations);
 
+// One line per row that a named option loosened in this run (every report says so).
+void write_relaxations(std::ostream& out, const std::vector<checker::RowConformance>& rows);
+
 // The conformance table: each row judged (how often, violations, warnings) or why not.
 void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows);
 nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows);

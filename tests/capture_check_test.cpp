@@ -305,9 +305,9 @@ TEST(CheckCommand, BadCapturesAndNamesExitTwoNamingTheFileAndTheProblem) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("no signal named 'encoder.clk'"), std::string::npos) << r.err;
   r = cli("check '" + two.string() + "' --clock encoder.clock --data encoder.data");
-  EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("frames decoded: 0"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("t_z: not observable (needs the DATA drivers' enables)"), std::string::npos) << r.out;
+  EXPECT_EQ(r.status, 2) << r.out;  // CLOCK never framed anything: nothing was judged, so no PASS
+  EXPECT_NE(r.err.find("no EnDat frame began on CLOCK 'encoder.clock'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("are these the right signals?"), std::string::npos) << r.err;
 
   r = cli("check '" + temp("missing.vcd").string() + "' --clock a --data b");
   EXPECT_EQ(r.status, 2);
@@ -329,6 +329,13 @@ TEST(CheckCommand, ADefectInACaptureExitsOneWithItsRow) {
   EXPECT_NE(r.out.find("violation t_st"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("measured 900 ns, limit >= 1 us"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("    t_st: 16 / 16 / 0  BROKEN"), std::string::npos) << r.out;  // the 16 MHz frames
+
+  // Without the encoder's enable the release of DATA cannot be seen, and the table says so.
+  scenarios::run_scenario(s, options);
+  const auto bare = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data");
+  fs::remove(vcd);
+  EXPECT_EQ(bare.status, 1) << bare.out << bare.err;
+  EXPECT_NE(bare.out.find("t_z: not observable (needs the DATA drivers' enables)"), std::string::npos) << bare.out;
 }
 
 }  // namespace
@@ -411,12 +418,63 @@ TEST(CheckCommand, SeveralCapturesGiveOneJunitSuiteEachAndTheWorstExitStatus) {
   EXPECT_TRUE(j["captures"][0]["conforms"].get<bool>());
   EXPECT_FALSE(j["captures"][1]["conforms"].get<bool>());
   EXPECT_FALSE(j["captures"][1]["verdict"]["this_encoder"].get<bool>());
-  // A capture that cannot be read is bad input; the others are still checked.
-  r = cli("check '" + clean.string() + "' '" + missing.string() + "'" + signals);
+  const auto& counted = j["captures"][0];
+  EXPECT_GT(counted.at("frames_decoded").get<std::uint64_t>(), 0U);
+  EXPECT_EQ(counted.at("frames_clean"), counted.at("frames_decoded"));  // every frame answered with a good CRC
+  EXPECT_EQ(counted.at("frames_not_kept").get<std::uint64_t>(), 0U);
+  EXPECT_EQ(counted.at("frames").size(), counted.at("frames_decoded").get<std::size_t>());
+  // A capture that cannot be read is bad input; the others are still checked, and the reports
+  // list it with its error rather than leave it out.
+  r = cli("check '" + clean.string() + "' '" + missing.string() + "'" + signals + " --junit '" + junit.string() +
+          "' --json '" + json.string() + "'");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("PASS " + clean.string()), std::string::npos) << r.out;
   EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
+  std::ifstream json_again(json);
+  const auto k = nlohmann::json::parse(json_again);
+  ASSERT_EQ(k.at("captures").size(), 2U);
+  EXPECT_TRUE(k["captures"][0]["conforms"].get<bool>());
+  EXPECT_EQ(k["captures"][1].at("file"), missing.string());
+  EXPECT_NE(k["captures"][1].at("error").get<std::string>().find("cannot open"), std::string::npos) << k.dump();
+  std::ifstream junit_again(junit);
+  std::stringstream xml_again;
+  xml_again << junit_again.rdbuf();
+  const auto suite = xml_again.str().find("<testsuite name=\"" + missing.string() + "\"");
+  ASSERT_NE(suite, std::string::npos) << xml_again.str();
+  EXPECT_NE(xml_again.str().find("errors=\"1\"", suite), std::string::npos) << xml_again.str();
+  EXPECT_NE(xml_again.str().find("<error", suite), std::string::npos) << xml_again.str();
   for (const auto& p : {clean, broken, junit, json}) fs::remove(p);
+}
+
+// --log is written frame by frame and renamed into place when complete; a scenario given as
+// --encoder brings its cable, which the summary names.
+TEST(CheckCommand, TheLogHoldsEveryFrameAndAScenarioBringsItsCable) {
+  const std::string scenario = std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat21_1mhz_10m.json";
+  const fs::path vcd = temp("log_cable.vcd"), log = temp("log_cable.txt");
+  scenarios::RunOptions options;
+  options.vcd_path = vcd.string();
+  scenarios::run_scenario(scenarios::load_scenario_file(scenario), options);
+  const std::string signals = " --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable";
+  auto r = cli("check '" + vcd.string() + "'" + signals + " --encoder '" + scenario + "' --log '" + log.string() + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("  cable 10 m: "), std::string::npos) << r.out;
+  std::ifstream in(log);
+  std::string line;
+  std::size_t lines = 0;
+  while (std::getline(in, line)) {
+    EXPECT_EQ(line.rfind("#" + std::to_string(lines) + " ", 0), 0U) << line;  // in order, none missing
+    ++lines;
+  }
+  const auto counted = r.out.find("frames decoded: " + std::to_string(lines) + " (" + std::to_string(lines) + " with");
+  EXPECT_NE(counted, std::string::npos) << r.out;
+  for (const auto& entry : fs::directory_iterator(log.parent_path()))  // no part file left beside it
+    EXPECT_EQ(entry.path().string().find(log.filename().string() + "."), std::string::npos) << entry.path();
+  // --cable wins over the scenario's; without either the summary says what was assumed.
+  r = cli("check '" + vcd.string() + "'" + signals + " --encoder '" + scenario + "' --cable 25");
+  EXPECT_NE(r.out.find("  cable 25 m: "), std::string::npos) << r.out;
+  r = cli("check '" + vcd.string() + "'" + signals);
+  EXPECT_NE(r.out.find("cable not given (--cable): taken as 0 m"), std::string::npos) << r.out;
+  for (const auto& p : {vcd, log}) fs::remove(p);
 }
 
 TEST(CheckCapture, ReportsProgressThroughTheFile) {

@@ -8,7 +8,9 @@
 
 #include <boost/program_options.hpp>
 #include <charconv>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <chrono>
 #include <filesystem>
 #include <future>
@@ -128,15 +130,15 @@ const char* const kCheckHelp =
     "name an RTL master's data_out, data_in and data_oe (at the master: --cable is needed).\n"
     "--power names the encoder's supply (HIGH while powered): after each switch-on it shows, the\n"
     "power-on conditions of 2.3.3 are judged again.\n"
-    "--log writes the decoded frames, --junit a\n"
-    "test case per row of the timing table and capture; with several captures --json holds\n"
-    "{\"captures\": [...]}.\n"
+    "--log writes the decoded frames as they are found, --junit a test case per row of the timing\n"
+    "table and capture; with several captures --json holds {\"captures\": [...]}, an unreadable\n"
+    "one as {\"file\", \"error\"}. A scenario given as --encoder also gives its cable.\n"
     "Each finding counts against the spec envelope (what any compliant encoder may do), the\n"
     "declared encoder, or both; the verdict line says which. A limit closer to the measured value\n"
     "than the capture's resolution (the sample period of .sr and CSV; VCD times are exact unless\n"
     "--resolution says otherwise) is undecided, never passed or failed.\n"
     "Exit status: 0 when every row conforms, 1 when one is broken or undecided, 2 for bad input\n"
-    "or usage.\n";
+    "(a capture that cannot be read, or in which CLOCK never begins a frame) or usage.\n";
 
 enum class Command { Run, Sweep, Validate, Diagram, Check, Checks };
 
@@ -226,6 +228,44 @@ std::optional<std::uint64_t> parse_uint(const std::string& text) {
 
 // Written next to its place and renamed into it: a reader never sees half a file, and an
 // interrupted run leaves the previous file (or none).
+// An output written piece by piece: to stdout for "-", straight to a pipe or device, else to a
+// part file renamed over PATH by commit(); a part file not committed is removed.
+class StreamedFile {
+ public:
+  explicit StreamedFile(const std::string& path) : path_(path) {
+    if (path == "-") return;
+    std::error_code status_error;
+    const auto status = std::filesystem::status(path, status_error);
+    const bool special = std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
+    if (!special) part_ = path + ".part-" + std::to_string(::getpid());
+    file_.open(special ? path : part_, std::ios::binary);
+    if (!file_) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
+  }
+  StreamedFile(const StreamedFile&) = delete;
+  StreamedFile& operator=(const StreamedFile&) = delete;
+  ~StreamedFile() {
+    if (part_.empty()) return;
+    std::error_code ignored;
+    std::filesystem::remove(part_, ignored);
+  }
+  std::ostream& stream() { return path_ == "-" ? std::cout : file_; }
+  void commit() {
+    stream().flush();
+    if (!stream()) throw std::runtime_error("cannot write '" + path_ + "'");
+    if (part_.empty()) return;
+    file_.close();
+    std::error_code error;
+    std::filesystem::rename(part_, path_, error);
+    if (error) throw std::runtime_error("cannot write '" + path_ + "': " + error.message());
+    part_.clear();
+  }
+
+ private:
+  std::string path_;
+  std::string part_;
+  std::ofstream file_;
+};
+
 void write_file(const std::string& path, const std::string& text) {
   std::error_code status_error;
   const auto status = std::filesystem::status(path, status_error);
@@ -643,7 +683,8 @@ int diagram_command(const po::variables_map& vm) {
 
 // The declared encoder of a check: a scenario's (its line's transceivers included in the delay
 // at the connector) or a profile's with the model's transceivers.
-checker::EncoderDeclaration encoder_declaration_file(const std::string& path) {
+// A scenario also gives its cable (to `cable`); a profile has none.
+checker::EncoderDeclaration encoder_declaration_file(const std::string& path, std::optional<double>& cable) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open the encoder declaration for reading");
   const auto j = nlohmann::json::parse(in, nullptr, false);
@@ -652,6 +693,7 @@ checker::EncoderDeclaration encoder_declaration_file(const std::string& path) {
     const auto s = scenarios::load_scenario_file(path);
     auto d = scenarios::declared_encoder(s.encoder);
     d.output_delay = s.line.encoder.receiver_delay + s.encoder.output_delay + s.line.encoder.driver_delay;
+    cable = s.line.cable_length_m;
     return d;
   }
   slave::EncoderParams p;
@@ -719,7 +761,8 @@ int check_command(const po::variables_map& vm) {
     o.encoder = scenarios::declared_encoder(model);
     o.encoder.output_delay = lp.encoder.receiver_delay + model.output_delay + lp.encoder.driver_delay;
   }
-  if (const auto e = string_option(vm, "encoder")) o.encoder = encoder_declaration_file(*e);
+  std::optional<double> scenario_cable;
+  if (const auto e = string_option(vm, "encoder")) o.encoder = encoder_declaration_file(*e, scenario_cable);
   std::optional<sim::Time> clock_to_data;
   if (!check_duration(vm, "clock-to-data", sim::us(10), clock_to_data)) return kBadInput;
   if (clock_to_data) o.encoder.output_delay = *clock_to_data;
@@ -748,6 +791,7 @@ int check_command(const po::variables_map& vm) {
     }
     o.cable_m = metres;
   }
+  if (!o.cable_m) o.cable_m = scenario_cable;  // --encoder SCENARIO.json: its line's cable
   if (!check_duration(vm, "t-d", sim::us(100), o.t_d)) return kBadInput;
   if (o.t_d && o.at != scenarios::CaptureCheckOptions::At::Master) {
     std::cerr << "endatsim check: --t-d is the round trip at the master's connector: it needs --at master\n";
@@ -780,11 +824,17 @@ int check_command(const po::variables_map& vm) {
       std::cerr << "\r" << current << ": " << read * 100 / total << " %" << std::flush;
     };
   std::vector<scenarios::CaptureCheckResult> results;
-  bool bad_input = false, conforms = true;
-  std::string logs;
+  std::vector<scenarios::CaptureReadError> unreadable;
+  bool conforms = true;
+  // The log is streamed frame by frame while each capture is read (memory stays bounded on a
+  // long capture), into a file that replaces the old one only when the whole check is done.
+  std::optional<StreamedFile> log_file;
+  if (log) log_file.emplace(*log);
   for (const auto& file : files) {
     o.file = file;
     current = file;
+    if (log_file && files.size() > 1) log_file->stream() << "# " << file << "\n";
+    if (log_file) o.on_frame = [&](const checker::WireFrame& f) { log_file->stream() << scenarios::frame_log_line(f); };
     try {
       results.push_back(scenarios::check_capture(o));
       if (progress_shown) std::cerr << "\r\033[K" << std::flush;
@@ -793,30 +843,36 @@ int check_command(const po::variables_map& vm) {
       if (progress_shown) std::cerr << "\n";
       progress_shown = false;
       std::cerr << "endatsim check: " << e.what() << "\n";
-      bad_input = true;
+      if (log_file) log_file->stream() << "# " << file << ": not judged: " << e.what() << "\n";
+      unreadable.push_back({file, e.what()});
       continue;
     }
     const auto& r = results.back();
     conforms = conforms && r.conforms();
-    if (files.size() > 1) logs += "# " + r.file + "\n";
-    logs += scenarios::capture_log(r);
     if (vm.count("quiet") == 0 || !r.conforms()) scenarios::write_capture_summary(std::cout, r, vm.count("verbose") != 0);
   }
   if (json) {
     if (files.size() == 1 && results.size() == 1) {
       write_file(*json, scenarios::capture_json(results.front()).dump(2) + "\n");
     } else {
+      // Every capture named, in order: a judged one, or one that could not be read.
       nlohmann::json all = nlohmann::json::array();
-      for (const auto& r : results) all.push_back(scenarios::capture_json(r));
+      auto judged = results.begin();
+      auto bad = unreadable.begin();
+      for (const auto& file : files) {
+        if (bad != unreadable.end() && bad->file == file) {
+          all.push_back({{"file", file}, {"error", bad->message}});
+          ++bad;
+        } else if (judged != results.end()) {
+          all.push_back(scenarios::capture_json(*judged++));
+        }
+      }
       write_file(*json, nlohmann::json{{"captures", all}}.dump(2) + "\n");
     }
   }
-  if (junit) write_file(*junit, scenarios::junit_xml(results));
-  if (log) {
-    if (*log == "-") std::cout << logs;
-    else write_file(*log, logs);
-  }
-  if (bad_input) return kBadInput;
+  if (junit) write_file(*junit, scenarios::junit_xml(results, unreadable));
+  if (log_file) log_file->commit();
+  if (!unreadable.empty()) return kBadInput;
   return conforms ? kPass : kFail;
 }
 
