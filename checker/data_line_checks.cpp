@@ -285,6 +285,7 @@ void TimingChecker::check_delay_tolerance(const StartBitInFlight& start, Time t_
   judge(protocol::check::row_index(check::kDataDelayTolerance));
   const Time error = start.t_d_used > t_d ? start.t_d_used - t_d : t_d - start.t_d_used;
   const Time tenth = start.period * limit::kDataDelayTolerancePercent / 100;
+  note(check::kDataDelayTolerance, at_most(error, tenth, Time::zero()));
   if (error > tenth)
     report({std::string(check::kDataDelayTolerance), "2.3 (data delay time within +/-10 % of the period)",
             ObservationPoint::MasterPins, kernel_.now(), start.frame, start.clock, format_time(error),
@@ -390,8 +391,10 @@ void TimingChecker::check_start_bit_polling(const PinFrame& f) {
     return;
   judge(protocol::check::row_index(check::kCalculationTime));
   const Time polled = f.rising.back() - f.fe1;
-  const Decision to_encoder = at_least(polled, encoder_.t_cal, params_.resolution);
-  const Decision to_envelope = at_least(polled, limit::kCalculationTimeMax, params_.resolution);
+  const Judgement to_encoder = at_least(polled, encoder_.t_cal, params_.resolution);
+  const Judgement to_envelope = at_least(polled, limit::kCalculationTimeMax, params_.resolution);
+  note(check::kCalculationTime, to_envelope);
+  note(check::kCalculationTime, to_encoder, LimitOf::ThisEncoder);
   if (to_envelope == Decision::Pass) return;
   const bool encoder_fails = to_encoder != Decision::Pass;
   const Decision shown = encoder_fails ? to_encoder : to_envelope;
@@ -421,6 +424,11 @@ void TimingChecker::check_clock_count(const PinFrame& f) {
   const unsigned last_bit = start_clock_ + f.header.answer_bits - 1;
   const auto clocks = static_cast<unsigned>(f.rising.size());
   const std::string spec = "2.3.1 and 2.4.1 (the number of clock pulses)";
+  note(check::kClockCount, clocks, last_bit, Bound::AtLeast, Unit::Count);
+  if ((v22 || parameter_frame) && !f.header.supplement)
+    note(check::kClockCount, clocks, last_bit + 1, Bound::AtMost, Unit::Count);
+  else if (f.header.supplement && f.header.supplement_last_clock != 0)
+    note(check::kClockCount, clocks, f.header.supplement_last_clock, Bound::AtMost, Unit::Count);
   if (clocks < last_bit)
     report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
             clocks, std::to_string(clocks) + " pulses", ">= " + std::to_string(last_bit), Severity::Error,

@@ -13,26 +13,44 @@ namespace endatsim::checker {
 
 enum class Decision : std::uint8_t { Pass, Fail, Undecided };
 
+enum class Bound : std::uint8_t { AtLeast, MoreThan, AtMost };
+
+// A decision with what it was made from, so that the conformance table can show the worst
+// measured value of a row and its margin to the limit also when every occasion passed.
+struct Judgement {
+  Decision decision = Decision::Pass;
+  sim::Time measured{0};
+  sim::Time limit{0};
+  Bound bound = Bound::AtLeast;
+  constexpr operator Decision() const { return decision; }  // NOLINT: a judgement is read as its decision
+  // How far inside the limit the measured value lies; negative outside it.
+  constexpr sim::Time margin() const { return bound == Bound::AtMost ? limit - measured : measured - limit; }
+};
+
 // measured >= min
-constexpr Decision at_least(sim::Time measured, sim::Time min, sim::Time resolution) {
-  if (resolution == sim::Time::zero()) return measured >= min ? Decision::Pass : Decision::Fail;
-  if (measured - resolution >= min) return Decision::Pass;
-  if (measured + resolution <= min) return Decision::Fail;
-  return Decision::Undecided;
+constexpr Judgement at_least(sim::Time measured, sim::Time min, sim::Time resolution) {
+  const auto judged = [&](Decision d) { return Judgement{d, measured, min, Bound::AtLeast}; };
+  if (resolution == sim::Time::zero()) return judged(measured >= min ? Decision::Pass : Decision::Fail);
+  if (measured - resolution >= min) return judged(Decision::Pass);
+  if (measured + resolution <= min) return judged(Decision::Fail);
+  return judged(Decision::Undecided);
 }
 
 // measured > min
-constexpr Decision more_than(sim::Time measured, sim::Time min, sim::Time resolution) {
-  if (resolution == sim::Time::zero()) return measured > min ? Decision::Pass : Decision::Fail;
-  return at_least(measured, min, resolution);
+constexpr Judgement more_than(sim::Time measured, sim::Time min, sim::Time resolution) {
+  Judgement j = at_least(measured, min, resolution);
+  if (resolution == sim::Time::zero()) j.decision = measured > min ? Decision::Pass : Decision::Fail;
+  j.bound = Bound::MoreThan;
+  return j;
 }
 
 // measured <= max
-constexpr Decision at_most(sim::Time measured, sim::Time max, sim::Time resolution) {
-  if (resolution == sim::Time::zero()) return measured <= max ? Decision::Pass : Decision::Fail;
-  if (measured + resolution <= max) return Decision::Pass;
-  if (measured - resolution >= max) return Decision::Fail;
-  return Decision::Undecided;
+constexpr Judgement at_most(sim::Time measured, sim::Time max, sim::Time resolution) {
+  const auto judged = [&](Decision d) { return Judgement{d, measured, max, Bound::AtMost}; };
+  if (resolution == sim::Time::zero()) return judged(measured <= max ? Decision::Pass : Decision::Fail);
+  if (measured + resolution <= max) return judged(Decision::Pass);
+  if (measured - resolution >= max) return judged(Decision::Fail);
+  return judged(Decision::Undecided);
 }
 
 }  // namespace endatsim::checker

@@ -15,10 +15,14 @@ namespace {
 constexpr std::size_t kPulsesKept = 16;
 const std::string kRequestCycle = "the wake-up request cycle";
 
-Decision both(Decision a, Decision b) {
-  if (a == Decision::Fail || b == Decision::Fail) return Decision::Fail;
-  if (a == Decision::Undecided || b == Decision::Undecided) return Decision::Undecided;
-  return Decision::Pass;
+// A value within a range: the bound it came nearest to, failed if either fails.
+checker::Judgement both(const checker::Judgement& a, const checker::Judgement& b) {
+  checker::Judgement nearer = a.margin() <= b.margin() ? a : b;
+  if (a.decision == Decision::Fail || b.decision == Decision::Fail)
+    nearer.decision = Decision::Fail;
+  else if (a.decision == Decision::Undecided || b.decision == Decision::Undecided)
+    nearer.decision = Decision::Undecided;
+  return nearer;
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ class PowerOnSequence {
     std::string measured;
     std::string bound;
     std::string message;
-    Decision decision = Decision::Pass;
+    checker::Judgement decision;  // the measured value against the limit it came nearest to
   };
   using Judgement = std::vector<Finding>;
 

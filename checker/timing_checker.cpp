@@ -44,9 +44,7 @@ std::string_view to_string(Severity s) {
 }
 
 void TimingChecker::report(Finding f, std::string_view field) {
-  const auto& names = protocol::check::kAll;
-  const auto row = static_cast<std::size_t>(std::find(names.begin(), names.end(), f.check) - names.begin());
-  Tally& t = tally_.at(row);
+  Tally& t = tally_.at(protocol::check::row_of(f.check));
   const std::uint64_t kept = t.errors + t.warnings + t.undecided;
   ++(f.severity == Severity::Error ? t.errors : f.severity == Severity::Warning ? t.warnings : t.undecided);
   if (f.severity == Severity::Error) {
@@ -68,6 +66,11 @@ bool TimingChecker::report_unless_passed(Decision d, Finding f, std::string_view
   }
   report(std::move(f), field);
   return true;
+}
+
+bool TimingChecker::report_unless_passed(const Judgement& j, Finding f, std::string_view field) {
+  note(f.check, j, f.verdict == Verdict::ThisEncoder ? LimitOf::ThisEncoder : LimitOf::Spec);
+  return report_unless_passed(j.decision, std::move(f), field);
 }
 
 std::string_view to_string(Verdict v) {
@@ -128,6 +131,7 @@ std::vector<RowConformance> TimingChecker::conformance() const {
     } else {
       c.reason = "no frame or event it applies to";
     }
+    c.worst = margins_.worst(out.size());
     if (row.check == check::kStartDelay && params_.t_st_reduced_for_cable)
       c.relaxed_by = "t_st_reduced_for_cable: a t_ST shorter than note 8's 2 us accepted for a cable under 100 m";
     out.push_back(std::move(c));
@@ -151,6 +155,7 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
       settings_(encoder.short_t_m_selected),
       judged_(protocol::timing_rows().size(), 0),
       tally_(protocol::timing_rows().size()),
+      margins_(protocol::timing_rows().size()),
       power_on_(params.resolution) {
   if (encoder.switched_on_in_run) power_on_.switched_on(kernel.now());
   line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
@@ -212,6 +217,7 @@ void TimingChecker::check_measurement_spread(const PinFrame& f) {
     report({std::string(check::kMeasurementSpread), spec, ObservationPoint::MasterPins, f.fe1, f.header.index,
             std::nullopt, std::to_string(j->measurements) + " measurement(s)", ">= 3", Severity::Error,
             "the master compensates after fewer than three measurements of t_D"});
+  note(check::kMeasurementSpread, at_most(j->deviation, j->limit, params_.resolution));
   if (j->consistent) return;
   const std::string which = "measurement " + std::to_string(j->worst + 1) + " of " + std::to_string(j->measurements) +
                             " (frame " + std::to_string(j->worst_frame) + ")";
@@ -469,17 +475,25 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
     judge(protocol::check::row_index(check::kPulseHigh));
   }
   const Time r = params_.resolution;
+  constexpr std::size_t low_row = protocol::check::row_index(check::kPulseLow);
+  constexpr std::size_t high_row = protocol::check::row_index(check::kPulseHigh);
+  const auto note_width = [this](std::size_t row, const Judgement& j, LimitOf of = LimitOf::Spec) {
+    margins_.note(row, j, of);
+    return j.decision;
+  };
   for (std::size_t k = 0; k < f.rising.size() && k < f.falling.size(); ++k) {
     const Time w = f.rising[k] - f.falling[k];
-    low.add(at_least(w, min, r), w, static_cast<unsigned>(k + 1), f.falling[k], true);
+    low.add(note_width(low_row, at_least(w, min, r)), w, static_cast<unsigned>(k + 1), f.falling[k], true);
     // t_LO maximum, "see encoder specifications"; with compensation the first LOW phase is t_ST.
     if (encoder_.t_lo_max && (k > 0 || !f.header.compensated))
-      long_low.add(at_most(w, *encoder_.t_lo_max, r), w, static_cast<unsigned>(k + 1), f.falling[k], false);
+      long_low.add(note_width(low_row, at_most(w, *encoder_.t_lo_max, r), LimitOf::ThisEncoder), w,
+                   static_cast<unsigned>(k + 1), f.falling[k], false);
   }
   for (std::size_t k = 0; k + 1 < f.falling.size() && k < f.rising.size(); ++k) {
     const Time w = f.falling[k + 1] - f.rising[k];
-    high.add(at_least(w, min, r), w, static_cast<unsigned>(k + 1), f.rising[k], true);
-    long_high.add(at_most(w, limit::kPulseHighMax, r), w, static_cast<unsigned>(k + 1), f.rising[k], false);
+    high.add(note_width(high_row, at_least(w, min, r)), w, static_cast<unsigned>(k + 1), f.rising[k], true);
+    long_high.add(note_width(high_row, at_most(w, limit::kPulseHighMax, r)), w, static_cast<unsigned>(k + 1),
+                  f.rising[k], false);
   }
   const auto emit = [&](const Worst& w, std::string_view name, const std::string& bound, const std::string& s,
                         const char* what, Verdict verdict = Verdict::Both) {
@@ -508,7 +522,12 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   const Time at = f.rising[1];
   judge(f.header.measurement ? protocol::check::row_index(check::kMeasurementClock) : protocol::check::row_index(check::kClockFrequency));
   if (measures_delay(f.header)) measurement_seen_ = true;
+  const auto note_range = [&](std::string_view row, sim::Hertz lo, sim::Hertz hi) {
+    note(row, fc, lo, Bound::AtLeast, Unit::Frequency);
+    note(row, fc, hi, Bound::AtMost, Unit::Frequency);
+  };
   if (f.header.measurement) {
+    note_range(check::kMeasurementClock, limit::kMeasurementFcMin, limit::kMeasurementFcMax);
     if (fit.below(limit::kMeasurementFcMin, tol) || fit.above(limit::kMeasurementFcMax, tol))
       report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
               ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc),
@@ -516,7 +535,10 @@ void TimingChecker::check_frequency(const PinFrame& f) {
     return;
   }
   const bool short_tm = f.header.command_type == protocol::EndatVersion::V2_2 && settings_.short_t_m();
-  if (short_tm) judge(protocol::check::row_index(check::kShortRecoveryClock));
+  if (short_tm) {
+    judge(protocol::check::row_index(check::kShortRecoveryClock));
+    note(check::kShortRecoveryClock, fc, limit::kShortRecoveryTimeFcMin, Bound::AtLeast, Unit::Frequency);
+  }
   if (short_tm &&
       fit.below(limit::kShortRecoveryTimeFcMin, tol))
     report({std::string(check::kShortRecoveryClock), "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
@@ -528,6 +550,8 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   const sim::Hertz max = compensated ? limit::kFcMaxWithCompensation : limit::kFcMaxWithoutCompensation;
   const std::string range = format_frequency(limit::kFcMin) + " .. " + format_frequency(max);
   const std::string spec = compensated ? "2.3.2 f_c (with delay compensation)" : "2.3.2 f_c (without delay compensation)";
+  // The worst case against the bound a violation would break (above 8 MHz is a warning only).
+  note_range(check::kClockFrequency, limit::kFcMin, compensated ? limit::kFcMaxSpecial : max);
   if (fit.below(limit::kFcMin, tol) || (fit.above(max, tol) && (!compensated || fit.above(limit::kFcMaxSpecial, tol)))) {
     const std::string applied = compensated ? format_frequency(limit::kFcMin) + " .. " + format_frequency(limit::kFcMaxSpecial) +
                                                   " (above 8 MHz only for special applications)"
@@ -561,8 +585,9 @@ void TimingChecker::check_frequency_for_cable(const PinFrame& f, const FittedFre
   const auto tol = params_.f_c_tolerance_ppm;
   if (min <= sim::period_of(limit::kFcMaxWithoutCompensation) || fit.above(limit::kFcMaxWithoutCompensation, tol))
     return;
-  if (!fit.period_below(min, tol)) return;
   const auto fc = fit.hertz();
+  note(check::kClockFrequency, fc, sim::frequency_of(min), Bound::AtMost, Unit::Frequency);
+  if (!fit.period_below(min, tol)) return;
   report({std::string(check::kClockFrequency), "2.1.1 note 4, Figure 2 (without delay compensation: f_c <= 1 / (2 t_D(L)))",
           ObservationPoint::EncoderPins, f.rising[1], f.header.index, std::nullopt,
           format_frequency(fc) + " over " + format_length(cable), "period >= 2 t_D = " + format_time(min),
@@ -585,6 +610,11 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
             std::nullopt, format_frequency(fc), "<= " + format_frequency(bound), Severity::Error, std::move(message),
             Verdict::ThisEncoder});
   };
+  if (encoder_.f_c_max)
+    note(check::kClockFrequency, fc, *encoder_.f_c_max, Bound::AtMost, Unit::Frequency, LimitOf::ThisEncoder);
+  if (encoder_.endat21_only)
+    note(check::kClockFrequency, fc, limit::kFcMaxWithoutCompensation, Bound::AtMost, Unit::Frequency,
+         LimitOf::ThisEncoder);
   if (encoder_.f_c_max && fit.above(*encoder_.f_c_max, tol))
     exceeds(*encoder_.f_c_max, "3.9.19 word 25 (the encoder's maximum clock frequency)",
             "clock above the maximum this encoder declares in word 25");
@@ -635,8 +665,10 @@ void TimingChecker::check_recovery(const PinFrame& next) {
   const Time declared = (short_tm && encoder_.t_m_short ? *encoder_.t_m_short : encoder_.t_m) + encoder_.t_r;
   const Time envelope = (short_tm ? limit::kShortRecoveryTimeMax : limit::kRecoveryTimeMax) + limit::kRecoveryTime2Min;
   const Time gap = next.fe1 - last_rise;
-  const Decision to_encoder = at_least(gap, declared, params_.resolution);
-  const Decision to_envelope = at_least(gap, envelope, params_.resolution);
+  const Judgement to_encoder = at_least(gap, declared, params_.resolution);
+  const Judgement to_envelope = at_least(gap, envelope, params_.resolution);
+  note(check::kRecovery, to_envelope);
+  note(check::kRecovery, to_encoder, LimitOf::ThisEncoder);
   if (to_encoder == Decision::Pass && to_envelope == Decision::Pass) return;
   // A failed bound is reported; an undecided one only where nothing failed.
   const bool failed = to_encoder == Decision::Fail || to_envelope == Decision::Fail;
@@ -690,6 +722,13 @@ void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
     }
   }
   const bool next_ok = clock >= master_rising_.size() || arrival(clock + 1) - now >= params_.sample_hold;
+  constexpr std::size_t window_row = protocol::check::row_index(check::kSamplingWindow);
+  if (clock <= master_rising_.size()) {  // how far inside its bit's window the master sampled
+    margins_.note(window_row, at_least(now - arrival(clock), params_.sample_setup, Time::zero()));
+    if (clock < master_rising_.size())
+      margins_.note(window_row, at_most(now - arrival(clock), arrival(clock + 1) - arrival(clock) - params_.sample_hold,
+                                        Time::zero()));
+  }
   if (latest == clock && next_ok) return;
   sampling_reported_ = true;
   const Time slot = clock < master_rising_.size() ? arrival(clock + 1) - arrival(clock) : sim::period_of(frame.f_c);

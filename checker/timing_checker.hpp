@@ -13,6 +13,7 @@
 #include "checker/declarations.hpp"
 #include "checker/delay_measurements.hpp"
 #include "checker/decision.hpp"
+#include "checker/row_margins.hpp"
 #include "checker/frame_decoder.hpp"
 #include "checker/power_on.hpp"
 #include "protocol/timing.hpp"
@@ -79,6 +80,7 @@ struct RowConformance {
   std::uint64_t undecided = 0;   // within the capture's resolution of the limit
   std::string reason;            // for a row that was not judged
   std::string relaxed_by;        // a named option that loosened the row's limit in this run
+  std::vector<WorstCase> worst;  // the measured value nearest to (or furthest past) each limit
 };
 std::string_view to_string(RowConformance::Status s);
 
@@ -253,6 +255,16 @@ class TimingChecker final {
   void report(Finding f, std::string_view field = {});
   // Reports `f` if `d` fails, as undecided if it is undecided at the resolution; true if reported.
   bool report_unless_passed(Decision d, Finding f, std::string_view field = {});
+  // The same, and notes the measured value against the limit for the row's worst case.
+  bool report_unless_passed(const Judgement& j, Finding f, std::string_view field = {});
+  // The worst case of the row named `check` (a time, frequency or count against its limit).
+  void note(std::string_view check, const Judgement& j, LimitOf of = LimitOf::Spec) {
+    margins_.note(protocol::check::row_of(check), j, of);
+  }
+  void note(std::string_view check, std::int64_t measured, std::int64_t limit, Bound bound, Unit unit,
+            LimitOf of = LimitOf::Spec) {
+    margins_.note(protocol::check::row_of(check), measured, limit, bound, unit, of);
+  }
   // A row was evaluated once (whatever its verdict), for the conformance table.
   // Rows that are evaluated per sample count once per frame (word).
   void judge(std::size_t row) { ++judged_[row]; }
@@ -335,6 +347,7 @@ class TimingChecker final {
     std::uint64_t errors = 0, warnings = 0, undecided = 0;
   };
   std::vector<Tally> tally_;  // findings per row, kept or not
+  RowMargins margins_;        // the worst case of each row, passed or not
   PowerOnSequence power_on_;
   bool measurement_seen_ = false;  // a delay-measurement frame (2.1.2) on the wires
   Conclusion conclusion_;

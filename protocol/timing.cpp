@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace endatsim::protocol {
 
@@ -23,6 +25,12 @@ Time start_delay(Hertz f_c) {
 }
 
 }  // namespace limit
+
+std::size_t check::row_of(std::string_view name) {
+  const auto it = std::find(kAll.begin(), kAll.end(), name);
+  if (it == kAll.end()) throw std::out_of_range("not a check name: " + std::string(name));
+  return static_cast<std::size_t>(it - kAll.begin());
+}
 
 std::string_view to_string(Evidence e) {
   return e == Evidence::Wires ? "wires" : "master's declaration";

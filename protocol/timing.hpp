@@ -147,6 +147,8 @@ consteval std::size_t row_index(std::string_view name) {
     if (kAll[i] == name) return i;
   throw "not a check name";
 }
+// The row of a check name known only at run time; throws std::out_of_range for another name.
+std::size_t row_of(std::string_view name);
 }  // namespace check
 
 // What a row needs to be judged: the wires alone, or also what the master declares about

@@ -174,6 +174,11 @@ void write_conformance(std::ostream& out, const std::vector<checker::RowConforma
       out << c.judged << " / " << c.violations << " / " << c.warnings;
       if (c.undecided != 0) out << " / " << c.undecided;
       out << (c.violations != 0 ? "  BROKEN" : c.undecided != 0 ? "  UNDECIDED" : "  ok");
+      for (std::size_t k = 0; k < c.worst.size(); ++k) {
+        const checker::WorstCase& w = c.worst[k];
+        out << (k == 0 ? "; worst " : "; ") << w.measured << " against " << w.limit << " ("
+            << checker::to_string(w.of) << "), margin " << w.margin;
+      }
     } else {
       out << checker::to_string(c.status) << " (" << c.reason << ")";
     }
@@ -188,6 +193,9 @@ nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows
                      {"violations", c.violations}, {"warnings", c.warnings}, {"undecided", c.undecided}};
     if (!c.reason.empty()) j["reason"] = c.reason;
     if (!c.relaxed_by.empty()) j["relaxed_by"] = c.relaxed_by;
+    for (const checker::WorstCase& w : c.worst)
+      j["worst"].push_back({{"limit_of", std::string(checker::to_string(w.of))}, {"measured", w.measured},
+                            {"limit", w.limit}, {"margin", w.margin}, {"inside", w.inside}});
     out.push_back(j);
   }
   return out;

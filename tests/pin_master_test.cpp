@@ -244,6 +244,35 @@ TEST(PinMaster, TheConformanceTableSaysWhatWasJudgedAndWhatCouldNotBe) {
   EXPECT_EQ(broken.row(checker::check::kClockFrequency).warnings, 3U);
 }
 
+// Each judged row shows its worst case and the margin to its limit, also when it passes: t_ST
+// exactly at note 8's 1 us is inside by 0 ps, one picosecond less is outside by 1 ps.
+TEST(PinMaster, TheConformanceTableShowsEachRowsWorstValueAndItsMargin) {
+  const auto exact = run(position_reads_22(3, us(100), MHz(16), us(1)), quick_encoder(), 10);
+  const auto& t_st = exact.row(checker::check::kStartDelay);
+  ASSERT_EQ(t_st.worst.size(), 1U);
+  EXPECT_EQ(t_st.worst[0].of, checker::LimitOf::Spec);
+  EXPECT_EQ(t_st.worst[0].measured, "1 us");
+  EXPECT_EQ(t_st.worst[0].limit, ">= 1 us");
+  EXPECT_EQ(t_st.worst[0].margin, "0 ps");
+  EXPECT_TRUE(t_st.worst[0].inside);
+  const auto short_by_1ps = run(position_reads_22(3, us(100), MHz(16), us(1) - ps(1)), quick_encoder(), 10);
+  const auto& broken = short_by_1ps.row(checker::check::kStartDelay);
+  ASSERT_EQ(broken.worst.size(), 1U);
+  EXPECT_EQ(broken.worst[0].margin, "-1 ps");
+  EXPECT_FALSE(broken.worst[0].inside);
+  // The waits between frames count against both limits: the envelope's t_m 30 us + t_R 500 ns and
+  // this encoder's; 100 us between frames leaves a margin to each.
+  const auto& recovery = exact.row(checker::check::kRecovery);
+  ASSERT_EQ(recovery.worst.size(), 2U);
+  EXPECT_EQ(recovery.worst[0].limit, ">= 30.5 us");
+  EXPECT_EQ(recovery.worst[1].of, checker::LimitOf::ThisEncoder);
+  EXPECT_TRUE(recovery.worst[0].inside);
+  // Rows judged on frequency and counts show hertz and clocks; rows that were not judged, nothing.
+  EXPECT_NE(exact.row(checker::check::kClockFrequency).worst.at(0).measured.find("MHz"), std::string::npos);
+  EXPECT_NE(exact.row(checker::check::kClockCount).worst.at(0).limit.find("clocks"), std::string::npos);
+  EXPECT_TRUE(exact.row(checker::check::kTimeBetweenCycles).worst.empty());
+}
+
 TEST(PinMaster, ACleanSixteenMegahertzMasterWithOneMicrosecondTstIsClean) {
   const auto r = run(position_reads_22(5, us(100), MHz(16), us(1)), quick_encoder(), 10);
   EXPECT_EQ(r.count(checker::check::kClockFrequency), 5U) << "16 MHz is only a warning (special applications)";
