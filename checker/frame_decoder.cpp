@@ -6,6 +6,7 @@
 #include "protocol/additional_data.hpp"
 #include "protocol/crc.hpp"
 #include "protocol/memory_area.hpp"
+#include "protocol/parameters.hpp"
 #include "protocol/timing.hpp"
 
 namespace endatsim::checker {
@@ -83,6 +84,7 @@ void FrameDecoder::begin_frame(Time t) {
 void FrameDecoder::end_frame() {
   // 2.7: a reset ends every selection of additional data.
   if (frame_.command == MC::EncoderReceiveReset) selected_[0] = selected_[1] = false;
+  follow_parameter_reads();
   finished_.push_back(frame_);
   in_frame_ = false;
 }
@@ -183,6 +185,37 @@ void FrameDecoder::decode_mode_command() {
   shifted_ = 0;
   seen_low_ = false;
   state_ = info.payload_bits != 0 ? State::Payload : State::Hunt;
+}
+
+// 3.5.6: word 13 of the encoder manufacturer's parameters (memory area A1h, 3.5) gives the clock
+// pulses of the position value. A master that reads it, as masters do before their first
+// position, shows the width of every answer after it; it overrides the declared width. Only
+// answers the encoder acknowledged with a good CRC count, and a selection lasts until the next.
+void FrameDecoder::follow_parameter_reads() {
+  if (!frame_.command || !frame_.answer_complete || !frame_.crc_ok) return;
+  const auto address = [](std::uint32_t bits) { return static_cast<std::uint8_t>(bits >> 16); };
+  switch (*frame_.command) {
+    case MC::SelectionOfMemoryArea:
+      if (frame_.payload) area_ = address(*frame_.payload);
+      return;
+    case MC::EncoderSendPositionValuesAndSelectionOfMemoryArea:
+      if (frame_.supplement && !protocol::selects_additional_data(address(*frame_.supplement)))
+        area_ = address(*frame_.supplement);
+      return;
+    case MC::EncoderSendParameters: {
+      if (area_ != protocol::info(protocol::MemoryArea::Manufacturer1).mrs || !frame_.payload ||
+          address(*frame_.payload) != protocol::word::kPositionFormat)
+        return;
+      const auto word = static_cast<std::uint16_t>(frame_.fields[static_cast<std::size_t>(protocol::Field::Parameter)]);
+      const unsigned bits = protocol::parameters::decode_position_bits(word);
+      if (bits == 0) return;  // not a width: keep what is known
+      params_.position_bits = bits;
+      frame_.learnt_position_bits = bits;
+      width_learnt_at_ = frame_.index;
+      return;
+    }
+    default: return;
+  }
 }
 
 unsigned FrameDecoder::expected_additional_data() const { return (selected_[0] ? 1U : 0U) + (selected_[1] ? 1U : 0U); }

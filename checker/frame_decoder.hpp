@@ -63,6 +63,7 @@ struct WireFrame {
   unsigned supplement_last_clock = 0;            // the rising edge that took its last bit
   unsigned continuous_words = 0;                 // further words of a continuous clock
   bool complete = false;                         // every bit the frame needs was clocked
+  unsigned learnt_position_bits = 0;             // word 13 read here: the width from the next frame on
 };
 
 class FrameDecoder {
@@ -81,6 +82,11 @@ class FrameDecoder {
   std::vector<WireFrame> take_finished();
   // Additional data 1 and 2 as the selections seen so far leave them (2.4.2.2).
   bool selected(unsigned which) const { return selected_[which]; }
+  // The position's width the decoder reads answers with: as declared, until a read of word 13
+  // shows the encoder's own (3.5.6).
+  unsigned position_bits() const { return params_.position_bits; }
+  // The frame (index) whose read of word 13 set position_bits(), if any.
+  std::optional<std::uint64_t> width_learnt_at() const { return width_learnt_at_; }
 
  private:
   enum class State : std::uint8_t { Header, Payload, Hunt, Answer, MoreData, SupplementHunt, Supplement, Done };
@@ -101,6 +107,7 @@ class FrameDecoder {
   void begin_answer(unsigned clock);
   void decode_answer(unsigned last_clock);
   void note_selection();
+  void follow_parameter_reads();
   unsigned expected_additional_data() const;
 
   DecoderParams params_;
@@ -123,6 +130,8 @@ class FrameDecoder {
   unsigned release_clock_ = 0;
   protocol::Layout layout_{{}};
   bool selected_[2] = {false, false};
+  std::optional<std::uint8_t> area_;  // MRS code of the memory area selected last
+  std::optional<std::uint64_t> width_learnt_at_;
   std::vector<WireFrame> finished_;
 };
 

@@ -83,6 +83,10 @@ class Replay {
     for (auto& f : decoder_.take_finished()) {
       ++result_.frames_decoded;
       if (f.answer_complete && f.crc_ok) ++result_.frames_clean;
+      if (f.learnt_position_bits != 0) {
+        result_.position_bits = f.learnt_position_bits;
+        result_.position_bits_learnt_at = f.index;
+      }
       if (on_frame_) on_frame_(f);
       if (result_.frames.size() < kMaxFramesKept) result_.frames.push_back(std::move(f));
     }
@@ -206,6 +210,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   params.master_enable_observable = false;  // one DATA wire and the encoder's enable at most
   params.cable_length_m = o.cable_m.value_or(0);
   result.cable_m = *params.cable_length_m;
+  result.position_bits = o.encoder.position_bits;
   result.cable_given = o.cable_m.has_value();
   checker::EncoderDeclaration encoder = o.encoder;
   result.at = o.at;
@@ -293,6 +298,7 @@ std::string frame_log_line(const checker::WireFrame& f) {
         << " CRC " << (d.crc_ok ? "ok" : "BAD");
   if (f.supplement) out << ", supplement " << hex(*f.supplement >> 16, 2) << " " << hex(*f.supplement & 0xFFFF, 4);
   if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";
+  if (f.learnt_position_bits != 0) out << "; word 13: the position has " << f.learnt_position_bits << " bits";
   out << "\n";
   return out.str();
 }
@@ -311,6 +317,12 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
   if (r.frames_clean == 0)
     out << "  no frame had a complete answer with a good CRC: position, CRC, additional data and the rows timed "
            "from them were not judged; are these the right signals, and is --encoder's position width right?\n";
+  out << "  position " << r.position_bits << " bits";
+  if (r.position_bits_learnt_at)
+    out << ", from the read of word 13 in frame #" << *r.position_bits_learnt_at << " (frames before it with the "
+        << "declared width)\n";
+  else
+    out << " as declared (--encoder); a read of word 13 in the capture would show the encoder's own\n";
   if (r.cable_given)
     out << "  cable " << r.cable_m << " m: t_D's bound, t_ST beyond 100 m and f_c without compensation follow it\n";
   else
@@ -347,6 +359,7 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
       json ad = json::array();
       for (const auto& d : f.additional_data) ad.push_back({{"status", d.status}, {"data", d.data}, {"crc_ok", d.crc_ok}});
       j["additional_data"] = ad;
+      if (f.learnt_position_bits != 0) j["learnt_position_bits"] = f.learnt_position_bits;
     }
     if (f.supplement) j["supplement"] = *f.supplement;
     frames.push_back(j);
@@ -354,7 +367,8 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
   return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
-          {"frames_decoded", r.frames_decoded}, {"frames_clean", r.frames_clean},
+          {"frames_decoded", r.frames_decoded}, {"frames_clean", r.frames_clean}, {"position_bits", r.position_bits},
+          {"position_bits_learnt_at", r.position_bits_learnt_at ? json(*r.position_bits_learnt_at) : json(nullptr)},
           {"frames_not_kept", r.frames_decoded - r.frames.size()},
           {"cable_m", r.cable_given ? json(r.cable_m) : json(nullptr)},
           {"violations", violations_json(r.violations)}, {"findings_not_kept", r.findings_not_kept},

@@ -696,3 +696,49 @@ TEST(CheckCapture, TheSupplyShowsEachSwitchOnAndPowerOnIsJudgedAfterEach) {
   EXPECT_EQ(judged(r), 2U);
   for (const char* name : {"power_clean.vcd", "power_t3.vcd", "power_dip.vcd"}) fs::remove(temp(name));
 }
+
+// 3.5.6: the start-up routine reads word 13 (8019h: 25 bits) before its first position. A
+// capture checked with a wrong declared width (13 bits) is read with the width word 13 shows
+// from the frame after that read on, and says where it learnt it.
+TEST(CheckCapture, AReadOfWordThirteenSetsThePositionWidthForTheFramesAfterIt) {
+  const auto scenario =
+      scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/power_on_startup_routine.json");
+  const fs::path vcd = temp("word13.vcd");
+  run_to_vcd(scenario, vcd);
+  auto o = encoder_pins_of(scenario, vcd);
+  o.encoder.position_bits = 13;
+  const auto r = scenarios::check_capture(o);
+  EXPECT_EQ(r.position_bits, 25U);
+  ASSERT_TRUE(r.position_bits_learnt_at.has_value());
+  EXPECT_EQ(r.frames_clean + 1, r.frames_decoded);  // every answer read at its true width; #0 is the power-on pulse
+  std::size_t positions = 0;
+  for (const auto& f : r.frames) {
+    if (f.index <= *r.position_bits_learnt_at || !f.command ||
+        protocol::info(*f.command).answer != protocol::AnswerFormat::Position)
+      continue;
+    EXPECT_EQ(f.fields[static_cast<std::size_t>(protocol::Field::Position)], 123456U) << scenarios::frame_log_line(f);
+    ++positions;
+  }
+  EXPECT_GE(positions, 3U);  // the delay measurements and the three reads of the script
+  const auto& reading = r.frames.at(*r.position_bits_learnt_at);
+  EXPECT_EQ(reading.learnt_position_bits, 25U);
+  EXPECT_NE(scenarios::frame_log_line(reading).find("word 13: the position has 25 bits"), std::string::npos);
+  std::ostringstream summary;
+  scenarios::write_capture_summary(summary, r, false);
+  EXPECT_NE(summary.str().find("position 25 bits, from the read of word 13 in frame #" +
+                               std::to_string(*r.position_bits_learnt_at)),
+            std::string::npos)
+      << summary.str();
+  fs::remove(vcd);
+  // Without such a read the declared width stands, and the summary says so.
+  const auto plain = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat21_1mhz_10m.json");
+  run_to_vcd(plain, vcd);
+  const auto declared = scenarios::check_capture(encoder_pins_of(plain, vcd));
+  EXPECT_FALSE(declared.position_bits_learnt_at.has_value());
+  summary.str("");
+  scenarios::write_capture_summary(summary, declared, false);
+  EXPECT_NE(summary.str().find("position " + std::to_string(plain.encoder.position_bits) + " bits as declared"),
+            std::string::npos)
+      << summary.str();
+  fs::remove(vcd);
+}
