@@ -222,6 +222,12 @@ class TimingChecker final {
   double cable_length_m() const { return params_.cable_length_m.value_or(line_.params().cable_length_m); }
   void check_clock_count(const PinFrame& f);
   void check_start_bit_polling(const PinFrame& f);
+  struct PollingLimit {
+    std::string_view check, spec, symbol;
+    std::optional<Time> declared;  // this encoder's longest time, if declared
+    Time envelope;                 // the spec's maximum
+  };
+  void judge_polling(const PinFrame& f, Time from, const PollingLimit& limit);
   void check_time_between_cycles(const PinFrame& next, Time last_rise);
   // What t_ac needs of a frame, from the master's declaration or from the wires.
   struct AccessEvidence {

@@ -56,9 +56,10 @@ constexpr std::array kRows{
               "is LOW for this encoder's t_cal and the envelope's 1 ms",
               "encoder pins", E::Wires},
     TimingRow{check::kMemoryAccess, "t_ac", "Memory access time for read/write parameters", "2.3.2, 2.5.1, 2.6.1", "0",
-              "12 ms",
-              "2.1 parameter frames: the last payload bit to the acknowledgment's start bit; 2.2: Busy in additional "
-              "data 1 after the command supplement",
+              "12 ms (per encoder: the longer of encoder.t_ac_read and encoder.t_ac_write)",
+              "2.1 parameter frames: the last payload bit to the acknowledgment's start bit, and the master polls at "
+              "least that long (this encoder's t_ac, 12 ms for any encoder); 2.2: Busy in additional data 1 after the "
+              "command supplement",
               "encoder pins", E::Wires},
     TimingRow{check::kRecovery, "t_m, t_R", "Recovery time I and II", "2.3.2 notes 3, 5, 9",
               "t_m 10 us (1.25 us short, 2.2 commands) + t_R 500 ns", "t_m 30 us (3.75 us short)",

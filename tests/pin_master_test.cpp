@@ -98,7 +98,8 @@ class PinMaster {
 
 constexpr std::uint8_t k21Position = 0b000111;  // "Encoder send position values" (2.3.1)
 constexpr std::uint8_t k22Position = 0b111000;  // "... with additional data" (2.3.1)
-constexpr std::uint8_t k21SendParameter = 0b001110;  // "Encoder send parameters" (2.4)
+constexpr std::uint8_t k21SendParameter = 0b100011;     // "Encoder send parameters" (2.5)
+constexpr std::uint8_t k21SelectMemoryArea = 0b001110;  // "Selection of memory area" (2.4.1)
 
 struct Run {
   std::vector<checker::Violation> violations;
@@ -443,6 +444,49 @@ TEST(PinMaster, GivingUpTheStartBitBeforeTCalIsCaughtToThePicosecond) {
   v = polled_with(ns(39'500) + ps(1));
   ASSERT_EQ(v.size(), 1U);
   EXPECT_EQ(v[0].verdict, checker::Verdict::Both);
+}
+
+// 2.3.2 t_ac: a 2.1 parameter frame polls for the acknowledgment through the memory access. The
+// model takes 2 ms to select memory area A1h; the master gives up 40 us after its last payload bit.
+TEST(PinMaster, GivingUpTheStartBitBeforeTAcIsCaughtToThePicosecond) {
+  slave::EncoderParams model;
+  model.t_ac_read = ms(2);
+  model.t_ac_write = ms(2);
+  const std::string payload = bits_msb(0xA1, 8) + bits_msb(0, 16);
+  const unsigned last_payload = position::kTurnaround - 1 + 24;
+  const std::vector<PinFrame> frames{{us(100), MHz(1), last_payload + 40, header(k21SelectMemoryArea, payload)}};
+  const auto polled_with = [&](std::optional<Time> declared_t_ac) {
+    Kernel k;
+    line::Line line(k, line::LineParams{});
+    slave::Encoder e(k, line, model);
+    auto declaration = scenarios::declared_encoder(model);
+    declaration.t_ac = declared_t_ac;
+    checker::TimingChecker checker(k, line, declaration);
+    PinMaster m(k, line, frames);
+    k.run(ms(1));
+    checker.finish();
+    std::vector<checker::Violation> polling;
+    for (const auto& v : checker.violations())
+      if (v.check == checker::check::kMemoryAccess && v.field == "start-bit polling") polling.push_back(v);
+    return polling;
+  };
+  EXPECT_EQ(scenarios::declared_encoder(model).t_ac, ms(2));  // the model's longest access is declared
+  // The datasheet says 40 us: the master waited exactly that; only the envelope's 12 ms is missed.
+  auto v = polled_with(us(40));
+  ASSERT_EQ(v.size(), 1U);
+  EXPECT_EQ(v[0].verdict, checker::Verdict::SpecEnvelope);
+  EXPECT_EQ(v[0].measured, "40 us");
+  EXPECT_EQ(v[0].limit, ">= 12 ms (spec envelope)");
+  // One picosecond more: the master gave up before this encoder could answer.
+  v = polled_with(us(40) + ps(1));
+  ASSERT_EQ(v.size(), 1U);
+  EXPECT_EQ(v[0].verdict, checker::Verdict::Both);
+  EXPECT_EQ(v[0].limit, ">= 40.000001 us (this encoder's t_ac)");
+  // No declaration: the envelope's 12 ms is the only limit, and it counts against both.
+  v = polled_with(std::nullopt);
+  ASSERT_EQ(v.size(), 1U);
+  EXPECT_EQ(v[0].verdict, checker::Verdict::Both);
+  EXPECT_EQ(v[0].limit, ">= 12 ms");
 }
 
 TEST(PinMaster, FindingsBeyondTheCapAreCountedNotKept) {
