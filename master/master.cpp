@@ -12,8 +12,11 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-constexpr unsigned kFirstPolledClock = 9;       // the encoder drives DATA from the turnaround (docs/model.md §1)
-constexpr unsigned kFirstCounterClock = 11;     // 2.1.2: counter started at each RE after 10 periods
+namespace position = protocol::frame_position;
+// The encoder drives DATA from the turnaround (docs/model.md §1).
+constexpr unsigned kFirstPolledClock = position::kTurnaround;
+// 2.1.2: the counter starts at each RE after 10 periods, the earliest start bit's.
+constexpr unsigned kFirstCounterClock = position::kEarliestStartBit;
 
 bool of_startup_routine(Operation::Purpose p) {
   using P = Operation::Purpose;
@@ -505,12 +508,12 @@ void Master::falling_edge() {
   // §3) 8 + 16 bits MSB first, and releases DATA after them.
   const unsigned payload = command_->payload_bits;
   const unsigned release = kFirstPolledClock + payload;
-  if (clock_ == 2) {
+  if (clock_ == position::kMasterDrives) {
     pins_.data_enable.write(true);
     pins_.data_out.write(false);
-  } else if (clock_ >= 3 && clock_ <= 8) {
-    pins_.data_out.write(((mode_bits_ >> (8 - clock_)) & 1U) != 0);
-  } else if (clock_ > 8 && clock_ < release) {
+  } else if (clock_ >= position::kFirstModeBit && clock_ <= position::kLastModeBit) {
+    pins_.data_out.write(((mode_bits_ >> (position::kLastModeBit - clock_)) & 1U) != 0);
+  } else if (clock_ > position::kLastModeBit && clock_ < release) {
     pins_.data_out.write(((payload_ >> (release - 1 - clock_)) & 1U) != 0);
   } else if (clock_ == release) {
     pins_.data_enable.write(false);
@@ -525,7 +528,7 @@ void Master::falling_edge() {
     else sample_now(slot);
   }
   // 2.3.2 note 8: the first LOW phase is stretched to t_ST.
-  nominal_ += clock_ == 1 ? std::max(low_, params_.t_st) : low_;
+  nominal_ += clock_ == position::kFrameStart ? std::max(low_, params_.t_st) : low_;
   edge_timer_.start(jittered(nominal_) - kernel_.now());
 }
 

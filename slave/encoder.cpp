@@ -10,6 +10,7 @@ namespace endatsim::slave {
 namespace {
 
 using protocol::ErrorCause;
+namespace position = protocol::frame_position;
 using MC = ModeCommand;
 using I = Information;
 
@@ -78,7 +79,7 @@ void EncoderParams::validate() const {
   require(earliest_start_bit_clock > driver_enable_edge && earliest_start_bit_clock <= 32,
           "encoder earliest_start_bit_clock must be after the driver is on (driver_enable_edge " +
               std::to_string(driver_enable_edge) + ") and at most 32, got " + std::to_string(earliest_start_bit_clock));
-  require(driver_enable_edge == 9 || driver_enable_edge == 10,
+  require(driver_enable_edge == position::kTurnaround || driver_enable_edge == position::kTurnaround + 1,
           "driver_enable_edge must be 9 or 10 (the turnaround clocks), got " + std::to_string(driver_enable_edge));
   require(motion.start < (std::uint64_t{1} << position_bits),
           "motion.start must be below 2^position_bits = " + std::to_string(std::uint64_t{1} << position_bits) +
@@ -366,8 +367,9 @@ void Encoder::on_rising_edge() {
   switch (state_) {
     case State::Header:
       // 2.3: the encoder accepts the mode bits on the rising edges of clocks 3 .. 8.
-      if (clock_ >= 3 && clock_ <= 8) mode_bits_ = static_cast<std::uint8_t>(mode_bits_ << 1 | bit);
-      if (clock_ == 8) decode_mode_command();
+      if (clock_ >= position::kFirstModeBit && clock_ <= position::kLastModeBit)
+        mode_bits_ = static_cast<std::uint8_t>(mode_bits_ << 1 | bit);
+      if (clock_ == position::kLastModeBit) decode_mode_command();
       break;
     case State::Payload:
       shift_ = shift_ << 1 | bit;

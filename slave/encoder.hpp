@@ -134,10 +134,10 @@ struct EncoderParams {
   // wrong settings (docs/model.md §12) agrees with that master and with no real encoder.
   protocol::CrcConfig crc;
   unsigned continuous_low_bits = 1;            // 2.3.1.1: "a maximum of 7 Low Bits" between words
-  unsigned driver_enable_edge = 9;             // FE that turns the encoder's driver on (docs/model.md §1)
+  unsigned driver_enable_edge = protocol::frame_position::kTurnaround;  // FE that turns its driver on (docs/model.md §1)
   // docs/model.md §1 (likely): the start bit comes no earlier than RE11 (2.3.2: t_cal >= 10.5/f_c);
   // encoders in the field differ (an emulator sends it after five zeros). RE11 + 24 after a payload.
-  unsigned earliest_start_bit_clock = 11;
+  unsigned earliest_start_bit_clock = protocol::frame_position::kEarliestStartBit;
   Type1Handling type1 = Type1Handling::AbortHigh;
   bool communication_command_permitted = true;  // A2 cause 4 when false
   // An EIB (word 14 type Fh) is "not yet initiated" (A2 cause 5) until initial commissioning
