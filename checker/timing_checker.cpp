@@ -840,6 +840,7 @@ void TimingChecker::finish() {
     // One recorded DATA wire shows no collision; two drivers handing over at the same
     // picosecond do not collide.
     if (!params_.driver_enables_observable || !params_.master_enable_observable || end == c.start) continue;
+    if (params_.recorded_at && c.where != *params_.recorded_at) continue;
     // The frame that had begun (FE1 at the master logic) when the contention began.
     std::optional<std::uint64_t> frame;
     for (const auto& [start, index] : frame_starts_)

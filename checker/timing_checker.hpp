@@ -120,6 +120,9 @@ struct CheckerParams {
   // The round trip (t_D) shows only where the master's DATA receiver is: not at the encoder's
   // connector.
   bool round_trip_observable = true;
+  // A capture shows one connector: the line it is replayed on has two ends without delay
+  // between them, and only this one's findings are the capture's (a contention, once).
+  std::optional<line::ObservationPoint> recorded_at;
 };
 
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off

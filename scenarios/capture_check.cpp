@@ -45,6 +45,10 @@ class Replay {
       out_ = capture::find_signal(reader, *o.data_out);
       wanted.push_back(*out_);
     }
+    if (o.master_data_enable) {
+      master_enable_ = capture::find_signal(reader, *o.master_data_enable);
+      wanted.push_back(*master_enable_);
+    }
     if (o.power) {
       power_ = capture::find_signal(reader, *o.power);
       wanted.push_back(*power_);
@@ -112,14 +116,18 @@ class Replay {
       apply_split(c);
       return;
     }
+    const auto on = [&](char v) { return v != 'x' && ((v == '1') != active_low_); };
     if (c.signal == data_) data_level_ = c.value;
-    else encoder_on_ = c.value != 'x' && ((c.value == '1') != active_low_);
+    else if (master_enable_ && c.signal == *master_enable_) master_on_ = on(c.value);
+    else encoder_on_ = on(c.value);
     const bool known = data_level_ != 'x';
     const bool encoder_drives = enable_ && encoder_on_;
-    // The driver that goes off first, so that the line never sees both on.
     encoder_.data_out.write(data_level_ == '1');
     master_.data_out.write(data_level_ == '1');
-    if (encoder_drives) {
+    if (master_enable_) {  // both enables recorded: each driver as its enable says, both at once a contention
+      encoder_.data_enable.write(encoder_drives && known);
+      master_.data_enable.write(master_on_ && known);
+    } else if (encoder_drives) {  // the driver that goes off first, so that the line never sees both on
       master_.data_enable.write(false);
       encoder_.data_enable.write(known);
     } else {
@@ -161,6 +169,7 @@ class Replay {
   std::uint32_t data_ = 0;
   std::optional<std::uint32_t> enable_;
   std::optional<std::uint32_t> out_;  // an RTL master's data_out (then data_ is its data_in)
+  std::optional<std::uint32_t> master_enable_;  // the master's DATA driver enable, with one DATA wire
   std::optional<std::uint32_t> power_;
   char power_level_ = 'x';
   char in_level_ = '1';
@@ -207,7 +216,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   line::Line line(kernel, lp);
   checker::CheckerParams params = o.checker;
   params.driver_enables_observable = o.data_enable.has_value() && !o.data_out;
-  params.master_enable_observable = false;  // one DATA wire and the encoder's enable at most
+  params.master_enable_observable = o.master_data_enable.has_value() && o.data_enable && !o.data_out;
   params.cable_length_m = o.cable_m.value_or(0);
   result.cable_m = *params.cable_length_m;
   result.position_bits = o.encoder.position_bits;
@@ -227,6 +236,8 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
     params.round_trip_observable = false;
   }
   params.max_findings_per_check = kMaxFindingsPerCheck;
+  params.recorded_at = o.at == CaptureCheckOptions::At::Master ? line::ObservationPoint::MasterPins
+                                                                : line::ObservationPoint::EncoderPins;
   params.resolution = o.resolution.value_or(reader->sampled() ? reader->resolution() : Time::zero());
   result.uncertainty = params.resolution;
   checker::TimingChecker checker(kernel, line, encoder, {}, params);

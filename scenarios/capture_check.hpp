@@ -28,6 +28,10 @@ struct CaptureCheckOptions {
   std::string clock;                        // signal names: full path or an unambiguous suffix
   std::string data;
   std::optional<std::string> data_enable;   // the encoder's DATA driver enable at its pins, if recorded
+  // The master's DATA driver enable, if recorded as well (one DATA wire; with data_enable, both
+  // drivers on at once is a bus contention). Taken at the same instants as the encoder's: the
+  // cable's one-way delay between the two ends is not added (docs/analyzer.md).
+  std::optional<std::string> master_data_enable;
   // An RTL master's split DATA: `data` is then its data_in, this its data_out and `data_enable`
   // its data_oe (at the master's connector).
   std::optional<std::string> data_out;

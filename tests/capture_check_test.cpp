@@ -755,3 +755,44 @@ TEST(CheckCapture, AReadOfWordThirteenSetsThePositionWidthForTheFramesAfterIt) {
       << summary.str();
   fs::remove(vcd);
 }
+
+// 2.3: one driver on DATA at a time. With both drivers' enables recorded, a capture shows the
+// contentions the run found at the same connector, each once; with the encoder's alone it cannot.
+TEST(CheckCapture, BothDriversEnablesShowABusContentionOnceAtTheRecordedConnector) {
+  const auto scenario = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                                      "/scenarios/field/05_short_recovery_time_not_activated.json");
+  const fs::path vcd = temp("contention.vcd");
+  const auto run = run_to_vcd(scenario, vcd);
+  const auto at_encoder = [](const std::vector<checker::Violation>& vs) {
+    return std::count_if(vs.begin(), vs.end(), [](const checker::Violation& v) {
+      return v.check == checker::check::kContention && v.where == line::ObservationPoint::EncoderPins;
+    });
+  };
+  const auto contentions = [](const std::vector<checker::Violation>& vs) {
+    return std::count_if(vs.begin(), vs.end(), [](const checker::Violation& v) { return v.check == checker::check::kContention; });
+  };
+  ASSERT_GT(at_encoder(run.violations), 0);
+  auto o = encoder_pins_of(scenario, vcd);
+  o.master_data_enable = "master.data_driver_enable";
+  const auto both = scenarios::check_capture(o);
+  EXPECT_EQ(contentions(both.violations), at_encoder(run.violations));
+  EXPECT_EQ(at_encoder(both.violations), at_encoder(run.violations));
+  o.master_data_enable.reset();
+  const auto one = scenarios::check_capture(o);
+  EXPECT_EQ(contentions(one.violations), 0);
+  const auto row = std::find_if(one.conformance.begin(), one.conformance.end(),
+                                [](const auto& c) { return c.check == checker::check::kContention; });
+  ASSERT_NE(row, one.conformance.end());
+  EXPECT_EQ(row->status, checker::RowConformance::Status::NotObservable);
+  // Through the command line, the master's enable needs the encoder's beside it.
+  auto r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --master-data-enable master.data_driver_enable");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--master-data-enable goes with one DATA wire (--data) and the encoder's --data-enable"),
+            std::string::npos)
+      << r.err;
+  r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable "
+          "--master-data-enable master.data_driver_enable");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("violation bus_contention"), std::string::npos) << r.out;
+  fs::remove(vcd);
+}

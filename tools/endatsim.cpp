@@ -52,7 +52,7 @@ const char* const kDiagramUsage =
 const char* const kChecksUsage = "usage: endatsim checks\n";
 const char* const kCheckUsage =
     "usage: endatsim check FILE... --clock NAME (--data NAME | --data-out NAME --data-in NAME)\n"
-    "                      [--data-enable NAME [--enable-active-low]] [--power NAME]\n"
+    "                      [--data-enable NAME [--master-data-enable NAME] [--enable-active-low]] [--power NAME]\n"
     "                      [--encoder PROFILE|SCENARIO.json] [--clock-to-data TIME] [--t-st-reduced-for-cable]\n"
     "                      [--at encoder|master] [--cable LENGTH] [--t-d TIME] [--resolution TIME]\n"
     "                      [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
@@ -119,7 +119,8 @@ const char* const kCheckHelp =
     "sigrok-cli save it, or logic-analyzer CSV (sigrok-cli, Saleae Logic). CLOCK and DATA are the\n"
     "levels at the encoder's connector (signals by full name or an unambiguous suffix; a wrong\n"
     "name lists the candidates); --data-enable is the encoder's DATA driver enable, if recorded\n"
-    "(without it t_z, t_OE, floating data and contention are not observable). Frames are found\n"
+    "(without it t_z, t_OE and floating data are not observable); --master-data-enable the\n"
+    "master's, taken at the same instants (with both, a bus contention shows). Frames are found\n"
     "and decoded on the wires (mode command, payload, start bit, answer, CRC, additional data,\n"
     "command supplement); --encoder takes the encoder's declared position width, t_m and t_R\n"
     "from a profile or a scenario (default: the model's encoder), --clock-to-data its delay from\n"
@@ -189,6 +190,8 @@ po::options_description options_of(Command c) {
           "clock", po::value<std::string>(), "the CLOCK signal at the encoder's connector")(
           "data", po::value<std::string>(), "the DATA signal at the encoder's connector")(
           "data-enable", po::value<std::string>(), "the encoder's DATA driver enable, if recorded")(
+          "master-data-enable", po::value<std::string>(),
+          "the master's DATA driver enable, if recorded too (with --data-enable: bus contention)")(
           "enable-active-low", "the enable is LOW while the encoder drives")(
           "power", po::value<std::string>(), "the encoder's supply, HIGH while powered, if recorded")(
           "encoder", po::value<std::string>(), "the declared encoder: a profile or a scenario (JSON)")(
@@ -751,6 +754,12 @@ int check_command(const po::variables_map& vm) {
   o.data_enable = string_option(vm, "data-enable");
   o.power = string_option(vm, "power");
   o.enable_active_low = vm.count("enable-active-low") != 0;
+  o.master_data_enable = string_option(vm, "master-data-enable");
+  if (o.master_data_enable && (!o.data_enable || o.data_out)) {
+    std::cerr << "endatsim check: --master-data-enable goes with one DATA wire (--data) and the encoder's "
+                 "--data-enable: both drivers' enables show a contention\n";
+    return kBadInput;
+  }
   if (o.enable_active_low && !o.data_enable) {
     std::cerr << "endatsim check: --enable-active-low needs --data-enable NAME\n";
     return kBadInput;
