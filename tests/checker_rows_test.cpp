@@ -281,6 +281,24 @@ TEST(CheckerAccessWhileBusy, AnAccessBeforeBusyZeroIsReportedAfterItIsNot) {
     }
 }
 
+// 2.3.1 note 1: an EnDat 2.1 access while Busy is set is as wrong as a 2.2 one. The 2.2 write
+// followed at once by a 2.1 read of the same word (no wait for Busy = 0) is reported.
+TEST(CheckerAccessWhileBusy, AnEnDat21ReadRightAfterAnEnDat22WriteIsReported) {
+  auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                         "/scenarios/bundled/parameters_endat22_busy_polling.json");
+  ASSERT_EQ(s.script[5].kind, master::Operation::Kind::AwaitNotBusy);
+  ASSERT_EQ(s.script[6].command, protocol::ModeCommand::EncoderSendPositionValuesAndSendParameter);
+  s.script.erase(s.script.begin() + 5);  // the wait after the write
+  s.script[5].command = protocol::ModeCommand::EncoderSendParameters;  // the read, as a 2.1 mode command
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count(r, checker::check::kAccessWhileBusy), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kAccessWhileBusy) {
+      EXPECT_NE(v.limit.find("Busy = 0"), std::string::npos) << v.limit;
+    }
+
+}
+
 // 3.4.4: word 3 selects recovery time I; "Encoder receive reset" activates it. The checker follows
 // the activation on the wires in both directions, and with it note 3's f_c >= 1 MHz condition.
 namespace {
@@ -318,6 +336,38 @@ TEST(CheckerShortRecoveryTime, FollowsWordThreeOnlyOnceAResetHasActivatedIt) {
   EXPECT_GE(count_violations(scenarios::run_scenario(word3_scenario("2 MHz", "0x0002", true, "3750 ns")),
                              checker::check::kRecovery, checker::Verdict::Both),
             1U);
+}
+
+// Short, then back to the long t_m (bits 2^0 = 0, 2^1 = 1), each activated by a reset: after the
+// second reset the envelope's 30 us + t_R holds again, to the picosecond, while this encoder's
+// 20 us + t_R is still met one picosecond short of it.
+TEST(CheckerShortRecoveryTime, SwitchedBackTheLongRecoveryTimeHoldsToThePicosecond) {
+  const auto run = [](const std::string& wait) {
+    const std::string text = R"({
+      "name": "word3_back", "seed": 1, "line": { "cable_length_m": 2 },
+      "encoder": { "version": "2.2", "t_m": "20 us", "t_m_short": "2 us" },
+      "master": { "f_c": "2 MHz", "t_m_wait": ")" + wait + R"(" },
+      "script": [
+        { "op": "select_memory_area", "mrs": "operating_status" },
+        { "op": "write_parameter", "address": 3, "value": "0x0001" },
+        { "op": "reset" },
+        { "op": "read_position", "command": "encoder_send_position_values_with_additional_data", "count": 2, "cycle": "1 us" },
+        { "op": "select_memory_area", "mrs": "operating_status" },
+        { "op": "write_parameter", "address": 3, "value": "0x0002" },
+        { "op": "reset" },
+        { "op": "read_position", "command": "encoder_send_position_values_with_additional_data", "count": 3, "cycle": "1 us" }
+      ] })";
+    return scenarios::run_scenario(scenarios::load_scenario_text(text, "word3_back.json"));
+  };
+  const auto exact = run("30 us");
+  EXPECT_EQ(count_violations(exact, checker::check::kRecovery), 0U);
+  const auto short_by_1ps = run("29999999 ps");
+  // The gaps between the three reads after the second reset, and none before it: the master
+  // waits over 1 ms (t_b) before each 2.1 parameter frame, and between the first two reads the
+  // short t_m is active.
+  EXPECT_EQ(count_violations(short_by_1ps, checker::check::kRecovery, checker::Verdict::SpecEnvelope), 2U);
+  EXPECT_EQ(count_violations(short_by_1ps, checker::check::kRecovery, checker::Verdict::Both), 0U);
+  EXPECT_EQ(count_violations(short_by_1ps, checker::check::kRecovery, checker::Verdict::ThisEncoder), 0U);
 }
 
 TEST(CheckerShortRecoveryTime, NeedsOneMegahertzToTheHertzOnceActivated) {
