@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -412,6 +413,26 @@ TEST(PinMaster, PowerOnWithoutT3IsCaught) {
   EXPECT_EQ(fixed.count(checker::check::kPowerOn), 0U) << fixed.list();
 }
 
+// The start-bit polling findings of `check` for pin-driven `frames` against the model encoder,
+// judged with the model's declaration as `declare` changes it.
+std::vector<checker::Violation> polling_findings(const slave::EncoderParams& model, const std::vector<PinFrame>& frames,
+                                                 std::string_view check,
+                                                 const std::function<void(checker::EncoderDeclaration&)>& declare) {
+  Kernel k;
+  line::Line line(k, line::LineParams{});
+  slave::Encoder e(k, line, model);
+  auto declaration = scenarios::declared_encoder(model);
+  declare(declaration);
+  checker::TimingChecker checker(k, line, declaration);
+  PinMaster m(k, line, frames);
+  k.run(ms(1));
+  checker.finish();
+  std::vector<checker::Violation> polling;
+  for (const auto& v : checker.violations())
+    if (v.check == check && v.field == "start-bit polling") polling.push_back(v);
+  return polling;
+}
+
 }  // namespace
 
 // 2.3.2: polling for the start bit must not depend on t_cal. An encoder still calculating (the
@@ -421,19 +442,8 @@ TEST(PinMaster, GivingUpTheStartBitBeforeTCalIsCaughtToThePicosecond) {
   model.t_cal = us(500);
   const auto frames = position_reads_21(1, us(100), 40);
   const auto polled_with = [&](Time declared_t_cal) {
-    Kernel k;
-    line::Line line(k, line::LineParams{});
-    slave::Encoder e(k, line, model);
-    auto declaration = scenarios::declared_encoder(model);
-    declaration.t_cal = declared_t_cal;
-    checker::TimingChecker checker(k, line, declaration);
-    PinMaster m(k, line, frames);
-    k.run(ms(1));
-    checker.finish();
-    std::vector<checker::Violation> polling;
-    for (const auto& v : checker.violations())
-      if (v.check == checker::check::kCalculationTime && v.field == "start-bit polling") polling.push_back(v);
-    return polling;
+    return polling_findings(model, frames, checker::check::kCalculationTime,
+                            [&](checker::EncoderDeclaration& d) { d.t_cal = declared_t_cal; });
   };
   // The datasheet says 39.5 us: the master waited exactly that; only the envelope's 1 ms is missed.
   auto v = polled_with(ns(39'500));
@@ -456,19 +466,8 @@ TEST(PinMaster, GivingUpTheStartBitBeforeTAcIsCaughtToThePicosecond) {
   const unsigned last_payload = position::kTurnaround - 1 + 24;
   const std::vector<PinFrame> frames{{us(100), MHz(1), last_payload + 40, header(k21SelectMemoryArea, payload)}};
   const auto polled_with = [&](std::optional<Time> declared_t_ac) {
-    Kernel k;
-    line::Line line(k, line::LineParams{});
-    slave::Encoder e(k, line, model);
-    auto declaration = scenarios::declared_encoder(model);
-    declaration.t_ac = declared_t_ac;
-    checker::TimingChecker checker(k, line, declaration);
-    PinMaster m(k, line, frames);
-    k.run(ms(1));
-    checker.finish();
-    std::vector<checker::Violation> polling;
-    for (const auto& v : checker.violations())
-      if (v.check == checker::check::kMemoryAccess && v.field == "start-bit polling") polling.push_back(v);
-    return polling;
+    return polling_findings(model, frames, checker::check::kMemoryAccess,
+                            [&](checker::EncoderDeclaration& d) { d.t_ac = declared_t_ac; });
   };
   EXPECT_EQ(scenarios::declared_encoder(model).t_ac, ms(2));  // the model's longest access is declared
   // The datasheet says 40 us: the master waited exactly that; only the envelope's 12 ms is missed.
