@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <tuple>
 #include <sys/wait.h>
@@ -795,4 +796,30 @@ TEST(CheckCapture, BothDriversEnablesShowABusContentionOnceAtTheRecordedConnecto
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.out.find("violation bus_contention"), std::string::npos) << r.out;
   fs::remove(vcd);
+}
+
+// Every finding cites a section its row of the timing table names, so that a reader with the spec
+// open finds the rule where the report says (over every bundled, field and safety scenario).
+TEST(CheckerReports, EachFindingCitesASectionOfItsRow) {
+  std::set<std::string> seen;
+  for (const auto& file : scenarios_in({"bundled", "field", "safety"})) {
+    const auto r = scenarios::run_scenario(scenarios::load_scenario_file(file.string()));
+    for (const auto& v : r.violations) {
+      const auto& row = protocol::timing_rows()[protocol::check::row_of(v.check)];
+      const std::string section = v.spec.substr(0, v.spec.find_first_of(" ("));
+      const auto sections = std::string(row.section);
+      // "2.3.2" in "2.3.2 note 7, 2.3.1.1"; "A2" in "A2"; a whole section, not a prefix of one.
+      bool cited = false;
+      for (std::size_t at = sections.find(section); at != std::string::npos; at = sections.find(section, at + 1)) {
+        const std::size_t end = at + section.size();
+        const bool starts = at == 0 || sections[at - 1] == ' ';
+        const bool ends = end == sections.size() || sections[end] == ' ' || sections[end] == ',';
+        cited = cited || (starts && ends);
+      }
+      EXPECT_TRUE(cited) << file.filename() << ": " << v.check << " cites \"" << v.spec << "\", its row \"" << sections
+                         << "\"";
+      seen.insert(v.check);
+    }
+  }
+  EXPECT_GE(seen.size(), 12U);  // most rows were reported somewhere
 }
