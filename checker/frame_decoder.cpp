@@ -189,8 +189,10 @@ void FrameDecoder::decode_mode_command() {
 
 // 3.5.6: word 13 of the encoder manufacturer's parameters (memory area A1h, 3.5) gives the clock
 // pulses of the position value. A master that reads it, as masters do before their first
-// position, shows the width of every answer after it; it overrides the declared width. Only
-// answers the encoder acknowledged with a good CRC count, and a selection lasts until the next.
+// position, shows the width of every answer after it; it overrides the declared width. A 2.1
+// write of it (an EIB's commissioning, 3.5.7) that the encoder echoes takes effect with the next
+// "Encoder receive reset", as the EIB activates what was written. Only answers the encoder
+// acknowledged with a good CRC count, and a selection lasts until the next.
 void FrameDecoder::follow_parameter_reads() {
   if (!frame_.command || !frame_.answer_complete || !frame_.crc_ok) return;
   const auto address = [](std::uint32_t bits) { return static_cast<std::uint8_t>(bits >> 16); };
@@ -202,20 +204,41 @@ void FrameDecoder::follow_parameter_reads() {
       if (frame_.supplement && !protocol::selects_additional_data(address(*frame_.supplement)))
         area_ = address(*frame_.supplement);
       return;
-    case MC::EncoderSendParameters: {
-      if (area_ != protocol::info(protocol::MemoryArea::Manufacturer1).mrs || !frame_.payload ||
-          address(*frame_.payload) != protocol::word::kPositionFormat)
-        return;
-      const auto word = static_cast<std::uint16_t>(frame_.fields[static_cast<std::size_t>(protocol::Field::Parameter)]);
-      const unsigned bits = protocol::parameters::decode_position_bits(word);
-      if (bits == 0) return;  // not a width: keep what is known
-      params_.position_bits = bits;
-      frame_.learnt_position_bits = bits;
-      width_learnt_at_ = frame_.index;
+    case MC::EncoderSendParameters:
+      if (const auto bits = position_format_word()) learn_width(*bits);
+      return;
+    case MC::EncoderReceiveParameters: {
+      const auto echo = (frame_.fields[static_cast<std::size_t>(protocol::Field::Address)] << 16) |
+                        frame_.fields[static_cast<std::size_t>(protocol::Field::Parameter)];
+      const auto bits = position_format_word();
+      if (bits && echo == *frame_.payload) written_width_ = bits;  // an echo differs when refused (A2)
       return;
     }
+    case MC::EncoderReceiveReset:
+      if (written_width_) learn_width(*written_width_);
+      written_width_.reset();
+      return;
     default: return;
   }
+}
+
+// The width word 13 gives, for a 2.1 access to it in area A1h; none for any other access or a
+// word that holds no width (bits 0..5 zero).
+std::optional<unsigned> FrameDecoder::position_format_word() const {
+  if (area_ != protocol::info(protocol::MemoryArea::Manufacturer1).mrs || !frame_.payload ||
+      (*frame_.payload >> 16) != protocol::word::kPositionFormat)
+    return std::nullopt;
+  const auto word = static_cast<std::uint16_t>(frame_.command == MC::EncoderReceiveParameters
+                                                   ? *frame_.payload & 0xFFFF
+                                                   : frame_.fields[static_cast<std::size_t>(protocol::Field::Parameter)]);
+  const unsigned bits = protocol::parameters::decode_position_bits(word);
+  return bits != 0 ? std::optional(bits) : std::nullopt;
+}
+
+void FrameDecoder::learn_width(unsigned bits) {
+  params_.position_bits = bits;
+  frame_.learnt_position_bits = bits;
+  width_learnt_at_ = frame_.index;
 }
 
 unsigned FrameDecoder::expected_additional_data() const { return (selected_[0] ? 1U : 0U) + (selected_[1] ? 1U : 0U); }

@@ -63,7 +63,7 @@ struct WireFrame {
   unsigned supplement_last_clock = 0;            // the rising edge that took its last bit
   unsigned continuous_words = 0;                 // further words of a continuous clock
   bool complete = false;                         // every bit the frame needs was clocked
-  unsigned learnt_position_bits = 0;             // word 13 read here: the width from the next frame on
+  unsigned learnt_position_bits = 0;             // word 13 read (or its write activated) here: the width from the next frame on
 };
 
 class FrameDecoder {
@@ -83,9 +83,9 @@ class FrameDecoder {
   // Additional data 1 and 2 as the selections seen so far leave them (2.4.2.2).
   bool selected(unsigned which) const { return selected_[which]; }
   // The position's width the decoder reads answers with: as declared, until a read of word 13
-  // shows the encoder's own (3.5.6).
+  // shows the encoder's own (3.5.6) or a reset activates a written one.
   unsigned position_bits() const { return params_.position_bits; }
-  // The frame (index) whose read of word 13 set position_bits(), if any.
+  // The frame (index) that set position_bits(): a read of word 13 or the reset after a write.
   std::optional<std::uint64_t> width_learnt_at() const { return width_learnt_at_; }
 
  private:
@@ -108,6 +108,8 @@ class FrameDecoder {
   void decode_answer(unsigned last_clock);
   void note_selection();
   void follow_parameter_reads();
+  std::optional<unsigned> position_format_word() const;
+  void learn_width(unsigned bits);
   unsigned expected_additional_data() const;
 
   DecoderParams params_;
@@ -132,6 +134,7 @@ class FrameDecoder {
   bool selected_[2] = {false, false};
   std::optional<std::uint8_t> area_;  // MRS code of the memory area selected last
   std::optional<std::uint64_t> width_learnt_at_;
+  std::optional<unsigned> written_width_;  // word 13 written, active after the next reset
   std::vector<WireFrame> finished_;
 };
 

@@ -309,7 +309,9 @@ std::string frame_log_line(const checker::WireFrame& f) {
         << " CRC " << (d.crc_ok ? "ok" : "BAD");
   if (f.supplement) out << ", supplement " << hex(*f.supplement >> 16, 2) << " " << hex(*f.supplement & 0xFFFF, 4);
   if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";
-  if (f.learnt_position_bits != 0) out << "; word 13: the position has " << f.learnt_position_bits << " bits";
+  if (f.learnt_position_bits != 0)
+    out << "; word 13" << (f.command == protocol::ModeCommand::EncoderReceiveReset ? " as written, now active" : "")
+        << ": the position has " << f.learnt_position_bits << " bits";
   out << "\n";
   return out.str();
 }
@@ -330,8 +332,8 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
            "from them were not judged; are these the right signals, and is --encoder's position width right?\n";
   out << "  position " << r.position_bits << " bits";
   if (r.position_bits_learnt_at)
-    out << ", from the read of word 13 in frame #" << *r.position_bits_learnt_at << " (frames before it with the "
-        << "declared width)\n";
+    out << ", from word 13 in frame #" << *r.position_bits_learnt_at << " (read there, or written and activated "
+        << "by that reset; frames before it with the declared width)\n";
   else
     out << " as declared (--encoder); a read of word 13 in the capture would show the encoder's own\n";
   if (r.cable_given)

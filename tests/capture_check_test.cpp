@@ -739,7 +739,7 @@ TEST(CheckCapture, AReadOfWordThirteenSetsThePositionWidthForTheFramesAfterIt) {
   EXPECT_NE(scenarios::frame_log_line(reading).find("word 13: the position has 25 bits"), std::string::npos);
   std::ostringstream summary;
   scenarios::write_capture_summary(summary, r, false);
-  EXPECT_NE(summary.str().find("position 25 bits, from the read of word 13 in frame #" +
+  EXPECT_NE(summary.str().find("position 25 bits, from word 13 in frame #" +
                                std::to_string(*r.position_bits_learnt_at)),
             std::string::npos)
       << summary.str();
@@ -822,4 +822,31 @@ TEST(CheckerReports, EachFindingCitesASectionOfItsRow) {
     }
   }
   EXPECT_GE(seen.size(), 12U);  // most rows were reported somewhere
+}
+
+// 3.5.7: an EIB's commissioning writes word 13 (8020h: 32 bits) in area A1h, and the reset after
+// it activates the width; a capture checked with a declared 25 bits reads the positions after
+// that reset at 32.
+TEST(CheckCapture, AWordThirteenWrittenAndActivatedByAResetSetsThePositionWidth) {
+  const auto scenario = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                                      "/scenarios/bundled/eib_initial_commissioning.json");
+  const fs::path vcd = temp("eib.vcd");
+  run_to_vcd(scenario, vcd);
+  auto o = encoder_pins_of(scenario, vcd);
+  ASSERT_EQ(o.encoder.position_bits, 32U);
+  o.encoder.position_bits = 25;
+  const auto r = scenarios::check_capture(o);
+  fs::remove(vcd);
+  // The first frame that set the width is the reset after the write (later reads of word 13
+  // confirm it).
+  const auto activated = std::find_if(r.frames.begin(), r.frames.end(), [](const auto& f) { return f.learnt_position_bits != 0; });
+  ASSERT_NE(activated, r.frames.end());
+  ASSERT_TRUE(activated->command.has_value());
+  EXPECT_EQ(*activated->command, protocol::ModeCommand::EncoderReceiveReset);
+  EXPECT_EQ(activated->learnt_position_bits, 32U);
+  EXPECT_NE(scenarios::frame_log_line(*activated).find("word 13 as written, now active: the position has 32 bits"),
+            std::string::npos);
+  for (auto f = activated + 1; f != r.frames.end(); ++f) EXPECT_TRUE(f->crc_ok) << scenarios::frame_log_line(*f);
+  const auto& first = *(activated + 1);  // the first position after the reset
+  EXPECT_EQ(first.fields[static_cast<std::size_t>(protocol::Field::Position)], 49980U);
 }
