@@ -358,10 +358,10 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
   write_conformance(out, r.conformance);
 }
 
-nlohmann::json capture_json(const CaptureCheckResult& r) {
+nlohmann::json wire_frames_json(const std::vector<checker::WireFrame>& wire_frames) {
   using nlohmann::json;
   json frames = json::array();
-  for (const auto& f : r.frames) {
+  for (const auto& f : wire_frames) {
     json j{{"index", f.index}, {"fe1_ps", f.fe1.count()}, {"clocks", f.clocks}};
     if (f.command) j["command"] = std::string(protocol::info(*f.command).key);
     if (f.payload) j["payload"] = *f.payload;
@@ -377,6 +377,12 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
     if (f.supplement) j["supplement"] = *f.supplement;
     frames.push_back(j);
   }
+  return frames;
+}
+
+nlohmann::json capture_json(const CaptureCheckResult& r) {
+  using nlohmann::json;
+  const json frames = wire_frames_json(r.frames);
   return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},

@@ -93,5 +93,7 @@ std::string capture_log(const CaptureCheckResult& r);
 // The summary `endatsim check` prints.
 void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool verbose);
 nlohmann::json capture_json(const CaptureCheckResult& r);
+// Decoded frames as capture_json lists them.
+nlohmann::json wire_frames_json(const std::vector<checker::WireFrame>& frames);
 
 }  // namespace endatsim::scenarios

@@ -20,10 +20,11 @@ ObservationPoint edge_end(const Event& e) {
 
 }  // namespace
 
-EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& encoder, master::Master& master,
-                         checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed)
+EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& encoder, master::Master* master,
+                         checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed,
+                         Time bit_period)
     : kernel_(kernel), line_(line), encoder_(encoder), master_(master), checker_(checker), events_(events),
-      period_(sim::period_of(master.params().f_c)), rng_(seed ^ 0x5EED'FA17'0000'0005ULL) {
+      period_(bit_period), rng_(seed ^ 0x5EED'FA17'0000'0005ULL) {
   bool listen[2] = {false, false};
   for (std::size_t i = 0; i < events.size(); ++i) {
     if (events[i].at) kernel.schedule_at(*events[i].at, sim::bind<&EventDriver::apply>(this, i));
@@ -31,13 +32,13 @@ EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& 
   }
   if (listen[0]) line.pins(ObservationPoint::MasterPins).clock.on_change(sim::bind<&EventDriver::on_master_clock>(this));
   if (listen[1]) line.pins(ObservationPoint::EncoderPins).clock.on_change(sim::bind<&EventDriver::on_encoder_clock>(this));
-  master.add_observer(this);
+  if (master != nullptr) master->add_observer(this);
 }
 
-void EventDriver::on_frame_start(const master::FrameResult& frame) {
+void EventDriver::frame_started(std::uint64_t index) {
   for (std::size_t i = 0; i < events_.size(); ++i) {
     const Event& e = events_[i];
-    if (!e.frame || *e.frame != frame.index) continue;
+    if (!e.frame || *e.frame != index) continue;
     if (e.clock == 0) kernel_.schedule(e.offset, sim::bind<&EventDriver::apply>(this, i));
     else armed_[side(edge_end(e))].push_back({i});
   }
@@ -70,7 +71,7 @@ void EventDriver::apply_to_line(const Event& e, std::uint64_t index) {
     case K::SetCable:
       line_.set_cable(e.cable_length_m, e.cable_delay_per_m);
       checker_.on_line_change();
-      master_.line_changed();
+      if (master_ != nullptr) master_->line_changed();
       break;
     case K::BitFlip:
       line_.invert(e.wire, e.end, e.width > Time::zero() ? e.width : period_);

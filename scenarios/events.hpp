@@ -1,7 +1,9 @@
 // Carries out a scenario's events: changes and faults of the line and the encoder at a
-// time, at a frame or at a clock edge of a frame. It tells the master and the checker what the
-// installation would tell them (2.1.2: a new delay measurement is due after a change of the
-// transmission path or a power interruption).
+// time, at a frame or at a clock edge of a frame. It tells the master model (if the run has one)
+// and the checker what the installation would tell them (2.1.2: a new delay measurement is due
+// after a change of the transmission path or a power interruption). A master outside endatsim
+// (an HDL master in co-simulation) is told nothing; its frames are announced by whoever finds
+// them on the wires, through frame_started.
 #pragma once
 
 #include <boost/random/mersenne_twister.hpp>
@@ -12,12 +14,16 @@ namespace endatsim::scenarios {
 
 class EventDriver final : public master::MasterObserver {
  public:
-  EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& encoder, master::Master& master,
-              checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed);
+  // `bit_period`: a bit flip's default width and a random bit error's, one period of the
+  // master's clock. `master` may be null.
+  EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& encoder, master::Master* master,
+              checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed, Time bit_period);
   EventDriver(const EventDriver&) = delete;
   EventDriver& operator=(const EventDriver&) = delete;
 
-  void on_frame_start(const master::FrameResult& frame) override;
+  void on_frame_start(const master::FrameResult& frame) override { frame_started(frame.index); }
+  // The master's frame `index` (delay-measurement frames included, from 0) begins now.
+  void frame_started(std::uint64_t index);
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
   void on_frame_end(const master::FrameResult&) override {}
 
@@ -31,7 +37,9 @@ class EventDriver final : public master::MasterObserver {
   void apply(std::uint64_t index);
   void end_of(std::uint64_t index);
   void release_probe() { encoder_.set_probe_deflected(false); }
-  void power_back() { master_.encoder_power_interrupted(); }
+  void power_back() {
+    if (master_ != nullptr) master_->encoder_power_interrupted();
+  }
   // A run whose encoder has no run-up models neither the first switch-on nor this one (2.3.3).
   void supply_back() { checker_.on_switched_on(encoder_.params().startup_time > sim::Time::zero()); }
   void on_master_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::MasterPins, level); }
@@ -43,7 +51,7 @@ class EventDriver final : public master::MasterObserver {
   sim::Kernel& kernel_;
   line::Line& line_;
   slave::Encoder& encoder_;
-  master::Master& master_;
+  master::Master* master_;
   checker::TimingChecker& checker_;
   const std::vector<Event>& events_;
   Time period_;

@@ -1115,9 +1115,43 @@ void read_expect(const Node& n, Expectations& e) {
   o.done();
 }
 
-Scenario read_scenario(const json& root, const std::string& file) {
+// A bench's events and expectations may only use what needs no master model: the HDL master's
+// clock is not known before it runs, and the master's own findings are the HDL design's.
+void check_bench_events(const Node& events) {
+  if (!events.raw().is_array()) return;  // read_events says what is wrong
+  for (std::size_t i = 0; i < events.raw().size(); ++i) {
+    const Node e(events.raw()[i], events.path() + "/" + std::to_string(i), events.file());
+    if (!e.raw().is_object() || (!e.raw().contains("bit_flip") && !e.raw().contains("random_bit_errors"))) continue;
+    if (e.raw().contains("random_bit_errors"))
+      Node(e.raw()["random_bit_errors"], e.path() + "/random_bit_errors", e.file())
+          .fail_raw("random_bit_errors flips one period of the master's clock, which a bench does not know: use "
+                    "bit_flip or glitch events with a width");
+    const json& flip = e.raw()["bit_flip"];
+    if (!flip.is_object() || !flip.contains("width"))
+      Node(flip, e.path() + "/bit_flip", e.file())
+          .fail_raw("a bench's bit_flip needs a \"width\" (one period of the HDL master's clock flips one bit)");
+  }
+}
+
+void check_bench_expect(const Node& expect) {
+  if (!expect.raw().is_object()) return;  // read_expect says what is wrong
+  static const std::set<std::string> kBench{"positions_match_encoder", "positions", "violations"};
+  for (const auto& [key, value] : expect.raw().items())
+    if (kBench.count(key) == 0)
+      Node(value, expect.path() + "/" + key, expect.file())
+          .fail_raw("\"" + key + "\" needs the project's master model; a bench judges positions_match_encoder, "
+                    "positions and violations");
+}
+
+Scenario read_scenario(const json& root, const std::string& file, ScenarioKind kind) {
   const Node top(root, "", file);
   Object o(top);
+  const bool bench = kind == ScenarioKind::Bench;
+  if (bench)
+    for (const char* key : {"master", "script"})
+      if (auto v = o.opt(key))
+        v->fail_raw(std::string("a co-simulation bench has no \"") + key +
+                    "\": the master and what it does are the HDL design's (remove \"master\" and \"script\")");
   Scenario s;
   s.file = file;
   s.name = o.req("name").as_string();
@@ -1149,20 +1183,26 @@ Scenario read_scenario(const json& root, const std::string& file) {
       read_encoder(Node(v->raw()[i], v->path() + "/" + std::to_string(i), file), s.bus.back());
     }
   }
-  read_master(o.req("master"), s.master);
-  s.master.seed = s.seed;
-  // Without a set-point of its own, the drive commands the motion the encoder makes.
-  const json& m = root.at("master");
-  if (!m.contains("safety") || !m["safety"].is_object() || !m["safety"].contains("setpoint"))
-    s.master.safety.setpoint = {s.encoder.motion.start, s.encoder.motion.counts_per_s};
+  if (!bench) {
+    read_master(o.req("master"), s.master);
+    s.master.seed = s.seed;
+    // Without a set-point of its own, the drive commands the motion the encoder makes.
+    const json& m = root.at("master");
+    if (!m.contains("safety") || !m["safety"].is_object() || !m["safety"].contains("setpoint"))
+      s.master.safety.setpoint = {s.encoder.motion.start, s.encoder.motion.counts_per_s};
+  }
   if (auto v = o.opt("checker")) read_checker(*v, s.checker);
-  read_script(o.req("script"), s.script, s.operation_expectations);
+  if (!bench) read_script(o.req("script"), s.script, s.operation_expectations);
   if (auto v = o.opt("events")) {
+    if (bench) check_bench_events(*v);
     read_events(*v, s.line, s.events);
     for (std::size_t i = 0; i < s.events.size(); ++i)
       check_event_against_encoder(s.events[i], s.encoder, Node(v->raw()[i], v->path() + "/" + std::to_string(i), top.file()));
   }
-  if (auto v = o.opt("expect")) read_expect(*v, s.expect);
+  if (auto v = o.opt("expect")) {
+    if (bench) check_bench_expect(*v);
+    read_expect(*v, s.expect);
+  }
   o.done();
   return s;
 }
@@ -1235,7 +1275,7 @@ class ParseGuard {
   std::vector<Level> stack_;
 };
 
-Scenario load_scenario_text(const std::string& text, const std::string& file_name) {
+Scenario load_scenario_text(const std::string& text, const std::string& file_name, ScenarioKind kind) {
   json root;
   std::string where = "/";
   try {
@@ -1247,13 +1287,13 @@ Scenario load_scenario_text(const std::string& text, const std::string& file_nam
     throw ScenarioError(file_name + ": " + at + "not valid JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
   }
   try {
-    return read_scenario(root, file_name);
+    return read_scenario(root, file_name, kind);
   } catch (const json::exception& e) {
     throw ScenarioError(file_name + ": " + e.what());
   }
 }
 
-Scenario load_scenario_file(const std::string& path) {
+Scenario load_scenario_file(const std::string& path, ScenarioKind kind) {
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
     throw ScenarioError(path + ": not a regular file, expected a JSON scenario");
@@ -1266,7 +1306,7 @@ Scenario load_scenario_file(const std::string& path) {
     if (text.size() > kMaxFileBytes) throw ScenarioError(path + ": larger than 4 MiB, not a scenario");
   }
   if (text.empty()) throw ScenarioError(path + ": at /: empty file, expected a JSON scenario object");
-  return load_scenario_text(text, path);
+  return load_scenario_text(text, path, kind);
 }
 
 }  // namespace endatsim::scenarios

@@ -13,7 +13,13 @@ class ScenarioError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-Scenario load_scenario_file(const std::string& path);
-Scenario load_scenario_text(const std::string& text, const std::string& file_name);
+// Run: line, encoders, the project's master and its script. Bench: the same without "master" and
+// "script", for a master outside endatsim (co-simulation); its expectations are those that need
+// no master model.
+enum class ScenarioKind : std::uint8_t { Run, Bench };
+
+Scenario load_scenario_file(const std::string& path, ScenarioKind kind = ScenarioKind::Run);
+Scenario load_scenario_text(const std::string& text, const std::string& file_name,
+                            ScenarioKind kind = ScenarioKind::Run);
 
 }  // namespace endatsim::scenarios

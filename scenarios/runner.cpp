@@ -306,16 +306,7 @@ void judge(const Scenario& s, ScenarioResult& r) {
   }
   judge_positions(s, r);
   judge_delay(s, r);
-  std::map<std::string, std::uint64_t> counts;
-  for (const auto& v : r.violations) ++counts[v.check];
-  for (const auto& [name, m] : s.expect.violations) {
-    const auto n = counts[name];
-    r.expectations.push_back({"violations." + name, m.matches(n), std::to_string(n) + " (expected " + m.text + ")"});
-  }
-  for (const auto& [name, n] : counts) {
-    if (s.expect.violations.count(name) != 0 || n == 0) continue;
-    r.expectations.push_back({"violations." + name, false, std::to_string(n) + " (expected none: not listed)"});
-  }
+  judge_violations(s.expect, r.violations, r.expectations);
   for (std::size_t i = 0; i < s.operation_expectations.size(); ++i)
     if (s.operation_expectations[i]) judge_operation(i, *s.operation_expectations[i], r);
   judge_memory(s, r);
@@ -347,6 +338,20 @@ void judge(const Scenario& s, ScenarioResult& r) {
 }
 
 }  // namespace
+
+void judge_violations(const Expectations& expect, const std::vector<checker::Violation>& violations,
+                      std::vector<ExpectationResult>& out) {
+  std::map<std::string, std::uint64_t> counts;
+  for (const auto& v : violations) ++counts[v.check];
+  for (const auto& [name, m] : expect.violations) {
+    const auto n = counts[name];
+    out.push_back({"violations." + name, m.matches(n), std::to_string(n) + " (expected " + m.text + ")"});
+  }
+  for (const auto& [name, n] : counts) {
+    if (expect.violations.count(name) != 0 || n == 0) continue;
+    out.push_back({"violations." + name, false, std::to_string(n) + " (expected none: not listed)"});
+  }
+}
 
 bool ScenarioResult::passed() const {
   return std::all_of(expectations.begin(), expectations.end(), [](const auto& e) { return e.passed; });
@@ -383,7 +388,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   }
 
   for (const auto& op : scenario.script) master.enqueue(op);
-  EventDriver events(kernel, line, encoder, master, checker, scenario.events, master_params.seed);
+  EventDriver events(kernel, line, encoder, &master, checker, scenario.events, master_params.seed,
+                     sim::period_of(master_params.f_c));
   master.start();
   kernel.run(scenario.max_time);
   checker.finish();

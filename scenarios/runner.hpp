@@ -64,6 +64,11 @@ struct PositionComparison {
 };
 PositionComparison compare_positions_with_encoder(const Scenario& scenario, const ScenarioResult& r);
 
+// expect.violations against the findings: each listed check as often as it says, any other
+// check never (its findings as a count).
+void judge_violations(const Expectations& expect, const std::vector<checker::Violation>& violations,
+                      std::vector<ExpectationResult>& out);
+
 // Runs the scenario to the end of its script and judges its expectations.
 ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options = {});
 

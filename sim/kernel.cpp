@@ -97,6 +97,17 @@ void Kernel::run(Time until) {
   }
 }
 
+void Kernel::advance_to(Time t) {
+  if (t < now_) throw std::logic_error("Kernel::advance_to: time in the past");
+  run(t);
+  if (!stopped_) now_ = t;
+}
+
+std::optional<Time> Kernel::next_event_time() const {
+  if (heap_.empty()) return std::nullopt;
+  return heap_.front().when;
+}
+
 void Timer::start(Time delay) {
   ++generation_;
   pending_ = true;

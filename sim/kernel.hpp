@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -51,6 +52,14 @@ class Kernel {
   // Runs until no event is left, stop() is called, or the next event lies after `until`.
   void run(Time until = Time::max());
   void stop() { stopped_ = true; }
+  // Runs every event up to and including `t` and leaves the time at `t` even when nothing is
+  // left to run: an outside simulator that owns time (a co-simulation) moves this kernel along.
+  void advance_to(Time t);
+  // The earliest pending event's time, if any (a cancelled timer's stale entry counts: waking
+  // for it is harmless).
+  std::optional<Time> next_event_time() const;
+  // Work is waiting at the current time (writes not yet committed, zero-delay wake-ups).
+  bool work_pending() const { return !updates_.empty() || fifo_size_ != 0; }
 
   // Called once at the end of every time step in which something ran (e.g. the VCD writer).
   void on_time_step_end(Action action) { step_end_.push_back(action); }

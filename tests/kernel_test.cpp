@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -188,4 +189,44 @@ TEST(KernelSignal, ListenersSeeEverySignalOfTheUpdatePhaseCommitted) {
   k.schedule(ns(1), bind<&BothHigh::go>(&w));
   k.run();
   EXPECT_TRUE(l.seen);
+}
+
+// An outside simulator owns time in a co-simulation: it moves the kernel to each of its own
+// instants, writes pins there, and asks when the kernel next needs to be woken.
+TEST(KernelAdvance, AdvanceToRunsEventsUpToAndIncludingTheInstantAndStaysThere) {
+  Kernel k;
+  Log log{&k, {}};
+  k.schedule(ns(10), bind<&Log::record>(&log, 1));
+  k.schedule(ns(30), bind<&Log::record>(&log, 2));
+  EXPECT_EQ(k.next_event_time(), ns(10));
+  k.advance_to(ns(10));
+  EXPECT_EQ(k.now(), ns(10));
+  EXPECT_EQ(log.entries.size(), 1U);
+  k.advance_to(ns(25));  // nothing due: time moves anyway
+  EXPECT_EQ(k.now(), ns(25));
+  EXPECT_EQ(k.next_event_time(), ns(30));
+  k.advance_to(ns(40));
+  EXPECT_EQ(log.entries.size(), 2U);
+  EXPECT_FALSE(k.next_event_time().has_value());
+  k.advance_to(ms(1));  // an empty kernel follows as well
+  EXPECT_EQ(k.now(), ms(1));
+  EXPECT_THROW(k.advance_to(ns(1)), std::logic_error);
+}
+
+TEST(KernelAdvance, AWriteAtTheCurrentInstantSettlesThereAndItsListenersRun) {
+  Kernel k;
+  Signal in(k, "in", false), out(k, "out", false);
+  TransportDelay d(k, in, out, ns(7));
+  k.advance_to(ns(100));
+  in.write(true);
+  EXPECT_TRUE(k.work_pending());
+  k.advance_to(ns(100));  // the same instant: the write commits, the delay schedules its edge
+  EXPECT_FALSE(k.work_pending());
+  EXPECT_TRUE(in.read());
+  EXPECT_EQ(k.next_event_time(), ns(107));
+  k.advance_to(ns(106));
+  EXPECT_FALSE(out.read());
+  k.advance_to(ns(107));
+  EXPECT_TRUE(out.read());
+  EXPECT_EQ(out.last_change(), ns(107));
 }

@@ -27,12 +27,15 @@
 #include "scenarios/declarations.hpp"
 #include "scenarios/diagram.hpp"
 #include "scenarios/junit.hpp"
+#include "scenarios/output_file.hpp"
 #include "scenarios/scenarios.hpp"
 #include "scenarios/sweep.hpp"
 #include "scenarios/transaction_log.hpp"
 
 namespace po = boost::program_options;
 using namespace endatsim;
+using scenarios::StreamedFile;
+using scenarios::write_file;
 
 namespace {
 
@@ -227,74 +230,6 @@ std::optional<std::uint64_t> parse_uint(const std::string& text) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec != std::errc{} || end != text.data() + text.size() || text.empty()) return std::nullopt;
   return v;
-}
-
-// Written next to its place and renamed into it: a reader never sees half a file, and an
-// interrupted run leaves the previous file (or none).
-// An output written piece by piece: to stdout for "-", straight to a pipe or device, else to a
-// part file renamed over PATH by commit(); a part file not committed is removed.
-class StreamedFile {
- public:
-  explicit StreamedFile(const std::string& path) : path_(path) {
-    if (path == "-") return;
-    std::error_code status_error;
-    const auto status = std::filesystem::status(path, status_error);
-    const bool special = std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
-    if (!special) part_ = path + ".part-" + std::to_string(::getpid());
-    file_.open(special ? path : part_, std::ios::binary);
-    if (!file_) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
-  }
-  StreamedFile(const StreamedFile&) = delete;
-  StreamedFile& operator=(const StreamedFile&) = delete;
-  ~StreamedFile() {
-    if (part_.empty()) return;
-    std::error_code ignored;
-    std::filesystem::remove(part_, ignored);
-  }
-  std::ostream& stream() { return path_ == "-" ? std::cout : file_; }
-  void commit() {
-    stream().flush();
-    if (!stream()) throw std::runtime_error("cannot write '" + path_ + "'");
-    if (part_.empty()) return;
-    file_.close();
-    std::error_code error;
-    std::filesystem::rename(part_, path_, error);
-    if (error) throw std::runtime_error("cannot write '" + path_ + "': " + error.message());
-    part_.clear();
-  }
-
- private:
-  std::string path_;
-  std::string part_;
-  std::ofstream file_;
-};
-
-void write_file(const std::string& path, const std::string& text) {
-  std::error_code status_error;
-  const auto status = std::filesystem::status(path, status_error);
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {  // /dev/stdout, a pipe
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
-    return;
-  }
-  const std::string part = path + ".part-" + std::to_string(::getpid());
-  {
-    std::ofstream out(part, std::ios::binary);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(part, ignored);
-      throw std::runtime_error("cannot write '" + path + "'");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(part, path, error);
-  if (error) {
-    std::filesystem::remove(part, error);
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
 }
 
 // Colour for the summary's verdicts, only where a person reads it.

@@ -1,0 +1,84 @@
+#include "cosim/report.hpp"
+
+#include "scenarios/capture_check.hpp"
+#include "scenarios/junit.hpp"
+#include "scenarios/report.hpp"
+
+namespace endatsim::cosim {
+namespace {
+
+nlohmann::json reported_json(const std::vector<Reported>& reported) {
+  auto out = nlohmann::json::array();
+  for (const auto& r : reported)
+    out.push_back({{"at_ps", r.at.count()},
+                   {"value", r.value},
+                   {"expected", r.truth ? nlohmann::json(*r.truth) : nlohmann::json(nullptr)},
+                   {"matches", r.matches()}});
+  return out;
+}
+
+std::string testcase(const std::string& name, const std::string& file, const std::string& inner) {
+  return "    <testcase classname=\"endatsim.cosim\" name=\"" + scenarios::xml_escape(name) + "\" file=\"" +
+         scenarios::xml_escape(file) + "\">\n" + inner + "    </testcase>\n";
+}
+
+}  // namespace
+
+void write_summary(std::ostream& out, const BenchResult& r, bool verbose) {
+  out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
+  if (!r.description.empty()) out << "  " << r.description << "\n";
+  out << "  simulated " << sim::format_time(r.simulated) << ", " << r.events << " events; frames decoded at the "
+      << "encoder's connector: " << r.frames_decoded << " (" << r.frames_clean << " with a complete answer and a good CRC)\n";
+  out << "  the master reported " << r.positions.size() << " position(s) and " << r.parameters.size()
+      << " parameter(s); judged from the wires alone (the master declares nothing)\n";
+  for (const auto& n : r.notes) out << "  note: " << n << "\n";
+  if (verbose)
+    for (const auto& f : r.frames) out << "  " << scenarios::frame_log_line(f);
+  scenarios::write_violations(out, r.violations, verbose);
+  scenarios::write_verdict(out, r.conclusion, r.violations);
+  scenarios::write_relaxations(out, r.conformance);
+  if (verbose) scenarios::write_conformance(out, r.conformance);
+  for (const auto& e : r.expectations)
+    if (verbose || !e.passed) out << "  " << (e.passed ? "ok   " : "FAIL ") << e.name << ": " << e.detail << "\n";
+}
+
+nlohmann::json to_json(const BenchResult& r) {
+  using nlohmann::json;
+  json expectations = json::array();
+  for (const auto& e : r.expectations) expectations.push_back({{"name", e.name}, {"passed", e.passed}, {"detail", e.detail}});
+  return {{"name", r.name},
+          {"file", r.file},
+          {"seed", r.seed},
+          {"passed", r.passed()},
+          {"simulated_ps", r.simulated.count()},
+          {"events", r.events},
+          {"frames_decoded", r.frames_decoded},
+          {"frames_clean", r.frames_clean},
+          {"frames", scenarios::wire_frames_json(r.frames)},
+          {"frames_not_kept", r.frames_decoded - r.frames.size()},
+          {"positions", reported_json(r.positions)},
+          {"parameters", reported_json(r.parameters)},
+          {"notes", r.notes},
+          {"violations", scenarios::violations_json(r.violations)},
+          {"verdict", scenarios::verdict_json(r.conclusion)},
+          {"conformance", scenarios::conformance_json(r.conformance)},
+          {"expectations", expectations}};
+}
+
+std::string junit_xml(const BenchResult& r) {
+  using scenarios::xml_escape;
+  std::size_t failures = 0;
+  std::string cases;
+  for (const auto& e : r.expectations) {
+    failures += e.passed ? 0 : 1;
+    cases += testcase(e.name, r.file,
+                      e.passed ? "" : "      <failure type=\"expectation\" message=\"" + xml_escape(e.detail) + "\"/>\n");
+  }
+  const std::string tests = std::to_string(r.expectations.size());
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"endatsim cosim\" tests=\"" + tests +
+         "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\">\n  <testsuite name=\"" + xml_escape(r.name) +
+         "\" tests=\"" + tests + "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\" skipped=\"0\">\n" + cases +
+         "  </testsuite>\n</testsuites>\n";
+}
+
+}  // namespace endatsim::cosim

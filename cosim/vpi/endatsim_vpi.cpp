@@ -1,0 +1,494 @@
+// endatsim_vpi: an HDL EnDat master (Verilog in Icarus, VHDL in GHDL, or any simulator with the
+// IEEE 1364 VPI) on endatsim's line, encoders, scripted events and checker.
+//
+// The simulator owns time. The bridge follows the master's CLOCK, data_out and data_enable with
+// value-change callbacks, moves the bench to each change's instant and drives the pin there; it
+// asks the bench when it next needs to run and sets an after-delay callback for that instant, at
+// which DATA towards the master (data_in) is written with no delay. So every edge reaches the
+// master at the instant the line delivers it, in the simulator's own time precision (a precision
+// coarser than 1 ps delivers DATA at the next tick, and the report says so).
+//
+// Configuration (docs/cosim.md): plusargs, or a JSON file named by +endatsim_config=FILE whose
+// keys are the plusargs' names without the prefix; a plusarg overrides the file.
+//   +endatsim_bench=FILE            the bench scenario: line, encoders, events, expectations
+//   +endatsim_clock=PATH            the master's CLOCK output
+//   +endatsim_data_out=PATH         its DATA driver input
+//   +endatsim_data_enable=PATH      its DATA driver enable (+endatsim_enable_active_low inverts it)
+//   +endatsim_data_in=PATH          the reg or signal endatsim writes with DATA at its receiver
+//   +endatsim_position=PATH +endatsim_position_valid=PATH      a watched position port (VHDL)
+//   +endatsim_parameter=PATH +endatsim_parameter_valid=PATH    a watched parameter port
+//   +endatsim_json=FILE +endatsim_junit=FILE +endatsim_log=FILE +endatsim_vcd=FILE +endatsim_verbose
+//   +endatsim_seed=N
+// System tasks for Verilog: $endatsim_position(value) and $endatsim_parameter(value) report
+// what the master decoded. At the end of simulation the report is printed and written, and the
+// simulator exits with status 1 when an expectation failed (2 for bad configuration).
+#include <vpi_user.h>
+
+#include <charconv>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cosim/bench.hpp"
+#include "cosim/report.hpp"
+#include "scenarios/capture_check.hpp"
+#include "scenarios/loader.hpp"
+#include "scenarios/output_file.hpp"
+
+namespace {
+
+using endatsim::sim::Time;
+namespace cosim = endatsim::cosim;
+
+constexpr int kExitFailed = 1;
+constexpr int kExitBadInput = 2;
+
+[[noreturn]] void bad_configuration(const std::string& message) {
+  std::fflush(stdout);
+  std::cerr << "endatsim_vpi: " << message << std::endl;
+  std::exit(kExitBadInput);
+}
+
+// ---- configuration ------------------------------------------------------------------------
+
+const std::set<std::string>& known_keys() {
+  static const std::set<std::string> keys{
+      "bench", "clock", "data_out", "data_enable", "data_in", "enable_active_low", "position", "position_valid",
+      "parameter", "parameter_valid", "json", "junit", "log", "vcd", "verbose", "seed", "config"};
+  return keys;
+}
+
+std::string key_list() {
+  std::string out;
+  for (const auto& k : known_keys()) out += (out.empty() ? "+endatsim_" : ", +endatsim_") + k;
+  return out;
+}
+
+class Config {
+ public:
+  Config() {
+    s_vpi_vlog_info info{};
+    if (vpi_get_vlog_info(&info) != 0)
+      for (PLI_INT32 i = 1; i < info.argc; ++i) take_plusarg(info.argv[i] != nullptr ? info.argv[i] : "");
+    if (const auto file = plusargs_.find("config"); file != plusargs_.end()) read_file(file->second);
+    for (const auto& [k, v] : plusargs_) values_[k] = v;
+    for (const char* required : {"bench", "clock", "data_out", "data_in"})
+      if (!has(required)) bad_configuration(std::string("missing +endatsim_") + required + "=... (or \"" + required +
+                                            "\" in the +endatsim_config file); known: " + key_list());
+    for (const char* pair : {"position", "parameter"})
+      if (has(pair) != has(std::string(pair) + "_valid"))
+        bad_configuration(std::string("+endatsim_") + pair + " and +endatsim_" + pair + "_valid go together");
+  }
+  bool has(const std::string& key) const { return values_.count(key) != 0; }
+  std::string get(const std::string& key) const { return has(key) ? values_.at(key) : std::string(); }
+  bool flag(const std::string& key) const {
+    const auto v = get(key);
+    if (!has(key)) return false;
+    if (v.empty() || v == "1" || v == "true") return true;
+    if (v == "0" || v == "false") return false;
+    bad_configuration("+endatsim_" + key + ": expected nothing, 1/0 or true/false, got \"" + v + "\"");
+  }
+
+ private:
+  void take_plusarg(const std::string& arg) {
+    static const std::string prefix = "+endatsim_";
+    if (arg.rfind(prefix, 0) != 0) return;
+    const auto eq = arg.find('=');
+    const std::string key = arg.substr(prefix.size(), eq == std::string::npos ? std::string::npos : eq - prefix.size());
+    if (known_keys().count(key) == 0) bad_configuration("unknown plusarg " + arg + "; known: " + key_list());
+    plusargs_[key] = eq == std::string::npos ? std::string() : arg.substr(eq + 1);
+  }
+  void read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) bad_configuration(path + ": cannot open the configuration file");
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      bad_configuration(path + ": not valid JSON: " + e.what());
+    }
+    if (!j.is_object()) bad_configuration(path + ": at /: expected an object of +endatsim_ keys without the prefix");
+    for (const auto& [k, v] : j.items()) {
+      if (known_keys().count(k) == 0 || k == "config")
+        bad_configuration(path + ": at /" + k + ": unknown key; known: " + key_list());
+      if (v.is_string()) values_[k] = v.get<std::string>();
+      else if (v.is_boolean()) values_[k] = v.get<bool>() ? "true" : "false";
+      else if (v.is_number_unsigned()) values_[k] = std::to_string(v.get<std::uint64_t>());
+      else bad_configuration(path + ": at /" + k + ": expected a string, a boolean or a whole number");
+    }
+  }
+  std::map<std::string, std::string> plusargs_;
+  std::map<std::string, std::string> values_;
+};
+
+// ---- time ---------------------------------------------------------------------------------
+
+// The simulator's ticks (10^precision s) and endatsim's picoseconds.
+class TimeScale {
+ public:
+  TimeScale() {
+    const PLI_INT32 precision = vpi_get(vpiTimePrecision, nullptr);
+    if (precision > 0 || precision < -18) bad_configuration("the simulator reports a time precision of 1e" +
+                                                            std::to_string(precision) + " s, outside 1 as .. 1 s");
+    if (precision >= -12) ps_per_tick_ = pow10(precision + 12);
+    else ticks_per_ps_ = pow10(-12 - precision);
+  }
+  // A tick finer than 1 ps lands on the picosecond before it.
+  Time to_ps(std::uint64_t ticks) const {
+    return Time{static_cast<std::int64_t>(ticks_per_ps_ > 1 ? ticks / ticks_per_ps_ : ticks * ps_per_tick_)};
+  }
+  // An instant between two ticks is delivered at the later one, never early.
+  std::uint64_t to_ticks_ceil(Time t) const {
+    const auto ps = static_cast<std::uint64_t>(t.count());
+    return ticks_per_ps_ > 1 ? ps * ticks_per_ps_ : (ps + ps_per_tick_ - 1) / ps_per_tick_;
+  }
+  bool coarser_than_ps() const { return ps_per_tick_ > 1; }
+  std::string tick() const {
+    return ps_per_tick_ > 1 ? endatsim::sim::format_time(Time{static_cast<std::int64_t>(ps_per_tick_)})
+                            : "1/" + std::to_string(ticks_per_ps_) + " ps";
+  }
+
+ private:
+  static std::uint64_t pow10(int n) {
+    std::uint64_t v = 1;
+    for (int i = 0; i < n; ++i) v *= 10;
+    return v;
+  }
+  std::uint64_t ps_per_tick_ = 1;
+  std::uint64_t ticks_per_ps_ = 1;
+};
+
+std::uint64_t sim_ticks() {
+  s_vpi_time t{};
+  t.type = vpiSimTime;
+  vpi_get_time(nullptr, &t);
+  return (static_cast<std::uint64_t>(t.high) << 32) | t.low;
+}
+
+// ---- values -------------------------------------------------------------------------------
+
+// A scalar's level: 0, 1, or none for X, Z and the other unknowns.
+std::optional<bool> level_of(vpiHandle h) {
+  s_vpi_value v{};
+  v.format = vpiScalarVal;
+  vpi_get_value(h, &v);
+  if (v.value.scalar == vpi0) return false;
+  if (v.value.scalar == vpi1) return true;
+  return std::nullopt;
+}
+
+// A vector's value up to 64 bits; none when any bit is unknown.
+std::optional<std::uint64_t> word_of(vpiHandle h) {
+  const PLI_INT32 size = vpi_get(vpiSize, h);
+  s_vpi_value v{};
+  v.format = vpiVectorVal;
+  vpi_get_value(h, &v);
+  std::uint64_t out = 0;
+  for (PLI_INT32 word = 0; word * 32 < size && word < 2; ++word) {
+    if (v.value.vector[word].bval != 0) return std::nullopt;
+    out |= static_cast<std::uint64_t>(static_cast<std::uint32_t>(v.value.vector[word].aval)) << (32 * word);
+  }
+  return out;
+}
+
+vpiHandle by_name(const Config& config, const std::string& key) {
+  std::string path = config.get(key);
+  vpiHandle h = vpi_handle_by_name(path.data(), nullptr);
+  if (h == nullptr)
+    bad_configuration("+endatsim_" + key + "=" + path + ": no such signal in the design (give its full hierarchical "
+                      "path, e.g. tb.master.clock)");
+  return h;
+}
+
+// ---- the bridge ---------------------------------------------------------------------------
+
+class Bridge {
+ public:
+  explicit Bridge(const Config& config)
+      : config_(config), bench_file_(load(config.get("bench"))), bench_(bench_file_, options(config)) {
+    clock_ = by_name(config, "clock");
+    data_out_ = by_name(config, "data_out");
+    data_in_ = by_name(config, "data_in");
+    if (config.has("data_enable")) data_enable_ = by_name(config, "data_enable");
+    active_low_ = config.flag("enable_active_low");
+    if (config.has("position")) watch_port(by_name(config, "position"), by_name(config, "position_valid"), &position_);
+    if (config.has("parameter"))
+      watch_port(by_name(config, "parameter"), by_name(config, "parameter_valid"), &parameter_);
+    if (scale_.coarser_than_ps())
+      bench_.note("the simulator's time precision is " + scale_.tick() + ": DATA towards the master is delivered at "
+                  "the next tick after the line delivers it");
+    if (!data_enable_)
+      bench_.note("no +endatsim_data_enable: the master drives DATA at all times (its enable taken as on)");
+    bench_.on_data_in([this](Time, bool level) { put_data_in(level); });
+    for (vpiHandle h : {clock_, data_out_, data_enable_})
+      if (h != nullptr) watch(h, &Bridge::pin_changed);
+    put_data_in(bench_.data_in());
+    bench_.drive(cosim::MasterPin::Clock, level_of(clock_).value_or(true));  // CLOCK rests HIGH (2.3)
+    drive_data();
+  }
+
+  void report_position(std::uint64_t value) {
+    sync();
+    bench_.report_position(value);
+  }
+  void report_parameter(std::uint64_t value) {
+    sync();
+    bench_.report_parameter(static_cast<std::uint16_t>(value));
+  }
+  void note(const std::string& text) { bench_.note(text); }
+
+  int finish() {
+    sync();
+    if (stopped_at_max_time_) bench_.note("stopped at the bench's max_time " + endatsim::sim::format_time(bench_.now()));
+    const auto result = bench_.finish();
+    cosim::write_summary(std::cout, result, config_.flag("verbose"));
+    std::cout.flush();
+    try {
+      if (config_.has("json")) endatsim::scenarios::write_file(config_.get("json"), cosim::to_json(result).dump(2) + "\n");
+      if (config_.has("junit")) endatsim::scenarios::write_file(config_.get("junit"), cosim::junit_xml(result));
+      if (config_.has("log")) {
+        std::string log;
+        for (const auto& f : result.frames) log += endatsim::scenarios::frame_log_line(f);
+        endatsim::scenarios::write_file(config_.get("log"), log);
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "endatsim_vpi: " << e.what() << std::endl;
+      return kExitBadInput;
+    }
+    return result.passed() ? 0 : kExitFailed;
+  }
+
+ private:
+  using Handler = void (Bridge::*)(vpiHandle, const s_vpi_value&);
+  struct Watch {
+    Bridge* bridge;
+    Handler handler;
+    vpiHandle handle;
+  };
+
+  static endatsim::scenarios::Scenario load(const std::string& path) {
+    try {
+      return endatsim::scenarios::load_scenario_file(path, endatsim::scenarios::ScenarioKind::Bench);
+    } catch (const std::exception& e) {
+      bad_configuration(e.what());
+    }
+  }
+  static cosim::BenchOptions options(const Config& config) {
+    cosim::BenchOptions o;
+    if (config.has("vcd")) o.vcd_path = config.get("vcd");
+    if (config.has("seed")) {
+      const std::string s = config.get("seed");
+      std::uint64_t seed = 0;
+      const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), seed);
+      if (ec != std::errc{} || end != s.data() + s.size() || s.empty())
+        bad_configuration("+endatsim_seed=" + s + ": expected a whole number");
+      o.seed = seed;
+    }
+    return o;
+  }
+
+  void watch(vpiHandle h, Handler handler) {
+    watches_.push_back(std::make_unique<Watch>(Watch{this, handler, h}));
+    s_cb_data cb{};
+    s_vpi_time time{};
+    s_vpi_value value{};
+    time.type = vpiSuppressTime;
+    value.format = vpiSuppressVal;
+    cb.reason = cbValueChange;
+    cb.cb_rtn = &Bridge::on_value_change;
+    cb.obj = h;
+    cb.time = &time;
+    cb.value = &value;
+    cb.user_data = reinterpret_cast<PLI_BYTE8*>(watches_.back().get());
+    vpi_register_cb(&cb);
+  }
+  static PLI_INT32 on_value_change(p_cb_data cb) {
+    auto* w = reinterpret_cast<Watch*>(cb->user_data);
+    (w->bridge->*w->handler)(w->handle, s_vpi_value{});
+    return 0;
+  }
+
+  // Brings the bench to the simulator's instant.
+  void sync() {
+    const Time t = scale_.to_ps(sim_ticks());
+    if (t > bench_.now()) bench_.advance_to(t);
+  }
+
+  void pin_changed(vpiHandle h, const s_vpi_value&) {
+    sync();
+    if (h == clock_) {
+      const auto level = level_of(h);
+      if (!level) return bench_.note("CLOCK went to an unknown level (X or Z); the last known level was kept");
+      bench_.drive(cosim::MasterPin::Clock, *level);
+    } else {
+      drive_data();
+    }
+    schedule_wakeup();
+  }
+
+  // The master's DATA driver as its pins stand now (both may change in one instant, in any
+  // order): on while enabled, or always without an enable, with a known level.
+  void drive_data() {
+    const auto enable = data_enable_ != nullptr ? level_of(data_enable_) : std::optional<bool>(true);
+    const bool enabled = enable.has_value() && (data_enable_ == nullptr || *enable != active_low_);
+    const auto level = level_of(data_out_);
+    if (enabled && !level) bench_.note("data_out was unknown (X or Z) while the master drove DATA: taken as released");
+    if (level) bench_.drive(cosim::MasterPin::DataOut, *level);
+    bench_.drive(cosim::MasterPin::DataEnable, enabled && level.has_value());
+  }
+
+  void watch_port(vpiHandle value, vpiHandle valid, std::optional<vpiHandle>* slot) {
+    *slot = value;
+    watch(valid, slot == &position_ ? &Bridge::position_strobe : &Bridge::parameter_strobe);
+  }
+  void position_strobe(vpiHandle valid, const s_vpi_value&) { strobe(valid, *position_, true); }
+  void parameter_strobe(vpiHandle valid, const s_vpi_value&) { strobe(valid, *parameter_, false); }
+  void strobe(vpiHandle valid, vpiHandle value, bool position) {
+    if (level_of(valid) != true) return;
+    const auto word = word_of(value);
+    if (!word) {
+      bench_.note(std::string(position ? "a position" : "a parameter") + " with unknown bits was reported; taken as 0");
+    }
+    position ? report_position(word.value_or(0)) : report_parameter(word.value_or(0));
+  }
+
+  void put_data_in(bool level) {
+    s_vpi_value v{};
+    v.format = vpiScalarVal;
+    v.value.scalar = level ? vpi1 : vpi0;
+    vpi_put_value(data_in_, &v, nullptr, vpiNoDelay);
+  }
+
+  // An after-delay callback at the bench's next event, unless one is set for that tick already.
+  void schedule_wakeup() {
+    const auto next = bench_.next_event_time();
+    if (!next) return;
+    const std::uint64_t now = sim_ticks();
+    const std::uint64_t at = std::max(scale_.to_ticks_ceil(*next), now + 1);
+    if (!wakeups_.insert(at).second) return;
+    s_cb_data cb{};
+    s_vpi_time time{};
+    time.type = vpiSimTime;
+    const std::uint64_t delay = at - now;
+    time.high = static_cast<PLI_UINT32>(delay >> 32);
+    time.low = static_cast<PLI_UINT32>(delay & 0xFFFF'FFFFU);
+    cb.reason = cbAfterDelay;
+    cb.cb_rtn = &Bridge::on_wakeup;
+    cb.time = &time;
+    cb.user_data = reinterpret_cast<PLI_BYTE8*>(this);
+    vpi_register_cb(&cb);
+  }
+  static PLI_INT32 on_wakeup(p_cb_data cb) {
+    auto* self = reinterpret_cast<Bridge*>(cb->user_data);
+    self->wakeups_.erase(sim_ticks());
+    self->sync();
+    if (self->bench_.out_of_time() && !self->stopped_at_max_time_) {
+      self->stopped_at_max_time_ = true;
+      vpi_control(vpiFinish, 0);
+      return 0;
+    }
+    self->schedule_wakeup();
+    return 0;
+  }
+
+  const Config& config_;
+  TimeScale scale_;
+  endatsim::scenarios::Scenario bench_file_;
+  cosim::Bench bench_;
+  vpiHandle clock_ = nullptr, data_out_ = nullptr, data_in_ = nullptr, data_enable_ = nullptr;
+  std::optional<vpiHandle> position_, parameter_;
+  bool active_low_ = false;
+  std::set<std::uint64_t> wakeups_;
+  std::vector<std::unique_ptr<Watch>> watches_;
+  bool stopped_at_max_time_ = false;
+};
+
+std::unique_ptr<Config> g_config;
+std::unique_ptr<Bridge> g_bridge;
+
+// ---- system tasks -------------------------------------------------------------------------
+
+// The one argument of a system task, checked when the design is elaborated.
+vpiHandle single_argument(vpiHandle systf, const char* name) {
+  vpiHandle args = vpi_iterate(vpiArgument, systf);
+  vpiHandle arg = args != nullptr ? vpi_scan(args) : nullptr;
+  if (arg == nullptr) bad_configuration(std::string(name) + " takes one argument: the value the master decoded");
+  if (vpi_scan(args) != nullptr) bad_configuration(std::string(name) + " takes one argument, not more");
+  if (vpi_get(vpiSize, arg) > 64) bad_configuration(std::string(name) + ": the value has more than 64 bits");
+  return arg;
+}
+
+template <bool Position>
+PLI_INT32 report_calltf(PLI_BYTE8*) {
+  const char* name = Position ? "$endatsim_position" : "$endatsim_parameter";
+  vpiHandle arg = single_argument(vpi_handle(vpiSysTfCall, nullptr), name);
+  if (!g_bridge) bad_configuration(std::string(name) + " called before the simulation started");
+  const auto word = word_of(arg);
+  if (!word) g_bridge->note(std::string(name) + " was given a value with unknown bits; taken as 0");
+  Position ? g_bridge->report_position(word.value_or(0)) : g_bridge->report_parameter(word.value_or(0));
+  return 0;
+}
+
+template <bool Position>
+PLI_INT32 report_compiletf(PLI_BYTE8*) {
+  single_argument(vpi_handle(vpiSysTfCall, nullptr), Position ? "$endatsim_position" : "$endatsim_parameter");
+  return 0;
+}
+
+void register_task(const char* name, PLI_INT32 (*calltf)(PLI_BYTE8*), PLI_INT32 (*compiletf)(PLI_BYTE8*)) {
+  s_vpi_systf_data tf{};
+  tf.type = vpiSysTask;
+  tf.tfname = const_cast<PLI_BYTE8*>(name);
+  tf.calltf = calltf;
+  tf.compiletf = compiletf;
+  vpi_register_systf(&tf);
+}
+
+PLI_INT32 start_of_simulation(p_cb_data) {
+  try {
+    g_config = std::make_unique<Config>();
+    g_bridge = std::make_unique<Bridge>(*g_config);
+  } catch (const std::exception& e) {
+    bad_configuration(e.what());
+  }
+  return 0;
+}
+
+PLI_INT32 end_of_simulation(p_cb_data) {
+  if (!g_bridge) return 0;
+  const int status = g_bridge->finish();
+  g_bridge.reset();
+  std::fflush(stdout);
+  // The simulator's own exit status says nothing of endatsim's verdict: end with it here.
+  if (status != 0) std::exit(status);
+  return 0;
+}
+
+void register_callback(PLI_INT32 reason, PLI_INT32 (*routine)(p_cb_data)) {
+  s_cb_data cb{};
+  cb.reason = reason;
+  cb.cb_rtn = routine;
+  vpi_register_cb(&cb);
+}
+
+void startup() {
+  register_task("$endatsim_position", &report_calltf<true>, &report_compiletf<true>);
+  register_task("$endatsim_parameter", &report_calltf<false>, &report_compiletf<false>);
+  register_callback(cbStartOfSimulation, &start_of_simulation);
+  register_callback(cbEndOfSimulation, &end_of_simulation);
+}
+
+}  // namespace
+
+extern "C" {
+// IEEE 1364 27.36: the simulator calls each routine of this list when it loads the module.
+void (*vlog_startup_routines[])() = {&startup, nullptr};
+}
