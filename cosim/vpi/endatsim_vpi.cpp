@@ -175,26 +175,37 @@ std::uint64_t sim_ticks() {
 
 // ---- values -------------------------------------------------------------------------------
 
-// A scalar's level: 0, 1, or none for X, Z and the other unknowns.
-std::optional<bool> level_of(vpiHandle h) {
-  s_vpi_value v{};
-  v.format = vpiScalarVal;
-  vpi_get_value(h, &v);
-  if (v.value.scalar == vpi0) return false;
-  if (v.value.scalar == vpi1) return true;
+// Values travel as binary strings, the one format Icarus and GHDL both read and write for
+// Verilog nets and regs and VHDL std_logic alike: 0/L and 1/H are levels, anything else (X, Z,
+// U, W, -) is unknown.
+std::optional<bool> bit_of(char c) {
+  if (c == '0' || c == 'L' || c == 'l') return false;
+  if (c == '1' || c == 'H' || c == 'h') return true;
   return std::nullopt;
 }
 
-// A vector's value up to 64 bits; none when any bit is unknown.
-std::optional<std::uint64_t> word_of(vpiHandle h) {
-  const PLI_INT32 size = vpi_get(vpiSize, h);
+std::string bin_string(vpiHandle h) {
   s_vpi_value v{};
-  v.format = vpiVectorVal;
+  v.format = vpiBinStrVal;
   vpi_get_value(h, &v);
+  return v.value.str != nullptr ? std::string(v.value.str) : std::string();
+}
+
+// A scalar's level; none when unknown.
+std::optional<bool> level_of(vpiHandle h) {
+  const std::string s = bin_string(h);
+  return s.size() == 1 ? bit_of(s[0]) : std::nullopt;
+}
+
+// A vector's value (most significant bit first) up to 64 bits; none when any bit is unknown.
+std::optional<std::uint64_t> word_of(vpiHandle h) {
+  const std::string s = bin_string(h);
+  if (s.empty() || s.size() > 64) return std::nullopt;
   std::uint64_t out = 0;
-  for (PLI_INT32 word = 0; word * 32 < size && word < 2; ++word) {
-    if (v.value.vector[word].bval != 0) return std::nullopt;
-    out |= static_cast<std::uint64_t>(static_cast<std::uint32_t>(v.value.vector[word].aval)) << (32 * word);
+  for (char c : s) {
+    const auto b = bit_of(c);
+    if (!b) return std::nullopt;
+    out = (out << 1) | (*b ? 1U : 0U);
   }
   return out;
 }
@@ -246,7 +257,9 @@ class Bridge {
   void note(const std::string& text) { bench_.note(text); }
 
   int finish() {
-    sync();
+    // A simulator that ran out of events may end at the end of time (GHDL): the bench ends with
+    // the last instant it was moved to, or at its max_time.
+    if (scale_.to_ps(sim_ticks()) <= bench_file_.max_time) sync();
     if (stopped_at_max_time_) bench_.note("stopped at the bench's max_time " + endatsim::sim::format_time(bench_.now()));
     const auto result = bench_.finish();
     cosim::write_summary(std::cout, result, config_.flag("verbose"));
@@ -346,6 +359,7 @@ class Bridge {
   }
 
   void watch_port(vpiHandle value, vpiHandle valid, std::optional<vpiHandle>* slot) {
+    if (vpi_get(vpiSize, value) > 64) bad_configuration(std::string("a watched position or parameter port has more than 64 bits"));
     *slot = value;
     watch(valid, slot == &position_ ? &Bridge::position_strobe : &Bridge::parameter_strobe);
   }
@@ -361,9 +375,10 @@ class Bridge {
   }
 
   void put_data_in(bool level) {
+    char text[2] = {level ? '1' : '0', '\0'};
     s_vpi_value v{};
-    v.format = vpiScalarVal;
-    v.value.scalar = level ? vpi1 : vpi0;
+    v.format = vpiBinStrVal;
+    v.value.str = text;
     vpi_put_value(data_in_, &v, nullptr, vpiNoDelay);
   }
 
