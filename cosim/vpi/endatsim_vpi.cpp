@@ -9,7 +9,8 @@
 // coarser than 1 ps delivers DATA at the next tick, and the report says so).
 //
 // Configuration (docs/cosim.md): plusargs, or a JSON file named by +endatsim_config=FILE whose
-// keys are the plusargs' names without the prefix; a plusarg overrides the file.
+// keys are the plusargs' names without the prefix (its "bench" relative to the file); a plusarg
+// overrides the file.
 //   +endatsim_bench=FILE            the bench scenario: line, encoders, events, expectations
 //   +endatsim_clock=PATH            the master's CLOCK output
 //   +endatsim_data_out=PATH         its DATA driver input
@@ -27,6 +28,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -124,6 +126,10 @@ class Config {
       else if (v.is_number_unsigned()) values_[k] = std::to_string(v.get<std::uint64_t>());
       else bad_configuration(path + ": at /" + k + ": expected a string, a boolean or a whole number");
     }
+    // The bench is found beside the configuration that names it, wherever the simulator runs.
+    if (const auto bench = values_.find("bench"); bench != values_.end() && !bench->second.empty() &&
+                                                  bench->second[0] != '/')
+      bench->second = (std::filesystem::path(path).parent_path() / bench->second).lexically_normal().string();
   }
   std::map<std::string, std::string> plusargs_;
   std::map<std::string, std::string> values_;
