@@ -183,6 +183,12 @@ scenarios::ExpectationResult all_match(const std::string& name, const std::vecto
 
 void Bench::judge(BenchResult& r) const {
   const auto& e = bench_.expect;
+  // A master that never let the simulation end (hung polling, a testbench that never stops) did
+  // not do what it was meant to.
+  r.expectations.push_back({"ended before max_time", r.simulated < bench_.max_time,
+                            r.simulated < bench_.max_time
+                                ? "at " + sim::format_time(r.simulated)
+                                : "still running at the bench's max_time " + sim::format_time(bench_.max_time)});
   if (e.positions_match_encoder.value_or(false)) {
     auto x = all_match("positions_match_encoder", r.positions, "position");
     if (!x.passed || r.positions.empty()) r.expectations.push_back(std::move(x));

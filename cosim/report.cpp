@@ -2,6 +2,7 @@
 
 #include "scenarios/capture_check.hpp"
 #include "scenarios/junit.hpp"
+#include "scenarios/output_file.hpp"
 #include "scenarios/report.hpp"
 
 namespace endatsim::cosim {
@@ -79,6 +80,24 @@ std::string junit_xml(const BenchResult& r) {
          "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\">\n  <testsuite name=\"" + xml_escape(r.name) +
          "\" tests=\"" + tests + "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\" skipped=\"0\">\n" + cases +
          "  </testsuite>\n</testsuites>\n";
+}
+
+int report(const BenchResult& r, const OutputPaths& outputs, bool verbose, std::ostream& out, std::ostream& err) {
+  write_summary(out, r, verbose);
+  out.flush();
+  try {
+    if (outputs.json) scenarios::write_file(*outputs.json, to_json(r).dump(2) + "\n");
+    if (outputs.junit) scenarios::write_file(*outputs.junit, junit_xml(r));
+    if (outputs.log) {
+      std::string log;
+      for (const auto& f : r.frames) log += scenarios::frame_log_line(f);
+      scenarios::write_file(*outputs.log, log);
+    }
+  } catch (const std::exception& e) {
+    err << "endatsim: " << e.what() << std::endl;
+    return 2;
+  }
+  return r.passed() ? 0 : 1;
 }
 
 }  // namespace endatsim::cosim

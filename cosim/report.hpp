@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <optional>
 #include <string>
 
 #include "cosim/bench.hpp"
@@ -16,5 +17,13 @@ nlohmann::json to_json(const BenchResult& r);
 // One <testsuite> for the bench, a <testcase> per expectation (violations.<check> among them, so
 // each broken row of the timing table fails a test case of its own).
 std::string junit_xml(const BenchResult& r);
+
+struct OutputPaths {
+  std::optional<std::string> json, junit, log;  // "-": standard output
+};
+// Prints the summary to `out` and writes each output asked for (never half a file); returns the
+// exit status: 0 when every expectation held, 1 when one failed, 2 when an output could not be
+// written (said on `err`).
+int report(const BenchResult& r, const OutputPaths& outputs, bool verbose, std::ostream& out, std::ostream& err);
 
 }  // namespace endatsim::cosim

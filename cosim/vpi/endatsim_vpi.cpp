@@ -50,7 +50,6 @@ namespace {
 using endatsim::sim::Time;
 namespace cosim = endatsim::cosim;
 
-constexpr int kExitFailed = 1;
 constexpr int kExitBadInput = 2;
 
 [[noreturn]] void bad_configuration(const std::string& message) {
@@ -266,23 +265,10 @@ class Bridge {
     // A simulator that ran out of events may end at the end of time (GHDL): the bench ends with
     // the last instant it was moved to, or at its max_time.
     if (scale_.to_ps(sim_ticks()) <= bench_file_.max_time) sync();
-    if (stopped_at_max_time_) bench_.note("stopped at the bench's max_time " + endatsim::sim::format_time(bench_.now()));
-    const auto result = bench_.finish();
-    cosim::write_summary(std::cout, result, config_.flag("verbose"));
-    std::cout.flush();
-    try {
-      if (config_.has("json")) endatsim::scenarios::write_file(config_.get("json"), cosim::to_json(result).dump(2) + "\n");
-      if (config_.has("junit")) endatsim::scenarios::write_file(config_.get("junit"), cosim::junit_xml(result));
-      if (config_.has("log")) {
-        std::string log;
-        for (const auto& f : result.frames) log += endatsim::scenarios::frame_log_line(f);
-        endatsim::scenarios::write_file(config_.get("log"), log);
-      }
-    } catch (const std::exception& e) {
-      std::cerr << "endatsim_vpi: " << e.what() << std::endl;
-      return kExitBadInput;
-    }
-    return result.passed() ? 0 : kExitFailed;
+    cosim::OutputPaths outputs;
+    for (auto [key, slot] : {std::pair{"json", &outputs.json}, {"junit", &outputs.junit}, {"log", &outputs.log}})
+      if (config_.has(key)) *slot = config_.get(key);
+    return cosim::report(bench_.finish(), outputs, config_.flag("verbose"), std::cout, std::cerr);
   }
 
  private:

@@ -1,7 +1,7 @@
 #!/bin/sh
 # One co-simulation of examples/hdl's EnDat master through the VPI bridge, as ctest runs it:
 #   run_hdl.sh SIMULATOR DEFECT EXPECTED VPI_DIR SOURCE_DIR [BENCH]
-# SIMULATOR: icarus | ghdl. DEFECT: the master's generic (0: none). EXPECTED: "pass", or the rows of
+# SIMULATOR: icarus | ghdl | verilator (then VPI_DIR is the Verilated program, built with DEFECT). DEFECT: the master's generic (0: none). EXPECTED: "pass", or the rows of
 # the timing table that must be broken (comma-separated, nothing else broken) with the run failing;
 # either may be followed by ";positions=N", the number of positions the master must report (each
 # equal to the one the encoder latched). BENCH: another bench file than the configuration's.
@@ -24,6 +24,10 @@ case "$sim" in
       ghdl -e --std=08 tb_endatsim &&
       ghdl -r --std=08 tb_endatsim -gDEFECT="$defect" --vpi="$vpi/endatsim_vpi_ghdl.so" \
         +endatsim_config="$hdl/vhdl/cosim.json" +endatsim_json=result.json +endatsim_junit=result.xml $bench) \
+      > "$work/out.txt" 2>&1 || status=$?
+    ;;
+  verilator)
+    (cd "$work" && "$vpi" "${6:-$hdl/bench_8mhz_50m.json}" --json result.json --junit result.xml) \
       > "$work/out.txt" 2>&1 || status=$?
     ;;
   *) echo "run_hdl.sh: unknown simulator $sim" >&2; exit 2 ;;

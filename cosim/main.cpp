@@ -1,0 +1,69 @@
+#include "cosim/main.hpp"
+
+#include <charconv>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include "cosim/report.hpp"
+#include "scenarios/loader.hpp"
+
+namespace endatsim::cosim {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: PROGRAM BENCH.json [--json FILE] [--junit FILE] [--log FILE] [--vcd FILE] [--seed N] [--verbose]";
+
+struct MainOptions {
+  std::string bench;
+  OutputPaths outputs;
+  BenchOptions bench_options;
+  bool verbose = false;
+};
+
+MainOptions parse(int argc, const char* const* argv) {
+  MainOptions o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value; " + kUsage);
+      return argv[++i];
+    };
+    if (arg == "--json") o.outputs.json = value();
+    else if (arg == "--junit") o.outputs.junit = value();
+    else if (arg == "--log") o.outputs.log = value();
+    else if (arg == "--vcd") o.bench_options.vcd_path = value();
+    else if (arg == "--verbose") o.verbose = true;
+    else if (arg == "--seed") {
+      const std::string s = value();
+      std::uint64_t seed = 0;
+      const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), seed);
+      if (ec != std::errc{} || end != s.data() + s.size() || s.empty())
+        throw std::invalid_argument("--seed " + s + ": expected a whole number");
+      o.bench_options.seed = seed;
+    } else if (!arg.empty() && arg[0] == '-') throw std::invalid_argument("unknown option " + arg + "; " + kUsage);
+    else if (o.bench.empty()) o.bench = arg;
+    else throw std::invalid_argument("one bench file, not also " + arg + "; " + kUsage);
+  }
+  if (o.bench.empty()) throw std::invalid_argument(std::string("no bench file given; ") + kUsage);
+  return o;
+}
+
+}  // namespace
+
+int run_main(int argc, const char* const* argv, const std::function<void(Bench&)>& drive) {
+  MainOptions o;
+  scenarios::Scenario bench_file;
+  try {
+    o = parse(argc, argv);
+    bench_file = scenarios::load_scenario_file(o.bench, scenarios::ScenarioKind::Bench);
+  } catch (const std::exception& e) {
+    std::cerr << "endatsim: " << e.what() << std::endl;
+    return 2;
+  }
+  Bench bench(bench_file, o.bench_options);
+  drive(bench);
+  return report(bench.finish(), o.outputs, o.verbose, std::cout, std::cerr);
+}
+
+}  // namespace endatsim::cosim
