@@ -120,10 +120,13 @@ class Config {
     for (const auto& [k, v] : j.items()) {
       if (known_keys().count(k) == 0 || k == "config")
         bad_configuration(path + ": at /" + k + ": unknown key; known: " + key_list());
-      if (v.is_string()) values_[k] = v.get<std::string>();
-      else if (v.is_boolean()) values_[k] = v.get<bool>() ? "true" : "false";
-      else if (v.is_number_unsigned()) values_[k] = std::to_string(v.get<std::uint64_t>());
-      else bad_configuration(path + ": at /" + k + ": expected a string, a boolean or a whole number");
+      const bool flag = k == "enable_active_low" || k == "verbose";
+      if (flag && v.is_boolean()) values_[k] = v.get<bool>() ? "true" : "false";
+      else if (k == "seed" && v.is_number_unsigned()) values_[k] = std::to_string(v.get<std::uint64_t>());
+      else if (!flag && k != "seed" && v.is_string()) values_[k] = v.get<std::string>();
+      else bad_configuration(path + ": at /" + k + ": expected " +
+                             (flag ? "true or false" : k == "seed" ? "a whole number" : "a string (a path or a file)") +
+                             ", got " + v.dump());
     }
     // The bench is found beside the configuration that names it, wherever the simulator runs.
     if (const auto bench = values_.find("bench"); bench != values_.end() && !bench->second.empty() &&
