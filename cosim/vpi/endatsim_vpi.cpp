@@ -15,6 +15,8 @@
 //   +endatsim_clock=PATH            the master's CLOCK output
 //   +endatsim_data_out=PATH         its DATA driver input
 //   +endatsim_data_enable=PATH      its DATA driver enable (+endatsim_enable_active_low inverts it)
+//   +endatsim_data=PATH             or: its DATA as one inout net, onto which the testbench puts
+//                                   data_in weakly (a strong level is the master's, a weak one the line's)
 //   +endatsim_data_in=PATH          the reg or signal endatsim writes with DATA at its receiver
 //   +endatsim_position=PATH +endatsim_position_valid=PATH      a watched position port (VHDL)
 //   +endatsim_parameter=PATH +endatsim_parameter_valid=PATH    a watched parameter port
@@ -62,7 +64,7 @@ constexpr int kExitBadInput = 2;
 
 const std::set<std::string>& known_keys() {
   static const std::set<std::string> keys{
-      "bench", "clock", "data_out", "data_enable", "data_in", "enable_active_low", "position", "position_valid",
+      "bench", "clock", "data", "data_out", "data_enable", "data_in", "enable_active_low", "position", "position_valid",
       "parameter", "parameter_valid", "json", "junit", "log", "vcd", "verbose", "seed", "config"};
   return keys;
 }
@@ -81,14 +83,21 @@ class Config {
       for (PLI_INT32 i = 1; i < info.argc; ++i) take_plusarg(info.argv[i] != nullptr ? info.argv[i] : "");
     if (const auto file = plusargs_.find("config"); file != plusargs_.end()) read_file(file->second);
     for (const auto& [k, v] : plusargs_) values_[k] = v;
-    for (const char* required : {"bench", "clock", "data_out", "data_in"})
-      if (!has(required)) bad_configuration(std::string("missing +endatsim_") + required + "=... (or \"" + required +
-                                            "\" in the +endatsim_config file); known: " + key_list());
+    for (const char* required : {"bench", "clock", "data_in"})
+      if (!has(required)) missing(required);
+    if (has("data") && (has("data_out") || has("data_enable")))
+      bad_configuration("+endatsim_data names DATA as one inout, +endatsim_data_out and +endatsim_data_enable as the "
+                        "split of driver and enable: give one or the other");
+    if (!has("data") && !has("data_out")) missing("data_out");
     for (const char* pair : {"position", "parameter"})
       if (has(pair) != has(std::string(pair) + "_valid"))
         bad_configuration(std::string("+endatsim_") + pair + " and +endatsim_" + pair + "_valid go together");
   }
   bool has(const std::string& key) const { return values_.count(key) != 0; }
+  [[noreturn]] static void missing(const std::string& key) {
+    bad_configuration("missing +endatsim_" + key + "=... (or \"" + key + "\" in the +endatsim_config file); known: " +
+                      key_list());
+  }
   std::string get(const std::string& key) const { return has(key) ? values_.at(key) : std::string(); }
   bool flag(const std::string& key) const {
     const auto v = get(key);
@@ -227,16 +236,30 @@ vpiHandle by_name(const Config& config, const std::string& key) {
   return h;
 }
 
+// A pin of the master: one bit.
+vpiHandle pin_by_name(const Config& config, const std::string& key) {
+  vpiHandle h = by_name(config, key);
+  if (const PLI_INT32 size = vpi_get(vpiSize, h); size != 1)
+    bad_configuration("+endatsim_" + key + "=" + config.get(key) + ": a pin of one bit, got " + std::to_string(size) +
+                      " bits");
+  return h;
+}
+
 // ---- the bridge ---------------------------------------------------------------------------
 
 class Bridge {
  public:
   explicit Bridge(const Config& config)
       : config_(config), bench_file_(load(config.get("bench"))), bench_(bench_file_, options(config)) {
-    clock_ = by_name(config, "clock");
-    data_out_ = by_name(config, "data_out");
-    data_in_ = by_name(config, "data_in");
-    if (config.has("data_enable")) data_enable_ = by_name(config, "data_enable");
+    clock_ = pin_by_name(config, "clock");
+    if (config.has("data")) {
+      data_ = pin_by_name(config, "data");
+      strength_by_std_logic_ = simulator_product().find("GHDL") != std::string::npos;
+    } else {
+      data_out_ = pin_by_name(config, "data_out");
+    }
+    data_in_ = pin_by_name(config, "data_in");
+    if (config.has("data_enable")) data_enable_ = pin_by_name(config, "data_enable");
     active_low_ = config.flag("enable_active_low");
     if (config.has("position")) watch_port(by_name(config, "position"), by_name(config, "position_valid"), &position_);
     if (config.has("parameter"))
@@ -244,10 +267,10 @@ class Bridge {
     if (scale_.coarser_than_ps())
       bench_.note("the simulator's time precision is " + scale_.tick() + ": DATA towards the master is delivered at "
                   "the next tick after the line delivers it");
-    if (!data_enable_)
+    if (!data_enable_ && !data_)
       bench_.note("no +endatsim_data_enable: the master drives DATA at all times (its enable taken as on)");
     bench_.on_data_in([this](Time, bool level) { put_data_in(level); });
-    for (vpiHandle h : {clock_, data_out_, data_enable_})
+    for (vpiHandle h : {clock_, data_out_, data_enable_, data_})
       if (h != nullptr) watch(h, &Bridge::pin_changed);
     put_data_in(bench_.data_in());
     bench_.drive(cosim::MasterPin::Clock, level_of(clock_).value_or(true));  // CLOCK rests HIGH (2.3)
@@ -345,12 +368,48 @@ class Bridge {
   // The master's DATA driver as its pins stand now (both may change in one instant, in any
   // order): on while enabled, or always without an enable, with a known level.
   void drive_data() {
+    if (data_ != nullptr) return drive_from_inout();
     const auto enable = data_enable_ != nullptr ? level_of(data_enable_) : std::optional<bool>(true);
     const bool enabled = enable.has_value() && (data_enable_ == nullptr || *enable != active_low_);
     const auto level = level_of(data_out_);
     if (enabled && !level) bench_.note("data_out was unknown (X or Z) while the master drove DATA: taken as released");
     if (level) bench_.drive(cosim::MasterPin::DataOut, *level);
     bench_.drive(cosim::MasterPin::DataEnable, enabled && level.has_value());
+  }
+
+  // One inout: the line's level is on it weakly (the testbench's `assign (weak1, weak0)` or
+  // std_logic 'L'/'H'), so a strong level is the master's own drive and anything weaker, or Z,
+  // means it released DATA.
+  void drive_from_inout() {
+    std::optional<bool> level;
+    bool strong = false;
+    if (strength_by_std_logic_) {  // GHDL: std_logic's own letters tell the strength
+      const std::string v = bin_string(data_);
+      const char c = v.size() == 1 ? v[0] : 'X';
+      strong = c == '0' || c == '1';
+      level = strong ? std::optional<bool>(c == '1') : std::nullopt;
+      if (c != 'L' && c != 'H' && c != 'Z' && !strong) unknown_inout();
+    } else {
+      s_vpi_value v{};
+      v.format = vpiStrengthVal;
+      vpi_get_value(data_, &v);
+      const PLI_INT32 logic = v.value.strength != nullptr ? v.value.strength->logic : vpiX;
+      const PLI_INT32 drive = logic == vpi0 ? v.value.strength->s0 : logic == vpi1 ? v.value.strength->s1 : 0;
+      strong = (logic == vpi0 || logic == vpi1) && drive > vpiWeakDrive;
+      level = strong ? std::optional<bool>(logic == vpi1) : std::nullopt;
+      if (logic == vpiX) unknown_inout();
+    }
+    if (level) bench_.drive(cosim::MasterPin::DataOut, *level);
+    bench_.drive(cosim::MasterPin::DataEnable, strong);
+  }
+  void unknown_inout() {
+    if (sim_ticks() == 0) return;  // signals not yet initialised ('U') before time moves
+    bench_.note("the inout DATA went to an unknown value (X, U, W or -: two strong drivers?); taken as released");
+  }
+
+  static std::string simulator_product() {
+    s_vpi_vlog_info info{};
+    return vpi_get_vlog_info(&info) != 0 && info.product != nullptr ? std::string(info.product) : std::string();
   }
 
   void watch_port(vpiHandle value, vpiHandle valid, std::optional<vpiHandle>* slot) {
@@ -413,7 +472,8 @@ class Bridge {
   TimeScale scale_;
   endatsim::scenarios::Scenario bench_file_;
   cosim::Bench bench_;
-  vpiHandle clock_ = nullptr, data_out_ = nullptr, data_in_ = nullptr, data_enable_ = nullptr;
+  vpiHandle clock_ = nullptr, data_out_ = nullptr, data_in_ = nullptr, data_enable_ = nullptr, data_ = nullptr;
+  bool strength_by_std_logic_ = false;
   std::optional<vpiHandle> position_, parameter_;
   bool active_low_ = false;
   std::set<std::uint64_t> wakeups_;

@@ -37,6 +37,9 @@ bench="+endatsim_bench=$hdl/bench_8mhz_50m.json"
     vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $pins +endatsim_bench=with_master.json
   echo '{"bench": "x.json", "clock": 5}' > bad_config.json
   expect 2 "bad_config.json: at /clock: expected a string" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp +endatsim_config=bad_config.json
+  expect 2 "give one or the other" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $bench $pins +endatsim_data=tb_endatsim.data_out
+  expect 2 "+endatsim_clock=tb_endatsim.position: a pin of one bit, got 64 bits" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp \
+    $bench $pins +endatsim_clock=tb_endatsim.position
   expect 2 "+endatsim_verbose: expected nothing, 1/0 or true/false" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $bench $pins \
     +endatsim_verbose=maybe
   # A bench whose max_time ends before the master is done: stopped there, and a failure.

@@ -1,7 +1,8 @@
 #!/bin/sh
 # One co-simulation of examples/hdl's EnDat master through the VPI bridge, as ctest runs it:
 #   run_hdl.sh SIMULATOR DEFECT EXPECTED VPI_DIR SOURCE_DIR [BENCH]
-# SIMULATOR: icarus | ghdl | verilator (then VPI_DIR is the Verilated program, built with DEFECT). DEFECT: the master's generic (0: none). EXPECTED: "pass", or the rows of
+# SIMULATOR: icarus | ghdl | verilator (then VPI_DIR is the Verilated program, built with DEFECT), or
+# icarus-inout | ghdl-inout: the testbench with DATA as one inout net. DEFECT: the master's generic (0: none). EXPECTED: "pass", or the rows of
 # the timing table that must be broken (comma-separated, nothing else broken) with the run failing;
 # either may be followed by ";positions=N", the number of positions the master must report (each
 # equal to the one the encoder latched). BENCH: another bench file than the configuration's.
@@ -13,17 +14,21 @@ trap 'rm -rf "$work"' EXIT
 hdl=$src/examples/hdl
 status=0
 case "$sim" in
-  icarus)
-    iverilog -g2012 -s tb_endatsim -P tb_endatsim.DEFECT="$defect" -o "$work/tb.vvp" \
-      "$hdl/verilog/endat_master.v" "$hdl/verilog/tb_endatsim.v"
-    (cd "$work" && vvp -n -M "$vpi" -m endatsim_vpi tb.vvp +endatsim_config="$hdl/verilog/cosim.json" \
+  icarus | icarus-inout)
+    tb=tb_endatsim config=cosim.json
+    [ "$sim" = icarus-inout ] && tb=tb_endatsim_inout config=cosim_inout.json
+    iverilog -g2012 -s $tb -P $tb.DEFECT="$defect" -o "$work/tb.vvp" \
+      "$hdl/verilog/endat_master.v" "$hdl/verilog/$tb.v"
+    (cd "$work" && vvp -n -M "$vpi" -m endatsim_vpi tb.vvp +endatsim_config="$hdl/verilog/$config" \
       +endatsim_json=result.json +endatsim_junit=result.xml $bench) > "$work/out.txt" 2>&1 || status=$?
     ;;
-  ghdl)
-    (cd "$work" && ghdl -a --std=08 "$hdl/vhdl/endat_master.vhd" "$hdl/vhdl/tb_endatsim.vhd" &&
-      ghdl -e --std=08 tb_endatsim &&
-      ghdl -r --std=08 tb_endatsim -gDEFECT="$defect" --vpi="$vpi/endatsim_vpi_ghdl.so" \
-        +endatsim_config="$hdl/vhdl/cosim.json" +endatsim_json=result.json +endatsim_junit=result.xml $bench) \
+  ghdl | ghdl-inout)
+    tb=tb_endatsim config=cosim.json
+    [ "$sim" = ghdl-inout ] && tb=tb_endatsim_inout config=cosim_inout.json
+    (cd "$work" && ghdl -a --std=08 "$hdl/vhdl/endat_master.vhd" "$hdl/vhdl/$tb.vhd" &&
+      ghdl -e --std=08 $tb &&
+      ghdl -r --std=08 $tb -gDEFECT="$defect" --vpi="$vpi/endatsim_vpi_ghdl.so" \
+        +endatsim_config="$hdl/vhdl/$config" +endatsim_json=result.json +endatsim_junit=result.xml $bench) \
       > "$work/out.txt" 2>&1 || status=$?
     ;;
   verilator)
