@@ -492,6 +492,33 @@ TEST(CheckCommand, TheLogHoldsEveryFrameAndAScenarioBringsItsCable) {
   for (const auto& p : {vcd, log}) fs::remove(p);
 }
 
+// A bench file (an encoder section without a master) declares what a profile cannot: here the
+// datasheet's t_LO maximum, held against this encoder only; its checker section is honoured too.
+TEST(CheckCommand, ABenchFileDeclaresTheEncodersDatasheetTimes) {
+  const std::string scenario = std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat21_1mhz_10m.json";
+  const fs::path vcd = temp("bench_declares.vcd"), bench = temp("bench_declares.json");
+  scenarios::RunOptions options;
+  options.vcd_path = vcd.string();
+  scenarios::run_scenario(scenarios::load_scenario_file(scenario), options);
+  const std::string signals = " --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable";
+  std::ofstream(bench) << R"({"name": "datasheet", "line": {"cable_length_m": 10},
+    "encoder": {"version": "2.2", "t_lo_max": "0.4 us"}, "checker": {"t_st_reduced_for_cable": true}})";
+  auto r = cli("check '" + vcd.string() + "'" + signals + " --encoder '" + bench.string() + "'");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("violation t_lo"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("does not conform to this encoder (its declared limits); within the spec envelope"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("t_st_reduced_for_cable"), std::string::npos) << r.out;       // the relaxation named
+  std::ofstream(bench) << R"({"name": "datasheet", "line": {"cable_length_m": 10}, "encoder": {"t_lo_max": "1 us"}})";
+  r = cli("check '" + vcd.string() + "'" + signals + " --encoder '" + bench.string() + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  std::ofstream(bench) << R"({"name": "datasheet", "line": {"cable_length_m": 10}, "encoder": {"t_lo_max": "1 s"}})";
+  r = cli("check '" + vcd.string() + "'" + signals + " --encoder '" + bench.string() + "'");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("at /encoder/t_lo_max"), std::string::npos) << r.err;
+  for (const auto& p : {vcd, bench}) fs::remove(p);
+}
+
 TEST(CheckCapture, ReportsProgressThroughTheFile) {
   const fs::path vcd = temp("progress.vcd");
   {

@@ -622,24 +622,33 @@ int diagram_command(const po::variables_map& vm) {
 // The declared encoder of a check: a scenario's (its line's transceivers included in the delay
 // at the connector) or a profile's with the model's transceivers.
 // A scenario also gives its cable (to `cable`); a profile has none.
-checker::EncoderDeclaration encoder_declaration_file(const std::string& path, std::optional<double>& cable) {
+// What --encoder declares: a profile (its memory image: word 13's width, word 39's t_cal, word 25's
+// highest clock), or a scenario or a bench whose encoder section adds the datasheet's times (t_m,
+// t_R, t_ac, t_ST and t_LO maxima, possibly on top of a profile), its cable and its checker options.
+struct EncoderFile {
+  checker::EncoderDeclaration encoder;
+  std::optional<double> cable;
+  std::optional<checker::CheckerParams> checker;
+};
+
+EncoderFile encoder_declaration_file(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the encoder declaration for reading");
+  if (!in) throw std::runtime_error(path + ": cannot open the encoder declaration for reading: " + std::strerror(errno));
   const auto j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw std::runtime_error(path + ": not a JSON object (a profile or a scenario)");
-  if (j.contains("encoder") || j.contains("script")) {
-    const auto s = scenarios::load_scenario_file(path);
+  if (j.contains("encoder") || j.contains("script") || j.contains("line")) {
+    const bool bench = !j.contains("master") && !j.contains("script");
+    const auto s = scenarios::load_scenario_file(path, bench ? scenarios::ScenarioKind::Bench : scenarios::ScenarioKind::Run);
     auto d = scenarios::declared_encoder(s.encoder);
     d.output_delay = s.line.encoder.receiver_delay + s.encoder.output_delay + s.line.encoder.driver_delay;
-    cable = s.line.cable_length_m;
-    return d;
+    return {d, s.line.cable_length_m, s.checker};
   }
   slave::EncoderParams p;
   slave::load_profile(path).apply(p);
   const line::LineParams lp;
   auto d = scenarios::declared_encoder(p);
   d.output_delay = lp.encoder.receiver_delay + p.output_delay + lp.encoder.driver_delay;
-  return d;
+  return {d, std::nullopt, std::nullopt};
 }
 
 // A duration option of `check` within 0 .. max; a message and false when it is not one.
@@ -706,11 +715,16 @@ int check_command(const po::variables_map& vm) {
     o.encoder.output_delay = lp.encoder.receiver_delay + model.output_delay + lp.encoder.driver_delay;
   }
   std::optional<double> scenario_cable;
-  if (const auto e = string_option(vm, "encoder")) o.encoder = encoder_declaration_file(*e, scenario_cable);
+  if (const auto e = string_option(vm, "encoder")) {
+    auto declared = encoder_declaration_file(*e);
+    o.encoder = declared.encoder;
+    scenario_cable = declared.cable;
+    if (declared.checker) o.checker = *declared.checker;
+  }
   std::optional<sim::Time> clock_to_data;
   if (!check_duration(vm, "clock-to-data", sim::us(10), clock_to_data)) return kBadInput;
   if (clock_to_data) o.encoder.output_delay = *clock_to_data;
-  o.checker.t_st_reduced_for_cable = vm.count("t-st-reduced-for-cable") != 0;
+  if (vm.count("t-st-reduced-for-cable") != 0) o.checker.t_st_reduced_for_cable = true;
   if (o.data_out) o.at = scenarios::CaptureCheckOptions::At::Master;  // an RTL master's own signals
   if (const auto at = string_option(vm, "at")) {
     if (*at != "encoder" && *at != "master") {
