@@ -783,7 +783,9 @@ std::uint8_t Encoder::status_byte(Information i) const {
   if ((memory_.operating_status(word::kWarnings) & memory_.manufacturer_word(word::kSupportedWarnings)) != 0)
     s |= S::kWarning;
   if (busy()) s |= S::kBusy;
-  if (incremental_ && referenced_) s |= S::kReferenceMark;
+  // 2.3.1 status table: RM is "already set with switch-on with absolute encoders"; an incremental
+  // one sets it when its reference run is done (2.3.4.3).
+  if (referenced_) s |= S::kReferenceMark;
   return s;
 }
 

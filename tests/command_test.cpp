@@ -232,6 +232,9 @@ std::string position22(std::uint64_t pos) {
   return "1" "0" "1" + bits_lsb(pos, 8) + bits_msb(protocol::make_crc_pos(8, false, true, true, pos), 5);
 }
 
+// 2.3.1 status table: an absolute encoder's additional data carry RM from switch-on.
+constexpr std::uint8_t kRm = protocol::AdditionalDataStatus::kReferenceMark;
+
 std::string additional_datum(std::uint8_t status, std::uint16_t data) {
   return "0" + bits_msb(status, 8) + bits_msb(data, 16) + bits_msb(protocol::make_crc_norm(status, data), 5);
 }
@@ -267,7 +270,16 @@ TEST(AdditionalData, SelectedTemperatureFollowsFromTheNextFrame) {
   Bench b(params());
   b.frame(59, supplement_frame(0b001001, 0x4C, 0));
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(1, 9, 57), "00" + position22(0xA5) + additional_datum(0x0C, 2982) + "1");
+  EXPECT_EQ(b.slots(1, 9, 57), "00" + position22(0xA5) + additional_datum(kRm | 0x0C, 2982) + "1");
+}
+
+// 2.3.1 status table, RM: "already set with switch-on with absolute encoders" (an incremental
+// one sets it after its reference run: IncrementalEncoder below).
+TEST(AdditionalData, AnAbsoluteEncoderSendsRmFromSwitchOn) {
+  Bench b(params());
+  b.frame(59, supplement_frame(0b001001, 0x4C, 0));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(1, 28, 35), bits_msb(0x40 | 0x0C, 8)) << "the first datum after switch-on: RM, temperature 1";
 }
 
 TEST(AdditionalData, AdditionalData2ComesBeforeAdditionalData1) {
@@ -278,7 +290,7 @@ TEST(AdditionalData, AdditionalData2ComesBeforeAdditionalData1) {
   b.frame(89, supplement_frame(0b001001, 0x52, 0, 1));  // 52h: acceleration (additional data 2)
   b.frame(88, ScriptedFrame::header(0b111000));
   EXPECT_EQ(b.slots(2, 9, 87),
-            "00" + position22(0xA5) + additional_datum(0x12, 0x0123) + additional_datum(0x0C, 2982) + "1");
+            "00" + position22(0xA5) + additional_datum(kRm | 0x12, 0x0123) + additional_datum(kRm | 0x0C, 2982) + "1");
 }
 
 TEST(AdditionalData, StopSendingEndsTheSelection) {
@@ -294,10 +306,10 @@ TEST(AdditionalData, TypeThreeForAnImpermissibleCodeUntilReselected) {
   Bench b(params());
   b.frame(59, supplement_frame(0b001001, 0x5A, 0));
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(1, 27, 35), "0" + bits_msb(31, 8));
+  EXPECT_EQ(b.slots(1, 27, 35), "0" + bits_msb(kRm | 31, 8));
   b.frame(89, supplement_frame(0b001001, 0x52, 0, 1));
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(3, 27, 35), "0" + bits_msb(0x12, 8));
+  EXPECT_EQ(b.slots(3, 27, 35), "0" + bits_msb(kRm | 0x12, 8));
 }
 
 TEST(AdditionalData, TypeThreeForACodeTheEncoderDoesNotSupport) {
@@ -310,7 +322,7 @@ TEST(AdditionalData, TypeThreeForACodeTheEncoderDoesNotSupport) {
   Bench b(p);
   b.frame(59, supplement_frame(0b001001, 0x4C, 0));
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(1, 27, 35), "0" + bits_msb(15, 8));
+  EXPECT_EQ(b.slots(1, 27, 35), "0" + bits_msb(kRm | 15, 8));
 }
 
 TEST(AdditionalData, TypeFourNopWhileTheDatumCannotBeUpdated) {
@@ -319,7 +331,7 @@ TEST(AdditionalData, TypeFourNopWhileTheDatumCannotBeUpdated) {
   Bench b(p);
   b.frame(59, supplement_frame(0b001001, 0x4C, 0));
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(1, 27, 56), additional_datum(0x00, 0));
+  EXPECT_EQ(b.slots(1, 27, 56), additional_datum(kRm | 0x00, 0));
 }
 
 TEST(AdditionalData, AdditionalSensorsRollTheirAddressAndCarryThe115KOffset) {
@@ -344,13 +356,13 @@ TEST(AdditionalData, MemoryReadThroughTheSupplementShowsBusyThenTheValue) {
   b.frame(59, supplement_frame(0b001001, 0x45, 0));
   b.frame(89, supplement_frame(0b001001, 0xA1, 0, 1));  // busy 300 us
   b.frame(58, ScriptedFrame::header(0b111000));       // 200 us later
-  EXPECT_EQ(b.slots(2, 28, 35), bits_msb(0x20 | 5, 8)) << "Busy set";
+  EXPECT_EQ(b.slots(2, 28, 35), bits_msb(kRm | 0x20 | 5, 8)) << "Busy set";
   b.frame(89, supplement_frame(0b100100, 0x0D, 0, 1));  // 400 us after the selection: done
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(4, 28, 35), bits_msb(0x20 | 5, 8)) << "busy with the read";
+  EXPECT_EQ(b.slots(4, 28, 35), bits_msb(kRm | 0x20 | 5, 8)) << "busy with the read";
   b.frame(58, ScriptedFrame::header(0b111000));
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(6, 28, 51), bits_msb(5, 8) + bits_msb(0x0D, 8) + bits_msb(0x08, 8));
+  EXPECT_EQ(b.slots(6, 28, 51), bits_msb(kRm | 5, 8) + bits_msb(0x0D, 8) + bits_msb(0x08, 8));
 }
 
 TEST(AdditionalData, AccessWhileBusyWithA22CommandIsIgnored) {
@@ -387,7 +399,7 @@ TEST(ModeCommandTestCommand22, ForcedDynamicSamplingSetsF1AndIsAcknowledged) {
   b.frame(89, supplement_frame(0b110110, 0x01, 0, 1));
   b.frame(58, ScriptedFrame::header(0b111000));
   EXPECT_EQ(b.slots(2, 11, 13), "111");
-  EXPECT_EQ(b.slots(2, 28, 43), bits_msb(8, 8) + bits_msb(0x01, 8));
+  EXPECT_EQ(b.slots(2, 28, 43), bits_msb(kRm | 8, 8) + bits_msb(0x01, 8));
   b.frame(89, supplement_frame(0b110110, 0x00, 0, 1));
   b.frame(58, ScriptedFrame::header(0b111000));
   EXPECT_EQ(b.slots(4, 11, 13), "101");
@@ -451,10 +463,10 @@ TEST(AppendixA2, Cause11BlockAddressBeyondWord24IsAcknowledgedInverted) {
   b.frame(89, supplement_frame(0b001001, 0xBF, 0x0005, 1));
   EXPECT_EQ(*b.last().error, ErrorCause::ImpermissibleBlockAddress);
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(2, 28, 51), bits_msb(7, 8) + bits_msb(0x40, 8) + bits_msb(0xFA, 8));
+  EXPECT_EQ(b.slots(2, 28, 51), bits_msb(kRm | 7, 8) + bits_msb(0x40, 8) + bits_msb(0xFA, 8));
   b.frame(89, supplement_frame(0b001001, 0xBF, 0x0001, 1));
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(4, 28, 51), bits_msb(7, 8) + bits_msb(0xBF, 8) + bits_msb(0x01, 8));
+  EXPECT_EQ(b.slots(4, 28, 51), bits_msb(kRm | 7, 8) + bits_msb(0xBF, 8) + bits_msb(0x01, 8));
 }
 
 TEST(AppendixA2, Cause15PositionValue2InBothAdditionalData) {
@@ -469,8 +481,8 @@ TEST(AppendixA2, Cause15PositionValue2InBothAdditionalData) {
   b.frame(59, supplement_frame(0b001001, 0x42, 0));
   b.frame(89, supplement_frame(0b001001, 0x56, 0, 1));
   b.frame(88, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(2, 27, 35), "0" + bits_msb(31, 8));
-  EXPECT_EQ(b.slots(2, 57, 65), "0" + bits_msb(2, 8));
+  EXPECT_EQ(b.slots(2, 27, 35), "0" + bits_msb(kRm | 31, 8));
+  EXPECT_EQ(b.slots(2, 57, 65), "0" + bits_msb(kRm | 2, 8));
 }
 
 TEST(AppendixA2, EveryCauseHasItsType) {
@@ -707,16 +719,16 @@ TEST(AdditionalData, DiagnosisSendsTheActivatedValuationNumbersInTurn) {
   Bench b(p);
   b.frame(59, supplement_frame(0b001001, 0x41, 0));
   for (int i = 0; i < 3; ++i) b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(1, 28, 51), bits_msb(0x01, 8) + bits_msb(0x01, 8) + bits_msb(91, 8));
-  EXPECT_EQ(b.slots(2, 28, 51), bits_msb(0x01, 8) + bits_msb(0x03, 8) + bits_msb(93, 8));
-  EXPECT_EQ(b.slots(3, 28, 51), bits_msb(0x01, 8) + bits_msb(0x01, 8) + bits_msb(91, 8));
+  EXPECT_EQ(b.slots(1, 28, 51), bits_msb(kRm | 0x01, 8) + bits_msb(0x01, 8) + bits_msb(91, 8));
+  EXPECT_EQ(b.slots(2, 28, 51), bits_msb(kRm | 0x01, 8) + bits_msb(0x03, 8) + bits_msb(93, 8));
+  EXPECT_EQ(b.slots(3, 28, 51), bits_msb(kRm | 0x01, 8) + bits_msb(0x01, 8) + bits_msb(91, 8));
 }
 
 TEST(AdditionalData, DiagnosisWithoutActivatedValuationNumbersIsNop) {
   Bench b(params());
   b.frame(59, supplement_frame(0b001001, 0x41, 0));
   b.frame(58, ScriptedFrame::header(0b111000));
-  EXPECT_EQ(b.slots(1, 28, 35), bits_msb(0x00, 8));
+  EXPECT_EQ(b.slots(1, 28, 35), bits_msb(kRm | 0x00, 8));
 }
 
 TEST(AppendixA2, Cause5EncoderBehindAnEibNotYetInitiated) {
