@@ -201,6 +201,12 @@ bool Memory::write_protected(const Selection& s) const {
 
 std::optional<ErrorCause> Memory::write(const Selection& s, std::uint8_t address, std::uint16_t value) {
   if (const auto e = check_write(s, address, value)) return e;
+  // 3.4.1 / 3.4.2: errors and warnings are deleted by writing 0000h to word 0 (1) "and sending the
+  // mode command Encoder receive reset": the write is accepted, the word clears with the reset.
+  if (s.area == Area::OperatingStatus && (address == word::kErrors || address == word::kWarnings)) {
+    clear_on_reset_ |= static_cast<std::uint8_t>(1U << address);
+    return std::nullopt;
+  }
   words(s)->at(address) = value;
   return std::nullopt;
 }
@@ -251,7 +257,10 @@ void Memory::clear_errors_and_warnings() {
 }
 
 void Memory::activate_on_reset() {
-  const auto& status = image_.areas.at(Area::OperatingStatus);
+  auto& status = image_.areas.at(Area::OperatingStatus);
+  for (const unsigned w : {word::kErrors, word::kWarnings})
+    if ((clear_on_reset_ >> w) & 1U) status[w] = 0;
+  clear_on_reset_ = 0;
   active_protection_ = status[word::kWriteProtection];
   active_functions_ = status[word::kFunctionInitialization];
   active_operating_ = image_.areas.at(Area::OperatingParameters);

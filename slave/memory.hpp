@@ -60,7 +60,8 @@ class Memory {
   // 2.4.1 / 2.4.2.1 / 2.4.2.3 / A2 causes 2, 7, 11.
   std::optional<ErrorCause> check_selection(std::uint8_t mrs, std::uint8_t block, bool endat22_command) const;
   std::optional<ErrorCause> read(const Selection& s, std::uint8_t address, std::uint16_t& value) const;
-  // A2 causes 8, 9, 10, 12; words 0 and 1 can only be cleared as a whole (3.4.1, 3.4.2).
+  // A2 causes 8, 9, 10, 12; words 0 and 1 can only be cleared as a whole, by 0000h that the next
+  // "Encoder receive reset" carries out (3.4.1, 3.4.2).
   std::optional<ErrorCause> write(const Selection& s, std::uint8_t address, std::uint16_t value);
   std::optional<ErrorCause> check_write(const Selection& s, std::uint8_t address, std::uint16_t value) const;
 
@@ -95,6 +96,7 @@ class Memory {
   std::uint16_t active_functions_ = 0;
   std::vector<std::uint16_t> active_operating_;
   bool commissioning_ = false;
+  std::uint8_t clear_on_reset_ = 0;  // bit n: word n (0 errors, 1 warnings) written 0000h, cleared by the next reset
 };
 
 }  // namespace endatsim::slave

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "slave/encoder.hpp"
+#include "slave/memory.hpp"
 #include "test_support.hpp"
 
 using namespace endatsim;
@@ -214,4 +215,24 @@ TEST(EncoderParams, RejectsOutOfRangeTimesNamingTheLimit) {
   p.multiturn_bits = 12;
   p.position_bits = 25;
   EXPECT_NO_THROW(p.validate());
+}
+
+// 3.4.1 / 3.4.2: "Error bits can be deleted by overwriting the word 0 with 0000h and sending the
+// mode command Encoder receive reset" (warnings likewise, word 1): the write alone deletes nothing.
+TEST(EncoderMemory, ErrorsAndWarningsClearWithZeroAndTheResetAfterIt) {
+  slave::Memory m(slave::default_memory_image(slave::EncoderParams{}));
+  const slave::Selection status{protocol::MemoryArea::OperatingStatus, 0};
+  m.latch_errors(0x0004, 0x0010);
+  m.activate_on_reset();  // a reset without the write deletes nothing
+  EXPECT_EQ(m.operating_status(slave::word::kErrors), 0x0004);
+  EXPECT_FALSE(m.write(status, slave::word::kErrors, 0x0000).has_value());
+  EXPECT_EQ(m.operating_status(slave::word::kErrors), 0x0004) << "still set until the reset";
+  EXPECT_EQ(m.operating_status(slave::word::kWarnings), 0x0010) << "word 1 was not written";
+  m.activate_on_reset();
+  EXPECT_EQ(m.operating_status(slave::word::kErrors), 0x0000);
+  EXPECT_EQ(m.operating_status(slave::word::kWarnings), 0x0010);
+  EXPECT_FALSE(m.write(status, slave::word::kWarnings, 0x0000).has_value());
+  m.activate_on_reset();
+  EXPECT_EQ(m.operating_status(slave::word::kWarnings), 0x0000);
+  EXPECT_TRUE(m.write(status, slave::word::kErrors, 0x0001).has_value()) << "single bits cannot be written";
 }
