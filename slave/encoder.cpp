@@ -107,10 +107,20 @@ void EncoderParams::validate() const {
   }
 }
 
+// The whole measuring steps an axis moving at `counts_per_s` has made by `t`. A count changes when
+// the axis crosses a step, so a negative velocity rounds toward minus infinity, as an encoder
+// counting down does, not toward zero.
+namespace {
+__int128 steps_by(std::int64_t counts_per_s, Time t) {
+  constexpr __int128 kPsPerSecond = 1'000'000'000'000;
+  const __int128 n = static_cast<__int128>(counts_per_s) * t.count();
+  return n >= 0 ? n / kPsPerSecond : -((-n + kPsPerSecond - 1) / kPsPerSecond);
+}
+}  // namespace
+
 std::uint64_t EncoderParams::position_at(Time t) const {
   const __int128 range = __int128{1} << position_bits;
-  __int128 p = static_cast<__int128>(motion.start) +
-               static_cast<__int128>(motion.counts_per_s) * t.count() / 1'000'000'000'000;
+  __int128 p = static_cast<__int128>(motion.start) + steps_by(motion.counts_per_s, t);
   p %= range;
   if (p < 0) p += range;
   return static_cast<std::uint64_t>(p);
@@ -457,8 +467,7 @@ std::uint64_t Encoder::output_position(std::uint64_t measured) const {
 }
 
 __int128 Encoder::unwrapped_position(Time t) const {
-  return static_cast<__int128>(params_.motion.start) + slip_ +
-         static_cast<__int128>(params_.motion.counts_per_s) * t.count() / 1'000'000'000'000;
+  return static_cast<__int128>(params_.motion.start) + slip_ + steps_by(params_.motion.counts_per_s, t);
 }
 
 // 2.3.4.3: RM is set once the axis has crossed a reference mark as the scheme needs it (two

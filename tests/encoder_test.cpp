@@ -188,6 +188,22 @@ TEST(EncoderRoundTrip, StartBitEdgeArrivesOneRoundTripAfterTheRisingEdge) {
   }
 }
 
+// An axis moving down crosses its next step half a step after it starts: the count goes down then,
+// as an encoder counting down does (toward minus infinity, not toward zero).
+TEST(EncoderMotion, ANegativeVelocityCountsDownAtEachStepCrossed) {
+  slave::EncoderParams p;
+  p.motion.start = 1000;
+  p.motion.counts_per_s = -1'000'000;  // a step per microsecond
+  EXPECT_EQ(p.position_at(Time::zero()), 1000U);
+  EXPECT_EQ(p.position_at(ps(1)), 999U) << "the first step is crossed at once";
+  EXPECT_EQ(p.position_at(ns(500)), 999U);
+  EXPECT_EQ(p.position_at(us(1)), 999U);
+  EXPECT_EQ(p.position_at(us(1) + ps(1)), 998U);
+  p.motion.counts_per_s = 1'000'000;  // up: a step is counted once it is complete
+  EXPECT_EQ(p.position_at(us(1) - ps(1)), 1000U);
+  EXPECT_EQ(p.position_at(us(1)), 1001U);
+}
+
 TEST(EncoderMotion, ConstantVelocityWrapsAtTheResolution) {
   slave::EncoderParams p;
   p.position_bits = 12;
