@@ -224,6 +224,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
   adopt_encoder_type();
   unsettled_left_ = params_.unsettled_positions;
   activate_functions();
+  latch_bus_address_error();
   enable();  // idle: DATA driven LOW, unless word 5 puts the driver at high impedance (2.10)
   if (params_.startup_time > Time::zero()) go_offline(params_.startup_time);
 }
@@ -494,7 +495,8 @@ std::uint16_t Encoder::error_word() const {
 bool Encoder::error_message_1() const {
   const bool forced = test_port_22_ >= kForcedError1First && test_port_22_ < kForcedError1First + 7;
   return !params_.error_message_1_stuck &&
-         (params_.error1 || forced || eib_not_initiated_ || (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0);
+         (params_.error1 || forced || eib_not_initiated_ || bus_address_error_ ||
+          (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0);
 }
 
 bool Encoder::error_message_2() const {
@@ -505,7 +507,7 @@ bool Encoder::error_message_2() const {
 
 bool Encoder::error_present() const {
   const auto supported = memory_.manufacturer_word(word::kSupportedErrors) | memory_.endat22_word(6);
-  return params_.error1 || eib_not_initiated_ || (error_word() & supported) != 0;
+  return params_.error1 || eib_not_initiated_ || bus_address_error_ || (error_word() & supported) != 0;
 }
 
 void Encoder::answer_position() {
@@ -755,6 +757,7 @@ void Encoder::on_memory_access_done() {
       memory_.write(in_progress_.selection, in_progress_.address, in_progress_.value);
       if (nvm_write_) nvm_write_->applied = true;
       note_commissioning_write(in_progress_.selection, in_progress_.address);
+      latch_bus_address_error();
       break;
     default:
       break;
@@ -913,6 +916,7 @@ void Encoder::finish_frame() {
       memory_.write(pending_.selection, pending_.address, pending_.value);
       if (nvm_write_) nvm_write_->applied = true;
       note_commissioning_write(pending_.selection, pending_.address);
+      latch_bus_address_error();
       break;
     case Pending::Kind::Reset:
       reset();
@@ -981,6 +985,9 @@ void Encoder::power_interruption(Time duration) {
   end_marker_timer_.cancel();
   pending_ = {};
   restart_state();  // 2.7: a reset is "the same reaction as switching the power off and on"
+  // 3.6.4: only switching the power off and on, with word 4 at 0000h, clears error bit 1.
+  bus_address_error_ = false;
+  latch_bus_address_error();
   go_offline(duration + params_.startup_time);
 }
 
@@ -1108,6 +1115,12 @@ void Encoder::select(const Selection& s) {
 }
 
 // EibActivation::Word14Write: the EIB becomes the connected encoder when word 14 is written.
+// 3.6.4: "Error bit 1 is always set if a bit is set in this word [the encoder address, word 4].
+// This can only be cleared by resetting the word to 0000h and switching the power off and on."
+void Encoder::latch_bus_address_error() {
+  if (memory_.operating_parameter(word::kEncoderAddress) != 0) bus_address_error_ = true;
+}
+
 void Encoder::note_commissioning_write(const Selection& s, std::uint8_t address) {
   if (eib_not_initiated_ && params_.eib_activation == EibActivation::Word14Write &&
       s.area == MemoryArea::Manufacturer1 && address == word::kEncoderType)

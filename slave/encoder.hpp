@@ -297,6 +297,7 @@ class Encoder {
   bool multiturn_overflowed(Time t) const;
   void check_multiturn_overflow();
   bool error_message_1() const;
+  void latch_bus_address_error();
   std::uint64_t output_position(std::uint64_t measured) const;
   void update_reference();
   __int128 unwrapped_position(Time t) const;
@@ -384,6 +385,7 @@ class Encoder {
   std::optional<Time> probe_switched_at_;       // the last trigger, for the timestamp (3.9.32)
   ReferenceScheme reference_;                   // from word 14 and words 18/19 (2.3.4.3)
   bool referenced_ = false;                     // RM (2.3.4.3)
+  bool bus_address_error_ = false;              // error bit 1 held by a bus address in word 4 (3.6.4)
   __int128 reference_offset_ = 0;               // absolute = measured - offset (equidistant, first crossed)
   unsigned position_bits_ = 0;                  // word 13 as activated
   bool eib_not_initiated_ = false;              // word 14 type Fh (3.5.7, A2 cause 5)

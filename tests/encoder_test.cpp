@@ -252,3 +252,26 @@ TEST(EncoderMemory, ErrorsAndWarningsClearWithZeroAndTheResetAfterIt) {
   EXPECT_EQ(m.operating_status(slave::word::kWarnings), 0x0000);
   EXPECT_TRUE(m.write(status, slave::word::kErrors, 0x0001).has_value()) << "single bits cannot be written";
 }
+
+// 3.6.4: "Error bit 1 is always set if a bit is set in this word [word 4, the bus address]. This
+// can only be cleared by resetting the word to 0000h and switching the power off and on."
+TEST(EncoderBusAddress, ErrorBitOneHoldsUntilWordFourIsZeroAndThePowerCycles) {
+  auto p = encoder_params(protocol::EndatVersion::V2_2, 8, 0xA5);
+  p.memory = slave::default_memory_image(p);
+  p.memory->areas[protocol::MemoryArea::OperatingParameters][slave::word::kEncoderAddress] = 0x0011;
+  Bench b(p);
+  const slave::Selection parameters{protocol::MemoryArea::OperatingParameters, 0};
+  const auto f1_of_a_frame_at = [&](Time at) {
+    ScriptedClock clock(b.k, b.line, us(1), 28, 0b111000, at);
+    b.k.run(at + us(100));
+    return b.sampler.slots_at(at, 12, 12);  // S on slot 11, F1 on slot 12 (2.3.1)
+  };
+  EXPECT_EQ(f1_of_a_frame_at(us(10)), "1") << "an address in word 4";
+  b.encoder.corrupt_word(parameters, slave::word::kEncoderAddress, 0x0011);  // word 4 back to 0000h
+  EXPECT_EQ(f1_of_a_frame_at(us(200)), "1") << "0000h alone does not clear it";
+  b.encoder.power_interruption(us(100));
+  EXPECT_EQ(f1_of_a_frame_at(us(600)), "0") << "0000h and a power cycle do";
+  b.encoder.corrupt_word(parameters, slave::word::kEncoderAddress, 0x0012);
+  b.encoder.power_interruption(us(100));
+  EXPECT_EQ(f1_of_a_frame_at(us(1000)), "1") << "a power cycle with an address in word 4 keeps it";
+}
