@@ -414,8 +414,32 @@ void Encoder::on_rising_edge() {
       shift_ = shift_ << 1 | bit;
       if (++shifted_ == protocol::kPayloadBits) process_supplement();
       break;
+    case State::SupplementDone:
+      clock_after_supplement();
+      break;
     default:
       break;
+  }
+}
+
+// 2.4.2.1: "If a non-permissible memory area is received by the encoder or more clock pulses than
+// necessary are sent, an error message is output compliant to Appendix A2": cause 2, type II, the
+// MRS code and block address acknowledged inverted; the selection does not take place.
+void Encoder::clock_after_supplement() {
+  EncoderFrame& f = frames_.back();
+  if (f.too_many_clocks) return;
+  f.too_many_clocks = true;
+  const auto address = static_cast<std::uint8_t>(f.supplement.value_or(0) >> 16);
+  if (command_->command != MC::EncoderSendPositionValuesAndSelectionOfMemoryArea ||
+      protocol::selects_additional_data(address) || f.supplement_ignored)
+    return;
+  f.error = ErrorCause::MrsFrameDisrupted;
+  last_mrs_ = static_cast<std::uint8_t>(~address);
+  last_block_ = static_cast<std::uint8_t>(~static_cast<std::uint8_t>(f.supplement.value_or(0)));
+  if (in_progress_.kind == Pending::Kind::Select) {
+    in_progress_ = {};
+    memory_timer_.cancel();
+    busy_until_ = kernel_.now();
   }
 }
 

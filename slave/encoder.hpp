@@ -298,6 +298,7 @@ class Encoder {
   void check_multiturn_overflow();
   bool error_message_1() const;
   void latch_bus_address_error();
+  void clock_after_supplement();
   std::uint64_t output_position(std::uint64_t measured) const;
   void update_reference();
   __int128 unwrapped_position(Time t) const;

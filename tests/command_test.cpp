@@ -469,6 +469,27 @@ TEST(AppendixA2, Cause11BlockAddressBeyondWord24IsAcknowledgedInverted) {
   EXPECT_EQ(b.slots(4, 28, 51), bits_msb(kRm | 7, 8) + bits_msb(0xBF, 8) + bits_msb(0x01, 8));
 }
 
+// 2.4.2.1: "If ... more clock pulses than necessary are sent, an error message is output
+// compliant to Appendix A2": cause 2, the MRS code and block address acknowledged inverted, and the
+// memory area is not selected; the same selection with the right number of clocks is taken.
+TEST(AppendixA2, Cause2MoreClocksThanASelectionNeeds) {
+  auto p = params();
+  p.t_ac_read = us(300);  // a selection that went ahead would still be busy 200 us later
+  Bench b(p);
+  b.frame(59, supplement_frame(0b001001, 0x47, 0));             // additional data 1: MRS acknowledgment
+  b.frame(90, supplement_frame(0b001001, 0xA1, 0x0000, 1));     // one clock pulse more than it needs
+  EXPECT_EQ(b.last().error, std::optional{ErrorCause::MrsFrameDisrupted});
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(2, 28, 51), bits_msb(kRm | 7, 8) + bits_msb(0x5E, 8) + bits_msb(0xFF, 8)) << "A1h 00h inverted";
+  EXPECT_FALSE(b.encoder.busy()) << "no memory access was started";
+  b.frame(89, supplement_frame(0b001001, 0xA1, 0x0000, 1));
+  EXPECT_FALSE(b.last().error.has_value());
+  EXPECT_TRUE(b.encoder.busy()) << "the selection with the right clocks goes ahead";
+  b.frame(58, ScriptedFrame::header(0b111000));
+  b.frame(58, ScriptedFrame::header(0b111000));
+  EXPECT_EQ(b.slots(5, 28, 51), bits_msb(kRm | 7, 8) + bits_msb(0xA1, 8) + bits_msb(0x00, 8));
+}
+
 TEST(AppendixA2, Cause15PositionValue2InBothAdditionalData) {
   // Interpretation of cause 15: with "position value 2" offered by additional data 2 (3.9.3 bit 6)
   // and selected in additional data 1 as well, additional data 2 answers I = 31.
