@@ -50,6 +50,10 @@ class Reader {
   // The next change in time order (changes at equal times in file order); false at the end.
   // Every selected signal's initial level is reported as a change at the capture's start.
   virtual bool next(Change& change) = 0;
+  // The capture's last instant once next() has returned false: a VCD's last timestamp, a logic
+  // analyzer's last sample or row, which may lie after the last change. A frame the capture's
+  // end cuts is told from one that ended by how long CLOCK was HIGH before it.
+  virtual Time end() const = 0;
   // The file as named by the user, for messages.
   virtual const std::string& path() const = 0;
   // Bytes read so far and the file's size, for progress on long captures.

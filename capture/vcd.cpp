@@ -77,6 +77,7 @@ class VcdReader final : public QueuedReader {
   }
 
   std::uint64_t bytes_read() const override { return tokens_.consumed(); }
+  Time end() const override { return now_; }
 
  private:
   bool refill() override { return body_token(); }

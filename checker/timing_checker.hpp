@@ -151,6 +151,18 @@ class TimingChecker final {
   // the run does not model switching on (`judge_power_on` false).
   void on_switched_on(bool judge_power_on = true);
 
+  // A capture's window opens at `start`: a frame its end cuts is not judged on the rows that need
+  // the frame's end (clock_count, start-bit polling). Unless the capture shows the line at rest
+  // at its start (`at_rest`: a simulation from time 0), it may open inside a frame, and its first
+  // frame begins only once CLOCK has been HIGH for t_m (FrameDecoder::begin_capture). Call before
+  // the capture's first CLOCK level; a live run never does.
+  void begin_capture(Time start, bool at_rest);
+  // The capture's window closes at `end`, at or after its last change (call before finish()).
+  void end_capture(Time end) { capture_end_ = end; }
+  // Clock edges of a capture skipped before its first frame, and the frame its end cut.
+  std::uint64_t edges_before_first_frame() const { return decoder_.edges_before_first_frame(); }
+  std::optional<std::uint64_t> frame_cut_by_end() const { return frame_cut_by_end_; }
+
   // Evaluates what is still open (last frame, running contention). Call once after the run.
   void finish();
   // True when no master declared its frames: they were found on the wires at the encoder pins
@@ -362,6 +374,9 @@ class TimingChecker final {
   Conclusion conclusion_;
   std::uint64_t not_kept_ = 0;
   std::uint64_t sample_judged_frame_ = UINT64_MAX;
+  bool capture_ = false;  // begin_capture() was called
+  std::optional<std::uint64_t> frame_cut_by_end_;
+  Time capture_end_{0};
 };
 
 }  // namespace endatsim::checker

@@ -74,6 +74,8 @@ struct CaptureCheckResult {
   std::vector<checker::RowConformance> conformance;  // counts every finding
   checker::Conclusion conclusion;                     // over every finding
   std::uint64_t findings_not_kept = 0;                // beyond kMaxFindingsPerCheck of a check
+  std::uint64_t edges_before_first_frame = 0;         // CLOCK edges of a frame the capture began inside
+  std::optional<std::uint64_t> frame_cut_by_end;      // the last frame, if the capture's end cut it
   bool conforms() const;           // no violation of error severity and nothing undecided
   std::size_t undecided() const;   // findings undecided at the capture's resolution
 };

@@ -120,7 +120,11 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureRoundTrip, ::testing::ValuesIn(round_
 
 // The capture a logic analyzer sampling every `period` would make of a scenario's encoder pins:
 // each change shows at the first sample at or after it; a pulse shorter than a sample may vanish.
-// Written as a VCD at 1 ns.
+// Written as a VCD at 1 ns. The analyzer was armed 100 us before the run began, so the capture
+// shows CLOCK at rest for longer than any t_m before the first frame (a logic analyzer's capture
+// may begin inside a frame: docs/analyzer.md).
+constexpr std::int64_t kArmedBeforeNs = 100'000;
+
 void resample(const fs::path& from, const fs::path& to, Time period) {
   auto reader = capture::open_vcd(from.string());
   const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
@@ -138,7 +142,7 @@ void resample(const fs::path& from, const fs::path& to, Time period) {
     bool stamped = false;
     for (std::size_t i = 0; i < 3; ++i) {
       if (pending[i] == shown[i] || pending[i] == '?') continue;
-      if (!stamped) out << "#" << sample * (period.count() / 1000) << "\n";
+      if (!stamped) out << "#" << (sample == 0 ? 0 : kArmedBeforeNs + sample * (period.count() / 1000)) << "\n";
       stamped = true;
       out << pending[i] << ids[i] << "\n";
       shown[i] = pending[i];
@@ -849,4 +853,109 @@ TEST(CheckCapture, AWordThirteenWrittenAndActivatedByAResetSetsThePositionWidth)
   for (auto f = activated + 1; f != r.frames.end(); ++f) EXPECT_TRUE(f->crc_ok) << scenarios::frame_log_line(*f);
   const auto& first = *(activated + 1);  // the first position after the reset
   EXPECT_EQ(first.fields[static_cast<std::size_t>(protocol::Field::Position)], 49980U);
+}
+
+namespace {
+
+// The encoder pins of a scenario's VCD seen through a window from `start` to `end`, as a logic
+// analyzer armed mid-traffic records them: the levels at `start` as the initial values, then
+// every change up to `end`. Times kept, or re-based so that the window opens at 0. Returns CLOCK's
+// level at `start`.
+char cut_vcd(const fs::path& from, const fs::path& to, Time start, Time end, bool rebase) {
+  auto reader = capture::open_vcd(from.string());
+  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
+  std::vector<std::uint32_t> wanted;
+  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
+  reader->select(wanted);
+  std::ofstream out(to);
+  out << "$timescale 1 ps $end\n$scope module encoder $end\n"
+      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
+      << "$upscope $end\n$enddefinitions $end\n";
+  const char ids[] = {'c', 'd', 'e'};
+  std::vector<char> level(3, 'x');
+  const auto stamp = [&](Time t) { out << "#" << (rebase ? t - start : t).count() << "\n"; };
+  bool opened = false;
+  char clock_at_start = 'x';
+  capture::Change c;
+  while (reader->next(c) && c.time <= end) {
+    const auto i = static_cast<std::size_t>(std::find(wanted.begin(), wanted.end(), c.signal) - wanted.begin());
+    if (c.time > start && !opened) {
+      stamp(start);
+      for (std::size_t k = 0; k < 3; ++k) out << level[k] << ids[k] << "\n";
+      opened = true;
+      clock_at_start = level[0];
+    }
+    if (opened) {
+      stamp(c.time);
+      out << c.value << ids[i] << "\n";
+    }
+    level[i] = c.value;
+  }
+  return clock_at_start;
+}
+
+// The findings of a check as (check, time, measured), the time re-based by `shift`.
+std::multiset<std::tuple<std::string, Time, std::string>> findings_of(const scenarios::CaptureCheckResult& r,
+                                                                      Time from, Time to, Time shift) {
+  std::multiset<std::tuple<std::string, Time, std::string>> out;
+  for (const auto& v : r.violations)
+    if (v.time + shift >= from && v.time + shift < to) out.emplace(v.check, v.time + shift, v.measured);
+  return out;
+}
+
+}  // namespace
+
+// A logic analyzer's capture begins and ends inside frames. The bundled 8 MHz scenario with t_ST
+// 100 ns short of note 8's 2 us breaks t_st in every compensated frame; cut inside frame #15 and
+// inside the answer of frame #19, the capture judges the frames wholly inside it as the uncut one
+// does, skips what comes before the first (CLOCK LOW or HIGH at the cut), and judges neither
+// clock_count nor the start-bit polling of the frame its end cut.
+TEST(CheckCapture, ACaptureCutInsideFramesAtBothEndsJudgesItsWholeFramesAsTheUncutOne) {
+  auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                         "/scenarios/bundled/endat22_8mhz_100m_compensated.json");
+  s.master.t_st = ns(1900);
+  const fs::path vcd = temp("uncut.vcd"), cut = temp("cut.vcd");
+  run_to_vcd(s, vcd);
+  auto o = encoder_pins_of(s, vcd);
+  const auto whole = scenarios::check_capture(o);
+  ASSERT_EQ(whole.edges_before_first_frame, 0U);
+  ASSERT_FALSE(whole.frame_cut_by_end.has_value());
+  const Time end = sim::us(1505);  // inside the answer of the frame that begins at 1.49904 ms
+  // Inside the frame that begins at 1.29914 ms: CLOCK LOW at the cut, or HIGH.
+  for (const auto& [start, rebase, clock] : {std::tuple{sim::ns(1303050), false, '0'}, std::tuple{sim::ns(1303100), false, '1'},
+                                             std::tuple{sim::ns(1303050), true, '0'}}) {
+    ASSERT_EQ(cut_vcd(vcd, cut, start, end, rebase), clock) << sim::format_time(start);
+    o.file = cut.string();
+    const auto r = scenarios::check_capture(o);
+    const std::string what = sim::format_time(start) + (rebase ? " re-based" : "");
+    const Time shift = rebase ? start : Time::zero();
+    EXPECT_GT(r.edges_before_first_frame, 0U) << what;
+    ASSERT_FALSE(r.frames.empty()) << what;
+    ASSERT_TRUE(r.frame_cut_by_end.has_value()) << what;
+    EXPECT_EQ(*r.frame_cut_by_end, r.frames.back().index) << what;
+    const Time first = r.frames.front().fe1 + shift, last = r.frames.back().fe1 + shift;
+    EXPECT_GT(first, start) << what;
+    // The complete frames: the same findings at the same times.
+    const auto complete = findings_of(r, first, last, shift);
+    EXPECT_EQ(complete, findings_of(whole, first, last, Time::zero())) << what;
+    EXPECT_EQ(complete.size(), 3U) << what;  // t_st in each of the three
+    // The cut frame: what its start shows, nothing that needs its end.
+    for (const auto& v : r.violations) {
+      EXPECT_NE(v.check, checker::check::kClockCount) << what << ": " << v.message;
+      EXPECT_NE(v.check, checker::check::kCalculationTime) << what << ": " << v.message;
+    }
+    std::ostringstream summary;
+    scenarios::write_capture_summary(summary, r, false);
+    EXPECT_NE(summary.str().find("capture begins inside a frame: " + std::to_string(r.edges_before_first_frame) +
+                                 " edges before the first frame not judged"),
+              std::string::npos)
+        << summary.str();
+    EXPECT_NE(summary.str().find("capture ends inside frame #" + std::to_string(*r.frame_cut_by_end)), std::string::npos)
+        << summary.str();
+    const auto j = scenarios::capture_json(r);
+    EXPECT_EQ(j.at("edges_before_first_frame").get<std::uint64_t>(), r.edges_before_first_frame);
+    EXPECT_EQ(j.at("frame_cut_by_end").get<std::uint64_t>(), *r.frame_cut_by_end);
+  }
+  fs::remove(vcd);
+  fs::remove(cut);
 }
