@@ -47,10 +47,7 @@ void TimingChecker::report(Finding f, std::string_view field) {
   Tally& t = tally_.at(protocol::check::row_of(f.check));
   const std::uint64_t kept = t.errors + t.warnings + t.undecided;
   ++(f.severity == Severity::Error ? t.errors : f.severity == Severity::Warning ? t.warnings : t.undecided);
-  if (f.severity == Severity::Error) {
-    if (f.verdict != Verdict::ThisEncoder) conclusion_.spec_envelope = false;
-    if (f.verdict != Verdict::SpecEnvelope) conclusion_.this_encoder = false;
-  }
+  conclusion_.count(f.severity, f.verdict);
   if (kept >= params_.max_findings_per_check) {
     ++not_kept_;
     return;
@@ -82,13 +79,20 @@ std::string_view to_string(Verdict v) {
   return "?";
 }
 
+void Conclusion::count(Severity severity, Verdict verdict) {
+  const bool envelope = verdict != Verdict::ThisEncoder, encoder = verdict != Verdict::SpecEnvelope;
+  if (severity == Severity::Error) {
+    spec_envelope = spec_envelope && !envelope;
+    this_encoder = this_encoder && !encoder;
+  } else if (severity == Severity::Undecided) {
+    spec_envelope_undecided = spec_envelope_undecided || envelope;
+    this_encoder_undecided = this_encoder_undecided || encoder;
+  }
+}
+
 Conclusion conclude(std::span<const Violation> violations) {
   Conclusion c;
-  for (const Violation& v : violations) {
-    if (v.severity != Severity::Error) continue;
-    if (v.verdict != Verdict::ThisEncoder) c.spec_envelope = false;
-    if (v.verdict != Verdict::SpecEnvelope) c.this_encoder = false;
-  }
+  for (const Violation& v : violations) c.count(v.severity, v.verdict);
   return c;
 }
 

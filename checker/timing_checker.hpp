@@ -63,10 +63,18 @@ struct Violation : Finding {
 };
 
 // The two verdicts of a run: does the master conform to the spec envelope, and to the declared
-// encoder? (Warnings count against neither.)
+// encoder? (Warnings count against neither.) A verdict without an error finding but with a
+// finding undecided at the capture's resolution is undecided, never conforming.
 struct Conclusion {
-  bool spec_envelope = true;
+  bool spec_envelope = true;  // no error finding counts against it
   bool this_encoder = true;
+  bool spec_envelope_undecided = false;  // an undecided finding counts against it
+  bool this_encoder_undecided = false;
+  // Conforms: no error finding and no undecided one.
+  bool conforms_to_spec_envelope() const { return spec_envelope && !spec_envelope_undecided; }
+  bool conforms_to_this_encoder() const { return this_encoder && !this_encoder_undecided; }
+  // Counts one finding against the verdicts it belongs to.
+  void count(Severity severity, Verdict verdict);
 };
 Conclusion conclude(std::span<const Violation> violations);
 

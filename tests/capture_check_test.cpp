@@ -959,3 +959,73 @@ TEST(CheckCapture, ACaptureCutInsideFramesAtBothEndsJudgesItsWholeFramesAsTheUnc
   fs::remove(vcd);
   fs::remove(cut);
 }
+
+namespace {
+
+checker::Violation finding(checker::Severity severity, checker::Verdict verdict) {
+  checker::Violation v;
+  v.check = std::string(checker::check::kRecovery);
+  v.measured = "30.5 us";
+  v.limit = ">= 30.5 us (spec envelope)";
+  v.severity = severity;
+  v.verdict = verdict;
+  return v;
+}
+
+std::string verdict_line(const std::vector<checker::Violation>& vs) {
+  std::ostringstream out;
+  scenarios::write_verdict(out, checker::conclude(vs), vs);
+  return out.str();
+}
+
+}  // namespace
+
+// A finding undecided at the capture's resolution never reads as conforming: the verdict it
+// counts against is "undecided at this resolution", in the summary and in JSON.
+TEST(Verdict, UndecidedNeverReadsAsConforming) {
+  using checker::Severity;
+  using checker::Verdict;
+  EXPECT_EQ(verdict_line({}), "  verdict: conforms to the spec envelope and to this encoder\n");
+  EXPECT_EQ(scenarios::verdict_json(checker::conclude({})), (nlohmann::json{{"spec_envelope", true}, {"this_encoder", true}}));
+  const std::vector both{finding(Severity::Undecided, Verdict::Both)};
+  EXPECT_FALSE(checker::conclude(both).conforms_to_spec_envelope());
+  EXPECT_FALSE(checker::conclude(both).conforms_to_this_encoder());
+  EXPECT_EQ(verdict_line(both), "  verdict: undecided at this resolution for the spec envelope and for this encoder\n");
+  EXPECT_EQ(scenarios::verdict_json(checker::conclude(both)),
+            (nlohmann::json{{"spec_envelope", "undecided"}, {"this_encoder", "undecided"}}));
+  const std::vector envelope{finding(Severity::Undecided, Verdict::SpecEnvelope)};
+  EXPECT_TRUE(checker::conclude(envelope).conforms_to_this_encoder());
+  EXPECT_EQ(verdict_line(envelope), "  verdict: conforms to this encoder; undecided at this resolution for the spec "
+                                    "envelope: t_m_t_r 30.5 us (>= 30.5 us (spec envelope))\n");
+  EXPECT_EQ(scenarios::verdict_json(checker::conclude(envelope)),
+            (nlohmann::json{{"spec_envelope", "undecided"}, {"this_encoder", true}}));
+  // An error decides its verdict whatever is undecided beside it.
+  const std::vector mixed{finding(Severity::Undecided, Verdict::SpecEnvelope), finding(Severity::Error, Verdict::ThisEncoder)};
+  EXPECT_EQ(verdict_line(mixed), "  verdict: does not conform to this encoder; undecided at this resolution for the spec envelope\n");
+  EXPECT_EQ(scenarios::verdict_json(checker::conclude(mixed)),
+            (nlohmann::json{{"spec_envelope", "undecided"}, {"this_encoder", false}}));
+  const std::vector error{finding(Severity::Undecided, Verdict::ThisEncoder), finding(Severity::Error, Verdict::Both)};
+  EXPECT_EQ(scenarios::verdict_json(checker::conclude(error)),
+            (nlohmann::json{{"spec_envelope", false}, {"this_encoder", false}}));
+}
+
+// Through the command line: the bundled 8 MHz capture meets t_ST and the envelope's t_m + t_R
+// with no margin; read at a logic analyzer's 10 ns they are undecided, and so is the verdict.
+TEST(CheckCommand, AnUndecidedCapturesVerdictIsUndecided) {
+  const auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                               "/scenarios/bundled/endat22_8mhz_100m_compensated.json");
+  const fs::path vcd = temp("undecided_verdict.vcd"), json = temp("undecided_verdict.json");
+  run_to_vcd(s, vcd);
+  const auto r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --data-enable "
+                     "encoder.data_driver_enable --cable 100 --resolution 10ns --json '" + json.string() + "'");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_EQ(r.out.find("conforms to the spec envelope"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  verdict: undecided at this resolution for the spec envelope and for this encoder\n"),
+            std::string::npos)
+      << r.out;
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("verdict"), (nlohmann::json{{"spec_envelope", "undecided"}, {"this_encoder", "undecided"}}));
+  fs::remove(vcd);
+  fs::remove(json);
+}
