@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/time.hpp"
@@ -38,6 +39,13 @@ class Reader {
   // Full names of the 1-bit signals the capture holds, in a fixed order ("top.dut.clock",
   // "clock[3]" for a bit of a vector, a sigrok channel name, a CSV column header).
   virtual const std::vector<std::string>& signals() const = 0;
+  // Further names of signals, each with the index of the signal it names: a VCD identifier
+  // declared under several scopes (Icarus, Verilator and VCS do this for a port and the net it
+  // connects). Any of a signal's names selects it.
+  virtual const std::vector<std::pair<std::string, std::uint32_t>>& aliases() const {
+    static const std::vector<std::pair<std::string, std::uint32_t>> kNone;
+    return kNone;
+  }
   // The capture's time resolution: a VCD's timescale, a logic analyzer's sample period. A
   // timing limit closer than this to a measured value cannot be decided from the capture.
   virtual Time resolution() const = 0;
@@ -70,9 +78,9 @@ std::unique_ptr<Reader> open_vcd(const std::string& path);
 std::unique_ptr<Reader> open_sigrok(const std::string& path);
 std::unique_ptr<Reader> open_csv(const std::string& path);
 
-// The index of the signal the user means by `name`: its full name, or a suffix of it that ends
-// at a scope separator ('.', '/', ':') and matches one signal only. Throws CaptureError listing
-// the candidates when none or several match.
+// The index of the signal the user means by `name`: one of its full names (aliases included), or
+// a suffix of one that ends at a scope separator ('.', '/', ':') and matches one signal only.
+// Throws CaptureError listing the candidates, aliases among them, when none or several match.
 std::uint32_t find_signal(const Reader& reader, const std::string& name);
 
 }  // namespace endatsim::capture

@@ -24,6 +24,7 @@ class TokenStream {
     token.clear();
     int c = get();
     while (c != EOF && is_space(c)) c = get();
+    token_line_ = line_;
     if (c == EOF) return false;
     while (c != EOF && !is_space(c)) {
       token.push_back(static_cast<char>(c));
@@ -32,7 +33,8 @@ class TokenStream {
     }
     return true;
   }
-  std::size_t line() const { return line_; }
+  // The line the last token began on (at the end of the file: the last line).
+  std::size_t line() const { return token_line_; }
   std::uint64_t consumed() const { return consumed_; }
   static constexpr std::size_t kMaxToken = 4096;
 
@@ -56,6 +58,7 @@ class TokenStream {
   std::size_t pos_ = 0;
   std::size_t end_ = 0;
   std::size_t line_ = 1;
+  std::size_t token_line_ = 1;
   std::uint64_t consumed_ = 0;
 };
 
@@ -160,19 +163,29 @@ class VcdReader final : public QueuedReader {
     const auto [p, ec] = std::from_chars(width_text.data(), width_text.data() + width_text.size(), width);
     if (ec != std::errc() || p != width_text.data() + width_text.size() || width == 0 || width > 4096)
       fail("variable '" + name + "': width '" + width_text + "' is not 1 .. 4096");
-    if (vars_.count(id) != 0) return;  // the same signal under another name (an alias): keep the first
+    std::string full;
+    for (const auto& s : scopes_) full += s + ".";
+    full += name;
+    if (const auto it = vars_.find(id); it != vars_.end()) {
+      if (!it->second.real) alias(it->second, name, bit_names(name, full, range, width));
+      return;
+    }
     Variable v;
     v.first = static_cast<std::uint32_t>(signals_.size());
     v.width = width;
     v.real = type == "real" || type == "realtime";
-    if (v.real) {
-      vars_[id] = v;
-      return;
+    if (!v.real) {
+      const auto bits = bit_names(name, full, range, width);
+      signals_.insert(signals_.end(), bits.begin(), bits.end());
     }
-    std::string full;
-    for (const auto& s : scopes_) full += s + ".";
-    full += name;
-    // "[7:0]" after the name (or in it): the bits run from the first index to the second.
+    vars_[id] = v;
+  }
+
+  // The names of a variable's bits, most significant first: "data[3]" for a bit of a vector;
+  // a 1-bit variable keeps its range. "[7:0]" after the name (or in it): the bits run from the
+  // first index to the second.
+  std::vector<std::string> bit_names(const std::string& name, const std::string& full, const std::string& range,
+                                     unsigned width) const {
     long msb = static_cast<long>(width) - 1, lsb = 0;
     if (const auto open = range.find('['); !range.empty() && open != std::string::npos) {
       const auto colon = range.find(':');
@@ -186,14 +199,24 @@ class VcdReader final : public QueuedReader {
     const long span = static_cast<long>(width) - 1;
     if (msb >= lsb ? msb < LONG_MIN + span : msb > LONG_MAX - span)
       fail("variable '" + name + "': bit range '" + range + "' leaves no room for its " + std::to_string(width) + " bits");
-    if (width == 1) {
-      signals_.push_back(range.empty() ? full : full + range);
-    } else {
-      const long step = msb >= lsb ? -1 : 1;
-      for (unsigned i = 0; i < width; ++i) signals_.push_back(full + "[" + std::to_string(msb + step * static_cast<long>(i)) + "]");
-    }
-    vars_[id] = v;
+    if (width == 1) return {range.empty() ? full : full + range};
+    std::vector<std::string> out;
+    const long step = msb >= lsb ? -1 : 1;
+    for (unsigned i = 0; i < width; ++i) out.push_back(full + "[" + std::to_string(msb + step * static_cast<long>(i)) + "]");
+    return out;
   }
+
+  // An identifier declared again, under another scope or name, is the same signal (IEEE 1364
+  // section 18; Icarus, Verilator and VCS declare a port and the net it connects so): each of its
+  // bits gets the new name as an alias.
+  void alias(const Variable& v, const std::string& name, const std::vector<std::string>& bits) {
+    if (bits.size() != v.width)
+      fail("variable '" + name + "': " + std::to_string(bits.size()) + " bits, but its identifier was declared first with " +
+           std::to_string(v.width));
+    for (std::uint32_t i = 0; i < v.width; ++i) aliases_.emplace_back(bits[i], v.first + i);
+  }
+
+  const std::vector<std::pair<std::string, std::uint32_t>>& aliases() const override { return aliases_; }
 
   const Variable& lookup(const std::string& id) {
     const auto it = vars_.find(id);
@@ -251,6 +274,7 @@ class VcdReader final : public QueuedReader {
   TokenStream tokens_;
   std::vector<std::string> scopes_;
   std::map<std::string, Variable> vars_;
+  std::vector<std::pair<std::string, std::uint32_t>> aliases_;  // further names of declared bits
   std::int64_t scale_num_ = 0;  // femtoseconds per unit
   Time now_{0};
 };
