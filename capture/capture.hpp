@@ -52,6 +52,12 @@ class Reader {
   // True for a logic analyzer's samples (an edge happened up to one resolution before it shows);
   // false for a simulator's event times, which are exact at the timescale.
   virtual bool sampled() const = 0;
+  // How far an edge's time as read may be from the file's: a logic analyzer's sample period, a
+  // picosecond for a VCD whose timescale is finer than the picosecond (its times are rounded),
+  // none for exact times.
+  virtual Time uncertainty() const { return sampled() ? resolution() : Time::zero(); }
+  // The file's own timescale as written ("1 fs"), for a format that has one.
+  virtual std::string timescale() const { return {}; }
   // Only the signals with these indices are reported by next() (default: all). Readers may
   // skip work for the others.
   virtual void select(const std::vector<std::uint32_t>& wanted) = 0;

@@ -1,5 +1,5 @@
 // VCD (IEEE 1364 section 18) as HDL simulators write it: Icarus, GHDL, Verilator and commercial
-// ones. Any $timescale (1, 10 or 100 of s .. fs; femtoseconds are rounded to the picosecond),
+// ones. Any $timescale (1, 10 or 100 of s .. fs; femtoseconds are rounded to the picosecond, which is then the resolution),
 // nested scopes, identifiers of any printable characters, vectors split into one signal per bit
 // ("data[3]"), std_logic values (U X Z W - unknown, H and L weak 1 and 0), real variables ignored.
 // The body is streamed token by token.
@@ -81,6 +81,10 @@ class VcdReader final : public QueuedReader {
 
   std::uint64_t bytes_read() const override { return tokens_.consumed(); }
   Time end() const override { return now_; }
+  // Times finer than the picosecond are rounded to the nearest one: an edge may be off by half
+  // a picosecond, a duration between two by up to one.
+  Time uncertainty() const override { return scale_num_ < 1000 ? Time{1} : Time::zero(); }
+  std::string timescale() const override { return timescale_; }
 
  private:
   bool refill() override { return body_token(); }
@@ -150,6 +154,7 @@ class VcdReader final : public QueuedReader {
     // Time per unit in femtoseconds as a fraction of a picosecond: ps = t * num / 1000.
     scale_num_ = std::stoll(number) * u->second;
     resolution_ = Time{std::max<std::int64_t>(1, scale_num_ / 1000)};
+    timescale_ = number + " " + unit;
   }
 
   void variable() {
@@ -276,6 +281,7 @@ class VcdReader final : public QueuedReader {
   std::map<std::string, Variable> vars_;
   std::vector<std::pair<std::string, std::uint32_t>> aliases_;  // further names of declared bits
   std::int64_t scale_num_ = 0;  // femtoseconds per unit
+  std::string timescale_;       // as the file gives it: "1 fs"
   Time now_{0};
 };
 

@@ -225,6 +225,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   result.file = o.file;
   const auto reader = capture::open(o.file);
   result.resolution = reader->resolution();
+  result.timescale = reader->timescale();
 
   sim::Kernel kernel;
   line::LineParams lp;
@@ -255,7 +256,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   params.max_findings_per_check = kMaxFindingsPerCheck;
   params.recorded_at = o.at == CaptureCheckOptions::At::Master ? line::ObservationPoint::MasterPins
                                                                 : line::ObservationPoint::EncoderPins;
-  params.resolution = o.resolution.value_or(reader->sampled() ? reader->resolution() : Time::zero());
+  params.resolution = o.resolution.value_or(reader->uncertainty());
   result.uncertainty = params.resolution;
   checker::TimingChecker checker(kernel, line, encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
@@ -336,15 +337,29 @@ std::string frame_log_line(const checker::WireFrame& f) {
   return out.str();
 }
 
+namespace {
+
+// A VCD's own timescale beside the resolution; one finer than the picosecond is why the
+// resolution is a picosecond.
+std::string timescale_note(const std::string& timescale) {
+  if (timescale.empty()) return "";
+  const bool rounded = timescale.size() >= 2 && timescale.compare(timescale.size() - 2, 2, "fs") == 0;
+  return " (timescale " + timescale + (rounded ? ", times rounded to the picosecond" : "") + ")";
+}
+
+}  // namespace
+
 void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool verbose) {
   const bool failed = std::any_of(r.conformance.begin(), r.conformance.end(),
                                   [](const checker::RowConformance& c) { return c.violations != 0; });
   out << (failed ? "FAIL " : r.undecided() != 0 ? "UNDECIDED " : "PASS ") << r.file << "\n";
   out << "  " << r.changes << " level changes over " << sim::format_time(r.end) << "; ";
+  const std::string timescale = r.timescale.empty() ? sim::format_time(r.resolution) : r.timescale;
   if (r.uncertainty == Time::zero())
-    out << "event times exact (timescale " << sim::format_time(r.resolution) << ")";
+    out << "event times exact (timescale " << timescale << ")";
   else
-    out << "resolution " << sim::format_time(r.uncertainty) << ": limits closer than that to a measured value are undecided";
+    out << "resolution " << sim::format_time(r.uncertainty) << timescale_note(r.timescale)
+        << ": limits closer than that to a measured value are undecided";
   out << "; frames decoded: " << r.frames_decoded << " (" << r.frames_clean
       << " with a complete answer and a good CRC)\n";
   if (r.edges_before_first_frame != 0)
@@ -409,7 +424,7 @@ nlohmann::json wire_frames_json(const std::vector<checker::WireFrame>& wire_fram
 nlohmann::json capture_json(const CaptureCheckResult& r) {
   using nlohmann::json;
   const json frames = wire_frames_json(r.frames);
-  return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
+  return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"timescale", r.timescale}, {"uncertainty_ps", r.uncertainty.count()},
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
           {"frames_decoded", r.frames_decoded}, {"frames_clean", r.frames_clean}, {"position_bits", r.position_bits},

@@ -58,7 +58,8 @@ inline constexpr std::size_t kMaxFramesKept = 10000;
 
 struct CaptureCheckResult {
   std::string file;
-  sim::Time resolution{0};   // the capture's timescale or sample period
+  sim::Time resolution{0};   // the capture's timescale (at least 1 ps) or sample period
+  std::string timescale;     // a VCD's timescale as the file gives it ("1 fs")
   sim::Time uncertainty{0};  // what the checker allowed each edge (0: exact)
   CaptureCheckOptions::At at = CaptureCheckOptions::At::Encoder;
   sim::Time end{0};  // the last change

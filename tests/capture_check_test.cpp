@@ -1029,3 +1029,71 @@ TEST(CheckCommand, AnUndecidedCapturesVerdictIsUndecided) {
   fs::remove(vcd);
   fs::remove(json);
 }
+
+namespace {
+
+// The encoder pins of a scenario's VCD written again at `timescale` femtoseconds per unit, with
+// RE1 of the `nth` frame whose first LOW phase lasts 1.5 .. 2.2 us (a compensated frame's t_ST;
+// the 200 kHz measurement frames' LOW phases last 2.5 us) moved by `shift_fs` femtoseconds.
+void to_femtoseconds(const fs::path& from, const fs::path& to, int nth, std::int64_t shift_fs) {
+  auto reader = capture::open_vcd(from.string());
+  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
+  std::vector<std::uint32_t> wanted;
+  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
+  reader->select(wanted);
+  std::vector<std::tuple<std::int64_t, std::size_t, char>> changes;  // fs, signal, value
+  capture::Change c;
+  while (reader->next(c)) {
+    const auto i = static_cast<std::size_t>(std::find(wanted.begin(), wanted.end(), c.signal) - wanted.begin());
+    changes.emplace_back(c.time.count() * 1000, i, c.value);
+  }
+  std::int64_t fell = -1;
+  int found = 0;
+  for (auto& [t, i, v] : changes) {
+    if (i != 0) continue;
+    if (v == '0') fell = t;
+    else if (fell >= 0 && t - fell > 1'500'000'000 && t - fell < 2'200'000'000 && ++found == nth) t += shift_fs;
+  }
+  std::stable_sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
+  std::ofstream out(to);
+  out << "$timescale 1 fs $end\n$scope module encoder $end\n"
+      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
+      << "$upscope $end\n$enddefinitions $end\n";
+  const char ids[] = {'c', 'd', 'e'};
+  for (const auto& [t, i, v] : changes) out << "#" << t << "\n" << v << ids[i] << "\n";
+}
+
+}  // namespace
+
+// A VCD finer than the picosecond is read to the nearest picosecond, so its resolution is a
+// picosecond: t_ST 400 fs short of note 8's 2 us is undecided, never passed; 1 ps short fails,
+// 1 ps long passes. The bundled 8 MHz scenario meets t_ST with no margin in each of its 20
+// compensated frames; RE1 of the fifth is moved.
+TEST(CheckCapture, ATimescaleFinerThanAPicosecondHasAPicosecondsResolution) {
+  const auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                               "/scenarios/bundled/endat22_8mhz_100m_compensated.json");
+  const fs::path vcd = temp("ps.vcd"), femto = temp("fs.vcd");
+  run_to_vcd(s, vcd);
+  auto o = encoder_pins_of(s, vcd);
+  o.file = femto.string();
+  const auto t_st = [&](std::int64_t shift_fs) {
+    to_femtoseconds(vcd, femto, 5, shift_fs);
+    const auto r = scenarios::check_capture(o);
+    EXPECT_EQ(r.uncertainty, sim::ps(1));
+    std::pair<std::size_t, std::size_t> errors_undecided{0, 0};
+    for (const auto& v : r.violations)
+      if (v.check == checker::check::kStartDelay)
+        ++(v.severity == checker::Severity::Error ? errors_undecided.first : errors_undecided.second);
+    return errors_undecided;
+  };
+  EXPECT_EQ(t_st(-400), std::pair(std::size_t{0}, std::size_t{20}));
+  EXPECT_EQ(t_st(-1000), std::pair(std::size_t{1}, std::size_t{19}));
+  EXPECT_EQ(t_st(+1000), std::pair(std::size_t{0}, std::size_t{19}));
+  std::ostringstream summary;
+  scenarios::write_capture_summary(summary, scenarios::check_capture(o), false);
+  EXPECT_NE(summary.str().find("resolution 1 ps (timescale 1 fs, times rounded to the picosecond)"), std::string::npos)
+      << summary.str();
+  EXPECT_EQ(summary.str().find("event times exact"), std::string::npos) << summary.str();
+  fs::remove(vcd);
+  fs::remove(femto);
+}
