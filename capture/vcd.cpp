@@ -1,5 +1,6 @@
 // VCD (IEEE 1364 section 18) as HDL simulators write it: Icarus, GHDL, Verilator and commercial
-// ones. Any $timescale (1, 10 or 100 of s .. fs; femtoseconds are rounded to the picosecond, which is then the resolution),
+// ones. Any $timescale (1, 10 or 100 of s .. fs; femtoseconds are rounded to the picosecond,
+// which is then the resolution),
 // nested scopes, identifiers of any printable characters, vectors split into one signal per bit
 // ("data[3]"), std_logic values (U X Z W - unknown, H and L weak 1 and 0), real variables ignored.
 // The body is streamed token by token.
@@ -31,8 +32,11 @@ class TokenStream {
       if (token.size() > kMaxToken) return true;  // the caller rejects it
       c = get();
     }
+    unterminated_ = c == EOF;
     return true;
   }
+  // The last token ran into the end of the file: a writer ends every line, so the file was cut.
+  bool unterminated() const { return unterminated_; }
   // The line the last token began on (at the end of the file: the last line).
   std::size_t line() const { return token_line_; }
   std::uint64_t consumed() const { return consumed_; }
@@ -59,6 +63,7 @@ class TokenStream {
   std::size_t end_ = 0;
   std::size_t line_ = 1;
   std::size_t token_line_ = 1;
+  bool unterminated_ = false;
   std::uint64_t consumed_ = 0;
 };
 
@@ -236,6 +241,8 @@ class VcdReader final : public QueuedReader {
     std::string t;
     if (!tokens_.next(t)) return false;
     if (t.size() > TokenStream::kMaxToken) fail("a token longer than " + std::to_string(TokenStream::kMaxToken) + " characters");
+    if (tokens_.unterminated())
+      fail("truncated: the file ends inside '" + t.substr(0, 40) + "', without the end of its line");
     switch (t[0]) {
       case '$':
         if (t == "$comment") skip_to_end(t);

@@ -14,6 +14,7 @@
 #include <tuple>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <zip.h>
 
 #include "capture/capture.hpp"
 #include "scenarios/scenarios.hpp"
@@ -1096,4 +1097,36 @@ TEST(CheckCapture, ATimescaleFinerThanAPicosecondHasAPicosecondsResolution) {
   EXPECT_EQ(summary.str().find("event times exact"), std::string::npos) << summary.str();
   fs::remove(vcd);
   fs::remove(femto);
+}
+
+// Bad input through the command line exits 2 naming the file and the problem: a VCD cut inside
+// its last timestamp ("#11" of "#1100": truncated, not time going backwards), a zip that is no
+// sigrok session, a CSV without its header line.
+TEST(CheckCommand, ATruncatedVcdAZipThatIsNoSessionAndAHeaderlessCsvExitTwo) {
+  const fs::path vcd = temp("cut_body.vcd"), zip = temp("no_session.sr"), csv = temp("no_header.csv");
+  std::ofstream(vcd) << "$timescale 1 ns $end\n$scope module encoder $end\n$var wire 1 ! clock $end\n"
+                        "$var wire 1 \" data $end\n$upscope $end\n$enddefinitions $end\n#0\n1!\n0\"\n#1000\n0!\n#11";
+  auto r = cli("check '" + vcd.string() + "' --clock clock --data data");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.err.find(vcd.string() + ": line 12: truncated"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("backwards"), std::string::npos) << r.err;
+  {
+    // A zip archive of one text entry: "PK\3\4" opens it as a sigrok session.
+    int error = 0;
+    zip_t* z = zip_open(zip.string().c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
+    ASSERT_NE(z, nullptr);
+    static const char kText[] = "not a session";
+    zip_source_t* src = zip_source_buffer(z, kText, sizeof kText - 1, 0);
+    ASSERT_GE(zip_file_add(z, "readme.txt", src, ZIP_FL_OVERWRITE), 0);
+    ASSERT_EQ(zip_close(z), 0);
+  }
+  r = cli("check '" + zip.string() + "' --clock clock --data data");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.err.find(zip.string() + ": "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not a sigrok session file"), std::string::npos) << r.err;
+  std::ofstream(csv) << "0,1\n1,1\n";
+  r = cli("check '" + csv.string() + "' --clock clock --data data");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.err.find(csv.string() + ": line 1: no header"), std::string::npos) << r.err;
+  for (const auto& p : {vcd, zip, csv}) fs::remove(p);
 }
