@@ -133,6 +133,14 @@ struct CheckerParams {
   std::optional<line::ObservationPoint> recorded_at;
 };
 
+// The rows that a named option loosens under `params`, each with the option and what it accepts
+// (RowConformance::relaxed_by): every report of a run or capture names them.
+struct Relaxation {
+  std::string check;
+  std::string by;
+};
+std::vector<Relaxation> relaxations(const CheckerParams& params);
+
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
 // ratio row (HIGH and LOW each within 50 % +/- 10 % of the period); without it, the 0.2 us rows
 // apply (2.3.2). The alternative reading (0.2 us in both cases) would forbid every f_c above

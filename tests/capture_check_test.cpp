@@ -1130,3 +1130,58 @@ TEST(CheckCommand, ATruncatedVcdAZipThatIsNoSessionAndAHeaderlessCsvExitTwo) {
   EXPECT_NE(r.err.find(csv.string() + ": line 1: no header"), std::string::npos) << r.err;
   for (const auto& p : {vcd, zip, csv}) fs::remove(p);
 }
+
+namespace {
+
+std::string slurp_file(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+// The option that relaxes t_ST for a short cable (2.3.2 note 8) is named in every report: the
+// summary, the JSON, the JUnit suite and its t_st test case, and the head of --log; for `check`
+// and for `run` (scenario key checker.t_st_reduced_for_cable).
+TEST(CheckCommand, TheOptionThatRelaxesARowIsNamedInEveryReport) {
+  const std::string bundled = std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat22_16mhz_20m_tst1us.json";
+  const fs::path vcd = temp("relaxed.vcd"), junit = temp("relaxed.xml"), log = temp("relaxed.log"),
+                 json = temp("relaxed.json"), scenario = temp("relaxed_scenario.json");
+  run_to_vcd(scenarios::load_scenario_file(bundled), vcd);
+  const std::string named = "t_st_reduced_for_cable: a t_ST shorter than note 8";
+  auto r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --cable 20 "
+               "--t-st-reduced-for-cable --junit '" + junit.string() + "' --log '" + log.string() + "' --json '" +
+               json.string() + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("relaxed by option: t_st (" + named), std::string::npos) << r.out;
+  const std::string xml = slurp_file(junit);
+  const auto t_st_case = xml.find("<testcase classname=\"endatsim.check\" name=\"t_st\"");
+  ASSERT_NE(t_st_case, std::string::npos) << xml;
+  const auto suite_property = xml.find("<property name=\"relaxed_by\" value=\"t_st: " + named);
+  EXPECT_LT(suite_property, xml.find("<testcase")) << xml;  // the suite's properties, before its cases
+  const auto case_property = xml.find("<property name=\"relaxed_by\" value=\"" + named, t_st_case);
+  EXPECT_LT(case_property, xml.find("</testcase>", t_st_case)) << xml;
+  EXPECT_EQ(xml.find("relaxed_by", xml.find("</testcase>", t_st_case)), std::string::npos) << xml;  // that row only
+  EXPECT_EQ(slurp_file(log).rfind("# relaxed by option: t_st (" + named, 0), 0U) << slurp_file(log);
+  EXPECT_NE(slurp_file(json).find("\"relaxed_by\": \"" + named), std::string::npos);
+  // Without the option no report names it.
+  r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --cable 20 --junit '" + junit.string() +
+          "' --log '" + log.string() + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(slurp_file(junit).find("relaxed_by"), std::string::npos);
+  EXPECT_EQ(slurp_file(log).find("relaxed"), std::string::npos);
+  // run: the scenario's testcase and the transaction log's head.
+  auto j = nlohmann::json::parse(slurp_file(bundled));
+  j["checker"]["t_st_reduced_for_cable"] = true;
+  std::ofstream(scenario) << j.dump(2);
+  r = cli("run '" + scenario.string() + "' --quiet --junit '" + junit.string() + "' --log '" + log.string() + "'");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(slurp_file(junit).find("<property name=\"relaxed_by\" value=\"t_st: " + named), std::string::npos)
+      << slurp_file(junit);
+  const std::string run_log = slurp_file(log);
+  EXPECT_NE(run_log.find("\n# relaxed by option: t_st (" + named), std::string::npos) << run_log.substr(0, 400);
+  EXPECT_LT(run_log.find("# relaxed by option"), run_log.find("\n ")) << run_log.substr(0, 400);  // in the header
+  for (const auto& p : {vcd, junit, log, json, scenario}) fs::remove(p);
+}
