@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <tuple>
 
@@ -584,10 +585,12 @@ void TimingChecker::check_frequency(const PinFrame& f) {
 // wires, a clock of 2 MHz or less with no delay measurement before it is taken as uncompensated:
 // a master that compensates with a t_D it never measured breaks 2.1.2 instead.
 namespace {
+// The length as given, to its last digit (100.5 m, not 100 m): the shortest text that reads back
+// as the same double.
 std::string format_length(double metres) {
-  std::ostringstream out;
-  out << metres << " m";
-  return out.str();
+  std::array<char, 32> text{};
+  const auto [end, ec] = std::to_chars(text.data(), text.data() + text.size(), metres);
+  return std::string(text.data(), ec == std::errc() ? end : text.data()) + " m";
 }
 }  // namespace
 
@@ -639,7 +642,7 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
   if (f.header.compensated && cable > limit::kCompensatedCableMaxMetres && fit.above(limit::kFcMaxWithoutCompensation, tol))
     report({std::string(check::kClockFrequency), "2.1.2 (with delay compensation up to 100 m of cable)",
             ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc) + " over " +
-            std::to_string(static_cast<long>(cable)) + " m", "100 m", Severity::Warning,
+            format_length(cable), "100 m", Severity::Warning,
             "a compensated clock above 2 MHz over more than 100 m of cable: only after consulting the encoder's maker"});
 }
 
