@@ -37,19 +37,27 @@ std::unique_ptr<Reader> open(const std::string& path) {
 }
 
 std::uint32_t find_signal(const Reader& reader, const std::string& name) {
+  // Every name with the signal it names: the signals' own, then their aliases.
+  std::vector<std::pair<std::string, std::uint32_t>> names;
   const auto& all = reader.signals();
-  for (std::uint32_t i = 0; i < all.size(); ++i)
-    if (all[i] == name) return i;
+  for (std::uint32_t i = 0; i < all.size(); ++i) names.emplace_back(all[i], i);
+  names.insert(names.end(), reader.aliases().begin(), reader.aliases().end());
+  for (const auto& [full, index] : names)
+    if (full == name) return index;
   std::vector<std::string> matches;
-  std::uint32_t found = 0;
-  for (std::uint32_t i = 0; i < all.size(); ++i)
-    if (ends_at_separator(all[i], name)) {
-      matches.push_back(all[i]);
-      found = i;
+  std::vector<std::uint32_t> signals;
+  for (const auto& [full, index] : names)
+    if (ends_at_separator(full, name)) {
+      matches.push_back(full);
+      signals.push_back(index);
     }
-  if (matches.size() == 1) return found;
+  // Several names of one signal are no ambiguity.
+  if (!signals.empty() && std::all_of(signals.begin(), signals.end(), [&](auto i) { return i == signals[0]; }))
+    return signals[0];
+  std::vector<std::string> candidates;
+  for (const auto& n : names) candidates.push_back(n.first);
   if (matches.empty())
-    throw CaptureError(reader.path() + ": no signal named '" + name + "'; the capture has: " + list(all, 40));
+    throw CaptureError(reader.path() + ": no signal named '" + name + "'; the capture has: " + list(candidates, 40));
   throw CaptureError(reader.path() + ": '" + name + "' is ambiguous; it matches: " + list(matches, 40) +
                      " (give more of the path)");
 }

@@ -201,6 +201,7 @@ class CsvReader final : public QueuedReader {
   }
 
   std::uint64_t bytes_read() const override { return lines_.consumed(); }
+  Time end() const override { return row_time_; }
 
  private:
   // One row at a time: the first was read when the file was opened.

@@ -114,6 +114,7 @@ class SigrokReader final : public Reader {
     return std::min(done, size_);
   }
   std::uint64_t bytes_total() const override { return size_; }
+  Time end() const override { return sample_ == 0 ? Time::zero() : time_of(sample_ - 1); }
 
   bool next(Change& change) override {
     while (queue_at_ == queue_.size()) {

@@ -1,5 +1,6 @@
 // VCD (IEEE 1364 section 18) as HDL simulators write it: Icarus, GHDL, Verilator and commercial
-// ones. Any $timescale (1, 10 or 100 of s .. fs; femtoseconds are rounded to the picosecond),
+// ones. Any $timescale (1, 10 or 100 of s .. fs; femtoseconds are rounded to the picosecond,
+// which is then the resolution),
 // nested scopes, identifiers of any printable characters, vectors split into one signal per bit
 // ("data[3]"), std_logic values (U X Z W - unknown, H and L weak 1 and 0), real variables ignored.
 // The body is streamed token by token.
@@ -24,15 +25,20 @@ class TokenStream {
     token.clear();
     int c = get();
     while (c != EOF && is_space(c)) c = get();
+    token_line_ = line_;
     if (c == EOF) return false;
     while (c != EOF && !is_space(c)) {
       token.push_back(static_cast<char>(c));
       if (token.size() > kMaxToken) return true;  // the caller rejects it
       c = get();
     }
+    unterminated_ = c == EOF;
     return true;
   }
-  std::size_t line() const { return line_; }
+  // The last token ran into the end of the file: a writer ends every line, so the file was cut.
+  bool unterminated() const { return unterminated_; }
+  // The line the last token began on (at the end of the file: the last line).
+  std::size_t line() const { return token_line_; }
   std::uint64_t consumed() const { return consumed_; }
   static constexpr std::size_t kMaxToken = 4096;
 
@@ -56,6 +62,8 @@ class TokenStream {
   std::size_t pos_ = 0;
   std::size_t end_ = 0;
   std::size_t line_ = 1;
+  std::size_t token_line_ = 1;
+  bool unterminated_ = false;
   std::uint64_t consumed_ = 0;
 };
 
@@ -77,6 +85,11 @@ class VcdReader final : public QueuedReader {
   }
 
   std::uint64_t bytes_read() const override { return tokens_.consumed(); }
+  Time end() const override { return now_; }
+  // Times finer than the picosecond are rounded to the nearest one: an edge may be off by half
+  // a picosecond, a duration between two by up to one.
+  Time uncertainty() const override { return scale_num_ < 1000 ? Time{1} : Time::zero(); }
+  std::string timescale() const override { return timescale_; }
 
  private:
   bool refill() override { return body_token(); }
@@ -146,6 +159,7 @@ class VcdReader final : public QueuedReader {
     // Time per unit in femtoseconds as a fraction of a picosecond: ps = t * num / 1000.
     scale_num_ = std::stoll(number) * u->second;
     resolution_ = Time{std::max<std::int64_t>(1, scale_num_ / 1000)};
+    timescale_ = number + " " + unit;
   }
 
   void variable() {
@@ -159,19 +173,29 @@ class VcdReader final : public QueuedReader {
     const auto [p, ec] = std::from_chars(width_text.data(), width_text.data() + width_text.size(), width);
     if (ec != std::errc() || p != width_text.data() + width_text.size() || width == 0 || width > 4096)
       fail("variable '" + name + "': width '" + width_text + "' is not 1 .. 4096");
-    if (vars_.count(id) != 0) return;  // the same signal under another name (an alias): keep the first
+    std::string full;
+    for (const auto& s : scopes_) full += s + ".";
+    full += name;
+    if (const auto it = vars_.find(id); it != vars_.end()) {
+      if (!it->second.real) alias(it->second, name, bit_names(name, full, range, width));
+      return;
+    }
     Variable v;
     v.first = static_cast<std::uint32_t>(signals_.size());
     v.width = width;
     v.real = type == "real" || type == "realtime";
-    if (v.real) {
-      vars_[id] = v;
-      return;
+    if (!v.real) {
+      const auto bits = bit_names(name, full, range, width);
+      signals_.insert(signals_.end(), bits.begin(), bits.end());
     }
-    std::string full;
-    for (const auto& s : scopes_) full += s + ".";
-    full += name;
-    // "[7:0]" after the name (or in it): the bits run from the first index to the second.
+    vars_[id] = v;
+  }
+
+  // The names of a variable's bits, most significant first: "data[3]" for a bit of a vector;
+  // a 1-bit variable keeps its range. "[7:0]" after the name (or in it): the bits run from the
+  // first index to the second.
+  std::vector<std::string> bit_names(const std::string& name, const std::string& full, const std::string& range,
+                                     unsigned width) const {
     long msb = static_cast<long>(width) - 1, lsb = 0;
     if (const auto open = range.find('['); !range.empty() && open != std::string::npos) {
       const auto colon = range.find(':');
@@ -185,14 +209,24 @@ class VcdReader final : public QueuedReader {
     const long span = static_cast<long>(width) - 1;
     if (msb >= lsb ? msb < LONG_MIN + span : msb > LONG_MAX - span)
       fail("variable '" + name + "': bit range '" + range + "' leaves no room for its " + std::to_string(width) + " bits");
-    if (width == 1) {
-      signals_.push_back(range.empty() ? full : full + range);
-    } else {
-      const long step = msb >= lsb ? -1 : 1;
-      for (unsigned i = 0; i < width; ++i) signals_.push_back(full + "[" + std::to_string(msb + step * static_cast<long>(i)) + "]");
-    }
-    vars_[id] = v;
+    if (width == 1) return {range.empty() ? full : full + range};
+    std::vector<std::string> out;
+    const long step = msb >= lsb ? -1 : 1;
+    for (unsigned i = 0; i < width; ++i) out.push_back(full + "[" + std::to_string(msb + step * static_cast<long>(i)) + "]");
+    return out;
   }
+
+  // An identifier declared again, under another scope or name, is the same signal (IEEE 1364
+  // section 18; Icarus, Verilator and VCS declare a port and the net it connects so): each of its
+  // bits gets the new name as an alias.
+  void alias(const Variable& v, const std::string& name, const std::vector<std::string>& bits) {
+    if (bits.size() != v.width)
+      fail("variable '" + name + "': " + std::to_string(bits.size()) + " bits, but its identifier was declared first with " +
+           std::to_string(v.width));
+    for (std::uint32_t i = 0; i < v.width; ++i) aliases_.emplace_back(bits[i], v.first + i);
+  }
+
+  const std::vector<std::pair<std::string, std::uint32_t>>& aliases() const override { return aliases_; }
 
   const Variable& lookup(const std::string& id) {
     const auto it = vars_.find(id);
@@ -207,6 +241,8 @@ class VcdReader final : public QueuedReader {
     std::string t;
     if (!tokens_.next(t)) return false;
     if (t.size() > TokenStream::kMaxToken) fail("a token longer than " + std::to_string(TokenStream::kMaxToken) + " characters");
+    if (tokens_.unterminated())
+      fail("truncated: the file ends inside '" + t.substr(0, 40) + "', without the end of its line");
     switch (t[0]) {
       case '$':
         if (t == "$comment") skip_to_end(t);
@@ -250,7 +286,9 @@ class VcdReader final : public QueuedReader {
   TokenStream tokens_;
   std::vector<std::string> scopes_;
   std::map<std::string, Variable> vars_;
+  std::vector<std::pair<std::string, std::uint32_t>> aliases_;  // further names of declared bits
   std::int64_t scale_num_ = 0;  // femtoseconds per unit
+  std::string timescale_;       // as the file gives it: "1 fs"
   Time now_{0};
 };
 

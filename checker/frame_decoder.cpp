@@ -34,9 +34,18 @@ bool FrameDecoder::on_clock(Time t, bool level) {
   if (level) {
     last_rise_ = t;
     if (in_frame_) on_rising(t);
+    else if (!at_rest_) ++skipped_edges_;
     return false;
   }
   const Time high = t - last_rise_;
+  if (!at_rest_) {
+    if (high < params_.t_m) {
+      // A LOW first level shows at the capture's start as an edge from the idle HIGH: no edge seen.
+      if (t != capture_start_) ++skipped_edges_;
+      return false;
+    }
+    at_rest_ = true;
+  }
   // A HIGH phase of t_m ends any frame at the encoder (2.3.2 recovery time I); a frame that has
   // had every clock it needs ends at a HIGH phase clearly longer than its own clock's.
   const bool fe1 = !in_frame_ || high >= params_.t_m || (frame_.complete && high > 2 * longest_high_);
@@ -59,6 +68,13 @@ void FrameDecoder::on_data(Time t, bool level) {
 void FrameDecoder::finish() {
   resolve(Time::max());
   if (in_frame_) end_frame();
+}
+
+void FrameDecoder::begin_capture(Time start) {
+  at_rest_ = false;
+  capture_start_ = start;
+  last_rise_ = start;  // CLOCK's level before the capture is unknown: its HIGH counts from here
+  skipped_edges_ = 0;
 }
 
 std::vector<WireFrame> FrameDecoder::take_finished() {

@@ -76,6 +76,18 @@ class FrameDecoder {
   // Ends the last frame (no more edges).
   void finish();
 
+  // A capture's window opens at `start`, before the first CLOCK level it shows, and may open
+  // inside a frame: from then on a falling edge begins the first frame only once CLOCK has been
+  // seen HIGH for t_m, the rule that splits frames (D297403 2.3.2 recovery time I). The edges
+  // before it belong to a frame the capture shows only part of and are skipped. Not called in a
+  // live run, which starts at rest, nor for a capture known to (docs/analyzer.md).
+  void begin_capture(Time start);
+  // Clock edges skipped before the first frame of a capture.
+  std::uint64_t edges_before_first_frame() const { return skipped_edges_; }
+  // True if a capture that ends at `end` cuts the frame being clocked: CLOCK has not been HIGH
+  // for t_m since its last rising edge, so the encoder has not ended it and more clocks may follow.
+  bool cuts_frame(Time end) const { return in_frame_ && !(clock_level_ && end - last_rise_ >= params_.t_m); }
+
   // The frame being clocked, if any (its fields grow as its bits arrive).
   const WireFrame* current() const { return in_frame_ ? &frame_ : nullptr; }
   // Frames that ended since the last call.
@@ -115,6 +127,9 @@ class FrameDecoder {
   DecoderParams params_;
   bool clock_level_ = true;
   Time last_rise_{0};
+  bool at_rest_ = true;  // a frame may begin: false in a capture until CLOCK was HIGH for t_m
+  Time capture_start_{0};
+  std::uint64_t skipped_edges_ = 0;
   Time longest_high_{0};
   bool in_frame_ = false;
   std::uint64_t frames_ = 0;

@@ -63,10 +63,18 @@ struct Violation : Finding {
 };
 
 // The two verdicts of a run: does the master conform to the spec envelope, and to the declared
-// encoder? (Warnings count against neither.)
+// encoder? (Warnings count against neither.) A verdict without an error finding but with a
+// finding undecided at the capture's resolution is undecided, never conforming.
 struct Conclusion {
-  bool spec_envelope = true;
+  bool spec_envelope = true;  // no error finding counts against it
   bool this_encoder = true;
+  bool spec_envelope_undecided = false;  // an undecided finding counts against it
+  bool this_encoder_undecided = false;
+  // Conforms: no error finding and no undecided one.
+  bool conforms_to_spec_envelope() const { return spec_envelope && !spec_envelope_undecided; }
+  bool conforms_to_this_encoder() const { return this_encoder && !this_encoder_undecided; }
+  // Counts one finding against the verdicts it belongs to.
+  void count(Severity severity, Verdict verdict);
 };
 Conclusion conclude(std::span<const Violation> violations);
 
@@ -125,6 +133,14 @@ struct CheckerParams {
   std::optional<line::ObservationPoint> recorded_at;
 };
 
+// The rows that a named option loosens under `params`, each with the option and what it accepts
+// (RowConformance::relaxed_by): every report of a run or capture names them.
+struct Relaxation {
+  std::string check;
+  std::string by;
+};
+std::vector<Relaxation> relaxations(const CheckerParams& params);
+
 // Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
 // ratio row (HIGH and LOW each within 50 % +/- 10 % of the period); without it, the 0.2 us rows
 // apply (2.3.2). The alternative reading (0.2 us in both cases) would forbid every f_c above
@@ -150,6 +166,18 @@ class TimingChecker final {
   // word 3 as written is active (3.4.4), and the power-on conditions (2.3.3) apply again unless
   // the run does not model switching on (`judge_power_on` false).
   void on_switched_on(bool judge_power_on = true);
+
+  // A capture's window opens at `start`: a frame its end cuts is not judged on the rows that need
+  // the frame's end (clock_count, start-bit polling). Unless the capture shows the line at rest
+  // at its start (`at_rest`: a simulation from time 0), it may open inside a frame, and its first
+  // frame begins only once CLOCK has been HIGH for t_m (FrameDecoder::begin_capture). Call before
+  // the capture's first CLOCK level; a live run never does.
+  void begin_capture(Time start, bool at_rest);
+  // The capture's window closes at `end`, at or after its last change (call before finish()).
+  void end_capture(Time end) { capture_end_ = end; }
+  // Clock edges of a capture skipped before its first frame, and the frame its end cut.
+  std::uint64_t edges_before_first_frame() const { return decoder_.edges_before_first_frame(); }
+  std::optional<std::uint64_t> frame_cut_by_end() const { return frame_cut_by_end_; }
 
   // Evaluates what is still open (last frame, running contention). Call once after the run.
   void finish();
@@ -362,6 +390,9 @@ class TimingChecker final {
   Conclusion conclusion_;
   std::uint64_t not_kept_ = 0;
   std::uint64_t sample_judged_frame_ = UINT64_MAX;
+  bool capture_ = false;  // begin_capture() was called
+  std::optional<std::uint64_t> frame_cut_by_end_;
+  Time capture_end_{0};
 };
 
 }  // namespace endatsim::checker

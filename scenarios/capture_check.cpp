@@ -33,6 +33,7 @@ class Replay {
         active_low_(o.enable_active_low),
         progress_(o.progress),
         on_frame_(o.on_frame),
+        simulator_(!reader.sampled() && !o.resolution),
         timer_(kernel, sim::bind<&Replay::step>(this)) {
     clock_ = capture::find_signal(reader, o.clock);
     data_ = capture::find_signal(reader, o.data);
@@ -82,6 +83,9 @@ class Replay {
   }
 
  public:
+  // The capture's last instant, on the kernel's time line.
+  Time end() const { return std::max(reader_.end() + offset_, result_.end); }
+
   // The frames the decoder has finished: counted, passed on, the first few kept.
   void drain() {
     for (auto& f : decoder_.take_finished()) {
@@ -108,6 +112,7 @@ class Replay {
     }
     if (c.signal == clock_) {
       if (c.value == 'x') return;  // an unknown clock level changes nothing
+      if (!clock_known_) begin(c);
       master_.clock_out.write(c.value == '1');
       decoder_.on_clock(now, c.value == '1');
       return;
@@ -137,6 +142,16 @@ class Replay {
     if (c.signal == data_ && known) decoder_.on_data(now, data_level_ == '1');
   }
 
+  // CLOCK's first level. A simulator's VCD shows its simulation from the start at time 0, where
+  // a CLOCK HIGH is the line at rest; any other capture may begin inside a frame, whose edges the
+  // checker skips until CLOCK has been HIGH for t_m (docs/analyzer.md, "Where a capture begins").
+  void begin(const capture::Change& c) {
+    clock_known_ = true;
+    const bool at_rest = simulator_ && c.time == Time::zero() && c.value == '1';
+    checker_.begin_capture(kernel_.now(), at_rest);
+    if (!at_rest) decoder_.begin_capture(kernel_.now());
+  }
+
   // An RTL master's data_out, data_in and data_oe: the line at its connector carries data_out
   // while data_oe is on, else what data_in shows (without data_oe, data_in is taken as the bus:
   // a receiver that hears both directions).
@@ -164,6 +179,8 @@ class Replay {
   bool active_low_;
   const std::function<void(std::uint64_t, std::uint64_t)>& progress_;
   const std::function<void(const checker::WireFrame&)>& on_frame_;
+  bool simulator_;  // exact event times: a simulator's VCD (no --resolution)
+  bool clock_known_ = false;
   sim::Timer timer_;
   std::uint32_t clock_ = 0;
   std::uint32_t data_ = 0;
@@ -208,6 +225,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   result.file = o.file;
   const auto reader = capture::open(o.file);
   result.resolution = reader->resolution();
+  result.timescale = reader->timescale();
 
   sim::Kernel kernel;
   line::LineParams lp;
@@ -238,13 +256,14 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   params.max_findings_per_check = kMaxFindingsPerCheck;
   params.recorded_at = o.at == CaptureCheckOptions::At::Master ? line::ObservationPoint::MasterPins
                                                                 : line::ObservationPoint::EncoderPins;
-  params.resolution = o.resolution.value_or(reader->sampled() ? reader->resolution() : Time::zero());
+  params.resolution = o.resolution.value_or(reader->uncertainty());
   result.uncertainty = params.resolution;
   checker::TimingChecker checker(kernel, line, encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
       .position_bits = encoder.position_bits, .clock_to_data = encoder.output_delay, .t_m = encoder.t_m});
   Replay replay(kernel, line, *reader, o, checker, log, result);
   kernel.run();
+  checker.end_capture(replay.end());
   checker.finish();
   log.finish();
   replay.drain();
@@ -252,6 +271,8 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   result.conformance = checker.conformance();
   result.conclusion = checker.conclusion();
   result.findings_not_kept = checker.findings_not_kept();
+  result.edges_before_first_frame = checker.edges_before_first_frame();
+  result.frame_cut_by_end = checker.frame_cut_by_end();
   const bool found_wrong = std::any_of(result.conformance.begin(), result.conformance.end(),
                                        [](const checker::RowConformance& c) { return c.violations + c.undecided != 0; });
   // A capture in which CLOCK never framed anything judges nothing: almost always the wrong signal or an
@@ -316,17 +337,37 @@ std::string frame_log_line(const checker::WireFrame& f) {
   return out.str();
 }
 
+namespace {
+
+// A VCD's own timescale beside the resolution; one finer than the picosecond is why the
+// resolution is a picosecond.
+std::string timescale_note(const std::string& timescale) {
+  if (timescale.empty()) return "";
+  const bool rounded = timescale.size() >= 2 && timescale.compare(timescale.size() - 2, 2, "fs") == 0;
+  return " (timescale " + timescale + (rounded ? ", times rounded to the picosecond" : "") + ")";
+}
+
+}  // namespace
+
 void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool verbose) {
   const bool failed = std::any_of(r.conformance.begin(), r.conformance.end(),
                                   [](const checker::RowConformance& c) { return c.violations != 0; });
   out << (failed ? "FAIL " : r.undecided() != 0 ? "UNDECIDED " : "PASS ") << r.file << "\n";
   out << "  " << r.changes << " level changes over " << sim::format_time(r.end) << "; ";
+  const std::string timescale = r.timescale.empty() ? sim::format_time(r.resolution) : r.timescale;
   if (r.uncertainty == Time::zero())
-    out << "event times exact (timescale " << sim::format_time(r.resolution) << ")";
+    out << "event times exact (timescale " << timescale << ")";
   else
-    out << "resolution " << sim::format_time(r.uncertainty) << ": limits closer than that to a measured value are undecided";
+    out << "resolution " << sim::format_time(r.uncertainty) << timescale_note(r.timescale)
+        << ": limits closer than that to a measured value are undecided";
   out << "; frames decoded: " << r.frames_decoded << " (" << r.frames_clean
       << " with a complete answer and a good CRC)\n";
+  if (r.edges_before_first_frame != 0)
+    out << "  capture begins inside a frame: " << r.edges_before_first_frame
+        << " edges before the first frame not judged (a frame begins once CLOCK has been HIGH for t_m)\n";
+  if (r.frame_cut_by_end)
+    out << "  capture ends inside frame #" << *r.frame_cut_by_end
+        << ": its clock count and start-bit polling not judged (CLOCK was not HIGH for t_m after its last pulse)\n";
   if (r.frames_clean == 0)
     out << "  no frame had a complete answer with a good CRC: position, CRC, additional data and the rows timed "
            "from them were not judged; are these the right signals, and is --encoder's position width right?\n";
@@ -383,12 +424,14 @@ nlohmann::json wire_frames_json(const std::vector<checker::WireFrame>& wire_fram
 nlohmann::json capture_json(const CaptureCheckResult& r) {
   using nlohmann::json;
   const json frames = wire_frames_json(r.frames);
-  return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"uncertainty_ps", r.uncertainty.count()},
+  return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"timescale", r.timescale}, {"uncertainty_ps", r.uncertainty.count()},
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
           {"frames_decoded", r.frames_decoded}, {"frames_clean", r.frames_clean}, {"position_bits", r.position_bits},
           {"position_bits_learnt_at", r.position_bits_learnt_at ? json(*r.position_bits_learnt_at) : json(nullptr)},
           {"frames_not_kept", r.frames_decoded - r.frames.size()},
+          {"edges_before_first_frame", r.edges_before_first_frame},
+          {"frame_cut_by_end", r.frame_cut_by_end ? json(*r.frame_cut_by_end) : json(nullptr)},
           {"cable_m", r.cable_given ? json(r.cable_m) : json(nullptr)},
           {"violations", violations_json(r.violations)}, {"findings_not_kept", r.findings_not_kept},
           {"verdict", verdict_json(r.conclusion)},

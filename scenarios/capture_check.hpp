@@ -58,7 +58,8 @@ inline constexpr std::size_t kMaxFramesKept = 10000;
 
 struct CaptureCheckResult {
   std::string file;
-  sim::Time resolution{0};   // the capture's timescale or sample period
+  sim::Time resolution{0};   // the capture's timescale (at least 1 ps) or sample period
+  std::string timescale;     // a VCD's timescale as the file gives it ("1 fs")
   sim::Time uncertainty{0};  // what the checker allowed each edge (0: exact)
   CaptureCheckOptions::At at = CaptureCheckOptions::At::Encoder;
   sim::Time end{0};  // the last change
@@ -74,6 +75,8 @@ struct CaptureCheckResult {
   std::vector<checker::RowConformance> conformance;  // counts every finding
   checker::Conclusion conclusion;                     // over every finding
   std::uint64_t findings_not_kept = 0;                // beyond kMaxFindingsPerCheck of a check
+  std::uint64_t edges_before_first_frame = 0;         // CLOCK edges of a frame the capture began inside
+  std::optional<std::uint64_t> frame_cut_by_end;      // the last frame, if the capture's end cut it
   bool conforms() const;           // no violation of error severity and nothing undecided
   std::size_t undecided() const;   // findings undecided at the capture's resolution
 };

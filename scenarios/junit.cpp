@@ -1,5 +1,6 @@
 #include "scenarios/junit.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "scenarios/capture_check.hpp"
@@ -16,6 +17,20 @@ std::string failure_text(const ScenarioResult& r) {
   std::ostringstream summary;
   write_summary(summary, r, false);
   return body + "\n" + summary.str();
+}
+
+// A property per row that a named option loosened (RowConformance::relaxed_by), "t_st: the option
+// and what it accepts": every report names the options that relaxed a limit.
+std::string relaxed_properties(const std::vector<checker::RowConformance>& rows, const std::string& indent) {
+  std::string x;
+  for (const auto& c : rows)
+    if (!c.relaxed_by.empty())
+      x += indent + "<property name=\"relaxed_by\" value=\"" + xml_escape(c.check + ": " + c.relaxed_by) + "\"/>\n";
+  return x;
+}
+
+bool relaxed(const std::vector<checker::RowConformance>& rows) {
+  return std::any_of(rows.begin(), rows.end(), [](const auto& c) { return !c.relaxed_by.empty(); });
 }
 
 }  // namespace
@@ -36,6 +51,7 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
     x += "        <property name=\"simulated\" value=\"" + xml_escape(sim::format_time(r.simulated)) + "\"/>\n";
     x += "        <property name=\"frames\" value=\"" + std::to_string(r.frames.size()) + "\"/>\n";
     x += "        <property name=\"violations\" value=\"" + std::to_string(r.violations.size()) + "\"/>\n";
+    x += relaxed_properties(r.conformance, "        ");
     x += "      </properties>\n";
     if (!r.passed()) {
       std::string first;
@@ -78,10 +94,15 @@ std::string junit_xml(const std::vector<CaptureCheckResult>& captures, const std
     x += "  <testsuite name=\"" + xml_escape(r.file) + "\" tests=\"" + std::to_string(r.conformance.size()) +
          "\" failures=\"" + std::to_string(suite_failures) + "\" errors=\"0\" skipped=\"" + std::to_string(skipped) +
          "\">\n";
+    if (relaxed(r.conformance))
+      x += "    <properties>\n" + relaxed_properties(r.conformance, "      ") + "    </properties>\n";
     for (const auto& c : r.conformance) {
       const auto row = protocol::timing_row(c.check);
       x += "    <testcase classname=\"endatsim.check\" name=\"" + xml_escape(c.check) + "\" file=\"" + xml_escape(r.file) +
            "\" assertions=\"" + std::to_string(c.judged) + "\">\n";
+      if (!c.relaxed_by.empty())
+        x += "      <properties>\n        <property name=\"relaxed_by\" value=\"" + xml_escape(c.relaxed_by) +
+             "\"/>\n      </properties>\n";
       if (c.status != checker::RowConformance::Status::Judged) {
         x += "      <skipped message=\"" + xml_escape(std::string(checker::to_string(c.status)) + ": " + c.reason) + "\"/>\n";
       } else if (failed(c)) {

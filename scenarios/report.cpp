@@ -221,26 +221,59 @@ nlohmann::json violations_json(const std::vector<checker::Violation>& violations
   return out;
 }
 
+// A decided verdict as a boolean; one that only undecided findings count against as "undecided".
 nlohmann::json verdict_json(const checker::Conclusion& c) {
-  return {{"spec_envelope", c.spec_envelope}, {"this_encoder", c.this_encoder}};
+  const auto verdict = [](bool no_error, bool undecided) {
+    return no_error && undecided ? nlohmann::json("undecided") : nlohmann::json(no_error);
+  };
+  return {{"spec_envelope", verdict(c.spec_envelope, c.spec_envelope_undecided)},
+          {"this_encoder", verdict(c.this_encoder, c.this_encoder_undecided)}};
 }
 
-// "conforms to this encoder; outside the spec envelope: t_m_t_r 11 us (>= 30.5 us (spec envelope))"
+namespace {
+
+// The checks whose findings of `severity` count against the spec envelope only, with their first
+// measured value and limit.
+std::string envelope_only(const std::vector<checker::Violation>& violations, checker::Severity severity) {
+  std::string out;
+  std::set<std::string> shown;
+  for (const auto& v : violations)
+    if (v.severity == severity && v.verdict == checker::Verdict::SpecEnvelope && shown.insert(v.check).second)
+      out += " " + v.check + " " + v.measured + " (" + v.limit + ")";
+  return out;
+}
+
+}  // namespace
+
+// "conforms to this encoder; outside the spec envelope: t_m_t_r 11 us (>= 30.5 us (spec envelope))".
+// A verdict that only undecided findings count against reads "undecided at this resolution".
 void write_verdict(std::ostream& out, const checker::Conclusion& c, const std::vector<checker::Violation>& violations) {
   out << "  verdict: ";
-  if (c.spec_envelope && c.this_encoder) {
+  if (c.conforms_to_spec_envelope() && c.conforms_to_this_encoder()) {
     out << "conforms to the spec envelope and to this encoder\n";
     return;
   }
+  const std::string envelope = c.spec_envelope ? "undecided at this resolution for the spec envelope" : "";
   if (!c.this_encoder) {
-    out << "does not conform to this encoder" << (c.spec_envelope ? " (its declared limits); within the spec envelope\n" : " nor to the spec envelope\n");
+    out << "does not conform to this encoder";
+    if (!c.spec_envelope) out << " nor to the spec envelope\n";
+    else if (c.spec_envelope_undecided) out << "; " << envelope << "\n";
+    else out << " (its declared limits); within the spec envelope\n";
     return;
   }
-  out << "conforms to this encoder; outside the spec envelope:";
-  std::set<std::string> shown;
-  for (const auto& v : violations)
-    if (v.severity == checker::Severity::Error && v.verdict == checker::Verdict::SpecEnvelope && shown.insert(v.check).second)
-      out << " " << v.check << " " << v.measured << " (" << v.limit << ")";
+  if (c.this_encoder_undecided && c.spec_envelope && c.spec_envelope_undecided) {
+    out << "undecided at this resolution for the spec envelope and for this encoder\n";
+    return;
+  }
+  out << (c.this_encoder_undecided ? "undecided at this resolution for this encoder" : "conforms to this encoder");
+  if (!c.spec_envelope) {
+    out << "; outside the spec envelope:" << envelope_only(violations, checker::Severity::Error);
+  } else if (c.spec_envelope_undecided) {
+    const std::string which = envelope_only(violations, checker::Severity::Undecided);
+    out << "; " << envelope << (which.empty() ? "" : ":" + which);
+  } else {
+    out << "; conforms to the spec envelope";
+  }
   out << "\n";
 }
 

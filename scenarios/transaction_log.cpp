@@ -165,6 +165,8 @@ std::string transaction_line(const ordered_json& t) {
 std::string transaction_log_text(const ScenarioResult& r) {
   std::string s = "# " + r.name + " (" + r.file + ", seed " + std::to_string(r.seed) + "): " +
                   std::to_string(r.frames.size()) + " frames\n";
+  for (const auto& c : r.conformance)
+    if (!c.relaxed_by.empty()) s += "# relaxed by option: " + c.check + " (" + c.relaxed_by + ")\n";
   for (const auto& t : transactions(r.frames, r.violations)) s += transaction_line(t) + "\n";
   return s;
 }

@@ -136,3 +136,50 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, DecoderRoundTrip, ::testing::ValuesIn(all_sc
 });
 
 }  // namespace
+
+namespace {
+
+// A capture's window may open inside a frame: the first falling edge begins a frame only after
+// CLOCK has been HIGH for t_m from the window's opening on (D297403 2.3.2 recovery time I).
+std::size_t frames_after_high(sim::Time high) {
+  checker::DecoderParams p;
+  p.t_m = sim::us(10);
+  checker::FrameDecoder decoder(p);
+  const sim::Time start = sim::ms(1);
+  decoder.begin_capture(start);
+  decoder.on_clock(start, true);
+  decoder.on_clock(start + high, false);  // FE1, if CLOCK was HIGH long enough
+  decoder.on_clock(start + high + sim::ns(500), true);
+  decoder.finish();
+  return decoder.take_finished().size();
+}
+
+}  // namespace
+
+TEST(FrameDecoderCapture, TheFirstFrameBeginsOnlyAfterClockWasHighForTm) {
+  EXPECT_EQ(frames_after_high(sim::us(10) - sim::ps(1)), 0U);
+  EXPECT_EQ(frames_after_high(sim::us(10)), 1U);
+}
+
+TEST(FrameDecoderCapture, EdgesBeforeTheFirstFrameAreCountedAndACutFrameIsTold) {
+  checker::DecoderParams p;
+  p.t_m = sim::us(10);
+  checker::FrameDecoder decoder(p);
+  decoder.begin_capture(sim::Time::zero());
+  decoder.on_clock(sim::Time::zero(), false);  // LOW from the start: no edge seen
+  decoder.on_clock(sim::ns(500), true);
+  decoder.on_clock(sim::ns(1000), false);
+  decoder.on_clock(sim::ns(1500), true);
+  EXPECT_EQ(decoder.edges_before_first_frame(), 3U);
+  EXPECT_TRUE(decoder.on_clock(sim::ns(1500) + sim::us(10), false));  // FE1
+  decoder.on_clock(sim::ns(2000) + sim::us(10), true);
+  const sim::Time last_rise = sim::ns(2000) + sim::us(10);
+  EXPECT_TRUE(decoder.cuts_frame(last_rise + sim::us(10) - sim::ps(1)));
+  EXPECT_FALSE(decoder.cuts_frame(last_rise + sim::us(10)));
+  decoder.on_clock(last_rise + sim::us(1), false);  // LOW at the end: cut however long
+  EXPECT_TRUE(decoder.cuts_frame(last_rise + sim::ms(1)));
+  // A live run never opens a window: its first falling edge is FE1.
+  checker::FrameDecoder live(p);
+  EXPECT_TRUE(live.on_clock(sim::ns(40), false));
+  EXPECT_EQ(live.edges_before_first_frame(), 0U);
+}

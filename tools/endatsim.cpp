@@ -788,6 +788,9 @@ int check_command(const po::variables_map& vm) {
   // long capture), into a file that replaces the old one only when the whole check is done.
   std::optional<StreamedFile> log_file;
   if (log) log_file.emplace(*log);
+  // The log's header names every option that relaxes a row, as each report does.
+  for (const auto& r : checker::relaxations(o.checker))
+    if (log_file) log_file->stream() << "# relaxed by option: " << r.check << " (" << r.by << ")\n";
   for (const auto& file : files) {
     o.file = file;
     current = file;

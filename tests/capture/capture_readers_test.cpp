@@ -704,3 +704,65 @@ TEST_F(CaptureReaders, FindSignalNamesTheCandidates) {
 }
 
 }  // namespace
+
+namespace {
+
+// One identifier under three names, as Icarus, Verilator and VCS declare a port and its net.
+const char* const kAliasedVcd = R"($timescale 1 ns $end
+$scope module tb $end
+$var wire 1 ! clk $end
+$var wire 2 " bus [1:0] $end
+$scope module dut $end
+$var wire 1 ! clock $end
+$var wire 2 " data [5:4] $end
+$scope module phy $end
+$var wire 1 ! clk_in $end
+$var wire 1 # enable $end
+$upscope $end
+$upscope $end
+$upscope $end
+$enddefinitions $end
+#0
+1!
+b01 "
+0#
+#10
+0!
+)";
+
+}  // namespace
+
+TEST_F(CaptureReaders, EveryNameOfAVcdIdentifierSelectsItsSignal) {
+  const std::string vcd = write("aliased.vcd", kAliasedVcd);
+  auto reader = capture::open(vcd);
+  EXPECT_EQ(reader->signals(), (std::vector<std::string>{"tb.clk", "tb.bus[1]", "tb.bus[0]", "tb.dut.phy.enable"}));
+  for (const char* name : {"tb.clk", "clk", "dut.clock", "clock", "tb.dut.phy.clk_in", "clk_in"})
+    EXPECT_EQ(capture::find_signal(*reader, name), 0U) << name;
+  EXPECT_EQ(capture::find_signal(*reader, "dut.data[5]"), 1U);
+  EXPECT_EQ(capture::find_signal(*reader, "data[4]"), 2U);
+  // Changes of the identifier come as the one signal's, whichever name selected it.
+  reader->select({capture::find_signal(*reader, "dut.clock")});
+  Change c;
+  std::vector<std::pair<std::int64_t, char>> seen;
+  while (reader->next(c)) {
+    EXPECT_EQ(c.signal, 0U);
+    seen.emplace_back(c.time.count(), c.value);
+  }
+  EXPECT_EQ(seen, (std::vector<std::pair<std::int64_t, char>>{{0, '1'}, {10'000, '0'}}));
+  // The candidates of a name that matches nothing, or several signals, include the aliases.
+  expect_mentions(error_of([&] { capture::find_signal(*reader, "strobe"); }),
+                  {vcd + ": ", "no signal named 'strobe'", "tb.dut.clock", "tb.dut.phy.clk_in", "tb.dut.data[5]"});
+  expect_mentions(error_of([&] { capture::find_signal(*reader, "dut.data"); }), {vcd + ": ", "no signal named"});
+  const std::string two = write("two.vcd", "$timescale 1 ns $end\n$scope module a $end\n$var wire 1 ! clk $end\n"
+                                           "$upscope $end\n$scope module b $end\n$var wire 1 \" x $end\n"
+                                           "$var wire 1 ! y $end\n$scope module c $end\n$var wire 1 \" clk $end\n"
+                                           "$upscope $end\n$upscope $end\n$enddefinitions $end\n#0\n1!\n0\"\n");
+  auto both = capture::open(two);
+  expect_mentions(error_of([&] { capture::find_signal(*both, "clk"); }),
+                  {two + ": ", "'clk' is ambiguous", "a.clk, b.c.clk"});
+  EXPECT_EQ(capture::find_signal(*both, "b.y"), 0U);
+  // An identifier declared again with another width is no alias.
+  const std::string wide = write("wide.vcd", "$timescale 1 ns $end\n$var wire 1 ! a $end\n$var wire 2 ! b $end\n"
+                                             "$enddefinitions $end\n#0\n1!\n");
+  expect_mentions(error_of([&] { capture::open(wide); }), {wide + ": line 3: ", "variable 'b': 2 bits", "declared first with 1"});
+}

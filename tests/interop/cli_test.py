@@ -119,6 +119,24 @@ check(len(records) == frames and {"time_ps", "command", "sent", "received", "crc
       "--log-json: one record per frame with the documented keys")
 check(any(rec["crc_ok"] is False and rec["violations"] for rec in records), "--log-json: the CRC errors with their violations")
 
+# check --json: a verdict undecided at the capture's resolution validates as "undecided" against the
+# schema's verdict, which still refuses anything else.
+vcd = path("compensated.vcd")
+r = run("run", os.path.join(bundled, "endat22_8mhz_100m_compensated.json"), "--quiet", "--vcd", vcd)
+check(r.returncode == 0, "run --vcd", r)
+r = run("check", vcd, "--clock", "encoder.clock", "--data", "encoder.data", "--cable", "100", "--resolution", "10ns",
+        "--json", path("check.json"))
+check(r.returncode == 1, "check of an undecided capture exits 1", r)
+verdict = json.load(open(path("check.json")))["verdict"]
+verdict_schema = {"$ref": "#/$defs/verdict", "$defs": schema["$defs"]}
+try:
+    jsonschema.validate(verdict, verdict_schema, cls=jsonschema.Draft202012Validator)
+except jsonschema.ValidationError as e:
+    failures.append("check's verdict does not validate against the schema's verdict: %s" % e.message)
+check(verdict == {"spec_envelope": "undecided", "this_encoder": "undecided"}, "check --json: the verdict is undecided")
+check(not jsonschema.Draft202012Validator(verdict_schema).is_valid({"spec_envelope": "maybe", "this_encoder": True}),
+      "the schema's verdict refuses a value other than a boolean or \"undecided\"")
+
 # validate: stdout for good files, stderr for bad ones.
 bad = path("bad.json")
 with open(bad, "w") as f:
