@@ -157,6 +157,11 @@ void Bench::note(std::string text) {
   if (std::find(notes_.begin(), notes_.end(), text) == notes_.end()) notes_.push_back(std::move(text));
 }
 
+void Bench::unknown_level(std::string text) {
+  ++unknown_levels_;
+  note(std::move(text));
+}
+
 bool Bench::out_of_time() const { return now() >= bench_.max_time; }
 
 bool BenchResult::passed() const {
@@ -189,6 +194,9 @@ void Bench::judge(BenchResult& r) const {
                             r.simulated < bench_.max_time
                                 ? "at " + sim::format_time(r.simulated)
                                 : "still running at the bench's max_time " + sim::format_time(bench_.max_time)});
+  r.expectations.push_back({"pins at known levels", unknown_levels_ == 0,
+                            unknown_levels_ == 0 ? "CLOCK and DATA's driver at 0 or 1 throughout"
+                                                 : std::to_string(unknown_levels_) + " time(s) unknown (see the notes)"});
   if (e.positions_match_encoder.value_or(false)) {
     auto x = all_match("positions_match_encoder", r.positions, "position");
     if (!x.passed || r.positions.empty()) r.expectations.push_back(std::move(x));

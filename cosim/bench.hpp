@@ -85,8 +85,11 @@ class Bench {
   // What the master decoded from a position frame or a parameter read, as it ends.
   void report_position(std::uint64_t position);
   void report_parameter(std::uint16_t parameter);
-  // A remark for the report (a level the bridge could not map, a rounded time).
+  // A remark for the report (a rounded time, an assumption the bridge made).
   void note(std::string text);
+  // A pin of the master at an unknown level (X, Z, U …): noted, and the run fails "pins at known
+  // levels" (a master whose outputs go unknown is broken even when the line survives it).
+  void unknown_level(std::string text);
   // True once the bench's max_time has passed: the outside simulator should stop.
   bool out_of_time() const;
 
@@ -110,6 +113,7 @@ class Bench {
   std::vector<Reported> positions_;
   std::vector<Reported> parameters_;
   std::vector<std::string> notes_;
+  std::uint64_t unknown_levels_ = 0;
   std::uint64_t frames_decoded_ = 0;
   std::uint64_t frames_clean_ = 0;
   std::vector<checker::WireFrame> frames_;

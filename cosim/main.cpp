@@ -61,9 +61,14 @@ int run_main(int argc, const char* const* argv, const std::function<void(Bench&)
     std::cerr << "endatsim: " << e.what() << std::endl;
     return 2;
   }
-  Bench bench(bench_file, o.bench_options);
-  drive(bench);
-  return report(bench.finish(), o.outputs, o.verbose, std::cout, std::cerr);
+  try {
+    Bench bench(bench_file, o.bench_options);
+    drive(bench);
+    return report(bench.finish(), o.outputs, o.verbose, std::cout, std::cerr);
+  } catch (const std::exception& e) {  // an output that cannot be opened, a model that cannot be connected
+    std::cerr << "endatsim: " << e.what() << std::endl;
+    return 2;
+  }
 }
 
 }  // namespace endatsim::cosim

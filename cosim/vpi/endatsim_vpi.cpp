@@ -32,6 +32,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -53,6 +54,8 @@ using endatsim::sim::Time;
 namespace cosim = endatsim::cosim;
 
 constexpr int kExitBadInput = 2;
+// GHDL reports the end of time (TIME'HIGH) when a simulation ran out of events.
+constexpr std::uint64_t kEndOfTime = std::uint64_t{1} << 62;
 
 [[noreturn]] void bad_configuration(const std::string& message) {
   std::fflush(stdout);
@@ -89,6 +92,17 @@ class Config {
       bad_configuration("+endatsim_data names DATA as one inout, +endatsim_data_out and +endatsim_data_enable as the "
                         "split of driver and enable: give one or the other");
     if (!has("data") && !has("data_out")) missing("data_out");
+    if (has("enable_active_low") && !has("data_enable"))
+      bad_configuration("+endatsim_enable_active_low inverts +endatsim_data_enable, which is not given");
+    for (const char* output : {"json", "junit", "log", "vcd"}) {
+      if (!has(output)) continue;
+      if (get(output).empty()) bad_configuration(std::string("+endatsim_") + output + " needs a file: +endatsim_" + output + "=FILE");
+      try {  // refused now rather than after the whole simulation
+        endatsim::scenarios::StreamedFile probe(get(output));
+      } catch (const std::exception& e) {
+        bad_configuration(std::string("+endatsim_") + output + ": " + e.what());
+      }
+    }
     for (const char* pair : {"position", "parameter"})
       if (has(pair) != has(std::string(pair) + "_valid"))
         bad_configuration(std::string("+endatsim_") + pair + " and +endatsim_" + pair + "_valid go together");
@@ -110,6 +124,8 @@ class Config {
  private:
   void take_plusarg(const std::string& arg) {
     static const std::string prefix = "+endatsim_";
+    if (arg.rfind("+endatsim", 0) == 0 && arg.rfind(prefix, 0) != 0)
+      bad_configuration("unknown plusarg " + arg + " (the prefix is +endatsim_); known: " + key_list());
     if (arg.rfind(prefix, 0) != 0) return;
     const auto eq = arg.find('=');
     const std::string key = arg.substr(prefix.size(), eq == std::string::npos ? std::string::npos : eq - prefix.size());
@@ -236,9 +252,24 @@ vpiHandle by_name(const Config& config, const std::string& key) {
   return h;
 }
 
-// A pin of the master: one bit.
-vpiHandle pin_by_name(const Config& config, const std::string& key) {
+bool is_ghdl() {
+  s_vpi_vlog_info info{};
+  return vpi_get_vlog_info(&info) != 0 && info.product != nullptr && std::string(info.product).find("GHDL") != std::string::npos;
+}
+
+// A signal (a net, a reg, a bit of either, or a VHDL signal), not a module, a task or a parameter.
+vpiHandle signal_by_name(const Config& config, const std::string& key) {
   vpiHandle h = by_name(config, key);
+  const PLI_INT32 type = vpi_get(vpiType, h);
+  if (type != vpiNet && type != vpiReg && type != vpiNetBit && type != vpiRegBit && type != vpiPort)
+    bad_configuration("+endatsim_" + key + "=" + config.get(key) + ": names a " + vpi_get_str(vpiType, h) +
+                      ", not a signal");
+  return h;
+}
+
+// A pin of the master: a signal of one bit.
+vpiHandle pin_by_name(const Config& config, const std::string& key) {
+  vpiHandle h = signal_by_name(config, key);
   if (const PLI_INT32 size = vpi_get(vpiSize, h); size != 1)
     bad_configuration("+endatsim_" + key + "=" + config.get(key) + ": a pin of one bit, got " + std::to_string(size) +
                       " bits");
@@ -254,16 +285,20 @@ class Bridge {
     clock_ = pin_by_name(config, "clock");
     if (config.has("data")) {
       data_ = pin_by_name(config, "data");
-      strength_by_std_logic_ = simulator_product().find("GHDL") != std::string::npos;
+      strength_by_std_logic_ = is_ghdl();
     } else {
       data_out_ = pin_by_name(config, "data_out");
     }
     data_in_ = pin_by_name(config, "data_in");
+    if (!is_ghdl() && vpi_get(vpiType, data_in_) != vpiReg && vpi_get(vpiType, data_in_) != vpiRegBit)
+      bad_configuration("+endatsim_data_in=" + config.get("data_in") + ": a " + vpi_get_str(vpiType, data_in_) +
+                        "; endatsim writes DATA into a reg the testbench declares for it");
     if (config.has("data_enable")) data_enable_ = pin_by_name(config, "data_enable");
     active_low_ = config.flag("enable_active_low");
-    if (config.has("position")) watch_port(by_name(config, "position"), by_name(config, "position_valid"), &position_);
+    if (config.has("position"))
+      watch_port(signal_by_name(config, "position"), pin_by_name(config, "position_valid"), &position_);
     if (config.has("parameter"))
-      watch_port(by_name(config, "parameter"), by_name(config, "parameter_valid"), &parameter_);
+      watch_port(signal_by_name(config, "parameter"), pin_by_name(config, "parameter_valid"), &parameter_);
     if (scale_.coarser_than_ps())
       bench_.note("the simulator's time precision is " + scale_.tick() + ": DATA towards the master is delivered at "
                   "the next tick after the line delivers it");
@@ -273,24 +308,37 @@ class Bridge {
     for (vpiHandle h : {clock_, data_out_, data_enable_, data_})
       if (h != nullptr) watch(h, &Bridge::pin_changed);
     put_data_in(bench_.data_in());
-    bench_.drive(cosim::MasterPin::Clock, level_of(clock_).value_or(true));  // CLOCK rests HIGH (2.3)
-    drive_data();
+    enter([this] {
+      bench_.drive(cosim::MasterPin::Clock, level_of(clock_).value_or(true));  // CLOCK rests HIGH (2.3)
+      clock_level_ = level_of(clock_).value_or(true);
+      drive_data();
+    });
+    at_max_time();
   }
 
   void report_position(std::uint64_t value) {
-    sync();
-    bench_.report_position(value);
+    enter([this, value] {
+      sync();
+      bench_.report_position(value);
+    });
   }
   void report_parameter(std::uint64_t value) {
-    sync();
-    bench_.report_parameter(static_cast<std::uint16_t>(value));
+    enter([this, value] {
+      sync();
+      bench_.report_parameter(static_cast<std::uint16_t>(value));
+    });
   }
   void note(const std::string& text) { bench_.note(text); }
 
   int finish() {
-    // A simulator that ran out of events may end at the end of time (GHDL): the bench ends with
-    // the last instant it was moved to, or at its max_time.
-    if (scale_.to_ps(sim_ticks()) <= bench_file_.max_time) sync();
+    // The bench ends with the simulator, and at its max_time at the latest (the simulator was
+    // stopped there). GHDL ends a simulation that ran out of events at the end of time: the bench
+    // then ends at the last instant it was moved to.
+    const std::uint64_t ticks = sim_ticks();
+    if (ticks < kEndOfTime) {
+      const Time end = std::min(scale_.to_ps(ticks), bench_file_.max_time);
+      if (end > bench_.now()) bench_.advance_to(end);
+    }
     cosim::OutputPaths outputs;
     for (auto [key, slot] : {std::pair{"json", &outputs.json}, {"junit", &outputs.junit}, {"log", &outputs.log}})
       if (config_.has(key)) *slot = config_.get(key);
@@ -353,16 +401,35 @@ class Bridge {
     if (t > bench_.now()) bench_.advance_to(t);
   }
 
-  void pin_changed(vpiHandle h, const s_vpi_value&) {
-    sync();
-    if (h == clock_) {
-      const auto level = level_of(h);
-      if (!level) return bench_.note("CLOCK went to an unknown level (X or Z); the last known level was kept");
-      bench_.drive(cosim::MasterPin::Clock, *level);
-    } else {
-      drive_data();
+  // Every call from the simulator goes through here. Icarus carries a data_in written with no
+  // delay through continuous assignments at once, so a watched pin may change while the bench is
+  // still running: such calls wait, in order, until the outermost one is done.
+  void enter(std::function<void()> work) {
+    if (inside_) {
+      deferred_.push_back(std::move(work));
+      return;
     }
+    inside_ = true;
+    work();
+    for (std::size_t i = 0; i < deferred_.size(); ++i) {
+      auto next = std::move(deferred_[i]);
+      next();
+    }
+    deferred_.clear();
+    inside_ = false;
     schedule_wakeup();
+  }
+
+  void pin_changed(vpiHandle h, const s_vpi_value&) {
+    enter([this, h] {
+      sync();
+      if (h != clock_) return drive_data();
+      const auto level = level_of(h);
+      if (!level) return bench_.unknown_level("CLOCK went to an unknown level (X or Z); the last known level was kept");
+      if (*level == clock_level_) return;
+      clock_level_ = *level;
+      bench_.drive(cosim::MasterPin::Clock, *level);
+    });
   }
 
   // The master's DATA driver as its pins stand now (both may change in one instant, in any
@@ -372,7 +439,10 @@ class Bridge {
     const auto enable = data_enable_ != nullptr ? level_of(data_enable_) : std::optional<bool>(true);
     const bool enabled = enable.has_value() && (data_enable_ == nullptr || *enable != active_low_);
     const auto level = level_of(data_out_);
-    if (enabled && !level) bench_.note("data_out was unknown (X or Z) while the master drove DATA: taken as released");
+    if (!enable && sim_ticks() != 0)
+      bench_.unknown_level("DATA's driver enable went to an unknown level (X or Z): taken as released");
+    if (enabled && !level && sim_ticks() != 0)
+      bench_.unknown_level("data_out was unknown (X or Z) while the master drove DATA: taken as released");
     if (level) bench_.drive(cosim::MasterPin::DataOut, *level);
     bench_.drive(cosim::MasterPin::DataEnable, enabled && level.has_value());
   }
@@ -404,12 +474,7 @@ class Bridge {
   }
   void unknown_inout() {
     if (sim_ticks() == 0) return;  // signals not yet initialised ('U') before time moves
-    bench_.note("the inout DATA went to an unknown value (X, U, W or -: two strong drivers?); taken as released");
-  }
-
-  static std::string simulator_product() {
-    s_vpi_vlog_info info{};
-    return vpi_get_vlog_info(&info) != 0 && info.product != nullptr ? std::string(info.product) : std::string();
+    bench_.unknown_level("the inout DATA went to an unknown value (X, U, W or -: two strong drivers?); taken as released");
   }
 
   void watch_port(vpiHandle value, vpiHandle valid, std::optional<vpiHandle>* slot) {
@@ -417,23 +482,34 @@ class Bridge {
     *slot = value;
     watch(valid, slot == &position_ ? &Bridge::position_strobe : &Bridge::parameter_strobe);
   }
-  void position_strobe(vpiHandle valid, const s_vpi_value&) { strobe(valid, *position_, true); }
-  void parameter_strobe(vpiHandle valid, const s_vpi_value&) { strobe(valid, *parameter_, false); }
+  void position_strobe(vpiHandle valid, const s_vpi_value&) {
+    enter([this, valid] { strobe(valid, *position_, true); });
+  }
+  void parameter_strobe(vpiHandle valid, const s_vpi_value&) {
+    enter([this, valid] { strobe(valid, *parameter_, false); });
+  }
   void strobe(vpiHandle valid, vpiHandle value, bool position) {
     if (level_of(valid) != true) return;
     const auto word = word_of(value);
     if (!word) {
       bench_.note(std::string(position ? "a position" : "a parameter") + " with unknown bits was reported; taken as 0");
     }
-    position ? report_position(word.value_or(0)) : report_parameter(word.value_or(0));
+    sync();
+    position ? bench_.report_position(word.value_or(0))
+             : bench_.report_parameter(static_cast<std::uint16_t>(word.value_or(0)));
   }
 
+  // DATA into the master's receiver reg as an event of the current time step (a zero inertial
+  // delay), as an HDL driver would put it: Icarus carries a vpiNoDelay write through continuous
+  // assignments without their value-change callbacks.
   void put_data_in(bool level) {
     char text[2] = {level ? '1' : '0', '\0'};
     s_vpi_value v{};
     v.format = vpiBinStrVal;
     v.value.str = text;
-    vpi_put_value(data_in_, &v, nullptr, vpiNoDelay);
+    s_vpi_time now{};
+    now.type = vpiSimTime;
+    vpi_put_value(data_in_, &v, &now, vpiInertialDelay);
   }
 
   // An after-delay callback at the bench's next event, unless one is set for that tick already.
@@ -458,13 +534,29 @@ class Bridge {
   static PLI_INT32 on_wakeup(p_cb_data cb) {
     auto* self = reinterpret_cast<Bridge*>(cb->user_data);
     self->wakeups_.erase(sim_ticks());
-    self->sync();
-    if (self->bench_.out_of_time() && !self->stopped_at_max_time_) {
-      self->stopped_at_max_time_ = true;
-      vpi_control(vpiFinish, 0);
-      return 0;
-    }
-    self->schedule_wakeup();
+    self->enter([self] { self->sync(); });
+    return 0;
+  }
+
+  // The bench's max_time ends the simulation even when nothing happens on the pins (a master
+  // held in reset, a testbench that never calls $finish).
+  void at_max_time() {
+    s_cb_data cb{};
+    s_vpi_time time{};
+    time.type = vpiSimTime;
+    const std::uint64_t at = scale_.to_ticks_ceil(bench_file_.max_time);
+    time.high = static_cast<PLI_UINT32>(at >> 32);
+    time.low = static_cast<PLI_UINT32>(at & 0xFFFF'FFFFU);
+    cb.reason = cbAfterDelay;
+    cb.cb_rtn = &Bridge::on_max_time;
+    cb.time = &time;
+    cb.user_data = reinterpret_cast<PLI_BYTE8*>(this);
+    vpi_register_cb(&cb);
+  }
+  static PLI_INT32 on_max_time(p_cb_data cb) {
+    auto* self = reinterpret_cast<Bridge*>(cb->user_data);
+    self->enter([self] { self->sync(); });
+    vpi_control(vpiFinish, 0);
     return 0;
   }
 
@@ -478,7 +570,9 @@ class Bridge {
   bool active_low_ = false;
   std::set<std::uint64_t> wakeups_;
   std::vector<std::unique_ptr<Watch>> watches_;
-  bool stopped_at_max_time_ = false;
+  bool inside_ = false;
+  std::vector<std::function<void()>> deferred_;
+  bool clock_level_ = true;
 };
 
 std::unique_ptr<Config> g_config;
@@ -532,13 +626,28 @@ PLI_INT32 start_of_simulation(p_cb_data) {
   return 0;
 }
 
+int g_status = 0;
+
+// The simulator's own exit status says nothing of endatsim's verdict. Exiting inside the
+// end-of-simulation callback would starve other modules' callbacks (cocotb's results), so the
+// verdict is handed to Icarus as its return value, or, elsewhere, given at the process's exit
+// by a handler registered before the simulator's own, so that it runs after them.
+#ifndef ENDATSIM_VPI_ICARUS
+void exit_with_verdict() {
+  if (g_status == 0) return;
+  std::fflush(nullptr);
+  std::_Exit(g_status);
+}
+#endif
+
 PLI_INT32 end_of_simulation(p_cb_data) {
   if (!g_bridge) return 0;
-  const int status = g_bridge->finish();
+  g_status = g_bridge->finish();
   g_bridge.reset();
   std::fflush(stdout);
-  // The simulator's own exit status says nothing of endatsim's verdict: end with it here.
-  if (status != 0) std::exit(status);
+#ifdef ENDATSIM_VPI_ICARUS
+  if (g_status != 0) vpip_set_return_value(g_status);
+#endif
   return 0;
 }
 
@@ -550,6 +659,9 @@ void register_callback(PLI_INT32 reason, PLI_INT32 (*routine)(p_cb_data)) {
 }
 
 void startup() {
+#ifndef ENDATSIM_VPI_ICARUS
+  std::atexit(&exit_with_verdict);
+#endif
   register_task("$endatsim_position", &report_calltf<true>, &report_compiletf<true>);
   register_task("$endatsim_parameter", &report_calltf<false>, &report_compiletf<false>);
   register_callback(cbStartOfSimulation, &start_of_simulation);

@@ -47,6 +47,52 @@ bench="+endatsim_bench=$hdl/bench_8mhz_50m.json"
   expect 1 "FAIL ended before max_time: still running at the bench's max_time 1 ms" \
     vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $pins +endatsim_bench=short.json
   expect 1 "FAIL ended before max_time" "$verilated" short.json
+  # Configuration the bridge refuses before anything runs.
+  expect 2 "+endatsim_position_valid=tb_endatsim.param_value: a pin of one bit, got 16 bits" \
+    vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $bench $pins +endatsim_position=tb_endatsim.position \
+    +endatsim_position_valid=tb_endatsim.param_value
+  expect 2 "+endatsim_position=tb_endatsim.dut: names a vpiModule, not a signal" \
+    vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $bench $pins +endatsim_position=tb_endatsim.dut \
+    +endatsim_position_valid=tb_endatsim.position_valid
+  expect 2 "endatsim writes DATA into a reg the testbench declares for it" \
+    vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $bench $pins +endatsim_data_in=tb_endatsim.endat_clock
+  expect 2 "+endatsim_enable_active_low inverts +endatsim_data_enable, which is not given" \
+    vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $bench +endatsim_clock=tb_endatsim.endat_clock \
+    +endatsim_data_out=tb_endatsim.data_out +endatsim_data_in=tb_endatsim.data_in_from_line +endatsim_enable_active_low
+  expect 2 "+endatsim_json: cannot write '/nonexistent/x.json'" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $bench $pins \
+    +endatsim_json=/nonexistent/x.json
+  expect 2 "unknown plusarg +endatsimjson=x.json (the prefix is +endatsim_)" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp \
+    $bench $pins +endatsimjson=x.json
+  # A testbench in which nothing happens on the pins still ends at the bench's max_time, failing.
+  cat > quiet.v <<'V'
+`timescale 1ns / 1ps
+module quiet;
+  reg clk = 1'b1, dout = 1'b0, doe = 1'b0, din = 1'b1, other = 1'b0;
+  always #10 other = ~other;  // a free-running clock elsewhere: the simulation never runs out of events
+endmodule
+V
+  iverilog -g2012 -s quiet -o quiet.vvp quiet.v
+  expect 1 "FAIL ended before max_time: still running at the bench's max_time 1 ms" \
+    vvp -n -M "$vpi" -m endatsim_vpi quiet.vvp +endatsim_bench=short.json +endatsim_clock=quiet.clk \
+    +endatsim_data_out=quiet.dout +endatsim_data_enable=quiet.doe +endatsim_data_in=quiet.din
+  # CLOCK going unknown fails the run, not only a note.
+  sed 's/always #10 other = ~other;/initial #5000 clk = 1'"'"'bx;/' quiet.v > x_clock.v
+  iverilog -g2012 -s quiet -o x_clock.vvp x_clock.v
+  expect 1 "FAIL pins at known levels: 1 time(s) unknown" \
+    vvp -n -M "$vpi" -m endatsim_vpi x_clock.vvp +endatsim_bench=short.json +endatsim_clock=quiet.clk \
+    +endatsim_data_out=quiet.dout +endatsim_data_enable=quiet.doe +endatsim_data_in=quiet.din
+  # A data_out that follows data_in combinationally while released: Icarus carries endatsim's write
+  # through at once, back into the bridge, which must finish one call before the next.
+  cat > loop.v <<'V'
+module tb_loop;
+  tb_endatsim t ();
+  wire dout_w = t.data_oe ? t.data_out : t.data_in_from_line;
+endmodule
+V
+  iverilog -g2012 -s tb_loop -o loop.vvp "$hdl/verilog/endat_master.v" "$hdl/verilog/tb_endatsim.v" loop.v
+  expect 0 "PASS hdl_master_8mhz_50m" vvp -n -M "$vpi" -m endatsim_vpi loop.vvp $bench +endatsim_clock=tb_loop.t.endat_clock \
+    +endatsim_data_out=tb_loop.dout_w +endatsim_data_enable=tb_loop.t.data_oe +endatsim_data_in=tb_loop.t.data_in_from_line
+  expect 2 "cannot open VCD file '/nonexistent/x.vcd'" "$verilated" "$hdl/bench_8mhz_50m.json" --vcd /nonexistent/x.vcd
   expect 2 "unknown option --jsn" "$verilated" "$hdl/bench_8mhz_50m.json" --jsn x
   expect 2 "no bench file given" "$verilated"
   expect 2 "nope.json: cannot open the file" "$verilated" nope.json
