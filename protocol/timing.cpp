@@ -41,7 +41,7 @@ namespace {
 using E = Evidence;
 
 // The spec's own words and numbers; the conditions say how a row is read where the text leaves
-// room (README, "The model", gives the reasons).
+// room (docs/model.md §7 and docs/analyzer.md, "Reading of some rows", give the reasons).
 constexpr std::array kRows{
     TimingRow{check::kClockFrequency, "f_c", "Frequency", "2.3.2 note 4, 2.1.1, 2.1.2, 3.9.19", "100 kHz",
               "2 MHz without, 8 MHz with delay compensation (16 MHz for special applications)",

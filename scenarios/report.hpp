@@ -29,7 +29,7 @@ void write_relaxations(std::ostream& out, const std::vector<checker::RowConforma
 void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows);
 nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows);
 
-// The stable result format (documented in the README).
+// The stable result format (documented in docs/command-line.md and schema/results.schema.json).
 nlohmann::json to_json(const ScenarioResult& r);
 
 }  // namespace endatsim::scenarios

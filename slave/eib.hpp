@@ -18,7 +18,7 @@ namespace endatsim::slave {
 // changed, word 47 follows the words written.
 constexpr std::array<unsigned, 10> kEibFactoryWords{9, 10, 11, 12, 24, 25, 26, 27, 28, 29};
 
-// What an EIB that is not yet initiated still accepts (A2 cause 5; choice, README): selecting,
+// What an EIB that is not yet initiated still accepts (A2 cause 5; choice, docs/model-reference.md): selecting,
 // reading and writing the areas that initial commissioning fills — the encoder manufacturer's
 // words (A1, A3, A5) and, for the A10 scaling of words 27..29, its EnDat 2.2 area (BD). Every
 // other memory access is answered with type II, cause 5.

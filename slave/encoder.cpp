@@ -18,7 +18,7 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see README)
+constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see docs/model-reference.md)
 constexpr std::uint16_t kInstructionHighImpedance = 0x0002;                    // 2.10: word 5 bit 1
 constexpr unsigned kTouchProbeBits = 16;                                       // 2.3.4.4
 constexpr std::uint8_t kTouchProbeStatusWord = 2;                              // operating parameters 2 (3.10.1)
@@ -272,7 +272,7 @@ void Encoder::complete_commissioning() {
   reference_origin_ = reference_search_from_ = kernel_.now();
 }
 
-// A2 cause 5 (choice, README): an EIB that is not yet initiated refuses every memory access
+// A2 cause 5 (choice, docs/model-reference.md): an EIB that is not yet initiated refuses every memory access
 // outside the areas initial commissioning fills (slave/eib.hpp).
 std::optional<ErrorCause> Encoder::not_initiated(std::optional<MemoryArea> area) const {
   if (!eib_not_initiated_ || (area && eib_commissioning_area(*area))) return std::nullopt;
@@ -722,7 +722,7 @@ void Encoder::process_supplement() {
         }
         break;
       }
-      const auto block = static_cast<std::uint8_t>(parameter);  // block address: low byte (README, guess)
+      const auto block = static_cast<std::uint8_t>(parameter);  // block address: low byte (docs/model-reference.md, guess)
       auto error = not_initiated(protocol::memory_area_from_mrs(address));  // A2 cause 5
       if (!error) error = memory_.check_selection(address, block, true);
       f.error = error;

@@ -42,12 +42,12 @@ enum class MemoryAccessPlacement : std::uint8_t { InFrame, AfterFrame };
 enum class InterruptedNvmWrite : std::uint8_t { KeepOld, Torn };
 
 // What completes the initial commissioning of an EIB (3.5.7 says only that word 14 "must be
-// modified during initial commissioning"; choice, README). Reset: "Encoder receive reset" or
+// modified during initial commissioning"; choice, docs/model-reference.md). Reset: "Encoder receive reset" or
 // power-on, which activate the other parameters too (2.7, 3.4.3, 3.6). Word14Write: at once when
 // the write of word 14 completes.
 enum class EibActivation : std::uint8_t { Reset, Word14Write };
 
-// What an EIB that is not yet initiated answers to a position request (choice, README: A2 gives
+// What an EIB that is not yet initiated answers to a position request (choice, docs/model-reference.md: A2 gives
 // type II, cause 5, for parameter frames only). ErrorBit: the frame in the width of
 // EncoderParams::position_bits with error bit F1 set (F2 = 0) and every position bit 0, "no
 // valid position" (2.3.1); additional data as for an incremental encoder before its reference

@@ -109,18 +109,19 @@ TEST(Cli, SeedMustBeANonNegativeInteger) {
   EXPECT_EQ(run("run " + kBundled + "endat21_1mhz_10m.json --seed=12 --quiet").status, 0);
 }
 
-// The README's complete scenario example must load and hold its own expectations.
+// The complete scenario example of docs/scenario-format.md must load and hold its own expectations.
 TEST(Cli, ReadmeScenarioExamplePasses) {
-  std::ifstream in(std::string(ENDATSIM_SOURCE_DIR) + "/README.md");
+  std::ifstream in(std::string(ENDATSIM_SOURCE_DIR) + "/docs/scenario-format.md");
   std::stringstream ss;
   ss << in.rdbuf();
-  const std::string readme = ss.str();
-  const auto section = readme.find("## Scenario format");
+  const std::string doc = ss.str();
+  const auto section = doc.find("# Scenario format");
   ASSERT_NE(section, std::string::npos);
-  const auto begin = readme.find("```json\n", section);
+  const auto begin = doc.find("```json\n", section);
   ASSERT_NE(begin, std::string::npos);
-  const auto end = readme.find("```\n", begin + 8);
-  const auto path = write_temp("endatsim_readme_example.json", readme.substr(begin + 8, end - begin - 8));
+  const auto end = doc.find("```\n", begin + 8);
+  ASSERT_NE(end, std::string::npos);
+  const auto path = write_temp("endatsim_readme_example.json", doc.substr(begin + 8, end - begin - 8));
   const auto r = run("run " + path);
   EXPECT_EQ(r.status, 0) << r.out << r.err;
 }

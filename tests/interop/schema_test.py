@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Keeps schema/scenario.schema.json and the loader (scenarios/loader.cpp) in agreement.
 
-Every bundled scenario and the README's example must validate against the schema and load;
+Every bundled scenario and the example of docs/scenario-format.md must validate against the schema and load;
 then each of them is mutated systematically (an unknown key in every object, a value of the
 wrong kind at every leaf, an emptied script, each required key removed, each optional key
 removed) and the schema and `endatsim validate` must give the same verdict on every mutant.
@@ -13,7 +13,7 @@ rejected by the schema too, or not parse as JSON at all, except the cases listed
 BEYOND_SCHEMA: constraints JSON Schema cannot state (ranges inside duration strings, order of
 times, relations between numbers, duplicate keys, which JSON parsers resolve silently).
 
-usage: schema_test.py ENDATSIM SCHEMA BUNDLED_DIR README WORKDIR [MALFORMED_DIR]
+usage: schema_test.py ENDATSIM SCHEMA BUNDLED_DIR SCENARIO_FORMAT_MD WORKDIR [MALFORMED_DIR]
 """
 import copy
 import glob
@@ -59,9 +59,9 @@ BEYOND_SCHEMA = {
 }
 
 
-def readme_example(path):
+def doc_example(path):
     text = open(path, encoding="utf-8").read()
-    section = text.index("## Scenario format")
+    section = text.index("# Scenario format")
     begin = text.index("```json\n", section) + len("```json\n")
     return json.loads(text[begin:text.index("```\n", begin)])
 
@@ -127,7 +127,7 @@ def mutants(doc):
 def main():
     if len(sys.argv) not in (6, 7):
         sys.exit(__doc__)
-    endatsim, schema_path, bundled, readme, work = sys.argv[1:6]
+    endatsim, schema_path, bundled, doc, work = sys.argv[1:6]
     malformed = sys.argv[6] if len(sys.argv) == 7 else None
     os.makedirs(work, exist_ok=True)
     schema = json.load(open(schema_path))
@@ -137,7 +137,7 @@ def main():
     # The bundled scenarios and the safety-function pairs next to them (scenarios/safety/).
     paths = glob.glob(os.path.join(bundled, "*.json")) + glob.glob(os.path.join(bundled, "..", "safety", "*.json"))
     documents = [(os.path.basename(p), json.load(open(p))) for p in sorted(paths)]
-    documents.append(("README.md example", readme_example(readme)))
+    documents.append(("docs/scenario-format.md example", doc_example(doc)))
     if len(documents) < 2:
         sys.exit("FAIL: no bundled scenarios found in " + bundled)
 
