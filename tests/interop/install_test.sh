@@ -18,3 +18,12 @@ cmake -S "$source/examples/testbench" -B "$work/tb" -DCMAKE_PREFIX_PATH="$work/p
   || { cat "$work/configure.log" >&2; exit 1; }
 cmake --build "$work/tb" >"$work/build.log" 2>&1 || { cat "$work/build.log" >&2; exit 1; }
 "$work/tb/testbench"
+# The co-simulation bridge is installed beside the libraries, and a Verilated master builds
+# against the installed package (examples/hdl/verilator) and passes its bench.
+[ -e "$work/prefix/lib/endatsim/endatsim_vpi.vpi" ] || { echo "FAIL: the VPI bridge was not installed" >&2; exit 1; }
+if command -v verilator >/dev/null; then
+  cmake -S "$source/examples/hdl/verilator" -B "$work/vl" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_FLAGS="$flags" \
+    >"$work/vl-configure.log" || { cat "$work/vl-configure.log" >&2; exit 1; }
+  cmake --build "$work/vl" -j 2 >"$work/vl-build.log" 2>&1 || { cat "$work/vl-build.log" >&2; exit 1; }
+  "$work/vl/endat_master_verilated" "$source/examples/hdl/bench_8mhz_50m.json"
+fi
