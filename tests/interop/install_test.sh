@@ -20,7 +20,10 @@ cmake --build "$work/tb" >"$work/build.log" 2>&1 || { cat "$work/build.log" >&2;
 "$work/tb/testbench"
 # The co-simulation bridge is installed beside the libraries, and a Verilated master builds
 # against the installed package (examples/hdl/verilator) and passes its bench.
-[ -e "$work/prefix/lib/endatsim/endatsim_vpi.vpi" ] || { echo "FAIL: the VPI bridge was not installed" >&2; exit 1; }
+# (Sanitized builds leave the bridge out: a simulator that is not instrumented cannot load it.)
+if [ -e "$build/cosim/vpi/endatsim_vpi.vpi" ]; then
+  [ -e "$work/prefix/lib/endatsim/endatsim_vpi.vpi" ] || { echo "FAIL: the VPI bridge was not installed" >&2; exit 1; }
+fi
 if command -v verilator >/dev/null; then
   cmake -S "$source/examples/hdl/verilator" -B "$work/vl" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_FLAGS="$flags" \
     >"$work/vl-configure.log" || { cat "$work/vl-configure.log" >&2; exit 1; }
