@@ -519,14 +519,17 @@ class Bridge {
     const std::uint64_t now = sim_ticks();
     const std::uint64_t at = std::max(scale_.to_ticks_ceil(*next), now + 1);
     if (!wakeups_.insert(at).second) return;
+    after(at - now, &Bridge::on_wakeup);
+  }
+  // A callback `delay` ticks from now.
+  void after(std::uint64_t delay, PLI_INT32 (*routine)(p_cb_data)) {
     s_cb_data cb{};
     s_vpi_time time{};
     time.type = vpiSimTime;
-    const std::uint64_t delay = at - now;
     time.high = static_cast<PLI_UINT32>(delay >> 32);
     time.low = static_cast<PLI_UINT32>(delay & 0xFFFF'FFFFU);
     cb.reason = cbAfterDelay;
-    cb.cb_rtn = &Bridge::on_wakeup;
+    cb.cb_rtn = routine;
     cb.time = &time;
     cb.user_data = reinterpret_cast<PLI_BYTE8*>(this);
     vpi_register_cb(&cb);
@@ -540,19 +543,7 @@ class Bridge {
 
   // The bench's max_time ends the simulation even when nothing happens on the pins (a master
   // held in reset, a testbench that never calls $finish).
-  void at_max_time() {
-    s_cb_data cb{};
-    s_vpi_time time{};
-    time.type = vpiSimTime;
-    const std::uint64_t at = scale_.to_ticks_ceil(bench_file_.max_time);
-    time.high = static_cast<PLI_UINT32>(at >> 32);
-    time.low = static_cast<PLI_UINT32>(at & 0xFFFF'FFFFU);
-    cb.reason = cbAfterDelay;
-    cb.cb_rtn = &Bridge::on_max_time;
-    cb.time = &time;
-    cb.user_data = reinterpret_cast<PLI_BYTE8*>(this);
-    vpi_register_cb(&cb);
-  }
+  void at_max_time() { after(scale_.to_ticks_ceil(bench_file_.max_time), &Bridge::on_max_time); }
   static PLI_INT32 on_max_time(p_cb_data cb) {
     auto* self = reinterpret_cast<Bridge*>(cb->user_data);
     self->enter([self] { self->sync(); });
