@@ -139,6 +139,10 @@ std::vector<RowConformance> TimingChecker::conformance() const {
                !params_.round_trip_observable) {
       c.status = RowConformance::Status::NotObservable;
       c.reason = "the round trip shows only at the master's connector";
+    } else if (row.check == check::kMeasurementSpread && measurements_may_precede_) {
+      c.status = RowConformance::Status::NotObservable;
+      c.reason = "the master compensates, but no delay measurement is in the recording and it does not show the "
+                 "encoder switching on: the measurements may precede it (record the supply with --power)";
     } else if (row.check == check::kContention && !params_.master_enable_observable) {
       c.status = RowConformance::Status::NotObservable;
       c.reason = "needs the master's DATA driver enable as well as the encoder's";
@@ -213,6 +217,9 @@ void TimingChecker::check_measurement_spread(const PinFrame& f) {
   if (!delay_measurements_.any()) {
     // Without a master's declaration (delay_measurement) the wires say it, when the run shows
     // the encoder switched on: a capture that begins later may have missed the measurements.
+    // Compensated frames with no measurement before them in a capture that does not show the
+    // switch-on: the measurements may precede the capture, so the row cannot be told either way.
+    if (wires_only_ && !encoder_.switched_on_in_run) measurements_may_precede_ = true;
     if (!wires_only_ || !encoder_.switched_on_in_run || unmeasured_on_wires_reported_) return;
     unmeasured_on_wires_reported_ = true;
     judge(protocol::check::row_index(check::kMeasurementSpread));

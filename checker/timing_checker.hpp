@@ -374,6 +374,7 @@ class TimingChecker final {
   DelayMeasurements delay_measurements_;  // t_D of each measurement frame, at the master's pins
   std::optional<std::uint64_t> first_frame_;  // the first frame the checker saw
   bool unmeasured_on_wires_reported_ = false;
+  bool measurements_may_precede_ = false;  // compensated frames, no measurement, no switch-on seen
   std::optional<WireFrame> last_wire_;  // the frame the decoder finished last
   bool recovery_checked_ = true;
   bool mode_decided_ = false;

@@ -1242,3 +1242,29 @@ TEST(CheckCapture, ACompensatedClockOverMoreThanOneHundredMetresWarnsFromTheNext
   EXPECT_EQ(half.front(), "8 MHz over 100.5 m");
   fs::remove(vcd);
 }
+
+// 2.1.2 at a capture's master connector: compensated frames and no measurement in the recording
+// (field 02 measures at 1 MHz, which is no measurement frame) cannot be told apart from a master
+// whose measurements came before the recording began, unless the recording shows the switch-on.
+TEST(CheckCapture, CompensationWithoutAMeasurementInTheRecordingIsNotObservableWithoutTheSwitchOn) {
+  const auto scenario = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                                      "/scenarios/field/02_delay_measured_at_the_wrong_clock.json");
+  const fs::path vcd = temp("measurements_may_precede.vcd");
+  scenarios::RunOptions options;
+  options.vcd_path = vcd.string();
+  scenarios::run_scenario(scenario, options);
+  scenarios::CaptureCheckOptions o;
+  o.file = vcd.string();
+  o.clock = "master.clock";
+  o.data = "master.data";
+  o.at = scenarios::CaptureCheckOptions::At::Master;
+  o.cable_m = scenario.line.cable_length_m;
+  o.encoder = scenarios::declared_encoder(scenario.encoder);
+  const auto r = scenarios::check_capture(o);
+  const auto row = std::find_if(r.conformance.begin(), r.conformance.end(),
+                                [](const auto& c) { return c.check == checker::check::kMeasurementSpread; });
+  ASSERT_NE(row, r.conformance.end());
+  EXPECT_EQ(row->status, checker::RowConformance::Status::NotObservable);
+  EXPECT_NE(row->reason.find("the measurements may precede it"), std::string::npos) << row->reason;
+  fs::remove(vcd);
+}
