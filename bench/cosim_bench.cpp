@@ -13,9 +13,8 @@
 
 #include <unistd.h>
 
-#include "Vendat_master.h"
 #include "cosim/bench.hpp"
-#include "cosim/verilated_master.hpp"
+#include "endat_master_run.hpp"
 #include "scenarios/loader.hpp"
 
 namespace {
@@ -77,19 +76,7 @@ void BM_Cosim_Verilator_Endatsim(benchmark::State& state) {
                                                         scenarios::ScenarioKind::Bench);
   for (auto _ : state) {
     cosim::Bench bench(bench_file);
-    Vendat_master m;
-    cosim::VerilatedMaster master(bench,
-                                  {.sys_clk = &m.sys_clk, .clock = &m.endat_clock, .data_out = &m.data_out,
-                                   .data_enable = &m.data_oe, .data_in = &m.data_in,
-                                   .position_valid = [&m] { return m.position_valid != 0; },
-                                   .position = [&m] { return std::uint64_t{m.position}; },
-                                   .parameter_valid = [&m] { return m.param_valid != 0; },
-                                   .parameter = [&m] { return std::uint64_t{m.param_value}; }},
-                                  [&m] { m.eval(); }, sim::ps(12'500));
-    m.rst = 1;
-    master.run_cycles(8);
-    m.rst = 0;
-    if (master.run_until([&m] { return m.done != 0; })) master.run_for(sim::us(100));
+    run_endat_master(bench);
     const auto r = bench.finish();
     if (!r.passed()) state.SkipWithError("the Verilated master did not pass");
     benchmark::DoNotOptimize(r.events);
