@@ -462,77 +462,13 @@ void TimingChecker::evaluate(const PinFrame& f) {
   if (params_.driver_enables_observable && params_.master_enable_observable)
     judge(protocol::check::row_index(check::kContention));
   check_pulse_widths(f);
+  check_on_off_ratio(f);
   check_frequency(f);
   check_start_delay(f);
   // A frame the capture's end cut may have had more clocks, or its start bit, after it.
   if (frame_cut_by_end_ != f.header.index) check_clock_count(f);
   check_measurement_spread(f);
   if (!f.rising.empty()) previous_end_ = FrameEnd{f.rising.back(), f.header.command_type, f.header.index};
-}
-
-void TimingChecker::check_pulse_widths(const PinFrame& f) {
-  // With compensation the on-off ratio row applies: each phase within 50 % +/- 10 % of T.
-  const Time period = f.header.f_c > 0 ? sim::period_of(f.header.f_c) : Time::zero();  // 0: fewer than two rising edges
-  const Time min = f.header.compensated ? period * (50 - limit::kOnOffRatioErrorPercent) / 100 : limit::kPulseWidthMin;
-  const std::string spec = f.header.compensated ? "2.3.2 on-off ratio error (+/-10 % with delay compensation)"
-                                         : "2.3.2 t_HI / t_LO minimum 0.2 us";
-  // The worst phase that fails its limit, or else the worst one undecided at the resolution.
-  struct Worst {
-    Time width{0};
-    unsigned clock = 0;
-    Time at{0};
-    unsigned count = 0;
-    Decision decision = Decision::Pass;
-    void add(Decision d, Time w, unsigned k, Time t, bool shorter_is_worse) {
-      if (d == Decision::Pass || (decision == Decision::Fail && d == Decision::Undecided)) return;
-      if (d == Decision::Fail && decision != Decision::Fail) count = 0;
-      const bool worse = count == 0 || (shorter_is_worse ? w < width : w > width);
-      ++count;
-      decision = d;
-      if (worse) std::tie(width, clock, at) = std::tuple{w, k, t};
-    }
-  } low, high, long_high, long_low;
-  if (!f.falling.empty()) {
-    judge(protocol::check::row_index(check::kPulseLow));
-    judge(protocol::check::row_index(check::kPulseHigh));
-  }
-  const Time r = params_.resolution;
-  constexpr std::size_t low_row = protocol::check::row_index(check::kPulseLow);
-  constexpr std::size_t high_row = protocol::check::row_index(check::kPulseHigh);
-  const auto note_width = [this](std::size_t row, const Judgement& j, LimitOf of = LimitOf::Spec) {
-    margins_.note(row, j, of);
-    return j.decision;
-  };
-  for (std::size_t k = 0; k < f.rising.size() && k < f.falling.size(); ++k) {
-    const Time w = f.rising[k] - f.falling[k];
-    low.add(note_width(low_row, at_least(w, min, r)), w, static_cast<unsigned>(k + 1), f.falling[k], true);
-    // t_LO maximum, "see encoder specifications"; with compensation the first LOW phase is t_ST.
-    if (encoder_.t_lo_max && (k > 0 || !f.header.compensated))
-      long_low.add(note_width(low_row, at_most(w, *encoder_.t_lo_max, r), LimitOf::ThisEncoder), w,
-                   static_cast<unsigned>(k + 1), f.falling[k], false);
-  }
-  for (std::size_t k = 0; k + 1 < f.falling.size() && k < f.rising.size(); ++k) {
-    const Time w = f.falling[k + 1] - f.rising[k];
-    high.add(note_width(high_row, at_least(w, min, r)), w, static_cast<unsigned>(k + 1), f.rising[k], true);
-    long_high.add(note_width(high_row, at_most(w, limit::kPulseHighMax, r)), w, static_cast<unsigned>(k + 1),
-                  f.rising[k], false);
-  }
-  const auto emit = [&](const Worst& w, std::string_view name, const std::string& bound, const std::string& s,
-                        const char* what, Verdict verdict = Verdict::Both) {
-    report_unless_passed(w.decision,
-                         {std::string(name), s, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock,
-                          format_time(w.width), bound, Severity::Error,
-                          std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)",
-                          verdict});
-  };
-  emit(low, check::kPulseLow, ">= " + format_time(min), spec, "CLOCK LOW phase too short");
-  emit(high, check::kPulseHigh, ">= " + format_time(min), spec, "CLOCK HIGH phase too short");
-  emit(long_high, check::kPulseHigh, "<= " + format_time(limit::kPulseHighMax), "2.3.2 t_HI maximum 10 us",
-       "CLOCK HIGH phase inside a frame too long: the encoder may end the transfer (t_m)");
-  if (encoder_.t_lo_max)
-    emit(long_low, check::kPulseLow, "<= " + format_time(*encoder_.t_lo_max) + " (this encoder's t_LO maximum)",
-         "2.3.2 t_LO maximum (see encoder specifications)", "CLOCK LOW phase longer than this encoder's datasheet allows",
-         Verdict::ThisEncoder);
 }
 
 void TimingChecker::check_frequency(const PinFrame& f) {

@@ -141,8 +141,8 @@ struct Relaxation {
 };
 std::vector<Relaxation> relaxations(const CheckerParams& params);
 
-// Timing monitors. With delay compensation, the pulse-width minimum is read from the on-off
-// ratio row (HIGH and LOW each within 50 % +/- 10 % of the period); without it, the 0.2 us rows
+// Timing monitors. With delay compensation, the pulse-width minimum is the on-off ratio row's
+// (HIGH and LOW each at least 50 % - 10 % of the period); without it, the 0.2 us of t_HI and t_LO
 // apply (2.3.2). The alternative reading (0.2 us in both cases) would forbid every f_c above
 // 2.5 MHz, which the same table allows.
 class TimingChecker final {
@@ -280,6 +280,7 @@ class TimingChecker final {
   void on_master_clock(std::uint64_t level);
   void evaluate(const PinFrame& f);
   void check_pulse_widths(const PinFrame& f);
+  void check_on_off_ratio(const PinFrame& f);
   void check_frequency(const PinFrame& f);
   void check_frequency_for_cable(const PinFrame& f, const FittedFrequency& fit);
   void check_frequency_for_encoder(const PinFrame& f, const FittedFrequency& fit);

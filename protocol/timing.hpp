@@ -117,6 +117,7 @@ inline constexpr std::string_view kMeasurementProcedure = "delay_measurement";
 inline constexpr std::string_view kMeasurementSpread = "delay_measurement_spread";
 inline constexpr std::string_view kPulseHigh = "t_hi";
 inline constexpr std::string_view kPulseLow = "t_lo";
+inline constexpr std::string_view kOnOffRatio = "on_off_ratio";
 inline constexpr std::string_view kSamplingWindow = "sampling_window";
 inline constexpr std::string_view kRecovery = "t_m_t_r";
 inline constexpr std::string_view kContention = "bus_contention";
@@ -137,7 +138,7 @@ inline constexpr std::string_view kAccessWhileBusy = "busy_access";
 // Every check name in the order of timing_rows() (timing.cpp asserts the two agree).
 inline constexpr std::array kAll{kClockFrequency,  kCalculationTime,    kMemoryAccess,         kRecovery,
                                  kShortRecoveryClock, kDataDelay,       kStartDelay,           kPulseHigh,
-                                 kPulseLow,        kDriverOff,          kDriverOn,             kTimeBetweenCycles,
+                                 kPulseLow,        kOnOffRatio,         kDriverOff,          kDriverOn,             kTimeBetweenCycles,
                                  kMeasurementClock, kMeasurementProcedure, kMeasurementSpread, kDataDelayTolerance, kSamplingWindow,
                                  kClockCount,      kFloatingData,       kContention,           kErrorRecovery,
                                  kPowerOn,         kAccessWhileBusy};

@@ -129,11 +129,13 @@ TEST(CheckerBoundaries, OnOffRatioWithCompensationByOnePermille) {
     auto s = make_scenario(10, MHz(4), true, 2);
     s.master.high_permille = high_permille;
     const auto r = scenarios::run_scenario(s);
-    return count(r, checker::check::kPulseHigh) + count(r, checker::check::kPulseLow);
+    // With compensation the 0.2 us minimum of t_HI and t_LO does not apply: the ratio's row says it.
+    EXPECT_EQ(count(r, checker::check::kPulseHigh) + count(r, checker::check::kPulseLow), 0U) << high_permille;
+    return count(r, checker::check::kOnOffRatio);
   };
   EXPECT_EQ(violations(400), 0U);
   EXPECT_EQ(violations(600), 0U);
-  EXPECT_EQ(violations(399), 2U);
+  EXPECT_EQ(violations(399), 2U);  // one per frame, its worst phase
   EXPECT_EQ(violations(601), 2U);
 }
 
@@ -201,9 +203,12 @@ class HandClock {
   Signal& clock_;
 };
 
-std::size_t hand_clocked(const checker::DeclaredFrame& frame, const std::vector<Time>& phases, std::string_view check) {
+std::size_t hand_clocked(const checker::DeclaredFrame& frame, const std::vector<Time>& phases, std::string_view check,
+                         double cable_m = 0) {
   Kernel k;
-  line::Line line(k, line::LineParams{});
+  line::LineParams line_params;
+  line_params.cable_length_m = cable_m;
+  line::Line line(k, line_params);
   checker::CheckerParams params;
   params.f_c_tolerance_ppm = 0;
   checker::TimingChecker checker(k, line, checker::EncoderDeclaration{}, checker::MasterDeclaration{}, params);
@@ -226,10 +231,11 @@ std::vector<Time> pulses(unsigned n, Time low, Time high, unsigned odd = 0, Time
   return phases;
 }
 
-checker::DeclaredFrame frame_at(Hertz f_c, bool measurement) {
+checker::DeclaredFrame frame_at(Hertz f_c, bool measurement, bool compensated = false) {
   checker::DeclaredFrame f;
   f.f_c = f_c;
   f.measurement = measurement;
+  f.compensated = compensated;
   f.command = MC::EncoderSendPositionValues;
   f.mode_bits = protocol::info(f.command).bits;
   return f;
@@ -244,6 +250,42 @@ TEST(CheckerBoundaries, HighPhaseOfTenMicrosecondsByOnePicosecond) {
   };
   EXPECT_EQ(t_hi(us(10)), 0U);
   EXPECT_EQ(t_hi(us(10) + ps(1)), 1U);
+}
+
+TEST(CheckerBoundaries, OnOffRatioWithCompensationByOnePicosecond) {
+  // 2.3.2 on-off ratio error +/-10 % with delay compensation: at 4 MHz (T = 250 ns) every phase
+  // after t_ST at least 100 ns. The third pulse's phases move by a picosecond, T unchanged.
+  const auto ratio = [](Time high) {
+    std::vector<Time> phases = pulses(20, ns(125), ns(125));
+    phases[0] = us(2);                  // t_ST
+    phases[5] = high;                   // HIGH 3
+    phases[6] = ns(250) - high;         // LOW 4
+    return hand_clocked(frame_at(MHz(4), false, true), phases, checker::check::kOnOffRatio);
+  };
+  EXPECT_EQ(ratio(ns(100)), 0U);
+  EXPECT_EQ(ratio(ns(150)), 0U);
+  EXPECT_EQ(ratio(ns(100) - ps(1)), 1U);  // HIGH 3 short
+  EXPECT_EQ(ratio(ns(150) + ps(1)), 1U);  // LOW 4 short
+  EXPECT_EQ(hand_clocked(frame_at(MHz(4), false, true), pulses(20, ns(125), ns(99)), checker::check::kPulseHigh), 0U)
+      << "with compensation t_HI's 0.2 us minimum does not apply";
+}
+
+TEST(CheckerBoundaries, OnOffRatioWithoutCompensationTheShorterPhaseAgainstTheCableByOnePicosecond) {
+  // 2.1.1: another duty cycle gives f_c = 1/(2 t_min) on Figure 2. Over 100 m t_D max is 1.2 us:
+  // a 400 kHz clock (T = 2.5 us, the f_c row content) needs each phase of at least 1.2 us.
+  const auto ratio = [](Time high, double cable_m = 100) {
+    return hand_clocked(frame_at(kHz(400), false), pulses(20, ns(2500) - high, high), checker::check::kOnOffRatio,
+                        cable_m);
+  };
+  EXPECT_EQ(ratio(ns(1200)), 0U);
+  EXPECT_EQ(ratio(ns(1300)), 0U);
+  EXPECT_EQ(ratio(ns(1200) - ps(1)), 1U);
+  EXPECT_EQ(ratio(ns(1300) + ps(1)), 1U);  // the LOW phase short
+  EXPECT_EQ(ratio(ns(600), 5), 0U) << "over 5 m 2 MHz, not the cable, bounds f_c: t_HI and t_LO's 0.2 us apply";
+  EXPECT_EQ(hand_clocked(frame_at(kHz(400), false), pulses(20, ns(1300), ns(1200) - ps(1)),
+                         checker::check::kClockFrequency, 100),
+            0U)
+      << "the period is within the cable's limit";
 }
 
 TEST(CheckerBoundaries, MeasurementClockAt100And200KilohertzByOnePicosecondOfPeriod) {

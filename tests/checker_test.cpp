@@ -282,7 +282,7 @@ TEST(CheckerBrokenMasters, EachIsCaughtWithTheRightRow) {
          s.master.t_m_wait = us(2);
          s.script.back().cycle = Time::zero();
        }},
-      {"duty cycle off by 15 %", checker::check::kPulseHigh, [](auto& s) { s.master.high_permille = 350; }},
+      {"duty cycle off by 15 %", checker::check::kOnOffRatio, [](auto& s) { s.master.high_permille = 350; }},
       {"2.5 MHz without compensation", checker::check::kClockFrequency,
        [](auto& s) {
          s.master.delay_compensation = false;

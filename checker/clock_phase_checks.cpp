@@ -1,0 +1,134 @@
+// The rows on the clock's phases inside a frame (2.3.2): t_HI, t_LO and the on-off ratio, at the
+// encoder pins.
+#include <string>
+#include <tuple>
+
+#include "checker/timing_checker.hpp"
+
+namespace endatsim::checker {
+namespace {
+
+using sim::format_time;
+namespace limit = protocol::limit;
+
+// The worst phase of a frame that fails its limit, or else the worst one undecided at the
+// resolution; `count` counts the phases of that decision.
+struct WorstPhase {
+  Time width{0};
+  unsigned clock = 0;
+  Time at{0};
+  unsigned count = 0;
+  Decision decision = Decision::Pass;
+  const char* phase = "";
+  void add(Decision d, Time w, unsigned k, Time t, bool shorter_is_worse, const char* which = "") {
+    if (d == Decision::Pass || (decision == Decision::Fail && d == Decision::Undecided)) return;
+    if (d == Decision::Fail && decision != Decision::Fail) count = 0;
+    const bool worse = count == 0 || (shorter_is_worse ? w < width : w > width);
+    ++count;
+    decision = d;
+    if (worse) std::tie(width, clock, at, phase) = std::tuple{w, k, t, which};
+  }
+};
+
+// The phases of a frame: LOW k from FE k to RE k, HIGH k from RE k to FE k+1 (k from 1).
+template <class Visit>
+void for_each_phase(const std::vector<Time>& rising, const std::vector<Time>& falling, Visit visit) {
+  for (std::size_t k = 0; k < rising.size() && k < falling.size(); ++k)
+    visit(false, static_cast<unsigned>(k + 1), falling[k], rising[k] - falling[k]);
+  for (std::size_t k = 0; k + 1 < falling.size() && k < rising.size(); ++k)
+    visit(true, static_cast<unsigned>(k + 1), rising[k], falling[k + 1] - rising[k]);
+}
+
+}  // namespace
+
+// t_HI and t_LO: the 0.2 us minimum without delay compensation (with it the on-off ratio row takes
+// its place: docs/model.md §7), t_HI's 10 us maximum, and t_LO's maximum from this encoder's
+// datasheet ("see encoder specifications").
+void TimingChecker::check_pulse_widths(const PinFrame& f) {
+  if (f.falling.empty()) return;
+  constexpr std::size_t low_row = protocol::check::row_index(check::kPulseLow);
+  constexpr std::size_t high_row = protocol::check::row_index(check::kPulseHigh);
+  judge(low_row);
+  judge(high_row);
+  const Time r = params_.resolution;
+  const bool minimum = !f.header.compensated;
+  WorstPhase low, high, long_high, long_low;
+  for_each_phase(f.rising, f.falling, [&](bool is_high, unsigned k, Time at, Time w) {
+    const std::size_t row = is_high ? high_row : low_row;
+    const auto noted = [&](const Judgement& j, LimitOf of = LimitOf::Spec) {
+      margins_.note(row, j, of);
+      return j.decision;
+    };
+    if (minimum) (is_high ? high : low).add(noted(at_least(w, limit::kPulseWidthMin, r)), w, k, at, true);
+    if (is_high) {
+      long_high.add(noted(at_most(w, limit::kPulseHighMax, r)), w, k, at, false);
+    } else if (encoder_.t_lo_max && (k > 1 || !f.header.compensated)) {
+      // With compensation the first LOW phase is t_ST, which has its own row.
+      long_low.add(noted(at_most(w, *encoder_.t_lo_max, r), LimitOf::ThisEncoder), w, k, at, false);
+    }
+  });
+  const auto emit = [&](const WorstPhase& w, std::string_view name, const std::string& bound, const std::string& spec,
+                        const char* what, Verdict verdict = Verdict::Both) {
+    report_unless_passed(w.decision,
+                         {std::string(name), spec, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock,
+                          format_time(w.width), bound, Severity::Error,
+                          std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)",
+                          verdict});
+  };
+  const std::string at_least_min = ">= " + format_time(limit::kPulseWidthMin);
+  emit(low, check::kPulseLow, at_least_min, "2.3.2 t_LO minimum 0.2 us (without delay compensation)",
+       "CLOCK LOW phase too short");
+  emit(high, check::kPulseHigh, at_least_min, "2.3.2 t_HI minimum 0.2 us (without delay compensation)",
+       "CLOCK HIGH phase too short");
+  emit(long_high, check::kPulseHigh, "<= " + format_time(limit::kPulseHighMax), "2.3.2 t_HI maximum 10 us",
+       "CLOCK HIGH phase inside a frame too long: the encoder may end the transfer (t_m)");
+  if (encoder_.t_lo_max)
+    emit(long_low, check::kPulseLow, "<= " + format_time(*encoder_.t_lo_max) + " (this encoder's t_LO maximum)",
+         "2.3.2 t_LO maximum (see encoder specifications)", "CLOCK LOW phase longer than this encoder's datasheet allows",
+         Verdict::ThisEncoder);
+}
+
+// 2.3.2 "On-off ratio error": 0 % without, +/-10 % with delay compensation. With compensation each
+// phase is at least 50 % - 10 % of the frame's period (the first LOW phase is t_ST). Without it
+// 2.1.1 allows another duty cycle and reads Figure 2 as f_c = 1/(2 t_min): where the cable, not
+// the 2 MHz, bounds f_c, the shorter phase must be at least t_D max for the cable, or data taken
+// at the end of a short HIGH phase have not arrived (docs/model.md §7, §9).
+void TimingChecker::check_on_off_ratio(const PinFrame& f) {
+  if (f.falling.empty() || f.rising.size() < 2) return;
+  Time min{0};
+  std::string bound, spec;
+  if (f.header.compensated) {
+    if (f.header.f_c <= 0) return;
+    const Time period = sim::period_of(f.header.f_c);
+    min = period * (50 - limit::kOnOffRatioErrorPercent) / 100;
+    bound = ">= " + format_time(min) + " (50 % - 10 % of T = " + format_time(period) + ")";
+    spec = "2.3.2 on-off ratio error (+/-10 % with delay compensation)";
+  } else {
+    if (wires_only_ && measurement_seen_) return;  // the wires cannot tell it is uncompensated
+    const double cable = cable_length_m();
+    const Time t_d = limit::data_delay_max(cable);
+    if (2 * t_d <= sim::period_of(limit::kFcMaxWithoutCompensation)) return;  // 2 MHz bounds f_c: t_HI, t_LO
+    // A period shorter than 2 t_D is the f_c row's; this row adds what a 1:1 clock would not show.
+    if (f.header.f_c <= 0 || sim::period_of(f.header.f_c) < 2 * t_d) return;
+    min = t_d;
+    bound = ">= t_D max = " + format_time(t_d) + " for the cable";
+    spec = "2.1.1 note 4, Figure 2 (another duty cycle: f_c <= 1 / (2 t_min), without delay compensation)";
+  }
+  constexpr std::size_t row = protocol::check::row_index(check::kOnOffRatio);
+  judge(row);
+  WorstPhase worst;
+  for_each_phase(f.rising, f.falling, [&](bool is_high, unsigned k, Time at, Time w) {
+    if (!is_high && k == 1 && f.header.compensated) return;  // t_ST
+    const Judgement j = at_least(w, min, params_.resolution);
+    margins_.note(row, j);
+    worst.add(j.decision, w, k, at, true, is_high ? "HIGH" : "LOW");
+  });
+  report_unless_passed(worst.decision,
+                       {std::string(check::kOnOffRatio), spec, ObservationPoint::EncoderPins, worst.at,
+                        f.header.index, worst.clock, format_time(worst.width), bound,
+                        Severity::Error,
+                        "CLOCK " + std::string(worst.phase) + " phase too short for the clock's period (" +
+                            std::to_string(worst.count) + " phase(s) in this frame; worst shown)"});
+}
+
+}  // namespace endatsim::checker
