@@ -139,8 +139,14 @@ void FrameDecoder::resolve(Time t) {
     if (s.master) on_master_bit(s.clock, bit);
     else on_encoder_bit(s.clock, bit);
   }
-  // Changes before the earliest sample still due are folded into the level they left.
-  const Time horizon = pending_.empty() ? t : std::min(t, pending_.front().due);
+  // Changes before the earliest sample still due are folded into the level they left. In a frame,
+  // the sample of the bit after the last rising edge is inserted only at the next one, and may be
+  // due before it: changes after the last rising edge stay until then (a disturbance that ends as
+  // the next edge comes must not be folded away), unless the line has been quiet for t_m or holds
+  // more changes than any bit could (a bound on memory).
+  Time horizon = pending_.empty() ? t : std::min(t, pending_.front().due);
+  if (in_frame_ && t - last_rise_ < params_.t_m && data_.size() < kMaxChangesKept)
+    horizon = std::min(horizon, last_rise_);
   while (!data_.empty() && data_.front().first <= horizon) {
     base_level_ = data_.front().second;
     data_.pop_front();

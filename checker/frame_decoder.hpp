@@ -137,6 +137,7 @@ class FrameDecoder {
   State state_ = State::Done;
   std::vector<Time> rising_;
   std::deque<std::pair<Time, bool>> data_;  // DATA changes still needed for sampling
+  static constexpr std::size_t kMaxChangesKept = 4096;
   bool data_level_ = true;
   bool base_level_ = true;  // DATA before the first change in data_
   std::deque<Sample> pending_;
