@@ -1,6 +1,8 @@
-// Appendix A2: the 16 causes of interface errors and the error handling type each one gets.
+// Appendix A2: the 16 causes of interface errors and the error handling type each one gets, as
+// one table (D297403 4.2).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string_view>
 
@@ -12,7 +14,7 @@ enum class ErrorType : std::uint8_t { I = 1, II = 2, III = 3, IV = 4 };
 enum class ErrorCause : std::uint8_t {
   ModeCommandDisrupted = 1,              // or not supported
   MrsFrameDisrupted = 2,                 // MRS code outside the codes of the command's type; too many clocks
-  Busy = 3,                              // a transmission was not completed
+  TransmissionNotCompleted = 3,          // "busy error", handed on with the next query
   CommunicationCommandNotPermitted = 4,  // 010010 received, but not permissible
   EibNotInitialised = 5,
   DataDriverHighImpedanceBroadcast = 6,  // communication command: driver high-impedance with address 0000h
@@ -28,14 +30,52 @@ enum class ErrorCause : std::uint8_t {
   AdditionalDataNotUpdated = 16,
 };
 
-constexpr ErrorType error_type(ErrorCause c) {
-  const auto n = static_cast<unsigned>(c);
-  if (n == 1) return ErrorType::I;
-  if (n <= 12) return ErrorType::II;
-  if (n <= 15) return ErrorType::III;
-  return ErrorType::IV;
-}
+// One row of the A2 table.
+struct ErrorCauseRow {
+  ErrorCause cause;
+  ErrorType type;
+  std::string_view text;
+};
 
-std::string_view describe(ErrorCause c);
+inline constexpr std::array kErrorCauses{
+    ErrorCauseRow{ErrorCause::ModeCommandDisrupted, ErrorType::I, "transfer of mode command disrupted or not supported"},
+    ErrorCauseRow{ErrorCause::MrsFrameDisrupted, ErrorType::II, "frame disrupted with MRS code transfer"},
+    ErrorCauseRow{ErrorCause::TransmissionNotCompleted, ErrorType::II,
+                  "a transmission was not completed (busy error), handed on with the next query"},
+    ErrorCauseRow{ErrorCause::CommunicationCommandNotPermitted, ErrorType::II, "010010 received, but not permissible"},
+    ErrorCauseRow{ErrorCause::EibNotInitialised, ErrorType::II, "EnDat encoder not yet initiated (EIB)"},
+    ErrorCauseRow{ErrorCause::DataDriverHighImpedanceBroadcast, ErrorType::II,
+                  "communication command: data driver deactivated at high-impedance with address 0000h"},
+    ErrorCauseRow{ErrorCause::ImpermissibleMemoryArea, ErrorType::II, "currently impermissible memory area selected"},
+    ErrorCauseRow{ErrorCause::ImpermissibleAddress, ErrorType::II,
+                  "impermissible or unavailable address, or an access or reset with the busy bit still set"},
+    ErrorCauseRow{ErrorCause::WriteProtected, ErrorType::II, "writing of parameters into write-protected memory area"},
+    ErrorCauseRow{ErrorCause::WriteProtectionCleared, ErrorType::II,
+                  "writing a write-protection bit with 0 after activation"},
+    ErrorCauseRow{ErrorCause::ImpermissibleBlockAddress, ErrorType::II, "impermissible block address selected"},
+    ErrorCauseRow{ErrorCause::UnknownCommunicationAddress, ErrorType::II,
+                  "communication command with unknown address, or an unassigned operating parameter 2 address"},
+    ErrorCauseRow{ErrorCause::ImpermissibleAdditionalData, ErrorType::III,
+                  "currently impermissible additional data selected"},
+    ErrorCauseRow{ErrorCause::UnsupportedAdditionalData, ErrorType::III,
+                  "selected additional data not supported (words 0 and 1)"},
+    ErrorCauseRow{ErrorCause::DuplicateAdditionalData, ErrorType::III,
+                  "several additional data with the same identifier activated"},
+    ErrorCauseRow{ErrorCause::AdditionalDataNotUpdated, ErrorType::IV,
+                  "an available additional data could not be updated"},
+};
+
+namespace detail {
+constexpr bool error_causes_in_order() {
+  for (std::size_t i = 0; i < kErrorCauses.size(); ++i)
+    if (static_cast<std::size_t>(kErrorCauses[i].cause) != i + 1) return false;
+  return true;
+}
+}  // namespace detail
+static_assert(detail::error_causes_in_order(), "kErrorCauses holds causes 1 .. 16 in the A2 table's order");
+
+constexpr const ErrorCauseRow& row_of(ErrorCause c) { return kErrorCauses[static_cast<std::size_t>(c) - 1]; }
+constexpr ErrorType error_type(ErrorCause c) { return row_of(c).type; }
+constexpr std::string_view describe(ErrorCause c) { return row_of(c).text; }
 
 }  // namespace endatsim::protocol

@@ -578,8 +578,15 @@ void Encoder::answer_parameter_frame() {
                               : area_selected_ ? std::optional{selection_area_.area} : std::nullopt;
   if (const auto refused = parameter_access ? not_initiated(area) : std::nullopt) {
     error = refused;  // A2 cause 5; a reset still works: it completes the commissioning
+  } else if (transmission_incomplete_) {
+    // A2 cause 3: a transmission was not completed; "the error handling will be transferred with
+    // the next query", the first that has an acknowledgment to carry it. The access is discarded.
+    error = ErrorCause::TransmissionNotCompleted;
+    transmission_incomplete_ = false;
   } else if (memory_access && busy()) {
-    error = ErrorCause::Busy;  // 2.3.1 note 1: a 2.1 access with Busy = 1 gets type II
+    // 2.3.1 note 1: a 2.1 access or reset with Busy = 1 gets type II; A2 cause 8 names it ("with
+    // still set active busy bit").
+    error = ErrorCause::ImpermissibleAddress;
   } else {
     switch (command_->command) {
       case MC::SelectionOfMemoryArea:  // 2.4.1
@@ -920,6 +927,8 @@ void Encoder::on_recovery_time_elapsed() {
 
 void Encoder::finish_frame() {
   EncoderFrame& f = frames_.back();
+  // A 2.1 parameter frame that ends before its 8 + 16 bits are in (A2 cause 3).
+  if (state_ == State::Payload) transmission_incomplete_ = true;
   state_ = State::Idle;
   end_marker_timer_.cancel();
   if (bus_selection_after_frame_) selected_on_bus_ = *bus_selection_after_frame_;

@@ -358,6 +358,7 @@ class Encoder {
   std::uint8_t memory_address_ = 0;             // I = 5 / 6
   std::uint16_t memory_value_ = 0;
   bool memory_error_ = false;
+  bool transmission_incomplete_ = false;        // A2 cause 3, for the next acknowledgment
   std::uint64_t position2_latched_ = 0;
   std::uint64_t test_value_latched_ = 0;
   std::uint64_t async_latched_ = 0;

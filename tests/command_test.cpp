@@ -185,7 +185,21 @@ TEST(TypeTwo, Cause9OemAreaAfterItsWriteProtectionIsActivatedByReset) {
   EXPECT_EQ(b.encoder.memory().image().areas.at(protocol::MemoryArea::Oem1).at(0), 0x1234);
 }
 
-TEST(TypeTwo, Cause3AccessWhileBusyAfterTheFrame) {
+TEST(TypeTwo, Cause3ATransmissionNotCompletedIsHandedOnWithTheNextAcknowledgment) {
+  // A2 cause 3: "A transmission was not completed ... The error handling will be transferred
+  // with the next query." A selection cut after 12 of its 24 payload bits, then two complete ones.
+  Bench b(params());
+  b.frame(20, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  EXPECT_FALSE(b.last().error.has_value());
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  ASSERT_TRUE(b.last().error.has_value());
+  EXPECT_EQ(*b.last().error, ErrorCause::TransmissionNotCompleted);
+  EXPECT_EQ(protocol::error_type(*b.last().error), protocol::ErrorType::II);
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  EXPECT_FALSE(b.last().error.has_value()) << "handed on once";
+}
+
+TEST(TypeTwo, Cause8AccessWhileBusyAfterTheFrame) {
   auto p = params();
   p.t_ac_placement = slave::MemoryAccessPlacement::AfterFrame;
   p.t_ac_write = ms(1);
@@ -195,7 +209,8 @@ TEST(TypeTwo, Cause3AccessWhileBusyAfterTheFrame) {
   EXPECT_FALSE(b.last().error.has_value());
   b.frame(65, ScriptedFrame::header(0b100011, payload(0x01, 0)));  // 200 us later: still busy
   ASSERT_TRUE(b.last().error.has_value());
-  EXPECT_EQ(*b.last().error, ErrorCause::Busy);
+  // 2.3.1 note 1 and A2 cause 8: "with still set active busy bit".
+  EXPECT_EQ(*b.last().error, ErrorCause::ImpermissibleAddress);
 }
 
 TEST(TypeTwo, TooManyClocksDiscardTheWrite) {
@@ -509,7 +524,7 @@ TEST(AppendixA2, Cause15PositionValue2InBothAdditionalData) {
 TEST(AppendixA2, EveryCauseHasItsType) {
   using T = protocol::ErrorType;
   EXPECT_EQ(protocol::error_type(ErrorCause::ModeCommandDisrupted), T::I);
-  for (auto c : {ErrorCause::MrsFrameDisrupted, ErrorCause::Busy, ErrorCause::CommunicationCommandNotPermitted,
+  for (auto c : {ErrorCause::MrsFrameDisrupted, ErrorCause::TransmissionNotCompleted, ErrorCause::CommunicationCommandNotPermitted,
                  ErrorCause::EibNotInitialised, ErrorCause::DataDriverHighImpedanceBroadcast,
                  ErrorCause::ImpermissibleMemoryArea, ErrorCause::ImpermissibleAddress, ErrorCause::WriteProtected,
                  ErrorCause::WriteProtectionCleared, ErrorCause::ImpermissibleBlockAddress,
