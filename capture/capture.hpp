@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -20,9 +21,18 @@ namespace endatsim::capture {
 
 using sim::Time;
 
+// `text` with every byte that is not printable ASCII or part of a valid UTF-8 character shown as
+// \xNN: a message that quotes a file's bytes stays one readable line of valid UTF-8 (JSON and
+// XML reports carry it).
+std::string printable(std::string_view text);
+// The length of the valid UTF-8 character of two to four bytes at `text[i]` (no overlong forms,
+// no surrogates), or 0.
+std::size_t utf8_length(std::string_view text, std::size_t i);
+
+// The message is made printable: it quotes bytes of a file that may be anything.
 class CaptureError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit CaptureError(const std::string& what) : std::runtime_error(printable(what)) {}
 };
 
 // A change of one signal's level. Values are '0', '1' or 'x' (unknown, undriven, conflicting:

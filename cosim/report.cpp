@@ -86,7 +86,7 @@ int report(const BenchResult& r, const OutputPaths& outputs, bool verbose, std::
   write_summary(out, r, verbose);
   out.flush();
   try {
-    if (outputs.json) scenarios::write_file(*outputs.json, to_json(r).dump(2) + "\n");
+    if (outputs.json) scenarios::write_file(*outputs.json, scenarios::json_file_text(to_json(r)));
     if (outputs.junit) scenarios::write_file(*outputs.junit, junit_xml(r));
     if (outputs.log) {
       std::string log;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 
@@ -29,5 +30,11 @@ class StreamedFile {
 
 // The whole text at once, the same way.
 void write_file(const std::string& path, const std::string& text);
+
+// A JSON document as a file's text, indented; bytes that are not UTF-8 (a capture's names and
+// messages quote what the file holds) become U+FFFD instead of failing the whole output.
+inline std::string json_file_text(const nlohmann::json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
 
 }  // namespace endatsim::scenarios

@@ -1323,3 +1323,32 @@ TEST(CheckCapture, ADisturbanceEndingAsTheNextClockRisesIsDecodedInTheBitItCover
   // carries position bit 18 (start bit RE13, F1, F2, then the position LSB first).
   EXPECT_EQ(r.frames[4].fields[static_cast<std::size_t>(protocol::Field::Position)], 104462U ^ (1U << 18));
 }
+
+// A file's bytes quoted in a message are shown as \xNN where they are not UTF-8: the message stays
+// readable, and the JSON and JUnit results of every capture are still written (a capture from
+// another tool may hold any bytes, in its names too).
+TEST(CheckCommand, BytesThatAreNotUtf8AreShownEscapedAndEveryReportIsStillWritten) {
+  const fs::path garbage = temp("garbage.vcd"), latin1 = temp("latin1.csv"), json = temp("bytes.json"),
+                 junit = temp("bytes.xml"), good = temp("good.vcd");
+  std::ofstream(garbage) << "\xff\xfe$garbage\x01";
+  std::ofstream(latin1) << "Time [s],D\xe9,CLK\n0,1,1\n1e-6,0,1\n";
+  const auto scenario = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                                      "/scenarios/bundled/endat21_1mhz_10m.json");
+  run_to_vcd(scenario, good);
+  auto r = cli("check '" + garbage.string() + "' '" + good.string() +
+               "' --clock encoder.clock --data encoder.data --json '" + json.string() + "' --junit '" + junit.string() +
+               "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("(got '\\xFF\\xFE$garbage\\x01')"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(slurp_file(json));  // throws if not UTF-8
+  ASSERT_EQ(j.at("captures").size(), 2U);
+  EXPECT_NE(j.at("captures")[0].at("error").get<std::string>().find("\\xFF\\xFE"), std::string::npos);
+  EXPECT_FALSE(j.at("captures")[1].contains("error"));
+  const std::string xml = slurp_file(junit);
+  EXPECT_NE(xml.find("\\xFF\\xFE"), std::string::npos);
+  EXPECT_EQ(xml.find('\xff'), std::string::npos) << "raw bytes in the XML";
+  r = cli("check '" + latin1.string() + "' --clock CLK --data D");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("the capture has: D\\xE9, CLK"), std::string::npos) << r.err;
+  for (const auto& p : {garbage, latin1, json, junit, good}) fs::remove(p);
+}

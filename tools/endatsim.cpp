@@ -362,7 +362,7 @@ int run(const Options& o) {
   if (o.junit) write_file(*o.junit, scenarios::junit_xml(results));
   if (o.json)
     write_file(*o.json,
-               nlohmann::json{{"endatsim", ENDATSIM_VERSION}, {"passed", passed}, {"scenarios", all}}.dump(2) + "\n");
+               scenarios::json_file_text(nlohmann::json{{"endatsim", ENDATSIM_VERSION}, {"passed", passed}, {"scenarios", all}}));
   if (!o.quiet) {
     const std::string verdict = passed ? "all scenarios passed" : "some scenarios failed";
     std::cout << (o.color ? (passed ? "\033[32m" : "\033[31m") + verdict + "\033[0m" : verdict) << "\n";
@@ -397,7 +397,7 @@ void write_sweep_outputs(const SweepArgs& o, const scenarios::Sweep& result,
   if (o.json) {
     auto j = scenarios::sweep_json(result, table ? &*table : nullptr);
     j["endatsim"] = ENDATSIM_VERSION;
-    write_file(*o.json, j.dump(2) + "\n");
+    write_file(*o.json, scenarios::json_file_text(j));
   }
   if (o.svg) write_file(*o.svg, scenarios::maximum_svg(result, *table));
 }
@@ -814,7 +814,7 @@ int check_command(const po::variables_map& vm) {
   }
   if (json) {
     if (files.size() == 1 && results.size() == 1) {
-      write_file(*json, scenarios::capture_json(results.front()).dump(2) + "\n");
+      write_file(*json, scenarios::json_file_text(scenarios::capture_json(results.front())));
     } else {
       // Every capture named, in order: a judged one, or one that could not be read.
       nlohmann::json all = nlohmann::json::array();
@@ -828,7 +828,7 @@ int check_command(const po::variables_map& vm) {
           all.push_back(scenarios::capture_json(*judged++));
         }
       }
-      write_file(*json, nlohmann::json{{"captures", all}}.dump(2) + "\n");
+      write_file(*json, scenarios::json_file_text(nlohmann::json{{"captures", all}}));
     }
   }
   if (junit) write_file(*junit, scenarios::junit_xml(results, unreadable));
