@@ -31,6 +31,8 @@
 #include <charconv>
 #include <cstring>
 #include <fstream>
+#include <numeric>
+#include <optional>
 #include <set>
 #include <sys/stat.h>
 
@@ -202,6 +204,9 @@ class CsvReader final : public QueuedReader {
 
   std::uint64_t bytes_read() const override { return lines_.consumed(); }
   Time end() const override { return row_time_; }
+  std::string timescale() const override {
+    return inferred_ ? "sample period inferred from the steps of the time column; --resolution states it" : "";
+  }
 
  private:
   // One row at a time: the first was read when the file was opened.
@@ -330,11 +335,13 @@ class CsvReader final : public QueuedReader {
       resolution_ = Time{std::max<std::int64_t>(1, kPsPerSecond / samplerate_ + (kPsPerSecond % samplerate_ != 0 ? 1 : 0))};
       sampled_ = true;
     } else {
-      // A Saleae export does not state the sample rate, and the smallest step between its rows
-      // is only known at the end of the file: the times are taken as exact to the picosecond.
-      // A "; Samplerate:" comment at the top of the file states the true resolution, as does
-      // `endatsim check --resolution`.
-      resolution_ = Time{1};
+      // A Saleae export does not state the sample rate. Its rows fall on the analyzer's sample
+      // grid, so the greatest common step of the times over the first rows is the sample period
+      // (or a multiple of it, which only makes more limits undecided). A "; Samplerate:" comment
+      // at the top of the file states the true resolution, as does `endatsim check --resolution`.
+      resolution_ = common_step();
+      sampled_ = true;
+      inferred_ = true;
     }
     if (layout_ == Layout::kSigrokTime) {
       // sigrok's unit: the smallest 1000^k that reaches the rate; the period in that unit.
@@ -407,6 +414,34 @@ class CsvReader final : public QueuedReader {
     for (std::uint32_t i = 0; i < values_.size(); ++i) emit(row_time_, i, values_[i]);
   }
 
+  // The greatest common divisor of the time steps over the first kScanRows rows, read from a
+  // second handle on the file (the capture itself is streamed once); 1 ps if fewer than two
+  // distinct times. Rows the scan cannot read are left to the streaming pass to report.
+  Time common_step() const {
+    constexpr std::size_t kScanRows = 1'000'000;
+    LineStream scan(path_);
+    std::string line;
+    std::vector<std::string> fields;
+    bool header_seen = false;
+    std::optional<std::int64_t> first;
+    std::int64_t step = 0;
+    for (std::size_t rows = 0; rows < kScanRows && scan.next(line);) {
+      const std::string t = trim(line);
+      if (t.empty() || t[0] == ';' || scan.overlong()) continue;
+      if (!header_seen) {
+        header_seen = true;
+        continue;
+      }
+      split(line, fields);
+      std::int64_t ps = 0;
+      if (fields.empty() || !parse_seconds(fields[0], ps)) continue;
+      ++rows;
+      if (!first) first = ps;
+      else step = std::gcd(step, ps > *first ? ps - *first : *first - ps);
+    }
+    return Time{std::max<std::int64_t>(step, 1)};
+  }
+
   Time time_of(std::uint64_t sample) const {
     const auto t = static_cast<unsigned __int128>(sample) * kPsPerSecond / static_cast<unsigned __int128>(samplerate_);
     if (t > static_cast<unsigned __int128>(INT64_MAX)) fail("sample " + std::to_string(sample) + " lies beyond the picosecond range");
@@ -416,6 +451,7 @@ class CsvReader final : public QueuedReader {
   LineStream lines_;
   bool have_header_ = false;
   bool sigrok_ = false;
+  bool inferred_ = false;  // the sample period read from the time column's steps
   std::int64_t samplerate_ = 0;
   std::vector<std::string> channel_names_;
   Layout layout_ = Layout::kSamples;

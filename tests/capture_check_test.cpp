@@ -212,6 +212,40 @@ class CaptureResampled : public ::testing::TestWithParam<fs::path> {};
 // whose clock allows that at 100 MHz (10 ns) and 25 MHz (40 ns) are checked at those rates. The
 // frames decode the same; no row fails that the exact capture passes; every row the exact
 // capture fails is failed or undecided.
+// A Saleae Logic 2 digital export of a capture: a row at the start and at every change, times
+// in seconds, no sample rate stated.
+void to_saleae(const fs::path& vcd, const fs::path& csv) {
+  auto reader = capture::open_vcd(vcd.string());
+  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
+  std::vector<std::uint32_t> wanted;
+  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
+  reader->select(wanted);
+  std::ofstream out(csv);
+  out << "Time [s],clock,data,data_driver_enable\n";
+  std::vector<char> level(3, '0');
+  std::optional<Time> at;
+  const auto row = [&] {
+    char seconds[64];
+    std::snprintf(seconds, sizeof seconds, "%lld.%012lld", static_cast<long long>(at->count() / 1'000'000'000'000),
+                  static_cast<long long>(at->count() % 1'000'000'000'000));
+    out << seconds << "," << level[0] << "," << level[1] << "," << level[2] << "\n";
+  };
+  capture::Change c;
+  while (reader->next(c)) {
+    if (at && c.time != *at) row();
+    at = c.time;
+    const auto i = static_cast<std::size_t>(std::find(wanted.begin(), wanted.end(), c.signal) - wanted.begin());
+    level[i] = c.value == '1' ? '1' : '0';
+  }
+  if (at) row();
+  // The recording's end as a last row with the levels unchanged, so that the capture ends where
+  // the recording did (else its last frame is one the end cuts).
+  if (at && reader->end() > *at) {
+    at = reader->end();
+    row();
+  }
+}
+
 TEST_P(CaptureResampled, LogicAnalyzerRatesGiveTheSameFramesAndUndecidedNearLimits) {
   const auto scenario = scenarios::load_scenario_file(GetParam().string());
   const fs::path vcd = temp(GetParam().stem().string() + "_exact.vcd");
@@ -225,8 +259,21 @@ TEST_P(CaptureResampled, LogicAnalyzerRatesGiveTheSameFramesAndUndecidedNearLimi
     o.file = sampled.string();
     o.resolution = period;
     const auto r = scenarios::check_capture(o);
-    fs::remove(sampled);
     expect_like_exact(exact, r, "at " + sim::format_time(period));
+    // The same samples as a Saleae export: its sample period is read from its time steps.
+    const fs::path saleae = temp(GetParam().stem().string() + "_" + std::to_string(period.count()) + ".csv");
+    to_saleae(sampled, saleae);
+    auto from_csv = o;
+    from_csv.file = saleae.string();
+    from_csv.resolution.reset();
+    from_csv.clock = "clock";
+    from_csv.data = "data";
+    from_csv.data_enable = "data_driver_enable";
+    const auto s = scenarios::check_capture(from_csv);
+    EXPECT_EQ(s.resolution, period);
+    expect_like_exact(exact, s, "as a Saleae export at " + sim::format_time(period));
+    fs::remove(sampled);
+    fs::remove(saleae);
   }
   fs::remove(vcd);
 }

@@ -273,8 +273,11 @@ TEST_F(CaptureReaders, SaleaeExportOfTheWaveformReadsTheSame) {
                                 "0.000000800000,1,1\n");
   auto reader = capture::open(csv);
   EXPECT_EQ(reader->signals(), (std::vector<std::string>{"clock", "data"}));
-  // No sample rate in the export: the times are taken as exact.
-  EXPECT_EQ(reader->resolution(), Time{1});
+  // No sample rate in the export: the greatest common step of its times, 10 ns, is taken as the
+  // sample period.
+  EXPECT_EQ(reader->resolution(), Time{10'000});
+  EXPECT_TRUE(reader->sampled());
+  EXPECT_NE(reader->timescale().find("inferred"), std::string::npos);
   expect_same(expected_waveform(), read_all(*reader), Time{0}, "Saleae CSV");
 }
 
