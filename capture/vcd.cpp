@@ -87,8 +87,9 @@ class VcdReader final : public QueuedReader {
   std::uint64_t bytes_read() const override { return tokens_.consumed(); }
   Time end() const override { return now_; }
   // Times finer than the picosecond are rounded to the nearest one: an edge may be off by half
-  // a picosecond, a duration between two by up to one.
-  Time uncertainty() const override { return scale_num_ < 1000 ? Time{1} : Time::zero(); }
+  // a picosecond, a duration between two by up to one. A file in such a timescale whose times all
+  // fall on whole picoseconds (GHDL writes every VCD in 1 fs) is exact until one does not.
+  Time uncertainty() const override { return rounded_ ? Time{1} : Time::zero(); }
   std::string timescale() const override { return timescale_; }
 
  private:
@@ -194,8 +195,14 @@ class VcdReader final : public QueuedReader {
   // The names of a variable's bits, most significant first: "data[3]" for a bit of a vector;
   // a 1-bit variable keeps its range. "[7:0]" after the name (or in it): the bits run from the
   // first index to the second.
-  std::vector<std::string> bit_names(const std::string& name, const std::string& full, const std::string& range,
+  std::vector<std::string> bit_names(const std::string& name, const std::string& full_name, const std::string& given_range,
                                      unsigned width) const {
+    std::string full = full_name, range = given_range;
+    // GHDL writes a vector's range into its name: "bus[3:0]".
+    if (const auto open = full.rfind('['); range.empty() && width > 1 && open != std::string::npos && full.back() == ']') {
+      range = full.substr(open);
+      full.erase(open);
+    }
     long msb = static_cast<long>(width) - 1, lsb = 0;
     if (const auto open = range.find('['); !range.empty() && open != std::string::npos) {
       const auto colon = range.find(':');
@@ -253,6 +260,7 @@ class VcdReader final : public QueuedReader {
         if (ec != std::errc() || p != t.data() + t.size() || units < 0) fail("bad timestamp '" + t.substr(0, 40) + "'");
         if (units > (INT64_MAX - 500) / scale_num_) fail("timestamp '" + t.substr(0, 40) + "' beyond the picosecond range");
         const Time at{(units * scale_num_ + 500) / 1000};
+        if ((units * scale_num_) % 1000 != 0) rounded_ = true;
         if (at < now_) fail("time goes backwards (" + t.substr(0, 40) + ")");
         now_ = at;
         return true;
@@ -287,6 +295,7 @@ class VcdReader final : public QueuedReader {
   std::vector<std::string> scopes_;
   std::map<std::string, Variable> vars_;
   std::vector<std::pair<std::string, std::uint32_t>> aliases_;  // further names of declared bits
+  bool rounded_ = false;  // a time fell between two picoseconds
   std::int64_t scale_num_ = 0;  // femtoseconds per unit
   std::string timescale_;       // as the file gives it: "1 fs"
   Time now_{0};

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -173,6 +174,10 @@ class TimingChecker final {
   // frame begins only once CLOCK has been HIGH for t_m (FrameDecoder::begin_capture). Call before
   // the capture's first CLOCK level; a live run never does.
   void begin_capture(Time start, bool at_rest);
+  // A capture's times became less certain (a VCD time that fell between two picoseconds): limits
+  // from now on are undecided within `r`. Never lowers the resolution.
+  void raise_resolution(Time r) { params_.resolution = std::max(params_.resolution, r); }
+  Time resolution() const { return params_.resolution; }
   // The capture's window closes at `end`, at or after its last change (call before finish()).
   void end_capture(Time end) { capture_end_ = end; }
   // Clock edges of a capture skipped before its first frame, and the frame its end cut.

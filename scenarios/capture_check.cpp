@@ -70,6 +70,7 @@ class Replay {
 
   void step() {
     do {
+      checker_.raise_resolution(reader_.uncertainty());
       apply(next_);
       if ((++result_.changes & 0xFFFF) == 0 && progress_) progress_(reader_.bytes_read(), reader_.bytes_total());
       result_.end = next_.time + offset_;
@@ -265,6 +266,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   kernel.run();
   checker.end_capture(replay.end());
   checker.finish();
+  result.uncertainty = checker.resolution();
   log.finish();
   replay.drain();
   result.violations = checker.violations();

@@ -1167,9 +1167,9 @@ void to_femtoseconds(const fs::path& from, const fs::path& to, int nth, std::int
 
 }  // namespace
 
-// A VCD finer than the picosecond is read to the nearest picosecond, so its resolution is a
-// picosecond: t_ST 400 fs short of note 8's 2 us is undecided, never passed; 1 ps short fails,
-// 1 ps long passes. The bundled 8 MHz scenario meets t_ST with no margin in each of its 20
+// A VCD finer than the picosecond is read to the nearest picosecond: once a time rounds, the
+// resolution is a picosecond, and t_ST 400 fs short of note 8's 2 us is undecided, never passed;
+// while every time falls on a whole picosecond the file is exact. The bundled 8 MHz scenario meets t_ST with no margin in each of its 20
 // compensated frames; RE1 of the fifth is moved.
 TEST(CheckCapture, ATimescaleFinerThanAPicosecondHasAPicosecondsResolution) {
   const auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
@@ -1178,24 +1178,34 @@ TEST(CheckCapture, ATimescaleFinerThanAPicosecondHasAPicosecondsResolution) {
   run_to_vcd(s, vcd);
   auto o = encoder_pins_of(s, vcd);
   o.file = femto.string();
-  const auto t_st = [&](std::int64_t shift_fs) {
+  const auto t_st = [&](std::int64_t shift_fs, Time uncertainty) {
     to_femtoseconds(vcd, femto, 5, shift_fs);
     const auto r = scenarios::check_capture(o);
-    EXPECT_EQ(r.uncertainty, sim::ps(1));
+    EXPECT_EQ(r.uncertainty, uncertainty) << shift_fs << " fs";
     std::pair<std::size_t, std::size_t> errors_undecided{0, 0};
     for (const auto& v : r.violations)
       if (v.check == checker::check::kStartDelay)
         ++(v.severity == checker::Severity::Error ? errors_undecided.first : errors_undecided.second);
     return errors_undecided;
   };
-  EXPECT_EQ(t_st(-400), std::pair(std::size_t{0}, std::size_t{20}));
-  EXPECT_EQ(t_st(-1000), std::pair(std::size_t{1}, std::size_t{19}));
-  EXPECT_EQ(t_st(+1000), std::pair(std::size_t{0}, std::size_t{19}));
+  // Every t_ST of the 20 frames is 2 us, the limit. The fifth frame's RE1 moved by less than a
+  // picosecond rounds: from there on each limit met within 1 ps is undecided (16 frames); the
+  // four before were read exactly.
+  EXPECT_EQ(t_st(-400, sim::ps(1)), std::pair(std::size_t{0}, std::size_t{16}));
+  // 1.4 ps short reads as 1 ps short, a whole resolution outside the limit: that one fails.
+  EXPECT_EQ(t_st(-1400, sim::ps(1)), std::pair(std::size_t{1}, std::size_t{15}));
   std::ostringstream summary;
   scenarios::write_capture_summary(summary, scenarios::check_capture(o), false);
   EXPECT_NE(summary.str().find("resolution 1 ps (timescale 1 fs, times rounded to the picosecond)"), std::string::npos)
       << summary.str();
   EXPECT_EQ(summary.str().find("event times exact"), std::string::npos) << summary.str();
+  // Moved by whole picoseconds, every time of the 1 fs file is exact (as GHDL's VCDs are): one
+  // picosecond short fails, one picosecond long passes.
+  EXPECT_EQ(t_st(-1000, Time::zero()), std::pair(std::size_t{1}, std::size_t{0}));
+  EXPECT_EQ(t_st(+1000, Time::zero()), std::pair(std::size_t{0}, std::size_t{0}));
+  std::ostringstream exact;
+  scenarios::write_capture_summary(exact, scenarios::check_capture(o), false);
+  EXPECT_NE(exact.str().find("event times exact (timescale 1 fs)"), std::string::npos) << exact.str();
   fs::remove(vcd);
   fs::remove(femto);
 }

@@ -769,3 +769,24 @@ TEST_F(CaptureReaders, EveryNameOfAVcdIdentifierSelectsItsSignal) {
                                              "$enddefinitions $end\n#0\n1!\n");
   expect_mentions(error_of([&] { capture::open(wide); }), {wide + ": line 3: ", "variable 'b': 2 bits", "declared first with 1"});
 }
+
+// GHDL writes every VCD in femtoseconds and a vector's range into its name ("bus[3:0]"): each
+// bit is found by its index, and times on whole picoseconds are exact until one is not.
+TEST_F(CaptureReaders, GhdlVectorRangeInTheNameAndFemtosecondTimes) {
+  const std::string vcd = write("ghdl.vcd", "$timescale 1 fs $end\n$scope module tb $end\n"
+                                            "$var reg 4 ! bus[3:0] $end\n$var reg 1 \" clk $end\n"
+                                            "$upscope $end\n$enddefinitions $end\n#0\nb0101 !\n1\"\n"
+                                            "#2000\n0\"\n#2500\n1\"\n");
+  auto reader = capture::open(vcd);
+  EXPECT_EQ(reader->signals(), (std::vector<std::string>{"tb.bus[3]", "tb.bus[2]", "tb.bus[1]", "tb.bus[0]", "tb.clk"}));
+  EXPECT_EQ(capture::find_signal(*reader, "bus[0]"), 3U);
+  reader->select({capture::find_signal(*reader, "clk")});
+  Change c;
+  ASSERT_TRUE(reader->next(c));
+  ASSERT_TRUE(reader->next(c));
+  EXPECT_EQ(c.time, Time{2});
+  EXPECT_EQ(reader->uncertainty(), Time::zero()) << "2000 fs is a whole picosecond";
+  ASSERT_TRUE(reader->next(c));
+  EXPECT_EQ(c.time, Time{3});  // 2.5 ps rounds to the nearest
+  EXPECT_EQ(reader->uncertainty(), Time{1});
+}
