@@ -112,7 +112,13 @@ class Replay {
       return;
     }
     if (c.signal == clock_) {
-      if (c.value == 'x') return;  // an unknown clock level changes nothing
+      // An unknown clock level changes nothing; one after CLOCK had a level is a master's fault
+      // the summary names (an RTL master's X before its reset is not).
+      if (c.value == 'x') {
+        if (clock_known_ && result_.clock_unknown++ == 0) result_.clock_unknown_first = now;
+        if (!clock_known_ && c.time == Time::zero()) unknown_from_start_ = true;
+        return;
+      }
       if (!clock_known_) begin(c);
       master_.clock_out.write(c.value == '1');
       decoder_.on_clock(now, c.value == '1');
@@ -144,11 +150,12 @@ class Replay {
   }
 
   // CLOCK's first level. A simulator's VCD shows its simulation from the start at time 0, where
-  // a CLOCK HIGH is the line at rest; any other capture may begin inside a frame, whose edges the
-  // checker skips until CLOCK has been HIGH for t_m (docs/analyzer.md, "Where a capture begins").
+  // a CLOCK HIGH is the line at rest, also when CLOCK was unknown from time 0 until then (an RTL
+  // master in reset); any other capture may begin inside a frame, whose edges the checker skips
+  // until CLOCK has been HIGH for t_m (docs/analyzer.md, "Where a capture begins").
   void begin(const capture::Change& c) {
     clock_known_ = true;
-    const bool at_rest = simulator_ && c.time == Time::zero() && c.value == '1';
+    const bool at_rest = simulator_ && (c.time == Time::zero() || unknown_from_start_) && c.value == '1';
     checker_.begin_capture(kernel_.now(), at_rest);
     if (!at_rest) decoder_.begin_capture(kernel_.now());
   }
@@ -182,6 +189,7 @@ class Replay {
   const std::function<void(const checker::WireFrame&)>& on_frame_;
   bool simulator_;  // exact event times: a simulator's VCD (no --resolution)
   bool clock_known_ = false;
+  bool unknown_from_start_ = false;  // CLOCK was x at time 0
   sim::Timer timer_;
   std::uint32_t clock_ = 0;
   std::uint32_t data_ = 0;
@@ -364,6 +372,10 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
         << ": limits closer than that to a measured value are undecided";
   out << "; frames decoded: " << r.frames_decoded << " (" << r.frames_clean
       << " with a complete answer and a good CRC)\n";
+  if (r.clock_unknown != 0)
+    out << "  CLOCK unknown (x) " << r.clock_unknown << " time(s) after it had a level, first at "
+        << sim::format_time(r.clock_unknown_first)
+        << ": read as the level before; a master must drive CLOCK at a known level throughout (2.3)\n";
   if (r.edges_before_first_frame != 0)
     out << "  capture begins inside a frame: " << r.edges_before_first_frame
         << " edges before the first frame not judged (a frame begins once CLOCK has been HIGH for t_m)\n";
@@ -433,6 +445,7 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
           {"position_bits_learnt_at", r.position_bits_learnt_at ? json(*r.position_bits_learnt_at) : json(nullptr)},
           {"frames_not_kept", r.frames_decoded - r.frames.size()},
           {"edges_before_first_frame", r.edges_before_first_frame},
+          {"clock_unknown", r.clock_unknown},
           {"frame_cut_by_end", r.frame_cut_by_end ? json(*r.frame_cut_by_end) : json(nullptr)},
           {"cable_m", r.cable_given ? json(r.cable_m) : json(nullptr)},
           {"violations", violations_json(r.violations)}, {"findings_not_kept", r.findings_not_kept},

@@ -76,6 +76,8 @@ struct CaptureCheckResult {
   checker::Conclusion conclusion;                     // over every finding
   std::uint64_t findings_not_kept = 0;                // beyond kMaxFindingsPerCheck of a check
   std::uint64_t edges_before_first_frame = 0;         // CLOCK edges of a frame the capture began inside
+  std::uint64_t clock_unknown = 0;                    // times CLOCK went unknown (x) after its first level
+  sim::Time clock_unknown_first{0};                      // ... the first of them
   std::optional<std::uint64_t> frame_cut_by_end;      // the last frame, if the capture's end cut it
   bool conforms() const;           // no violation of error severity and nothing undecided
   std::size_t undecided() const;   // findings undecided at the capture's resolution

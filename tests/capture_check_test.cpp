@@ -1409,3 +1409,70 @@ TEST(CheckCommand, BytesThatAreNotUtf8AreShownEscapedAndEveryReportIsStillWritte
   EXPECT_NE(r.err.find("the capture has: D\\xE9, CLK"), std::string::npos) << r.err;
   for (const auto& p : {garbage, latin1, json, junit, good}) fs::remove(p);
 }
+
+namespace {
+
+// The encoder pins of a VCD rewritten with CLOCK unknown from time 0 until `known_at` (an RTL
+// master in reset), and unknown once more for 1 ns at `x_at`, if given.
+void with_unknown_clock(const fs::path& from, const fs::path& to, Time known_at, std::optional<Time> x_at) {
+  auto reader = capture::open_vcd(from.string());
+  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
+  std::vector<std::uint32_t> wanted;
+  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
+  reader->select(wanted);
+  std::vector<std::tuple<std::int64_t, std::size_t, char>> changes;
+  capture::Change c;
+  while (reader->next(c)) {
+    const auto i = static_cast<std::size_t>(std::find(wanted.begin(), wanted.end(), c.signal) - wanted.begin());
+    if (i == 0 && c.time < known_at) continue;
+    changes.emplace_back(c.time.count(), i, c.value);
+  }
+  changes.emplace_back(0, 0, 'x');
+  changes.emplace_back(known_at.count(), 0, '1');
+  if (x_at) {
+    changes.emplace_back(x_at->count(), 0, 'x');
+    changes.emplace_back((*x_at + sim::ns(1)).count(), 0, '1');
+  }
+  std::stable_sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
+  std::ofstream out(to);
+  out << "$timescale 1 ps $end\n$scope module encoder $end\n"
+      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
+      << "$upscope $end\n$enddefinitions $end\n";
+  const char ids[] = {'c', 'd', 'e'};
+  for (const auto& [t, i, v] : changes) out << "#" << t << "\n" << v << ids[i] << "\n";
+}
+
+}  // namespace
+
+// A simulation whose master holds CLOCK at X until its reset ends starts at rest when CLOCK first
+// goes HIGH: its first frame is judged, however soon it follows. An X on CLOCK later is named.
+TEST(CheckCapture, AClockUnknownFromTimeZeroStartsAtRestAndALaterUnknownIsNamed) {
+  const auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/bundled/endat21_1mhz_10m.json");
+  const fs::path vcd = temp("x_exact.vcd"), xvcd = temp("x_start.vcd");
+  run_to_vcd(s, vcd);
+  auto o = encoder_pins_of(s, vcd);
+  const auto exact = scenarios::check_capture(o);
+  ASSERT_FALSE(exact.frames.empty());
+  const Time fe1 = exact.frames.front().fe1;
+  ASSERT_GT(fe1, sim::ns(50));
+  // CLOCK known only 50 ns before the first FE1, far less than t_m.
+  with_unknown_clock(vcd, xvcd, fe1 - sim::ns(50), std::nullopt);
+  o.file = xvcd.string();
+  auto r = scenarios::check_capture(o);
+  EXPECT_EQ(r.edges_before_first_frame, 0U);
+  EXPECT_EQ(r.frames_decoded, exact.frames_decoded);
+  EXPECT_EQ(r.clock_unknown, 0U) << "the X before the first level is the reset's";
+  // X for 1 ns inside the first frame's answer: read as the level before, and named.
+  const Time inside = exact.frames.front().last_rise - sim::ns(200);
+  with_unknown_clock(vcd, xvcd, fe1 - sim::ns(50), inside);
+  r = scenarios::check_capture(o);
+  EXPECT_EQ(r.clock_unknown, 1U);
+  EXPECT_EQ(r.clock_unknown_first, inside);
+  std::ostringstream summary;
+  scenarios::write_capture_summary(summary, r, false);
+  EXPECT_NE(summary.str().find("CLOCK unknown (x) 1 time(s) after it had a level, first at " + sim::format_time(inside)),
+            std::string::npos)
+      << summary.str();
+  fs::remove(vcd);
+  fs::remove(xvcd);
+}
