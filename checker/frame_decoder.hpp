@@ -64,6 +64,14 @@ struct WireFrame {
   unsigned continuous_words = 0;                 // further words of a continuous clock
   bool complete = false;                         // every bit the frame needs was clocked
   unsigned learnt_position_bits = 0;             // word 13 read (or its write activated) here: the width from the next frame on
+
+  // A2 type II: a 2.1 parameter frame whose acknowledgment returns the address sent inverted,
+  // the encoder's refusal (D297403 4.2.2).
+  bool refused() const {
+    if (!payload || !answer_complete) return false;
+    const auto sent = static_cast<std::uint8_t>(*payload >> 16);
+    return fields[static_cast<std::size_t>(protocol::Field::Address)] == static_cast<std::uint8_t>(~sent);
+  }
 };
 
 class FrameDecoder {

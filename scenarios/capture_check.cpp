@@ -332,6 +332,7 @@ std::string frame_log_line(const checker::WireFrame& f) {
     case protocol::AnswerFormat::TestValues: out << ", test value " << hex(field(Field::TestValue), 10); break;
     case protocol::AnswerFormat::Parameter:
       out << ", echo " << hex(field(Field::Address), 2) << " " << hex(field(Field::Parameter), 4);
+      if (f.refused()) out << " (type II, A2: the address returned inverted, the access refused)";
       break;
   }
   out << ", CRC " << (f.crc_ok ? "ok" : "BAD");
@@ -420,6 +421,7 @@ nlohmann::json wire_frames_json(const std::vector<checker::WireFrame>& wire_fram
     json j{{"index", f.index}, {"fe1_ps", f.fe1.count()}, {"clocks", f.clocks}};
     if (f.command) j["command"] = std::string(protocol::info(*f.command).key);
     if (f.payload) j["payload"] = *f.payload;
+    if (f.refused()) j["type2"] = true;
     if (f.start_bit_clock != 0) j["start_bit_clock"] = f.start_bit_clock;
     if (f.answer_complete) {
       j["crc_ok"] = f.crc_ok;

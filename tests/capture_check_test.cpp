@@ -89,6 +89,11 @@ TEST_P(CaptureRoundTrip, CheckFindsWhatRunFoundOnTheWires) {
     if (f.command && f.answer_complete && f.crc_ok && protocol::info(*f.command).answer == protocol::AnswerFormat::Position)
       decoded.emplace_back(*f.command, f.fields[static_cast<std::size_t>(protocol::Field::Position)]);
   ASSERT_LT(check.frames_decoded, scenarios::kMaxFramesKept);  // every frame kept, so every one compared
+  // Every refusal (A2 type II) the master received is seen on the wires as one.
+  const auto type2 = std::count_if(run.frames.begin(), run.frames.end(),
+                                   [](const auto& f) { return f.outcome == master::FrameOutcome::Type2Error; });
+  const auto refused = std::count_if(check.frames.begin(), check.frames.end(), [](const auto& f) { return f.refused(); });
+  EXPECT_EQ(refused, type2);
   auto next = decoded.begin();
   for (std::size_t i = 0; i < read.size(); ++i) {
     next = std::find(next, decoded.end(), read[i]);
