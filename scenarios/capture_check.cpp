@@ -250,6 +250,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   result.cable_given = o.cable_m.has_value();
   checker::EncoderDeclaration encoder = o.encoder;
   result.at = o.at;
+  result.both_enables = params.master_enable_observable;
   if (o.at == CaptureCheckOptions::At::Master) {
     if (!o.cable_m) throw capture::CaptureError(o.file + ": a capture at the master's connector needs the cable's length");
     if (o.data_enable && !o.data_out)
@@ -400,6 +401,10 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
   out << "  judged from the wires at the " << (r.at == CaptureCheckOptions::At::Master ? "master's" : "encoder's")
       << " connector; rows that need the master's declaration (sampling window, t_D used, measurement frames) are not "
          "observable in a capture\n";
+  if (r.both_enables && r.cable_m > 0)
+    out << "  both DATA enables are judged as at the " << (r.at == CaptureCheckOptions::At::Master ? "master's" : "encoder's")
+        << " connector: an enable recorded at the other end is off by the cable's delay, and floating_data or "
+           "bus_contention around a turnaround may come from that rather than from the drivers\n";
   if (verbose) {
     out << capture_log(r);
     if (r.frames_decoded > r.frames.size())

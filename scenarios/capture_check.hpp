@@ -71,6 +71,7 @@ struct CaptureCheckResult {
   std::optional<std::uint64_t> position_bits_learnt_at;  // the frame that read word 13
   double cable_m = 0;                   // the cable the limits assume (0 m unless given)
   bool cable_given = false;
+  bool both_enables = false;            // the master's DATA enable was given as well as the encoder's
   std::vector<checker::Violation> violations;
   std::vector<checker::RowConformance> conformance;  // counts every finding
   checker::Conclusion conclusion;                     // over every finding

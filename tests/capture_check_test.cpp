@@ -906,6 +906,11 @@ TEST(CheckCapture, BothDriversEnablesShowABusContentionOnceAtTheRecordedConnecto
           "--master-data-enable master.data_driver_enable");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.out.find("violation bus_contention"), std::string::npos) << r.out;
+  // Without a cable the two connectors are one; with one, the summary warns of the skew.
+  EXPECT_EQ(r.out.find("an enable recorded at the other end is off by the cable's delay"), std::string::npos) << r.out;
+  r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable "
+          "--master-data-enable master.data_driver_enable --cable 20");
+  EXPECT_NE(r.out.find("an enable recorded at the other end is off by the cable's delay"), std::string::npos) << r.out;
   fs::remove(vcd);
 }
 
