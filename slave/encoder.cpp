@@ -793,8 +793,10 @@ void Encoder::on_memory_access_done() {
     default:
       break;
   }
+  // A2 type II (4.2.2): "the address or parameter is returned inverted", for 2.1 and 2.2 alike:
+  // both, as the 2.1 acknowledgment returns them (docs/model.md §3).
   memory_address_ = memory_error_ ? static_cast<std::uint8_t>(~in_progress_.address) : in_progress_.address;
-  memory_value_ = in_progress_.value;
+  memory_value_ = memory_error_ ? static_cast<std::uint16_t>(~in_progress_.value) : in_progress_.value;
   in_progress_ = {};
 }
 

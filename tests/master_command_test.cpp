@@ -93,6 +93,23 @@ TEST(MasterParameterAccess, EnDat22ReadThroughTheSupplementWithBusyPolling) {
   EXPECT_TRUE(r.violations.empty()) << violations(r);
 }
 
+TEST(MasterParameterAccess, EnDat22WriteIntoProtectedAreaIsAcknowledgedInvertedAsInEnDat21) {
+  // A2 4.2.2: the address and the parameter come back inverted, as in the 2.1 acknowledgment of
+  // the test above: memory parameters LSB shows ~0Dh and the low byte of ~1234h.
+  const auto s = scenario(
+      30, MHz(4), true,
+      {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x45),
+       op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0xA1), await_not_busy(),
+       op(MC::EncoderSendPositionValuesAndReceiveParameter, 0x0D, 0x1234), await_not_busy()});
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_TRUE(r.finished);
+  const auto& last = last_of(r, 5);
+  ASSERT_EQ(last.additional_data.size(), 1U);
+  EXPECT_EQ(last.additional_data[0].information(), protocol::Information::MemoryParameterLsb);
+  EXPECT_FALSE(last.additional_data[0].busy());
+  EXPECT_EQ(last.additional_data[0].data, 0xF2CB);  // ~0Dh, low byte of ~1234h
+}
+
 TEST(MasterParameterAccess, TheSupplementsLastBitOutlastsTheEdgeThatTakesIt) {
   // The encoder takes the supplement's last bit on the master's last rising edge. A master whose
   // driver turns off faster than its CLOCK driver switches must still hold that bit past the
