@@ -393,7 +393,10 @@ void TimingChecker::check_start_bit_polling(const PinFrame& f) {
     return;
   if (f.header.payload_bits == 0) {
     judge_polling(f, f.fe1, {check::kCalculationTime, "2.3.2 (start-bit polling independent of t_cal, note 7)",
-                             "t_cal", encoder_.t_cal, limit::kCalculationTimeMax});
+                             "t_cal",
+                             f.header.command_type == protocol::EndatVersion::V2_2 ? encoder_.t_cal_22.value_or(encoder_.t_cal)
+                                                                                   : encoder_.t_cal,
+                             limit::kCalculationTimeMax});
     return;
   }
   const unsigned last_payload = position::kTurnaround - 1 + f.header.payload_bits;

@@ -384,6 +384,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("position_bits")) p.position_bits = static_cast<unsigned>(v->as_uint(1, 48));
   if (auto v = o.opt("multiturn_bits")) p.multiturn_bits = static_cast<unsigned>(v->as_uint(0, 47));
   if (auto v = o.opt("t_cal")) p.t_cal = v->as_duration(Time::zero(), sim::ms(100));
+  if (auto v = o.opt("t_cal_22")) p.t_cal_22 = v->as_duration(Time::zero(), sim::ms(100));
   if (auto v = o.opt("t_m")) p.t_m = v->as_duration(sim::us(10), sim::us(30));
   if (auto v = o.opt("t_m_short")) p.t_m_short = v->as_duration(sim::ns(1250), sim::ns(3750));
   if (auto v = o.opt("short_t_m_selected")) p.short_t_m_selected = v->as_bool();

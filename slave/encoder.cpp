@@ -48,6 +48,8 @@ void EncoderParams::validate() const {
   // the checker reports them (t_cal).
   require(t_cal >= Time::zero() && t_cal <= sim::ms(100),
           "t_cal must be 0 .. 100 ms (the model's limit), got " + sim::format_time(t_cal));
+  require(!t_cal_22 || (*t_cal_22 >= Time::zero() && *t_cal_22 <= sim::ms(100)),
+          "t_cal_22 must be 0 .. 100 ms (the model's limit), got " + sim::format_time(t_cal_22.value_or(Time::zero())));
   require(t_m >= sim::us(10) && t_m <= sim::us(30),
           "t_m must be 10 .. 30 us (2.3.2), got " + sim::format_time(t_m));
   if (t_m_short)
@@ -538,7 +540,7 @@ void Encoder::answer_position() {
   EncoderFrame& f = frames_.back();
   state_ = State::Answer;
   first_answer_clock_ = params_.earliest_start_bit_clock;
-  answer_not_before_ = f.start + params_.t_cal;  // 2.3.2: t_cal runs from FE1
+  answer_not_before_ = f.start + params_.t_cal_for(command_->version);  // 2.3.2: t_cal runs from FE1
   if (command_->answer == protocol::AnswerFormat::TestValues) {
     const auto it = params_.sensors.test_values.find(test_port_21_);
     answer_ = protocol::encode_test_values(error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second,
@@ -1010,6 +1012,7 @@ void Encoder::set_memory_access_times(Time read, Time write) {
 void Encoder::set_t_cal(Time t_cal) {
   require(t_cal >= Time::zero() && t_cal <= sim::ms(100), "t_cal must be 0 .. 100 ms (the model's limit)");
   params_.t_cal = t_cal;
+  params_.t_cal_22.reset();  // the event sets the calculation time of every mode command
 }
 
 void Encoder::power_interruption(Time duration) {

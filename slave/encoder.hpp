@@ -97,6 +97,10 @@ struct EncoderParams {
   unsigned position_bits = 25;                 // word 13: clock pulses for the position value
   unsigned multiturn_bits = 0;                 // upper bits of the position that count revolutions
   Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
+  // ... for EnDat 2.2 mode commands, where it differs (the German brochure: absolute linear
+  // encoders take other calculation times for 2.1 and 2.2 mode commands); none: t_cal.
+  std::optional<Time> t_cal_22;
+  Time t_cal_for(EndatVersion command) const { return command == EndatVersion::V2_2 ? t_cal_22.value_or(t_cal) : t_cal; }
   Time t_m = sim::us(20);                      // 2.3.2: recovery time I, 10 .. 30 us
   std::optional<Time> t_m_short;               // 1.25 .. 3.75 us, 2.2 commands only (word 3, 3.4.4)
   bool short_t_m_selected = false;             // as if word 3 selected it at power-on

@@ -76,6 +76,20 @@ TEST(EncoderPositionFrame, StartBitWaitsForTcal) {
   EXPECT_EQ(b.sampler.slots(9, 16), "00000001");
 }
 
+TEST(EncoderPositionFrame, TcalOfEnDat22CommandsMayDifferFromEnDat21s) {
+  // The German brochure: absolute linear encoders take other calculation times for 2.1 and 2.2
+  // mode commands. t_cal 5 us for 000111 (RE11), t_cal_22 15 us for 111000 (RE16).
+  auto p = encoder_params(protocol::EndatVersion::V2_2, 8, 1);
+  p.t_cal = us(5);
+  p.t_cal_22 = us(15);
+  for (const auto& [mode, start] : {std::pair{0b000111, 11U}, std::pair{0b111000, 16U}}) {
+    Bench b(p);
+    ScriptedClock clock(b.k, b.line, us(1), 40, static_cast<std::uint8_t>(mode));
+    b.k.run();
+    EXPECT_EQ(b.encoder.frames()[0].start_bit_clock, start) << mode;
+  }
+}
+
 TEST(EncoderPositionFrame, DataFallsLowExactlyTmAfterTheLastRisingEdge) {
   auto p = encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5);
   p.t_m = us(12);

@@ -456,6 +456,28 @@ TEST(PinMaster, GivingUpTheStartBitBeforeTCalIsCaughtToThePicosecond) {
   EXPECT_EQ(v[0].verdict, checker::Verdict::Both);
 }
 
+// The German brochure: t_cal may differ for 2.1 and 2.2 mode commands. The declared 2.2 value
+// (t_cal_22) judges 111000 frames, t_cal the 000111 ones; each to the picosecond.
+TEST(PinMaster, EachModeCommandTypesPollingIsJudgedAgainstItsOwnTCal) {
+  slave::EncoderParams model;
+  model.version = protocol::EndatVersion::V2_2;
+  model.t_cal = us(500);
+  model.t_cal_22 = us(500);
+  const auto verdict = [&](std::uint8_t mode, Time t_cal, Time t_cal_22) {
+    const std::vector<PinFrame> frames{{us(10), MHz(1), 40, header(mode)}};
+    const auto v = polling_findings(model, frames, checker::check::kCalculationTime, [&](checker::EncoderDeclaration& d) {
+      d.t_cal = t_cal;
+      d.t_cal_22 = t_cal_22;
+    });
+    return v.size() == 1 ? std::optional{v[0].verdict} : std::nullopt;
+  };
+  const Time polled = ns(39'500);  // FE1 to RE40 at 1 MHz
+  EXPECT_EQ(verdict(k22Position, ms(1), polled), checker::Verdict::SpecEnvelope);
+  EXPECT_EQ(verdict(k22Position, us(1), polled + ps(1)), checker::Verdict::Both);
+  EXPECT_EQ(verdict(k21Position, polled, ms(1)), checker::Verdict::SpecEnvelope);
+  EXPECT_EQ(verdict(k21Position, polled + ps(1), us(1)), checker::Verdict::Both);
+}
+
 // 2.3.2 t_ac: a 2.1 parameter frame polls for the acknowledgment through the memory access. The
 // model takes 2 ms to select memory area A1h; the master gives up 40 us after its last payload bit.
 TEST(PinMaster, GivingUpTheStartBitBeforeTAcIsCaughtToThePicosecond) {

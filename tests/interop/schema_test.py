@@ -33,6 +33,7 @@ FREE_TEXT = {"name", "description", "$schema"}  # any string is right for these
 BEYOND_SCHEMA = {
     "asynchronous_time_delay_step_too_long.json": "range inside a duration string",
     "cable_delay_too_large.json": "range inside a duration string",
+    "t_cal_22_too_long.json": "range inside a duration string",
     "event_corrupt_address_beyond_area.json": "the size of a memory area depends on the encoder's image",
     "event_corrupt_missing_area.json": "which memory areas exist depends on the encoder's image",
     "event_corrupt_zero_mask.json": "a word that must not be zero, written as integer or hex string",
