@@ -1,12 +1,18 @@
 // Memory areas and their MRS codes (spec 2.4.1, 2.4.2.1, 2.4.2.3, 3.1, 3.2), as data.
 #pragma once
 
+#include <cstddef>
+
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string_view>
 
 namespace endatsim::protocol {
+
+// Section 3: the memory areas for compensation values and for OEM parameters "must consist of a
+// maximum of 960 words in total (1920 bytes)".
+inline constexpr std::size_t kPartitionedWordsMax = 960;
 
 enum class MemoryArea : std::uint8_t {
   OperatingStatus,          // B9: words 0..3 (3.4)

@@ -92,6 +92,14 @@ Memory::Memory(MemoryImage image) : image_(std::move(image)) {
                                     std::to_string(p->first) + "), got " + std::to_string(w.size()));
     }
   }
+  std::size_t partitioned = 0;
+  for (Area a : {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4, Area::Compensation1, Area::Compensation2,
+                 Area::Compensation3, Area::Compensation4})
+    if (const auto it = image_.areas.find(a); it != image_.areas.end()) partitioned += it->second.size();
+  if (partitioned > protocol::kPartitionedWordsMax)
+    throw std::invalid_argument("the OEM and compensation areas hold " + std::to_string(partitioned) +
+                                " words; section 3 allows at most " + std::to_string(protocol::kPartitionedWordsMax) +
+                                " in total (words 9 .. 12, 3.5.5)");
   for (Area a : {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4, Area::Compensation1, Area::Compensation2,
                  Area::Compensation3, Area::Compensation4})
     if (address_range({a, 0}) && !image_.areas.contains(a))

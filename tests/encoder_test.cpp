@@ -249,6 +249,36 @@ TEST(EncoderParams, RejectsOutOfRangeTimesNamingTheLimit) {
 
 // 3.4.1 / 3.4.2: "Error bits can be deleted by overwriting the word 0 with 0000h and sending the
 // mode command Encoder receive reset" (warnings likewise, word 1): the write alone deletes nothing.
+// Section 3: compensation values and OEM parameters "must consist of a maximum of 960 words in
+// total". OEM areas 1..3 at 0..255, compensation areas 1 and 2 at 0..127 and 0..63 hold 960
+// words; compensation area 2 at 0..64 one more, which the image is refused for.
+TEST(EncoderMemory, TheOemAndCompensationAreasHoldAtMost960Words) {
+  namespace pm = protocol::parameters;
+  using A = protocol::MemoryArea;
+  const auto image = [](unsigned comp2_end) {
+    auto img = slave::default_memory_image(slave::EncoderParams{});
+    auto& a1 = img.areas.at(A::Manufacturer1);
+    const pm::Partition to255 = pm::AddressRange{0, 255};
+    a1[9] = pm::encode_partition_word(to255, to255);
+    a1[10] = pm::encode_partition_word(to255, std::nullopt);
+    a1[11] = pm::encode_partition_word(pm::AddressRange{0, 127}, pm::AddressRange{0, comp2_end});
+    a1[12] = pm::encode_partition_word(std::nullopt, std::nullopt);
+    img.areas.erase(A::Oem4);
+    for (A a : {A::Compensation3, A::Compensation4}) img.areas.erase(a);
+    for (A a : {A::Oem1, A::Oem2, A::Oem3}) img.areas[a].assign(256, 0);
+    img.areas[A::Compensation1].assign(128, 0);
+    img.areas[A::Compensation2].assign(comp2_end + 1, 0);
+    return img;
+  };
+  EXPECT_NO_THROW(slave::Memory{image(63)});
+  try {
+    slave::Memory m{image(64)};
+    ADD_FAILURE() << "961 words accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("hold 961 words; section 3 allows at most 960"), std::string::npos) << e.what();
+  }
+}
+
 TEST(EncoderMemory, ErrorsAndWarningsClearWithZeroAndTheResetAfterIt) {
   slave::Memory m(slave::default_memory_image(slave::EncoderParams{}));
   const slave::Selection status{protocol::MemoryArea::OperatingStatus, 0};
