@@ -9,7 +9,9 @@ value or echo, CRC verdict, additional data with status and CRC, supplement, lea
 same FE1 within the sample period; its positions must be the master's where the master read
 its frame without error; and the timing rows it judges must break where the check's do: every
 row the check fails is failed or undecided by the decoder, and the decoder fails no row the check
-passes. A wrong position width must break the comparison (the test can fail).
+passes. Variants of some bundled scenarios break the rows those keep (t_ST, the on-off ratio,
+t_HI, t_LO, t_z, t_OE, the wait after an error handling, f_c with the short t_m): both must break
+them. A wrong position width must break the comparison (the test can fail).
 
 usage: sigrok_decoder_test.py ENDATSIM SIGROK_DECODERS_DIR SCENARIO_DIR WORKDIR
 """
@@ -171,29 +173,51 @@ def compare_rows(check_json, findings):
     return problems
 
 
-def main():
-    if len(sys.argv) != 5:
-        fail(__doc__)
-    endatsim, decoders, scenario_dir, work = sys.argv[1:]
-    if shutil.which("sigrok-cli") is None:
-        fail("sigrok-cli is not installed (tools/quickstart installs it)")
-    os.makedirs(work, exist_ok=True)
-    scenarios = sorted(glob.glob(os.path.join(scenario_dir, "*.json")))
-    if not scenarios:
-        fail("no scenarios in " + scenario_dir)
-    total_frames, total_matched, started = 0, 0, time.time()
-    failures = []
-    sensitivity_checked = False
-    for scenario in scenarios:
+# Variants of bundled scenarios that break the rows the scenarios themselves keep, so that each row
+# the decoder judges is seen broken at least once: (base scenario, edits, rows the check and the
+# decoder must both break).
+MUTANTS = [
+    ("endat22_8mhz_100m_compensated", {"master.t_st": "1.5 us"}, {"t_st"}),
+    ("endat22_8mhz_100m_compensated", {"master.duty_cycle": 0.3}, {"on_off_ratio"}),
+    ("endat22_8mhz_100m_compensated", {"encoder.output_delay": "200 ns"}, {"t_z", "t_oe"}),
+    ("endat21_1mhz_10m", {"master.duty_cycle": 0.15}, {"t_hi"}),
+    ("endat21_1mhz_10m", {"master.duty_cycle": 0.85}, {"t_lo"}),
+    ("type1_corrupted_mode_command", {"master.error_wait": "25 us"}, {"error_recovery"}),
+    ("short_recovery_time_word3", {"master.f_c": "500 kHz"}, {"t_m_short_f_c"}),
+]
+
+
+def mutant(base, edits, path):
+    scenario = json.load(open(base))
+    scenario.pop("expect", None)
+    scenario.pop("$schema", None)
+    for key, value in edits.items():
+        node = scenario
+        *parents, leaf = key.split(".")
+        for k in parents:
+            node = node.setdefault(k, {})
+        node[leaf] = value
+    scenario["name"] = os.path.splitext(os.path.basename(path))[0]
+    json.dump(scenario, open(path, "w"), indent=1)
+
+
+class Suite:
+    def __init__(self, endatsim, decoders, work):
+        self.endatsim, self.decoders, self.work = endatsim, decoders, work
+        self.frames = self.matched = 0
+        self.failures = []
+        self.sensitivity_checked = False
+
+    def scenario(self, scenario, must_break=()):
         name = os.path.splitext(os.path.basename(scenario))[0]
-        vcd = os.path.join(work, name + ".vcd")
-        results, log, check_json = (os.path.join(work, name + s) for s in (".results.json", ".log", ".check.json"))
-        run([endatsim, "run", scenario, "--vcd", vcd, "--json", results, "--quiet"], ok=(0, 1))
+        vcd = os.path.join(self.work, name + ".vcd")
+        results, log, check_json = (os.path.join(self.work, name + s) for s in (".results.json", ".log", ".check.json"))
+        run([self.endatsim, "run", scenario, "--vcd", vcd, "--json", results, "--quiet"], ok=(0, 1))
         variables, shortest = vcd_vars(vcd)
         clock, clock_id = sigrok_channel(variables, "clock")
         data, _ = sigrok_channel(variables, "data")
         enable, _ = sigrok_channel(variables, "data_driver_enable")
-        run([endatsim, "check", vcd, "--clock", "encoder.clock", "--data", "encoder.data", "--data-enable",
+        run([self.endatsim, "check", vcd, "--clock", "encoder.clock", "--data", "encoder.data", "--data-enable",
              "encoder.data_driver_enable", "--encoder", scenario, "--log", log, "--json", check_json, "--quiet"], ok=(0, 1))
         checked = json.load(open(check_json))
         log_frames = []
@@ -212,7 +236,7 @@ def main():
                    "short_t_m": "yes" if declared["short_t_m_selected"] else "no",
                    "t_r_ns": declared["t_r_ps"] / 1000.0, "cable_m": float(checked["cable_m"])}
         channels = {"clk": clock, "data": data, "de": enable}
-        decoded, findings = decode_with_sigrok(vcd, decoders, period, options, channels)
+        decoded, findings = decode_with_sigrok(vcd, self.decoders, period, options, channels)
         problems = compare_frames(name, log_frames, checked["frames"], decoded, period)
         master_frames = json.load(open(results))["scenarios"][0]["frames"]
         more, matched = compare_with_master(master_frames, checked["frames"], decoded, 5 * 10**6)
@@ -220,33 +244,64 @@ def main():
         if any(f["outcome"] == "ok" and "position" in f for f in master_frames) and matched == 0:
             problems.append("no frame of the master's matched a wire frame")
         problems += compare_rows(checked, findings)
-        total_frames += len(decoded)
-        total_matched += matched
+        for row in sorted(must_break):
+            if not any(v["check"] == row and v["severity"] == "error" for v in checked["violations"]):
+                problems.append("the check does not break %s: the variant no longer shows the row" % row)
+            if not any(kind == "error" and c == row for kind, c, _, _ in findings):
+                problems.append("the decoder does not break %s" % row)
+        self.frames += len(decoded)
+        self.matched += matched
         print("%s: %d frames at %d ps samples, %d matched with the master's, %d timing findings" % (
             name, len(decoded), period, matched, len(findings)))
         if problems:
-            failures.append("%s:\n  %s" % (name, "\n  ".join(problems)))
+            self.failures.append("%s:\n  %s" % (name, "\n  ".join(problems)))
         # The comparison notices a decoder that reads the position with the wrong width.
-        if not sensitivity_checked and not problems and declared["position_bits"] > 2 and \
+        if not self.sensitivity_checked and not problems and declared["position_bits"] > 2 and \
                 any(", position " in text for _, _, text in decoded):
             wrong = dict(options, position_bits=declared["position_bits"] - 1)
-            off, _ = decode_with_sigrok(vcd, decoders, period, wrong, channels)
+            off, _ = decode_with_sigrok(vcd, self.decoders, period, wrong, channels)
             if not compare_frames(name, log_frames, checked["frames"], off, period):
-                failures.append("%s: a decoder reading %d position bits still matched the check's log" %
-                                (name, wrong["position_bits"]))
+                self.failures.append("%s: a decoder reading %d position bits still matched the check's log" %
+                                     (name, wrong["position_bits"]))
             # Without the optional driver enable the frames are the same.
-            without, _ = decode_with_sigrok(vcd, decoders, period, options, {"clk": clock, "data": data})
-            failures += ["%s without DE: %s" % (name, p) for p in compare_frames(name, log_frames, checked["frames"],
-                                                                                  without, period)]
-            sensitivity_checked = True
+            without, _ = decode_with_sigrok(vcd, self.decoders, period, options, {"clk": clock, "data": data})
+            self.failures += ["%s without DE: %s" % (name, p) for p in
+                              compare_frames(name, log_frames, checked["frames"], without, period)]
+            self.sensitivity_checked = True
         for path in (vcd, results, log, check_json):
             os.remove(path)
-    if not sensitivity_checked:
-        failures.append("no scenario served to show that the comparison can fail")
-    if failures:
-        fail("\n".join(failures))
-    print("sigrok decoder: %d scenarios, %d frames as endatsim check decodes them, %d of them as the master read "
-          "them; %.1f s" % (len(scenarios), total_frames, total_matched, time.time() - started))
+
+
+def main():
+    if len(sys.argv) != 5:
+        fail(__doc__)
+    endatsim, decoders, scenario_dir, work = sys.argv[1:]
+    if shutil.which("sigrok-cli") is None:
+        fail("sigrok-cli is not installed (tools/quickstart installs it)")
+    os.makedirs(work, exist_ok=True)
+    scenarios = sorted(glob.glob(os.path.join(scenario_dir, "*.json")))
+    if not scenarios:
+        fail("no scenarios in " + scenario_dir)
+    started = time.time()
+    suite = Suite(endatsim, decoders, work)
+    for scenario in scenarios:
+        suite.scenario(scenario)
+    variants = 0
+    for i, (base, edits, rows) in enumerate(MUTANTS):
+        path = os.path.join(scenario_dir, base + ".json")
+        if path not in scenarios:
+            continue
+        variant = os.path.join(work, "%s_breaks_%s.json" % (base, "_".join(sorted(rows))))
+        mutant(path, edits, variant)
+        suite.scenario(variant, rows)
+        os.remove(variant)
+        variants += 1
+    if not suite.sensitivity_checked:
+        suite.failures.append("no scenario served to show that the comparison can fail")
+    if suite.failures:
+        fail("\n".join(suite.failures))
+    print("sigrok decoder: %d scenarios and %d variants, %d frames as endatsim check decodes them, %d of them as the "
+          "master read them; %.1f s" % (len(scenarios), variants, suite.frames, suite.matched, time.time() - started))
 
 
 main()
