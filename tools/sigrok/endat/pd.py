@@ -558,6 +558,9 @@ class Decoder(srd.Decoder):
         self.follow_parameter_reads()
         if not f.answer_shown and f.answer_complete:
             self.show_answer()
+        elif not f.answer_complete and self.state == ANSWER:
+            for slot, bit in zip(self.slots, self.bits):  # an answer the clock stopped inside
+                self.put_bit(slot, bit, False)
         if not f.between_judged:
             self.judge_between_frames()
         text = frame_text(f)
