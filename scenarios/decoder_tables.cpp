@@ -8,6 +8,7 @@
 #include "checker/timing_checker.hpp"
 #include "protocol/additional_data.hpp"
 #include "protocol/crc.hpp"
+#include "protocol/error_handling.hpp"
 #include "protocol/frame.hpp"
 #include "protocol/memory_area.hpp"
 #include "protocol/mode_command.hpp"
@@ -146,6 +147,13 @@ ordered_json memory_areas_json() {
   return areas;
 }
 
+ordered_json error_handling_json() {
+  ordered_json causes = ordered_json::array();
+  for (const auto& c : protocol::kErrorCauses)
+    causes.push_back({{"cause", static_cast<unsigned>(c.cause)}, {"type", static_cast<unsigned>(c.type)}, {"text", c.text}});
+  return causes;
+}
+
 ordered_json checks_json() {
   ordered_json rows = ordered_json::array();
   for (const auto& r : protocol::timing_rows()) {
@@ -192,6 +200,7 @@ ordered_json decoder_tables() {
                   {"supplement", layout_json(protocol::supplement_layout())}};
   t["additional_data"] = additional_data_json();
   t["memory_areas"] = memory_areas_json();
+  t["error_handling"] = error_handling_json();  // appendix A2
   t["position_format"] = {{"area_mrs", protocol::info(protocol::MemoryArea::Manufacturer1).mrs},
                           {"word", protocol::word::kPositionFormat},
                           {"bits_mask", protocol::parameters::decode_position_bits(0xFFFF)}};

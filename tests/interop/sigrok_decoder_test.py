@@ -234,7 +234,7 @@ class Suite:
         options = {"position_bits": declared["position_bits"], "clock_to_data_ns": declared["clock_to_data_ps"] / 1000.0,
                    "t_m_us": declared["t_m_ps"] / 1e6, "t_m_short_us": (declared["t_m_short_ps"] or 0) / 1e6,
                    "short_t_m": "yes" if declared["short_t_m_selected"] else "no",
-                   "t_r_ns": declared["t_r_ps"] / 1000.0, "cable_m": float(checked["cable_m"])}
+                   "t_r_ns": declared["t_r_ps"] / 1000.0, "cable_m": float(checked["cable_m"] or 0)}
         channels = {"clk": clock, "data": data, "de": enable}
         decoded, findings = decode_with_sigrok(vcd, self.decoders, period, options, channels)
         problems = compare_frames(name, log_frames, checked["frames"], decoded, period)

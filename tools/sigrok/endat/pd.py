@@ -36,6 +36,7 @@ COMMANDS = {m['bits']: m for m in TABLES['mode_commands']}
 CHECKS = {r['check']: r for r in TABLES['checks']}
 AREAS = {a['mrs']: a for a in TABLES['memory_areas']}
 INFORMATION = {c['code']: c for c in ADDITIONAL['information']}
+ERROR_CAUSES = {c['cause']: c for c in TABLES['error_handling']}
 PAYLOAD_BITS = TABLES['payload_bits']
 DATUM_BITS = ADDITIONAL['datum_bits']
 SELECTING_MRS = frozenset(ADDITIONAL['selecting_mrs'])
@@ -633,8 +634,9 @@ class Decoder(srd.Decoder):
         bits = format(f.mode_bits, '06b')
         self.put_ann(ss, es, A_MODE_BITS, ['Mode bits ' + bits, bits])
         if f.command is None:  # A2 type I: the encoder answers no start bit
-            self.put_ann(ss, es, A_NO_COMMAND, ['Mode bits %s: no mode command (type I error)' % bits,
-                                                'No command', '?'])
+            cause = ERROR_CAUSES[1]  # A2: the mode command disrupted or not supported
+            self.put_ann(ss, es, A_NO_COMMAND, ['Mode bits %s: no mode command (type %s, A2: %s)' % (
+                bits, 'I' * cause['type'], cause['text']), 'No mode command', '?'])
             self.state = DONE
         else:
             c = f.command
@@ -864,7 +866,8 @@ class Decoder(srd.Decoder):
             elif field == 'test_value':
                 self.put_ann(ss, es, A_TEST_VALUE, [prefix + 'Test value ' + hx(value, 10), hx(value, 10)])
             elif field == 'address':
-                self.put_ann(ss, es, A_ADDRESS, [prefix + 'Echo address ' + hx(value, 2), hx(value, 2)])
+                refused = ' (inverted: the access refused, type II)' if refused_access(self.frame) else ''
+                self.put_ann(ss, es, A_ADDRESS, [prefix + 'Echo address ' + hx(value, 2) + refused, hx(value, 2)])
             elif field == 'parameter':
                 self.put_ann(ss, es, A_PARAMETER, [prefix + 'Echo parameter ' + hx(value, 4), hx(value, 4)])
             elif field == 'crc':
@@ -1271,6 +1274,11 @@ def address_text(command, address, what):
     return 'Address ' + hx(address, 2)
 
 
+def refused_access(f):
+    '''A2 type II: a 2.1 parameter frame whose acknowledgment returns the address sent inverted.'''
+    return f.payload is not None and f.answer_complete and f.fields['address'][0] == (~(f.payload >> 16) & 0xFF)
+
+
 def frame_text(f):
     '''The frame as endatsim check --log writes it, without its number and time.'''
     if f.command is None:
@@ -1295,6 +1303,8 @@ def frame_text(f):
         s += ', test value ' + hx(value('test_value'), 10)
     else:
         s += ', echo %s %s' % (hx(value('address'), 2), hx(value('parameter'), 4))
+        if refused_access(f):
+            s += ' (type II, A2: the address returned inverted, the access refused)'
     s += ', CRC ' + ('ok' if f.crc_ok else 'BAD')
     for status, data, crc_ok, _ in f.additional_data:
         s += ', additional data I=%d status %s data %s CRC %s' % (status & STATUS['information'], hx(status, 2),

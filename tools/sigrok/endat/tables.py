@@ -706,6 +706,88 @@ TABLES = json.loads(r'''
       "endat22_only": true
     }
   ],
+  "error_handling": [
+    {
+      "cause": 1,
+      "type": 1,
+      "text": "transfer of mode command disrupted or not supported"
+    },
+    {
+      "cause": 2,
+      "type": 2,
+      "text": "frame disrupted with MRS code transfer"
+    },
+    {
+      "cause": 3,
+      "type": 2,
+      "text": "a transmission was not completed (busy error), handed on with the next query"
+    },
+    {
+      "cause": 4,
+      "type": 2,
+      "text": "010010 received, but not permissible"
+    },
+    {
+      "cause": 5,
+      "type": 2,
+      "text": "EnDat encoder not yet initiated (EIB)"
+    },
+    {
+      "cause": 6,
+      "type": 2,
+      "text": "communication command: data driver deactivated at high-impedance with address 0000h"
+    },
+    {
+      "cause": 7,
+      "type": 2,
+      "text": "currently impermissible memory area selected"
+    },
+    {
+      "cause": 8,
+      "type": 2,
+      "text": "impermissible or unavailable address, or an access or reset with the busy bit still set"
+    },
+    {
+      "cause": 9,
+      "type": 2,
+      "text": "writing of parameters into write-protected memory area"
+    },
+    {
+      "cause": 10,
+      "type": 2,
+      "text": "writing a write-protection bit with 0 after activation"
+    },
+    {
+      "cause": 11,
+      "type": 2,
+      "text": "impermissible block address selected"
+    },
+    {
+      "cause": 12,
+      "type": 2,
+      "text": "communication command with unknown address, or an unassigned operating parameter 2 address"
+    },
+    {
+      "cause": 13,
+      "type": 3,
+      "text": "currently impermissible additional data selected"
+    },
+    {
+      "cause": 14,
+      "type": 3,
+      "text": "selected additional data not supported (words 0 and 1)"
+    },
+    {
+      "cause": 15,
+      "type": 3,
+      "text": "several additional data with the same identifier activated"
+    },
+    {
+      "cause": 16,
+      "type": 4,
+      "text": "an available additional data could not be updated"
+    }
+  ],
   "position_format": {
     "area_mrs": 161,
     "word": 13,
