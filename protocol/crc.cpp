@@ -8,8 +8,9 @@ namespace endatsim::protocol {
 namespace {
 
 // A4.4.1: "Preload flip-flops via Set with a logical 1", shift, output the inverted register.
-boost::crc_basic<5> make_generator(const CrcConfig& c = {}) {
-  return boost::crc_basic<5>(0x0B, c.preset & 0x1FU, c.final_inversion ? 0x1F : 0x00, false, false);
+boost::crc_basic<kCrcBits> make_generator(const CrcConfig& c = {}) {
+  constexpr unsigned kAllOnes = (1U << kCrcBits) - 1;
+  return boost::crc_basic<kCrcBits>(kCrcPolynomial, c.preset & kAllOnes, c.final_inversion ? kAllOnes : 0U, false, false);
 }
 
 }  // namespace

@@ -7,6 +7,10 @@
 
 namespace endatsim::protocol {
 
+// A4.4.1: five flip-flops; the generator x^5 + x^3 + x + 1 without its x^5 term.
+inline constexpr unsigned kCrcBits = 5;
+inline constexpr std::uint8_t kCrcPolynomial = 0x0B;
+
 // How a CRC generator is set up. The spec's (A4.4.1): flip-flops preset to 1, output inverted.
 // Masters in the field got these wrong (docs/model.md §12: preset 0 and no inversion, which two
 // devices built from the same wrong settings do not notice).

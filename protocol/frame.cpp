@@ -93,7 +93,7 @@ namespace {
 constexpr FieldSpec kStart{Field::StartBit, 1, BitOrder::MsbFirst};
 constexpr FieldSpec kAddress{Field::Address, 8, BitOrder::MsbFirst};
 constexpr FieldSpec kParameter{Field::Parameter, 16, BitOrder::MsbFirst};
-constexpr FieldSpec kCrc{Field::Crc, 5, BitOrder::MsbFirst};
+constexpr FieldSpec kCrc{Field::Crc, kCrcBits, BitOrder::MsbFirst};
 
 std::vector<std::uint8_t> encode(const Layout& layout, const FieldValues& values) {
   std::vector<std::uint8_t> bits;

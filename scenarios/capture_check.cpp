@@ -268,6 +268,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
                                                                 : line::ObservationPoint::EncoderPins;
   params.resolution = o.resolution.value_or(reader->uncertainty());
   result.uncertainty = params.resolution;
+  result.declared = encoder;
   checker::TimingChecker checker(kernel, line, encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
       .position_bits = encoder.position_bits, .clock_to_data = encoder.output_delay, .t_m = encoder.t_m});
@@ -442,6 +443,21 @@ nlohmann::json wire_frames_json(const std::vector<checker::WireFrame>& wire_fram
   return frames;
 }
 
+namespace {
+
+// What the frames were decoded and the rows judged with, for a decoder that reads the same capture.
+nlohmann::json declared_json(const checker::EncoderDeclaration& e) {
+  using nlohmann::json;
+  return {{"position_bits", e.position_bits},
+          {"clock_to_data_ps", e.output_delay.count()},
+          {"t_m_ps", e.t_m.count()},
+          {"t_m_short_ps", e.t_m_short ? json(e.t_m_short->count()) : json(nullptr)},
+          {"short_t_m_selected", e.short_t_m_selected},
+          {"t_r_ps", e.t_r.count()}};
+}
+
+}  // namespace
+
 nlohmann::json capture_json(const CaptureCheckResult& r) {
   using nlohmann::json;
   const json frames = wire_frames_json(r.frames);
@@ -449,6 +465,7 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
           {"frames_decoded", r.frames_decoded}, {"frames_clean", r.frames_clean}, {"position_bits", r.position_bits},
+          {"declared", declared_json(r.declared)},
           {"position_bits_learnt_at", r.position_bits_learnt_at ? json(*r.position_bits_learnt_at) : json(nullptr)},
           {"frames_not_kept", r.frames_decoded - r.frames.size()},
           {"edges_before_first_frame", r.edges_before_first_frame},

@@ -68,6 +68,7 @@ struct CaptureCheckResult {
   std::uint64_t frames_decoded = 0;
   std::uint64_t frames_clean = 0;       // with a complete answer and a good CRC
   unsigned position_bits = 0;           // as declared, or as the last read of word 13 showed
+  checker::EncoderDeclaration declared;  // the encoder as judged (--encoder, --clock-to-data, --t-d)
   std::optional<std::uint64_t> position_bits_learnt_at;  // the frame that read word 13
   double cable_m = 0;                   // the cable the limits assume (0 m unless given)
   bool cable_given = false;

@@ -11,7 +11,10 @@
 #include <string>
 
 #include "checker/timing_checker.hpp"
+#include "protocol/crc.hpp"
+#include "protocol/mode_command.hpp"
 #include "protocol/timing.hpp"
+#include "scenarios/decoder_tables.hpp"
 
 namespace {
 
@@ -135,6 +138,33 @@ TEST(TimingTable, DocsChecksIsTheGeneratedTable) {
   ASSERT_GE(doc.size(), table.size());
   EXPECT_EQ(doc.substr(doc.size() - table.size()), table)
       << "docs/checks.md is out of date: regenerate its table with `endatsim checks`";
+}
+
+// The sigrok decoder reads the tables from tools/sigrok/endat/tables.py: the file is what they
+// generate, and the document carries the numbers and rows the decoder judges with.
+TEST(TimingTable, SigrokDecoderTablesAreTheGeneratedModule) {
+  EXPECT_EQ(slurp("tools/sigrok/endat/tables.py"), scenarios::decoder_tables_python())
+      << "tools/sigrok/endat/tables.py is out of date: regenerate it with `endatsim checks --python`";
+  const auto t = nlohmann::json::parse(scenarios::decoder_tables_json());
+  EXPECT_EQ(t["limits"]["recovery_time_min_ps"].get<std::int64_t>(), limit::kRecoveryTimeMin.count());
+  EXPECT_EQ(t["limits"]["fc_max_special_hz"].get<std::int64_t>(), limit::kFcMaxSpecial);
+  EXPECT_EQ(t["frame_position"]["turnaround"].get<unsigned>(), position::kTurnaround);
+  EXPECT_EQ(t["crc"]["polynomial"].get<unsigned>(), protocol::kCrcPolynomial);
+  ASSERT_EQ(t["mode_commands"].size(), protocol::mode_commands().size());
+  for (std::size_t i = 0; i < protocol::mode_commands().size(); ++i) {
+    EXPECT_EQ(t["mode_commands"][i]["bits"].get<unsigned>(), protocol::mode_commands()[i].bits);
+    EXPECT_EQ(t["mode_commands"][i]["key"].get<std::string>(), protocol::mode_commands()[i].key);
+  }
+  ASSERT_EQ(t["checks"].size(), protocol::timing_rows().size());
+  for (std::size_t i = 0; i < protocol::timing_rows().size(); ++i)
+    EXPECT_EQ(t["checks"][i]["check"].get<std::string>(), protocol::timing_rows()[i].check);
+  // Additional data 2.4.2.2: 0x40 .. 0x5F select, 0x4F and 0x5F stop.
+  EXPECT_EQ(t["additional_data"]["selecting_mrs"].size(), 32U);
+  EXPECT_EQ(t["additional_data"]["selecting_mrs"].front().get<unsigned>(), 0x40U);
+  EXPECT_EQ(t["additional_data"]["stop_mrs"]["2"].get<unsigned>(), 0x5FU);
+  // The position's width is the decoder's to set: null in the layouts, 25 by default.
+  EXPECT_TRUE(t["layouts"]["position_2_2"][3]["width"].is_null());
+  EXPECT_EQ(t["decoder"]["position_bits"].get<unsigned>(), 25U);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "capture/capture.hpp"
 #include "slave/profile.hpp"
 #include "protocol/timing.hpp"
+#include "scenarios/decoder_tables.hpp"
 #include "scenarios/declarations.hpp"
 #include "scenarios/diagram.hpp"
 #include "scenarios/junit.hpp"
@@ -52,7 +53,7 @@ const char* const kSweepUsage =
 const char* const kValidateUsage = "usage: endatsim validate FILE... [--quiet]\n";
 const char* const kDiagramUsage =
     "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet]\n";
-const char* const kChecksUsage = "usage: endatsim checks\n";
+const char* const kChecksUsage = "usage: endatsim checks [--json | --python]\n";
 const char* const kCheckUsage =
     "usage: endatsim check FILE... --clock NAME (--data NAME | --data-out NAME --data-in NAME)\n"
     "                      [--data-enable NAME [--master-data-enable NAME] [--enable-active-low]] [--power NAME]\n"
@@ -113,7 +114,10 @@ const char* const kChecksHelp =
     "checks: prints the checker's timing table as Markdown: one row per check name (the names\n"
     "scenarios use under expect.violations) with its spec symbol, section, minimum, maximum, how\n"
     "it is read, where it is observed and whether the wires alone decide it or the master must\n"
-    "declare its sampling. docs/checks.md is this output.\n"
+    "declare its sampling. docs/checks.md is this output. --json prints, instead, the tables an\n"
+    "EnDat decoder needs as data: frame positions, limits, mode commands, bit layouts, the CRC,\n"
+    "additional data, MRS codes, these rows and the frame decoder's defaults; --python prints the\n"
+    "same as the Python module tools/sigrok/endat/tables.py, which the sigrok decoder reads.\n"
     "Exit status: 0.\n";
 
 const char* const kCheckHelp =
@@ -212,7 +216,10 @@ po::options_description options_of(Command c) {
           "log", po::value<std::string>(), "write the decoded frames, one line each (- for stdout)");
       break;
     case Command::Validate:
+      break;
     case Command::Checks:
+      o.add_options()("json", "print the decoder tables as JSON")(
+          "python", "print the decoder tables as the Python module of the sigrok decoder");
       break;
     case Command::Diagram:
       o.add_options()("svg", po::value<std::string>(), "write the diagram to this file (required)")(
@@ -842,7 +849,13 @@ int checks_command(const po::variables_map& vm) {
     std::cerr << "endatsim checks: takes no file\n" << kChecksUsage;
     return kBadInput;
   }
-  std::cout << protocol::timing_table_markdown();
+  if (vm.count("json") != 0 && vm.count("python") != 0) {
+    std::cerr << "endatsim checks: --json and --python exclude each other\n" << kChecksUsage;
+    return kBadInput;
+  }
+  if (vm.count("json") != 0) std::cout << scenarios::decoder_tables_json();
+  else if (vm.count("python") != 0) std::cout << scenarios::decoder_tables_python();
+  else std::cout << protocol::timing_table_markdown();
   return kPass;
 }
 

@@ -10,10 +10,13 @@ rm -rf "$work"
 mkdir -p "$work"
 cmake --install "$build" --prefix "$work/prefix" >"$work/install.log"
 for f in include/endatsim/scenarios/scenarios.hpp include/endatsim/checker/checker.hpp lib/cmake/endatsim/endatsimConfig.cmake \
-         share/endatsim/schema/scenario.schema.json bin/endatsim bin/endatsim-vcdlint; do
+         share/endatsim/schema/scenario.schema.json share/endatsim/sigrok/endat/pd.py bin/endatsim bin/endatsim-vcdlint; do
   [ -e "$work/prefix/$f" ] || { echo "FAIL: $f was not installed" >&2; exit 1; }
 done
 "$work/prefix/bin/endatsim" --version
+# The EnDat decoder for sigrok loads from where it was installed.
+SIGROKDECODE_DIR="$work/prefix/share/endatsim/sigrok" sigrok-cli -L | grep -q "^ *endat " \
+  || { echo "FAIL: sigrok-cli does not load the installed EnDat decoder" >&2; exit 1; }
 cmake -S "$source/examples/testbench" -B "$work/tb" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_FLAGS="$flags" >"$work/configure.log" \
   || { cat "$work/configure.log" >&2; exit 1; }
 cmake --build "$work/tb" >"$work/build.log" 2>&1 || { cat "$work/build.log" >&2; exit 1; }
