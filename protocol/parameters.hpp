@@ -33,6 +33,7 @@ constexpr unsigned kDiagnosticsConfiguration = 3;                // A7, 3.6.3
 constexpr unsigned kTemperatureWarningThreshold = 6;             // A7, 3.6.6 (0.1 K)
 constexpr unsigned kTemperatureScaling = 4, kDiagnosticStatus = 5, kMaxEncoderTemperature = 22;  // BD, 3.9.6 / 3.9.7 / 3.9.16
 constexpr unsigned kDirection = 30;                              // encoder manufacturer, 3.5.16
+constexpr unsigned kTouchProbeStatus = 2, kReferencing = 11;     // BB operating parameters 2, 3.10.3 / 3.10.5
 }  // namespace word
 }  // namespace endatsim::protocol
 
@@ -56,6 +57,7 @@ constexpr std::uint32_t join32(std::uint16_t low, std::uint16_t high) {
 // Index = bit. Bits 7 .. 15 are "currently not assigned" and show as "bit 7" ... in strings.
 std::span<const std::string_view> error_bit_names();    // 2^0 lighting .. 2^6 battery
 std::span<const std::string_view> warning_bit_names();  // 2^0 frequency collision .. 2^8 diagnostics
+constexpr std::uint16_t kWarningReferencePointNotReached = 0x0010;  // word 1 bit 4 (3.4.2)
 std::string bits_string(std::uint16_t word, std::span<const std::string_view> names);  // "lighting, position" or "none"
 
 // ---- 3.4.4 operating status word 3: function initialization ------------------------------------

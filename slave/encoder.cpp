@@ -21,7 +21,6 @@ void require(bool ok, const std::string& message) {
 constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see docs/model-reference.md)
 constexpr std::uint16_t kInstructionHighImpedance = 0x0002;                    // 2.10: word 5 bit 1
 constexpr unsigned kTouchProbeBits = 16;                                       // 2.3.4.4
-constexpr std::uint8_t kTouchProbeStatusWord = 2;                              // operating parameters 2 (3.10.1)
 
 using protocol::parameters::EncoderFunction;
 
@@ -246,6 +245,7 @@ void Encoder::adopt_encoder_type() {
   reference_ = slave::reference_scheme(memory_, params_.reference_marks, params_.selected_reference_mark, position_bits_);
   incremental_ = reference_.marks != pm::ReferenceMarks::None;
   referenced_ = !incremental_;
+  rm_reset_at_.reset();
   reference_offset_ = 0;
 }
 
@@ -500,7 +500,29 @@ __int128 Encoder::unwrapped_position(Time t) const {
 // 2.3.4.3: RM is set once the axis has crossed a reference mark as the scheme needs it (two
 // with distance-coded marks, the selected one of equidistant marks) since switching on or the
 // last reset; until then word 1 bit 4 warns "reference point not reached".
+// What a completed write sets going besides the stored word: an EIB's commissioning (3.5.7), the
+// bus address error (3.6.4), and the RM reset of operating parameters 2 word 11 (3.10.5). A 2.1
+// write completes with its acknowledgment, a 2.2 one when Busy is reset (3.10).
+void Encoder::written(const Selection& s, std::uint8_t address) {
+  note_commissioning_write(s, address);
+  latch_bus_address_error();
+  // 3.10.5: bit 0 = 1 and bit 1 = 0 reset RM of an incremental encoder and set the warning
+  // "reference point not reached"; "this does not influence position value and position value 2":
+  // the reference found stays in use. A reference mark crossed from then on sets RM again.
+  const std::uint16_t rm_reset = 0x0001, rm_reset_mask = 0x0003;
+  if (s.area == MemoryArea::OperatingParameters2 && address == word::kReferencing && incremental_ &&
+      (memory_.image().areas.at(MemoryArea::OperatingParameters2).at(word::kReferencing) & rm_reset_mask) == rm_reset) {
+    rm_reset_at_ = kernel_.now();
+    memory_.latch_errors(0, protocol::parameters::kWarningReferencePointNotReached);
+  }
+}
+
 void Encoder::update_reference() {
+  if (referenced_ && rm_reset_at_) {
+    if (find_reference(reference_, unwrapped_position(*rm_reset_at_), unwrapped_position(kernel_.now()), position_bits_))
+      rm_reset_at_.reset();
+    return;
+  }
   if (referenced_) return;
   const auto offset = find_reference(reference_, unwrapped_position(reference_search_from_),
                                      unwrapped_position(kernel_.now()), position_bits_);
@@ -508,7 +530,7 @@ void Encoder::update_reference() {
     referenced_ = true;
     reference_offset_ = *offset;
   } else {
-    memory_.latch_errors(0, 0x0010);
+    memory_.latch_errors(0, protocol::parameters::kWarningReferencePointNotReached);
   }
 }
 
@@ -789,8 +811,7 @@ void Encoder::on_memory_access_done() {
     case Pending::Kind::Write:
       memory_.write(in_progress_.selection, in_progress_.address, in_progress_.value);
       if (nvm_write_) nvm_write_->applied = true;
-      note_commissioning_write(in_progress_.selection, in_progress_.address);
-      latch_bus_address_error();
+      written(in_progress_.selection, in_progress_.address);
       break;
     default:
       break;
@@ -832,7 +853,7 @@ std::uint8_t Encoder::status_byte(Information i) const {
   if (busy()) s |= S::kBusy;
   // 2.3.1 status table: RM is "already set with switch-on with absolute encoders"; an incremental
   // one sets it when its reference run is done (2.3.4.3).
-  if (referenced_) s |= S::kReferenceMark;
+  if (referenced_ && !rm_reset_at_) s |= S::kReferenceMark;
   return s;
 }
 
@@ -952,8 +973,7 @@ void Encoder::finish_frame() {
     case Pending::Kind::Write:
       memory_.write(pending_.selection, pending_.address, pending_.value);
       if (nvm_write_) nvm_write_->applied = true;
-      note_commissioning_write(pending_.selection, pending_.address);
-      latch_bus_address_error();
+      written(pending_.selection, pending_.address);
       break;
     case Pending::Kind::Reset:
       reset();
@@ -985,6 +1005,7 @@ void Encoder::restart_state() {
   // 2.7: "this bit is set to 0 via Encoder receive reset ... Position value 1 and position
   // value 2 are not influenced by this."
   referenced_ = !incremental_;
+  rm_reset_at_.reset();
   reference_search_from_ = kernel_.now();
   test_port_21_ = test_port_22_ = 0;
   unsettled_left_ = params_.unsettled_positions;
@@ -1051,8 +1072,8 @@ void Encoder::set_probe_deflected(bool deflected) {
   // bit 0 follows the trigger status.
   const Selection status{MemoryArea::OperatingParameters2, 0};
   std::uint16_t word = 0;
-  if (!memory_.read(status, kTouchProbeStatusWord, word))
-    memory_.force(status, kTouchProbeStatusWord, static_cast<std::uint16_t>((word & ~1U) | (deflected ? 1U : 0U)));
+  if (!memory_.read(status, word::kTouchProbeStatus, word))
+    memory_.force(status, word::kTouchProbeStatus, static_cast<std::uint16_t>((word & ~1U) | (deflected ? 1U : 0U)));
 }
 
 void Encoder::set_stuck_error_messages(bool error1_stuck, bool error2_stuck) {

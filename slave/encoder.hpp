@@ -224,7 +224,7 @@ class Encoder {
   unsigned position_bits() const { return position_bits_; }
   // 3.5.7 / A2 cause 5: an EIB before initial commissioning is complete.
   bool eib_not_initiated() const { return eib_not_initiated_; }
-  bool referenced() const { return referenced_; }  // RM (2.3.4.3); always for absolute encoders
+  bool referenced() const { return referenced_ && !rm_reset_at_; }  // RM (2.3.4.3); always for absolute encoders
   const ReferenceScheme& reference_scheme() const { return reference_; }
 
   // Faults, while running (scenario events).
@@ -302,6 +302,7 @@ class Encoder {
   void check_multiturn_overflow();
   bool error_message_1() const;
   void latch_bus_address_error();
+  void written(const Selection& s, std::uint8_t address);
   void clock_after_supplement();
   std::uint64_t output_position(std::uint64_t measured) const;
   void update_reference();
@@ -391,6 +392,7 @@ class Encoder {
   std::optional<Time> probe_switched_at_;       // the last trigger, for the timestamp (3.9.32)
   ReferenceScheme reference_;                   // from word 14 and words 18/19 (2.3.4.3)
   bool referenced_ = false;                     // RM (2.3.4.3)
+  std::optional<Time> rm_reset_at_;             // RM reset by operating parameters 2 word 11 (3.10.5)
   bool bus_address_error_ = false;              // error bit 1 held by a bus address in word 4 (3.6.4)
   __int128 reference_offset_ = 0;               // absolute = measured - offset (equidistant, first crossed)
   unsigned position_bits_ = 0;                  // word 13 as activated

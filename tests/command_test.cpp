@@ -677,6 +677,37 @@ void reset_and_reselect(Bench& b) {
 
 }  // namespace
 
+// 3.10.5: writing operating parameters 2 word 11 with bit 0 = 1, bit 1 = 0 resets RM and sets the
+// warning "reference point not reached"; position value and position value 2 stay as they are.
+// The mark at 33 000, crossed at 300 ms, sets RM again.
+TEST(IncrementalEncoder, OperatingParameters2Word11ResetsRmButNotThePositionValues) {
+  using T = protocol::parameters::EncoderType;
+  Bench b(incremental(T::IncrementalRotary, 10'000));
+  b.frame(67, select_position_value_2_16bit());
+  frame_at(b, ms(150));
+  ASSERT_EQ(b.slots(1, 36, 43), bits_msb(0xC0 | 2, 8)) << "referenced at the mark at 31 000";
+  // The answer now carries additional data 1 (30 bits) before the supplement.
+  const auto supplement = [](std::uint8_t mode, std::uint8_t address, std::uint16_t value) {
+    return ScriptedFrame::header(mode) + std::string(27 + 30, '-') + "0000000" "1" + payload(address, value);
+  };
+  scripted_at(b, ms(151), 97, supplement(0b001001, 0xBB, 0));  // select operating parameters 2 (MRS BB)
+  scripted_at(b, ms(155), 97, supplement(0b011011, protocol::word::kReferencing, 0x0001));
+  frame_at(b, ms(160));  // the write done (t_ac 3 ms): additional data 1 is memory parameters LSB now
+  frame_at(b, ms(161));
+  for (const auto& f : b.encoder.frames())
+    if (f.error) ADD_FAILURE() << "frame at " << sim::format_time(f.start) << ": " << protocol::describe(*f.error);
+  EXPECT_EQ(b.last().position, 1610U) << "position value 1 goes on";
+  EXPECT_FALSE(b.encoder.referenced());
+  EXPECT_NE(b.encoder.memory().operating_status(slave::word::kWarnings) & 0x0010, 0) << "reference point not reached";
+  scripted_at(b, ms(162), 67, select_position_value_2_16bit());
+  frame_at(b, ms(170));
+  EXPECT_EQ(b.slots(b.frames.size() - 1, 36, 59), bits_msb(0x80 | 2, 8) + bits_msb(31700, 16))
+      << "RM = 0, position value 2 still absolute";
+  frame_at(b, ms(350));
+  EXPECT_TRUE(b.encoder.referenced()) << "the mark at 33 000 crossed at 300 ms";
+  EXPECT_EQ(b.slots(b.frames.size() - 1, 36, 59), bits_msb(0xC0 | 2, 8) + bits_msb(33500, 16));
+}
+
 TEST(IncrementalEncoder, ReferenceModeFollowsWord14AndWord18) {
   namespace pm = protocol::parameters;
   using T = pm::EncoderType;
