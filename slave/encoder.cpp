@@ -20,6 +20,7 @@ void require(bool ok, const std::string& message) {
 
 constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see docs/model-reference.md)
 constexpr std::uint16_t kInstructionHighImpedance = 0x0002;                    // 2.10: word 5 bit 1
+constexpr std::uint16_t kInstructionNoPositionUpdate = 0x0004;                  // 3.6.5: word 5 bit 2
 constexpr unsigned kTouchProbeBits = 16;                                       // 2.3.4.4
 
 using protocol::parameters::EncoderFunction;
@@ -331,6 +332,15 @@ void Encoder::begin_frame() {
   update_reference();
   check_multiturn_overflow();
   f.position = f.true_position = latched_position(kernel_.now());
+  // 3.6.5 word 5 bit 2, "no updating of position values": from the first frame after the
+  // instruction the encoder keeps sending the position it latched then (our reading: the spec
+  // names the instruction only), until the bit is cleared.
+  if ((memory_.operating_parameter(word::kInstructions) & kInstructionNoPositionUpdate) != 0) {
+    if (!frozen_position_) frozen_position_ = f.position;
+    f.position = *frozen_position_;
+  } else {
+    frozen_position_.reset();
+  }
   frames_.push_back(f);
   latch_errors();
   frames_.back().error_present = error_present();

@@ -392,6 +392,7 @@ class Encoder {
   std::optional<Time> probe_switched_at_;       // the last trigger, for the timestamp (3.9.32)
   ReferenceScheme reference_;                   // from word 14 and words 18/19 (2.3.4.3)
   bool referenced_ = false;                     // RM (2.3.4.3)
+  std::optional<std::uint64_t> frozen_position_;  // word 5 bit 2: the position sent while it is set (3.6.5)
   std::optional<Time> rm_reset_at_;             // RM reset by operating parameters 2 word 11 (3.10.5)
   bool bus_address_error_ = false;              // error bit 1 held by a bus address in word 4 (3.6.4)
   __int128 reference_offset_ = 0;               // absolute = measured - offset (equidistant, first crossed)

@@ -70,6 +70,31 @@ TEST(MasterParameterAccess, EnDat21WriteIntoProtectedAreaIsTypeTwo) {
   EXPECT_TRUE(r.violations.empty()) << violations(r);
 }
 
+// 3.6.5 word 5 bit 2, "no updating of position values": while it is set the encoder keeps
+// sending the position of the first frame after it, though the axis moves; cleared, it updates.
+TEST(MasterParameterAccess, InstructionNoUpdatingOfPositionValuesFreezesThePosition) {
+  auto read = op(MC::EncoderSendPositionValues);
+  read.count = 3;
+  read.cycle = us(200);
+  auto s = scenario(10, MHz(1), false,
+                    {op(MC::SelectionOfMemoryArea, 0xA7), op(MC::EncoderReceiveParameters, 0x05, 0x0004), read,
+                     op(MC::EncoderReceiveParameters, 0x05, 0x0000), read});
+  s.encoder.motion.counts_per_s = 1'000'000;  // one step per microsecond
+  const auto r = scenarios::run_scenario(s);
+  std::vector<std::uint64_t> frozen, moving;
+  for (const auto& f : r.frames) {
+    if (f.operation == 2) frozen.push_back(f.position);
+    if (f.operation == 4) moving.push_back(f.position);
+  }
+  ASSERT_EQ(frozen.size(), 3U);
+  ASSERT_EQ(moving.size(), 3U);
+  EXPECT_EQ(frozen[1], frozen[0]);
+  EXPECT_EQ(frozen[2], frozen[0]);
+  EXPECT_GT(moving[0], frozen[0]);
+  EXPECT_GT(moving[1], moving[0]);
+  EXPECT_GT(moving[2], moving[1]);
+}
+
 TEST(MasterParameterAccess, EnDat22ReadThroughTheSupplementWithBusyPolling) {
   // 2.5.1: select "memory parameters LSB" as additional data 1, select the area, poll busy,
   // read, poll busy; the last poll carries address 0Dh and the LSB of word 13 (25 bits: 19h).
