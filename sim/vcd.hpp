@@ -1,9 +1,13 @@
 // Event-driven VCD writer: records signals as they change and writes the committed values
 // once at the end of each time step. 1-bit wires, short identifiers, no $comment after
 // $enddefinitions (sigrok reads nothing otherwise), buffered output, no wall-clock date
-// so that the same run gives the same bytes.
+// so that the same run gives the same bytes. Written to a part file beside the path and renamed
+// into place by finish(), so that no half-written VCD ever carries the name; every write and the
+// close are checked (finish() throws, naming the path), and the destructor never throws: without
+// finish() the part file goes.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <deque>
 #include <string>
@@ -24,6 +28,8 @@ class VcdWriter {
   void add(Signal& signal, const std::string& scope, const std::string& name);
   void start();
   void finish();
+  // Bytes of VCD text produced so far.
+  std::uint64_t bytes() const { return bytes_ + buffer_.size(); }
 
  private:
   struct Probe {
@@ -39,10 +45,13 @@ class VcdWriter {
   static void on_change(void* probe, std::uint64_t value);
   static void on_step_end(void* self, std::uint64_t);
   void flush_if_full();
+  void write_buffer();
 
   Kernel& kernel_;
   std::FILE* file_;
   std::string path_;
+  std::string part_;
+  std::uint64_t bytes_ = 0;
   std::deque<Probe> probes_;  // stable addresses: each is its signal's listener context
   std::vector<std::size_t> dirty_;
   std::string buffer_;
