@@ -1,6 +1,8 @@
 // Hostile input: scenario files that pass the loader but ask for unbounded work, output paths that
 // would destroy inputs or cannot be written, and text that used to slip through. Each ends in
 // seconds with bounded memory, and with a message that names the file, the place and the limit.
+// (The bounds on time and memory leave room for sanitized builds; a release build needs under 2 s
+// and 150 MiB for each; without the limits these ran for minutes and grew to gigabytes.)
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
@@ -103,8 +105,8 @@ TEST(Hostile, FortyThousandGlitchEventsAreRefusedBeforeTheRun) {
   EXPECT_TRUE(contains(r.err, file + ": at /events: expected at most 1000 events")) << r.err;
   EXPECT_TRUE(contains(r.err, "got 40000")) << r.err;
   EXPECT_TRUE(contains(r.err, "--max-events")) << r.err;
-  EXPECT_LT(r.seconds, 30.0);
-  EXPECT_LT(peak_child_mib(), 500);
+  EXPECT_LT(r.seconds, 60.0);
+  EXPECT_LT(peak_child_mib(), 1024);
 }
 
 TEST(Hostile, TenThousandPowerCutsAreRefusedBeforeTheRun) {
@@ -148,7 +150,7 @@ TEST(Hostile, ContinuousClockWordsAtTheLoadersMaximumAreRefusedBeforeTheRun) {
   const auto r = run("run " + file, dir);
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_TRUE(contains(r.err, "got 100001000000")) << r.err;
-  EXPECT_LT(r.seconds, 10.0);
+  EXPECT_LT(r.seconds, 30.0);
 }
 
 TEST(Hostile, AMillionFramesAt16MHzAreRefusedBeforeTheRun) {
@@ -174,7 +176,7 @@ TEST(Hostile, ASweepOfTwoThousandPointsOfALargeScenarioStopsAtItsFirstPoint) {
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_TRUE(contains(r.err, "grid point 1 of 2000 (/seed=1): " + file + ": at /script: expected at most 100000")) << r.err;
   EXPECT_FALSE(fs::exists(dir / "sweep.json"));
-  EXPECT_LT(peak_child_mib(), 500);
+  EXPECT_LT(peak_child_mib(), 1024);
 }
 
 TEST(Hostile, AScenarioMayNotGrantItselfMoreThanTheCommandLine) {
@@ -216,8 +218,8 @@ TEST(Hostile, AHundredThousandReadsEndAtTheRecordsLimitWithBoundedMemory) {
   const auto xml = slurp(junit);
   EXPECT_TRUE(contains(xml, "errors=\"1\"")) << xml;
   EXPECT_TRUE(contains(xml, "<error type=\"incomplete\" message=\"limit records reached")) << xml;
-  EXPECT_LT(r.seconds, 60.0);
-  EXPECT_LT(peak_child_mib(), 600);
+  EXPECT_LT(r.seconds, 120.0);
+  EXPECT_LT(peak_child_mib(), 1024);
   // A scenario's own, lower limit.
   s["limits"] = {{"records", 100}};
   const auto low = run("run " + write(dir / "low.json", s.dump()) + " --quiet", dir);
