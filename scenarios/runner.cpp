@@ -439,7 +439,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
                      sim::period_of(master_params.f_c));
   master.start();
   Watch watch(kernel, master, encoder, bus, checker, limits);
-  kernel.watch(std::min(Watch::kEvery, limits.kernel_events), sim::bind<&Watch::check>(&watch));
+  // Each record takes at least one event: looking as often as the lowest limit sees every one reached.
+  kernel.watch(std::min({Watch::kEvery, limits.kernel_events, limits.records}), sim::bind<&Watch::check>(&watch));
   kernel.run(max_time);
   if (watch.reason.empty() && max_time < scenario.max_time && !master.finished() && kernel.now() >= max_time)
     watch.reason = "limit max_time reached: " + sim::format_time(max_time) + " simulated, less than the scenario's " +
