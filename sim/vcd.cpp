@@ -115,7 +115,6 @@ void VcdWriter::write_buffer() {
     file_ = nullptr;
     throw std::runtime_error("write error on VCD file '" + path_ + "': " + (error != 0 ? std::strerror(error) : "short write"));
   }
-  bytes_ += buffer_.size();
   buffer_.clear();
 }
 

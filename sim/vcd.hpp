@@ -7,7 +7,6 @@
 // finish() the part file goes.
 #pragma once
 
-#include <cstdint>
 #include <cstdio>
 #include <deque>
 #include <string>
@@ -28,8 +27,6 @@ class VcdWriter {
   void add(Signal& signal, const std::string& scope, const std::string& name);
   void start();
   void finish();
-  // Bytes of VCD text produced so far.
-  std::uint64_t bytes() const { return bytes_ + buffer_.size(); }
 
  private:
   struct Probe {
@@ -51,7 +48,6 @@ class VcdWriter {
   std::FILE* file_;
   std::string path_;
   std::string part_;
-  std::uint64_t bytes_ = 0;
   std::deque<Probe> probes_;  // stable addresses: each is its signal's listener context
   std::vector<std::size_t> dirty_;
   std::string buffer_;
