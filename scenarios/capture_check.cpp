@@ -8,6 +8,7 @@
 
 #include "capture/capture.hpp"
 #include "line/line.hpp"
+#include "scenarios/interrupt.hpp"
 #include "scenarios/report.hpp"
 
 namespace endatsim::scenarios {
@@ -72,7 +73,11 @@ class Replay {
     do {
       checker_.raise_resolution(reader_.uncertainty());
       apply(next_);
-      if ((++result_.changes & 0xFFFF) == 0 && progress_) progress_(reader_.bytes_read(), reader_.bytes_total());
+      if ((++result_.changes & 0xFFFF) == 0) {
+        if (const int signal = interrupt_signal(); signal != 0)
+          throw Interrupted(reader_.path() + ": interrupted by " + signal_name(signal) + ": not judged", signal);
+        if (progress_) progress_(reader_.bytes_read(), reader_.bytes_total());
+      }
       result_.end = next_.time + offset_;
       if (!reader_.next(next_)) {
         drain();

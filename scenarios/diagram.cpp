@@ -7,10 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
+#include "scenarios/interrupt.hpp"
 #include "scenarios/runner.hpp"
 #include "scenarios/vcd_reader.hpp"
 
@@ -119,18 +123,22 @@ class Axis {
 
 namespace {
 
-// A temporary file that goes again, named per process and call.
+// A temporary file in a directory private to this call (mkdtemp: a fresh name, mode 0700), so that
+// nobody else can plant a file or a symlink where it is written; both go again.
 struct TempFile {
+  std::string dir;
   std::string path;
   TempFile() {
-    static std::atomic<unsigned> counter{0};
-    path = (std::filesystem::temp_directory_path() /
-            ("endatsim_diagram_" + std::to_string(getpid()) + "_" + std::to_string(counter++) + ".vcd"))
-               .string();
+    std::string pattern = (std::filesystem::temp_directory_path() / "endatsim_diagram_XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr)
+      throw std::runtime_error("cannot create a temporary directory in " +
+                               std::filesystem::temp_directory_path().string() + ": " + std::strerror(errno));
+    dir = pattern;
+    path = dir + "/waveform.vcd";
   }
   ~TempFile() {
     std::error_code ec;
-    std::filesystem::remove(path, ec);
+    std::filesystem::remove_all(dir, ec);
   }
   TempFile(const TempFile&) = delete;
   TempFile& operator=(const TempFile&) = delete;
@@ -187,7 +195,10 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   RunOptions ro;
   ro.vcd_path = vcd.path;
   ro.seed = options.seed;
+  ro.limits = options.limits;
   const ScenarioResult r = run_scenario(scenario, ro);
+  if (r.interrupted != 0) throw Interrupted(scenario.file + ": " + r.incomplete, r.interrupted);
+  if (!r.incomplete.empty()) throw LimitReached(scenario.file + ": " + r.incomplete);
   const VcdFile file = read_vcd_file(vcd.path);
   if (!file.issues.empty()) throw std::runtime_error("the waveform did not read back: " + file.issues.front().message);
   const auto wave = [&](const std::string& name) {

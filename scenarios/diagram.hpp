@@ -19,6 +19,7 @@ struct DiagramOptions {
   std::optional<std::uint64_t> frame;               // index into the run's frames; default: first non-measurement frame
   std::optional<std::pair<Time, Time>> window;      // draw this time window instead of one frame
   std::optional<std::uint64_t> seed;                // overrides the scenario's seed
+  Limits limits;                                    // for the run
 };
 
 struct Diagram {

@@ -35,14 +35,15 @@ bool relaxed(const std::vector<checker::RowConformance>& rows) {
 
 }  // namespace
 
-std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name) {
-  std::size_t failures = 0;
-  for (const auto& r : results) failures += r.passed() ? 0 : 1;
+std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name,
+                      const std::vector<NotRun>& not_run) {
+  std::size_t failures = 0, errors = not_run.size();
+  for (const auto& r : results) (r.incomplete.empty() ? failures : errors) += r.passed() ? 0 : 1;
+  const std::string tests = std::to_string(results.size() + not_run.size());
+  const std::string counts = "\" failures=\"" + std::to_string(failures) + "\" errors=\"" + std::to_string(errors) + "\"";
   std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  x += "<testsuites name=\"" + xml_escape(suite_name) + "\" tests=\"" + std::to_string(results.size()) +
-       "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\">\n";
-  x += "  <testsuite name=\"" + xml_escape(suite_name) + "\" tests=\"" + std::to_string(results.size()) +
-       "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\" skipped=\"0\">\n";
+  x += "<testsuites name=\"" + xml_escape(suite_name) + "\" tests=\"" + tests + counts + ">\n";
+  x += "  <testsuite name=\"" + xml_escape(suite_name) + "\" tests=\"" + tests + counts + " skipped=\"0\">\n";
   for (const auto& r : results) {
     x += "    <testcase classname=\"" + xml_escape(suite_name + ".scenarios") + "\" name=\"" + xml_escape(r.name) +
          "\" file=\"" + xml_escape(r.file) + "\" assertions=\"" + std::to_string(r.expectations.size()) + "\">\n";
@@ -53,7 +54,10 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
     x += "        <property name=\"violations\" value=\"" + std::to_string(r.violations.size()) + "\"/>\n";
     x += relaxed_properties(r.conformance, "        ");
     x += "      </properties>\n";
-    if (!r.passed()) {
+    if (!r.incomplete.empty()) {
+      x += "      <error type=\"incomplete\" message=\"" + xml_escape(r.incomplete) + "\">" + xml_escape(failure_text(r)) +
+           "</error>\n";
+    } else if (!r.passed()) {
       std::string first;
       std::size_t failed = 0;
       for (const auto& e : r.expectations)
@@ -64,6 +68,10 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
     }
     x += "    </testcase>\n";
   }
+  for (const auto& n : not_run)
+    x += "    <testcase classname=\"" + xml_escape(suite_name + ".scenarios") + "\" name=\"" + xml_escape(n.name) +
+         "\" file=\"" + xml_escape(n.file) + "\">\n      <error type=\"not run\" message=\"" + xml_escape(n.reason) +
+         "\"/>\n    </testcase>\n";
   x += "  </testsuite>\n</testsuites>\n";
   return x;
 }

@@ -12,7 +12,12 @@
 
 namespace endatsim::scenarios {
 
-std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name = "endatsim");
+// A scenario that did not run because the run was interrupted before it: an error test case.
+struct NotRun {
+  std::string file, name, reason;
+};
+std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name = "endatsim",
+                      const std::vector<NotRun>& not_run = {});
 
 // `endatsim check`: one <testsuite> per capture, one <testcase> per row of the timing table; a
 // row with violations or undecided findings fails, a row not applicable or not observable in

@@ -22,6 +22,7 @@ constexpr std::size_t kMaxDepth = 32;
 constexpr std::uintmax_t kMaxFileBytes = 4 << 20;
 
 std::string describe(const json& j) {
+  if (j.is_null()) return "null";
   std::string dump = j.dump(-1, ' ', true, json::error_handler_t::replace);
   if (dump.size() > 40) dump = dump.substr(0, 37) + "...";
   return std::string(j.type_name()) + " " + dump;
@@ -32,8 +33,9 @@ class Node {
   Node(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {}
 
   [[noreturn]] void fail(const std::string& expected) const { fail_raw("expected " + expected + ", got " + describe(j_)); }
+  // A path or message from a hostile file (a key of megabytes) is cut, not echoed whole.
   [[noreturn]] void fail_raw(const std::string& message) const {
-    throw ScenarioError(file_ + ": at " + (path_.empty() ? "/" : path_) + ": " + message);
+    throw ScenarioError(file_ + ": at " + trimmed(path_.empty() ? "/" : path_, 200) + ": " + trimmed(message, 2000));
   }
   const json& raw() const { return j_; }
   const std::string& path() const { return path_; }
@@ -1174,6 +1176,15 @@ Scenario read_scenario(const json& root, const std::string& file, ScenarioKind k
   }
   if (auto v = o.opt("seed")) s.seed = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_time")) s.max_time = v->as_duration(sim::us(1), sim::ms(60'000));
+  if (auto v = o.opt("limits")) {
+    Object l(*v);
+    for (auto [key, field] : {std::pair{"kernel_events", &ScenarioLimits::kernel_events},
+                              {"script_frames", &ScenarioLimits::script_frames},
+                              {"events", &ScenarioLimits::events},
+                              {"records", &ScenarioLimits::records}})
+      if (auto x = l.opt(key)) s.limits.*field = x->as_uint(1, UINT64_MAX);
+    l.done();
+  }
   read_line(o.req("line"), s.line);
   if (auto v = o.opt("encoder")) read_encoder(*v, s.encoder);
   if (auto v = o.opt("bus")) {
@@ -1220,7 +1231,7 @@ class ParseGuard {
   bool operator()(int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
     if (static_cast<std::size_t>(depth) > kMaxDepth)
-      throw ScenarioError(file_ + ": at " + next_path() + ": nested deeper than " + std::to_string(kMaxDepth) + " levels");
+      throw ScenarioError(file_ + ": at " + trimmed(next_path(), 200) + ": nested deeper than " + std::to_string(kMaxDepth) + " levels");
     switch (event) {
       case E::object_start:
       case E::array_start:
@@ -1235,7 +1246,7 @@ class ParseGuard {
         Level& top = stack_.back();
         top.key = parsed.get<std::string>();
         if (!top.keys.insert(top.key).second)
-          throw ScenarioError(file_ + ": at " + path() + ": duplicate key \"" + top.key +
+          throw ScenarioError(file_ + ": at " + trimmed(path(), 200) + ": duplicate key \"" + trimmed(top.key) +
                               "\" (each key may appear once per object)");
         break;
       }
@@ -1284,8 +1295,18 @@ Scenario load_scenario_text(const std::string& text, const std::string& file_nam
   } catch (const json::exception& e) {  // syntax, invalid UTF-8, number overflow
     std::string what = e.what();
     const auto bracket = what.find("] ");
-    const std::string at = e.id == 406 ? "at " + where + ": " : "";  // 406: number overflow, reported without a place
-    throw ScenarioError(file_name + ": " + at + "not valid JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
+    const std::string at = e.id == 406 ? "at " + trimmed(where, 200) + ": " : "";  // 406: number overflow, reported without a place
+    throw ScenarioError(file_name + ": " + at + "not valid JSON: " +
+                        trimmed(bracket == std::string::npos ? what : what.substr(bracket + 2), 2000));
+  }
+  // The JSON parser takes a NUL byte for the end of the input: what it read may have parsed while
+  // the bytes after it were never looked at.
+  if (const auto nul = text.find('\0'); nul != std::string::npos) {
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
+    const std::size_t line_start = text.rfind('\n', nul == 0 ? 0 : nul - 1);
+    const std::size_t column = line_start == std::string::npos || nul == 0 ? nul + 1 : nul - line_start;
+    throw ScenarioError(file_name + ": not valid JSON: a NUL byte at line " + std::to_string(line) + ", column " +
+                        std::to_string(column) + " (a scenario is text; expected a JSON value or the end of the file)");
   }
   try {
     return read_scenario(root, file_name, kind);

@@ -1,14 +1,35 @@
 // Output files (results, logs, waveforms) written so that a reader never sees half of one: to a
 // part file beside the place, renamed into it when complete; an interrupted run leaves the
-// previous file (or none). "-" is standard output; pipes and devices are written directly.
+// previous file (or none). "-" is standard output; character devices (/dev/null) are written
+// directly. Every write and the close are checked; nothing here throws from a destructor.
 #pragma once
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <streambuf>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace endatsim::scenarios {
+
+// A buffered stream over a file descriptor that keeps the reason of a failed write.
+class FdBuffer : public std::streambuf {
+ public:
+  FdBuffer();
+  void attach(int fd) { fd_ = fd; }
+  int error() const { return error_; }  // errno of the first failed write, or 0
+
+ protected:
+  int_type overflow(int_type c) override;
+  int sync() override;
+
+ private:
+  bool drain();
+  int fd_ = -1;
+  int error_ = 0;
+  std::string buffer_;
+};
 
 // An output written piece by piece; a part file not committed is removed.
 class StreamedFile {
@@ -19,13 +40,17 @@ class StreamedFile {
   StreamedFile& operator=(const StreamedFile&) = delete;
   ~StreamedFile();
   std::ostream& stream();
-  // Flushes, checks every write, and renames the part file into place.
+  // Flushes, checks every write and the close, and renames the part file into place.
   void commit();
+  const std::string& path() const { return path_; }
 
  private:
+  [[noreturn]] void fail(int error) const;
   std::string path_;
   std::string part_;
-  std::ofstream file_;
+  int fd_ = -1;
+  FdBuffer buffer_;
+  std::ostream file_{&buffer_};
 };
 
 // The whole text at once, the same way.
@@ -36,5 +61,24 @@ void write_file(const std::string& path, const std::string& text);
 inline std::string json_file_text(const nlohmann::json& j) {
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
+
+// An output a command is asked to write: its option ("--json") and its path.
+struct OutputPath {
+  std::string option;
+  std::string path;
+  bool directory = false;  // a directory that will hold several files (run --vcd with several scenarios)
+};
+
+// Before anything runs: throws std::runtime_error naming the option, the path and the reason when
+// an output is one of the inputs (`inputs_are` says what they are: "the scenario file"), when two
+// outputs are the same file, when it is a directory (unless expected), a FIFO, a socket or a block
+// device, when an existing file is read-only, or when the directory it goes into does not exist or
+// cannot be written. "-" (standard output) and character devices pass.
+void check_output_paths(const std::vector<std::string>& inputs, const std::string& inputs_are,
+                        const std::vector<OutputPath>& outputs);
+
+// Removes what an interrupted command leaves at its output paths (an earlier run's results must not
+// stay in place as if current); "-" and devices are left alone. The paths removed.
+std::vector<std::string> remove_outputs(const std::vector<OutputPath>& outputs);
 
 }  // namespace endatsim::scenarios

@@ -299,6 +299,7 @@ void write_violations(std::ostream& out, const std::vector<checker::Violation>& 
 
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
+  if (!r.incomplete.empty()) out << "  INCOMPLETE: " << r.incomplete << "\n";
   if (!r.description.empty()) out << "  " << r.description << "\n";
   if (r.field) {
     out << "  field symptom: " << r.field->symptom << "\n  cause: " << r.field->cause << "\n  spec: " << r.field->spec
@@ -412,6 +413,10 @@ nlohmann::json to_json(const ScenarioResult& r) {
     j["field"] = {{"symptom", r.field->symptom}, {"cause", r.field->cause}, {"spec", r.field->spec},
                   {"asserts", r.field->asserts}};
   j["passed"] = r.passed();
+  if (!r.incomplete.empty()) {
+    j["complete"] = false;
+    j["incomplete"] = r.incomplete;
+  }
   j["simulated_ps"] = r.simulated.count();
   j["events"] = r.events;
   j["true_round_trip_ps"] = r.true_round_trip.count();

@@ -3,6 +3,7 @@
 #include "scenarios/declarations.hpp"
 
 #include "scenarios/events.hpp"
+#include "scenarios/interrupt.hpp"
 
 #include <algorithm>
 #include <memory>
@@ -297,9 +298,11 @@ void judge_diagnosis(const DiagnosisExpectation& e, ScenarioResult& r) {
 }
 
 void judge(const Scenario& s, ScenarioResult& r) {
+  if (!r.incomplete.empty()) r.expectations.push_back({"complete", false, r.incomplete});
   r.expectations.push_back({"script finished", r.finished,
-                            r.finished ? "at " + sim::format_time(r.simulated)
-                                       : "still running at max_time " + sim::format_time(s.max_time)});
+                            r.finished             ? "at " + sim::format_time(r.simulated)
+                            : r.incomplete.empty() ? "still running at max_time " + sim::format_time(s.max_time)
+                                                   : "the run ended early at " + sim::format_time(r.simulated)});
   for (const auto& [name, m] : s.expect.outcomes) {
     const auto n = count_outcome(r, name);
     r.expectations.push_back({"outcomes." + name, m.matches(n), std::to_string(n) + " (expected " + m.text + ")"});
@@ -337,6 +340,48 @@ void judge(const Scenario& s, ScenarioResult& r) {
   }
 }
 
+// Looks at the run every few thousand kernel events: an interruption, or a limit reached, stops
+// the kernel at that event boundary.
+class Watch {
+ public:
+  static constexpr std::uint64_t kEvery = 4096;
+  Watch(sim::Kernel& kernel, const master::Master& master, const slave::Encoder& encoder,
+        const std::vector<std::unique_ptr<slave::Encoder>>& bus, const checker::TimingChecker& checker, const Limits& limits)
+      : kernel_(kernel), master_(master), encoder_(encoder), bus_(bus), checker_(checker), limits_(limits) {}
+  void check() {
+    if (const int signal = interrupt_signal(); signal != 0) {
+      interrupted = signal;
+      end("interrupted by " + signal_name(signal));
+    } else if (kernel_.events_processed() >= limits_.kernel_events) {
+      end("limit kernel_events reached: " + std::to_string(kernel_.events_processed()) + " kernel events, at most " +
+          std::to_string(limits_.kernel_events) + " (" + kKernelEventsOption + " or limits.kernel_events changes it)");
+    } else if (const std::uint64_t n = records(); n >= limits_.records) {
+      end("limit records reached: " + std::to_string(n) + " frames, measurements and violations kept, at most " +
+          std::to_string(limits_.records) + " (" + kRecordsOption + " or limits.records changes it)");
+    }
+  }
+  std::string reason;
+  int interrupted = 0;
+
+ private:
+  std::uint64_t records() const {
+    std::uint64_t n = master_.frames().size() + master_.measurements().size() + encoder_.frames().size() +
+                      checker_.violations().size();
+    for (const auto& e : bus_) n += e->frames().size();
+    return n;
+  }
+  void end(const std::string& why) {
+    reason = why + "; the run ended at " + sim::format_time(kernel_.now());
+    kernel_.stop();
+  }
+  sim::Kernel& kernel_;
+  const master::Master& master_;
+  const slave::Encoder& encoder_;
+  const std::vector<std::unique_ptr<slave::Encoder>>& bus_;
+  const checker::TimingChecker& checker_;
+  const Limits& limits_;
+};
+
 }  // namespace
 
 void judge_violations(const Expectations& expect, const std::vector<checker::Violation>& violations,
@@ -358,6 +403,8 @@ bool ScenarioResult::passed() const {
 }
 
 ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options) {
+  const Limits limits = resolve_limits(scenario, options.limits);
+  const Time max_time = limits.max_time ? std::min(*limits.max_time, scenario.max_time) : scenario.max_time;
   master::MasterParams master_params = scenario.master;
   master_params.seed = options.seed.value_or(scenario.seed);
 
@@ -391,7 +438,13 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   EventDriver events(kernel, line, encoder, &master, checker, scenario.events, master_params.seed,
                      sim::period_of(master_params.f_c));
   master.start();
-  kernel.run(scenario.max_time);
+  Watch watch(kernel, master, encoder, bus, checker, limits);
+  // Each record takes at least one event: looking as often as the lowest limit sees every one reached.
+  kernel.watch(std::min({Watch::kEvery, limits.kernel_events, limits.records}), sim::bind<&Watch::check>(&watch));
+  kernel.run(max_time);
+  if (watch.reason.empty() && max_time < scenario.max_time && !master.finished() && kernel.now() >= max_time)
+    watch.reason = "limit max_time reached: " + sim::format_time(max_time) + " simulated, less than the scenario's " +
+                   sim::format_time(scenario.max_time) + " (" + kMaxTimeOption + " changes it)";
   checker.finish();
   if (vcd) vcd->finish();
 
@@ -404,6 +457,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.simulated = kernel.now();
   r.events = kernel.events_processed();
   r.finished = master.finished();
+  r.incomplete = watch.reason;
+  r.interrupted = watch.interrupted;
   r.true_round_trip = line.round_trip(scenario.encoder.output_delay);
   r.f_c = master_params.f_c;
   r.position_bits = scenario.encoder.position_bits;

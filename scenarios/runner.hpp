@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "scenarios/limits.hpp"
 #include "scenarios/scenario.hpp"
 
 namespace endatsim::scenarios {
@@ -11,6 +12,7 @@ namespace endatsim::scenarios {
 struct RunOptions {
   std::optional<std::string> vcd_path;
   std::optional<std::uint64_t> seed;  // overrides the scenario's seed
+  Limits limits;                      // what the run may cost (see limits.hpp)
 };
 
 struct ExpectationResult {
@@ -28,6 +30,10 @@ struct ScenarioResult {
   Time simulated{0};
   std::uint64_t events = 0;
   bool finished = false;  // the script ran to its end within max_time
+  // Not empty when the run was ended early, by a limit of limits.hpp or an interruption: why,
+  // where and how to change it. Such a result is incomplete and does not pass.
+  std::string incomplete;
+  int interrupted = 0;  // the signal that ended it (interrupt.hpp), or 0
   Time true_round_trip{0};
   sim::Hertz f_c = 0;
   unsigned position_bits = 0;
@@ -69,7 +75,8 @@ PositionComparison compare_positions_with_encoder(const Scenario& scenario, cons
 void judge_violations(const Expectations& expect, const std::vector<checker::Violation>& violations,
                       std::vector<ExpectationResult>& out);
 
-// Runs the scenario to the end of its script and judges its expectations.
+// Runs the scenario to the end of its script and judges its expectations. Throws ScenarioError
+// before running when the scenario exceeds options.limits (resolve_limits).
 ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options = {});
 
 }  // namespace endatsim::scenarios

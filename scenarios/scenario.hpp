@@ -9,6 +9,7 @@
 #include "checker/timing_checker.hpp"
 #include "line/line.hpp"
 #include "master/master.hpp"
+#include "scenarios/limits.hpp"
 #include "slave/encoder.hpp"
 
 namespace endatsim::scenarios {
@@ -159,6 +160,7 @@ struct Scenario {
   std::optional<FieldNote> field;
   std::uint64_t seed = 1;
   Time max_time = sim::ms(1000);
+  ScenarioLimits limits;  // what the file asks for; resolve_limits gives a run's limits
   line::LineParams line;
   slave::EncoderParams encoder;
   std::vector<slave::EncoderParams> bus;  // further encoders on the same DATA/CLOCK bus (2.10)

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <thread>
 
+#include "scenarios/interrupt.hpp"
 #include "scenarios/loader.hpp"
 
 namespace endatsim::scenarios {
@@ -253,18 +254,24 @@ Scenario load_point(const json& base, const std::string& file, const std::vector
 }
 
 // Workers take the next index from a shared counter; each result lands at its own index, so
-// the order of completion never shows in the output.
-std::vector<SweepPoint> run_points(const std::vector<Scenario>& scenarios, const SweepOptions& options) {
-  const std::size_t n = scenarios.size();
+// the order of completion never shows in the output. An interruption stops them taking more.
+std::vector<SweepPoint> run_points(const json& base, const std::string& file, const std::vector<GridAxis>& grid,
+                                   const SweepOptions& options) {
+  const std::size_t n = grid_size(grid);
   std::vector<SweepPoint> points(n);
   std::vector<std::exception_ptr> errors(n);
   std::atomic<std::size_t> next{0};
   std::mutex progress_mutex;
   std::size_t done = 0;
+  RunOptions run_options;
+  run_options.limits = options.limits;
   const auto work = [&] {
-    for (std::size_t i = next++; i < n; i = next++) {
+    for (std::size_t i = next++; i < n && interrupt_signal() == 0; i = next++) {
       try {
-        points[i] = summarize(scenarios[i], run_scenario(scenarios[i]));
+        const Scenario scenario = load_point(base, file, grid, i, n);
+        const ScenarioResult r = run_scenario(scenario, run_options);
+        points[i] = summarize(scenario, r);
+        points[i].incomplete = r.incomplete;
       } catch (...) {
         errors[i] = std::current_exception();
       }
@@ -366,11 +373,23 @@ void check_grid(const json& base, const std::string& file, const std::vector<Gri
 Sweep run_sweep(const json& base, const std::string& file, const std::vector<GridAxis>& grid, const SweepOptions& options) {
   check_grid(base, file, grid);
   const std::size_t n = grid_size(grid);
-  // Load every point before running any, so that bad input stops the sweep at once.
-  std::vector<Scenario> scenarios;
-  scenarios.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) scenarios.push_back(load_point(base, file, grid, i, n));
-  Sweep sweep{file, scenarios.front().name, grid, run_points(scenarios, options)};
+  // Load every point before running any, so that bad input stops the sweep at once; one at a
+  // time, so that a large scenario over a large grid does not hold them all.
+  std::string name;
+  for (std::size_t i = 0; i < n && interrupt_signal() == 0; ++i) {
+    const Scenario s = load_point(base, file, grid, i, n);
+    try {
+      (void)resolve_limits(s, options.limits);
+    } catch (const ScenarioError& e) {
+      throw ScenarioError("grid point " + std::to_string(i + 1) + " of " + std::to_string(n) + " (" +
+                          describe_point(grid, values_at(grid, i)) + "): " + e.what());
+    }
+    if (i == 0) name = s.name;
+  }
+  Sweep sweep{file, name, grid, {}};
+  if ((sweep.interrupted = interrupt_signal()) != 0) return sweep;
+  sweep.points = run_points(base, file, grid, options);
+  sweep.interrupted = interrupt_signal();
   for (std::size_t i = 0; i < n; ++i) sweep.points[i].values = values_at(grid, i);
   return sweep;
 }
@@ -442,6 +461,8 @@ json sweep_json(const Sweep& sweep, const MaximumTable* maximum) {
                       {"other", p.other},
                       {"violations", p.violations},
                       {"checks", p.checks}});
+  for (std::size_t i = 0; i < sweep.points.size(); ++i)
+    if (!sweep.points[i].incomplete.empty()) points[i]["incomplete"] = sweep.points[i].incomplete;
   json out{{"scenario", sweep.file}, {"name", sweep.name}, {"grid", grid}, {"points", points}};
   if (maximum == nullptr) return out;
   json by = json::array(), rows = json::array();

@@ -39,6 +39,7 @@ struct SweepPoint {
   std::uint64_t other = 0;       // no_start_bit, type1_error
   std::uint64_t violations = 0;  // of any severity
   std::vector<std::string> checks;  // distinct names of the checks violated, sorted
+  std::string incomplete;           // the run ended early (ScenarioResult::incomplete); not clean
 };
 
 struct Sweep {
@@ -46,6 +47,9 @@ struct Sweep {
   std::string name;  // the scenario's name
   std::vector<GridAxis> grid;
   std::vector<SweepPoint> points;  // the Cartesian product, the last axis varying fastest
+  // An interruption (interrupt.hpp) stops the sweep between points and the points in flight at
+  // their next event boundary: the signal, and `points` holds only what ran (not for output).
+  int interrupted = 0;
 };
 
 struct SweepOptions {
@@ -53,6 +57,7 @@ struct SweepOptions {
   // Called after each point with (points done, points in all); from worker threads, one call
   // at a time.
   std::function<void(std::size_t, std::size_t)> progress;
+  Limits limits;  // for every point's run
 };
 
 // The scenario file as JSON, after it loaded as a scenario on its own.
@@ -65,7 +70,9 @@ nlohmann::json read_scenario_json(const std::string& path);
 void check_grid(const nlohmann::json& base, const std::string& file, const std::vector<GridAxis>& grid);
 
 // check_grid, then patches `base` at the grid's pointers for every point and loads it (so the loader validates
-// every value; its errors name the grid point), then runs all points on `options.jobs` threads.
+// every value; its errors name the grid point) and checks it against options.limits, then runs all points on
+// `options.jobs` threads, each point loaded again by the thread that runs it (memory stays that of
+// `jobs` scenarios, whatever the grid's size).
 Sweep run_sweep(const nlohmann::json& base, const std::string& file, const std::vector<GridAxis>& grid,
                 const SweepOptions& options = {});
 

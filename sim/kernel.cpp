@@ -47,8 +47,8 @@ void Kernel::run_fifo_snapshot() {
     const Action a = fifo_[fifo_head_];
     fifo_head_ = (fifo_head_ + 1) % fifo_.size();
     --fifo_size_;
-    ++events_processed_;
     a();
+    count_event();
   }
 }
 
@@ -89,8 +89,8 @@ void Kernel::run(Time until) {
       std::pop_heap(heap_.begin(), heap_.end(), Later{});
       const Action a = heap_.back().action;
       heap_.pop_back();
-      ++events_processed_;
       a();
+      count_event();
     } while (!heap_.empty() && heap_.front().when == t && !stopped_);
     settle();
     end_time_step();

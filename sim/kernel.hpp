@@ -66,6 +66,14 @@ class Kernel {
 
   std::uint64_t events_processed() const { return events_processed_; }
 
+  // Calls `action` after every `every` events (at an event boundary): a run's owner checks its
+  // limits there and may stop(). every == 0 turns it off.
+  void watch(std::uint64_t every, Action action) {
+    watch_every_ = every;
+    watch_ = action;
+    next_watch_ = every == 0 ? UINT64_MAX : events_processed_ + every;
+  }
+
   // Used by signals: commit this signal in the next update phase.
   void request_update(SignalBase* signal) { updates_.push_back(signal); }
 
@@ -86,11 +94,20 @@ class Kernel {
   void commit_updates();
   void run_fifo_snapshot();
   void push_fifo(Action a);
+  void count_event() {
+    if (++events_processed_ == next_watch_) {
+      next_watch_ += watch_every_;
+      watch_();
+    }
+  }
 
   Time now_{0};
   std::uint64_t seq_ = 0;
   std::uint64_t events_processed_ = 0;
   bool stopped_ = false;
+  std::uint64_t watch_every_ = 0;
+  std::uint64_t next_watch_ = UINT64_MAX;
+  Action watch_;
   std::vector<Entry> heap_;
   std::vector<Action> fifo_;  // ring buffer
   std::size_t fifo_head_ = 0;

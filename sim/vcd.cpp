@@ -1,5 +1,10 @@
 #include "sim/vcd.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <map>
 #include <stdexcept>
 
@@ -18,15 +23,21 @@ std::string short_id(std::size_t index) {
 
 }  // namespace
 
-VcdWriter::VcdWriter(Kernel& kernel, const std::string& path)
-    : kernel_(kernel), file_(std::fopen(path.c_str(), "wb")), path_(path) {
-  if (file_ == nullptr) throw std::runtime_error("cannot open VCD file '" + path + "' for writing");
+VcdWriter::VcdWriter(Kernel& kernel, const std::string& path) : kernel_(kernel), file_(nullptr), path_(path) {
+  // A character device (/dev/null) is written directly; a file through its part file.
+  struct stat st {};
+  const bool device = ::stat(path.c_str(), &st) == 0 && S_ISCHR(st.st_mode);
+  if (!device) part_ = path + ".part-" + std::to_string(::getpid());
+  errno = 0;
+  file_ = std::fopen(device ? path.c_str() : part_.c_str(), "wb");
+  if (file_ == nullptr)
+    throw std::runtime_error("cannot open VCD file '" + path + "' for writing: " + std::strerror(errno));
   buffer_.reserve(1 << 16);
 }
 
 VcdWriter::~VcdWriter() {
-  if (started_ && !finished_) finish();
   if (file_ != nullptr) std::fclose(file_);
+  if (!part_.empty()) std::remove(part_.c_str());
 }
 
 void VcdWriter::add(Signal& signal, const std::string& scope, const std::string& name) {
@@ -92,8 +103,18 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
 
 void VcdWriter::flush_if_full() {
   if (buffer_.size() < (1 << 16) - 256) return;
-  if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
-    throw std::runtime_error("write error on VCD file '" + path_ + "'");
+  write_buffer();
+}
+
+void VcdWriter::write_buffer() {
+  if (file_ == nullptr) return;
+  errno = 0;
+  if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size() || std::fflush(file_) != 0) {
+    const int error = errno;
+    std::fclose(file_);
+    file_ = nullptr;
+    throw std::runtime_error("write error on VCD file '" + path_ + "': " + (error != 0 ? std::strerror(error) : "short write"));
+  }
   buffer_.clear();
 }
 
@@ -105,9 +126,18 @@ void VcdWriter::finish() {
     buffer_ += std::to_string(kernel_.now().count());
     buffer_ += '\n';
   }
-  const bool ok = std::fwrite(buffer_.data(), 1, buffer_.size(), file_) == buffer_.size();
-  buffer_.clear();
-  if (std::fflush(file_) != 0 || !ok) throw std::runtime_error("write error on VCD file '" + path_ + "'");
+  write_buffer();
+  if (file_ == nullptr) throw std::runtime_error("write error on VCD file '" + path_ + "'");
+  errno = 0;
+  const int closed = std::fclose(file_);
+  const int error = errno;
+  file_ = nullptr;
+  if (closed != 0)
+    throw std::runtime_error("write error on VCD file '" + path_ + "': " + (error != 0 ? std::strerror(error) : "close failed"));
+  if (part_.empty()) return;
+  if (std::rename(part_.c_str(), path_.c_str()) != 0)
+    throw std::runtime_error("cannot write VCD file '" + path_ + "': " + std::strerror(errno));
+  part_.clear();
 }
 
 }  // namespace endatsim::sim

@@ -1,7 +1,10 @@
 // Event-driven VCD writer: records signals as they change and writes the committed values
 // once at the end of each time step. 1-bit wires, short identifiers, no $comment after
 // $enddefinitions (sigrok reads nothing otherwise), buffered output, no wall-clock date
-// so that the same run gives the same bytes.
+// so that the same run gives the same bytes. Written to a part file beside the path and renamed
+// into place by finish(), so that no half-written VCD ever carries the name; every write and the
+// close are checked (finish() throws, naming the path), and the destructor never throws: without
+// finish() the part file goes.
 #pragma once
 
 #include <cstdio>
@@ -39,10 +42,12 @@ class VcdWriter {
   static void on_change(void* probe, std::uint64_t value);
   static void on_step_end(void* self, std::uint64_t);
   void flush_if_full();
+  void write_buffer();
 
   Kernel& kernel_;
   std::FILE* file_;
   std::string path_;
+  std::string part_;
   std::deque<Probe> probes_;  // stable addresses: each is its signal's listener context
   std::vector<std::size_t> dirty_;
   std::string buffer_;

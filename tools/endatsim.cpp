@@ -3,7 +3,8 @@
 // JSON, SVG chart); validates scenario files; draws frame diagrams (SVG); prints the timing table.
 // Results go to stdout, errors and progress to stderr; colour only on a terminal.
 // Exit codes: 0 every expectation holds (sweep, validate, diagram: done), 1 one does not,
-// 2 bad input or usage.
+// 2 bad input or usage, 3 a limit ended a run early (its results are marked incomplete),
+// 128 + N interrupted by signal N (130 SIGINT, 143 SIGTERM; the outputs say incomplete or are removed).
 #include <unistd.h>
 
 #include <boost/program_options.hpp>
@@ -27,6 +28,7 @@
 #include "scenarios/decoder_tables.hpp"
 #include "scenarios/declarations.hpp"
 #include "scenarios/diagram.hpp"
+#include "scenarios/interrupt.hpp"
 #include "scenarios/junit.hpp"
 #include "scenarios/output_file.hpp"
 #include "scenarios/scenarios.hpp"
@@ -43,16 +45,21 @@ namespace {
 constexpr int kPass = 0;
 constexpr int kFail = 1;
 constexpr int kBadInput = 2;
+constexpr int kIncomplete = 3;
+int interrupted_status(int signal) { return 128 + signal; }
 
+const char* const kLimitsUsage =
+    "[--max-time TIME] [--max-kernel-events N] [--max-script-frames N] [--max-events N] [--max-records N]";
 const char* const kRunUsage =
     "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH] [--log PATH] [--log-json PATH]\n"
-    "                    [--seed N] [--verbose|--quiet] [--color auto|always|never]\n";
+    "                    [--seed N] [--verbose|--quiet] [--color auto|always|never]\n"
+    "                    [--max-time TIME] [--max-kernel-events N] [--max-script-frames N] [--max-events N] [--max-records N]\n";
 const char* const kSweepUsage =
     "usage: endatsim sweep FILE --grid POINTER=V1,V2,...|START:STOP:STEP [--grid ...] [--maximize POINTER]\n"
-    "                      [--csv PATH] [--json PATH] [--svg PATH] [--jobs N] [--verbose|--quiet]\n";
-const char* const kValidateUsage = "usage: endatsim validate FILE... [--quiet]\n";
+    "                      [--csv PATH] [--json PATH] [--svg PATH] [--jobs N] [--verbose|--quiet] [limits as run]\n";
+const char* const kValidateUsage = "usage: endatsim validate FILE... [--quiet] [limits as run]\n";
 const char* const kDiagramUsage =
-    "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet]\n";
+    "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet] [limits as run]\n";
 const char* const kChecksUsage = "usage: endatsim checks [--json | --python]\n";
 const char* const kCheckUsage =
     "usage: endatsim check FILE... --clock NAME (--data NAME | --data-out NAME --data-in NAME)\n"
@@ -78,8 +85,20 @@ const char* const kRunHelp =
     "sent and received, CRC, additional data, outcome, violations), --log-json the same as JSON\n"
     "lines; PATH - is stdout. --junit writes JUnit XML, one test case per scenario.\n"
     "\n"
+    "\n"
+    "Limits: every run is bounded. --max-time caps each scenario's max_time; --max-kernel-events\n"
+    "(default 20000000), --max-script-frames (frames and polls the script asks for, default 100000),\n"
+    "--max-events (entries of the events list, default 1000) and --max-records (frames,\n"
+    "measurements and violations kept, default 50000) grant what a scenario may use; its \"limits\"\n"
+    "key may lower them. A file that asks for more is refused before anything runs (exit 2); a run\n"
+    "that reaches a limit ends there, its results marked incomplete (exit 3).\n"
+    "SIGINT or SIGTERM stops at the next event boundary: the outputs say incomplete (exit 128 + N).\n"
+    "Output paths are checked before anything runs: not an input, not given twice, not a directory\n"
+    "or FIFO, writable; each output replaces its file only when complete.\n"
+    "\n"
     "Exit status: 0 when every expectation of every scenario holds, 1 when one does not,\n"
-    "2 for bad input (the message names the file, the JSON path and what was expected) or usage.\n";
+    "2 for bad input (the message names the file, the JSON path and what was expected) or usage,\n"
+    "3 when a limit ended a run, 130 (SIGINT) or 143 (SIGTERM) when interrupted.\n";
 
 const char* const kSweepHelp =
     "sweep: runs one scenario at every point of a grid: each --grid names a key by JSON pointer\n"
@@ -92,13 +111,16 @@ const char* const kSweepHelp =
     "and equals the encoder's position, and no check reported anything.\n"
     "--maximize POINTER prints, for each combination of the other keys, the largest clean value of\n"
     "POINTER; --svg draws it over the one other numeric key. --verbose lists every point. A\n"
-    "progress counter goes to stderr when stderr is a terminal. Exit status: 0 when the sweep ran,\n"
-    "2 for bad input (the message names the grid point) or usage.\n";
+    "progress counter goes to stderr when stderr is a terminal. Every point runs within the limits of\n"
+    "run (--max-* options); a point that reaches one is not clean and marked incomplete in --json.\n"
+    "Exit status: 0 when the sweep ran, 2 for bad input (the message names the grid point) or usage,\n"
+    "3 when a limit ended a point's run, 128 + N when interrupted by signal N (the outputs are removed).\n";
 
 const char* const kValidateHelp =
     "validate: loads scenario files without running them, as run would, and prints 'valid FILE'\n"
     "for each good one on stdout; errors (file, JSON path, what was expected) go to stderr.\n"
-    "The JSON Schema schema/scenario.schema.json describes the same format for editors.\n"
+    "The JSON Schema schema/scenario.schema.json describes the same format for editors. A file that\n"
+    "asks for more than the limits (--max-* options, as run) grant is not valid.\n"
     "Exit status: 0 when every file is valid, 2 when one is not or for usage errors.\n";
 
 const char* const kDiagramHelp =
@@ -107,8 +129,10 @@ const char* const kDiagramHelp =
     "as an SVG timing diagram: CLOCK and DATA at the master's and the encoder's pins, driver\n"
     "enables, the master's sampling instants, the fields (mode bits, start bit, F1, F2, position,\n"
     "CRC), the timing parameters t_ST, t_cal, t_D and t_m as dimension arrows with their measured\n"
-    "values, and the checker's violations in red. The same input gives the same bytes.\n"
-    "Exit status: 0 when the diagram was written, 2 for bad input or usage.\n";
+    "values, and the checker's violations in red. The same input gives the same bytes. The run's\n"
+    "waveform goes through a temporary directory private to the process, removed afterwards.\n"
+    "Exit status: 0 when the diagram was written, 2 for bad input or usage, 3 when a limit (as run)\n"
+    "ended the run, 128 + N when interrupted by signal N (no diagram is written).\n";
 
 const char* const kChecksHelp =
     "checks: prints the checker's timing table as Markdown: one row per check name (the names\n"
@@ -146,7 +170,8 @@ const char* const kCheckHelp =
     "than the capture's resolution (the sample period of .sr and CSV; VCD times are exact unless\n"
     "--resolution says otherwise) is undecided, never passed or failed.\n"
     "Exit status: 0 when every row conforms, 1 when one is broken or undecided, 2 for bad input\n"
-    "(a capture that cannot be read, or in which CLOCK never begins a frame) or usage.\n";
+    "(a capture that cannot be read, or in which CLOCK never begins a frame) or usage, 128 + N when\n"
+    "interrupted by signal N (the captures not judged are listed as such in --json and --junit).\n";
 
 enum class Command { Run, Sweep, Validate, Diagram, Check, Checks };
 
@@ -166,6 +191,14 @@ const CommandInfo kCommands[] = {
     {Command::Checks, "checks", kChecksUsage, kChecksHelp},
 };
 
+void add_limit_options(po::options_description& o) {
+  o.add_options()("max-time", po::value<std::string>(), "cap each scenario's max_time (simulated)")(
+      "max-kernel-events", po::value<std::string>(), "kernel events a run may take (default 20000000)")(
+      "max-script-frames", po::value<std::string>(), "frames and polls a script may ask for (default 100000)")(
+      "max-events", po::value<std::string>(), "entries a scenario's events list may have (default 1000)")(
+      "max-records", po::value<std::string>(), "frames, measurements and violations a run may keep (default 50000)");
+}
+
 // Each command's own options; --help, --version, --quiet everywhere.
 po::options_description options_of(Command c) {
   po::options_description o(std::string("Options"));
@@ -182,6 +215,7 @@ po::options_description options_of(Command c) {
           "log-json", po::value<std::string>(), "write the transaction log as JSON lines (- for stdout)")(
           "seed", po::value<std::string>(), "override every scenario's seed (0 .. 2^64-1)")(
           "color", po::value<std::string>(), "auto (default: only on a terminal, not with NO_COLOR), always, never");
+      add_limit_options(o);
       break;
     case Command::Sweep:
       o.add_options()("verbose,v", "list every grid point")(
@@ -191,6 +225,7 @@ po::options_description options_of(Command c) {
           "json", po::value<std::string>(), "write the points as JSON to this file")(
           "svg", po::value<std::string>(), "write a chart of the --maximize table to this file")(
           "jobs", po::value<std::string>(), "threads (default: the number of cores)");
+      add_limit_options(o);
       break;
     case Command::Check:
       o.add_options()("verbose,v", "print every decoded frame and every violation")(
@@ -216,6 +251,7 @@ po::options_description options_of(Command c) {
           "log", po::value<std::string>(), "write the decoded frames, one line each (- for stdout)");
       break;
     case Command::Validate:
+      add_limit_options(o);
       break;
     case Command::Checks:
       o.add_options()("json", "print the decoder tables as JSON")(
@@ -227,6 +263,7 @@ po::options_description options_of(Command c) {
           "from", po::value<std::string>(), "start of a time window, e.g. \"1.2 ms\"")(
           "to", po::value<std::string>(), "end of the time window")(
           "seed", po::value<std::string>(), "override the scenario's seed");
+      add_limit_options(o);
       break;
   }
   return o;
@@ -237,6 +274,38 @@ std::optional<std::uint64_t> parse_uint(const std::string& text) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec != std::errc{} || end != text.data() + text.size() || text.empty()) return std::nullopt;
   return v;
+}
+
+// The --max-* options into `limits`; a message and false when one is not a number in range.
+bool parse_limits(const po::variables_map& vm, const char* command, scenarios::Limits& limits) {
+  if (vm.count("max-time") != 0) {
+    const auto text = vm["max-time"].as<std::string>();
+    try {
+      limits.max_time = sim::parse_duration(text);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "endatsim " << command << ": --max-time: " << e.what() << "\n";
+      return false;
+    }
+    if (*limits.max_time <= sim::Time::zero()) {
+      std::cerr << "endatsim " << command << ": --max-time expects a duration above 0, got '" << text << "'\n";
+      return false;
+    }
+  }
+  for (auto [name, field] : {std::pair{"max-kernel-events", &scenarios::Limits::kernel_events},
+                             {"max-script-frames", &scenarios::Limits::script_frames},
+                             {"max-events", &scenarios::Limits::events},
+                             {"max-records", &scenarios::Limits::records}}) {
+    if (vm.count(name) == 0) continue;
+    const auto text = vm[name].as<std::string>();
+    const auto v = parse_uint(text);
+    if (!v || *v == 0) {
+      std::cerr << "endatsim " << command << ": --" << name << " expects an integer 1 .. 18446744073709551615, got '"
+                << scenarios::trimmed(text) << "'\n";
+      return false;
+    }
+    limits.*field = *v;
+  }
+  return true;
 }
 
 // Colour for the summary's verdicts, only where a person reads it.
@@ -266,21 +335,22 @@ std::string colorize(const std::string& text) {
   return out;
 }
 
-// A log destination: "-" is stdout, otherwise a file opened once for all scenarios.
+// A log destination: "-" is stdout, otherwise a file opened once for all scenarios (before any
+// runs) and put in place when the run ends.
 class LogSink {
  public:
   explicit LogSink(const std::optional<std::string>& path) {
-    if (!path || *path == "-") return;
-    file_.open(*path, std::ios::binary);
-    if (!file_) throw std::runtime_error("cannot open '" + *path + "' for writing");
+    if (path) file_.emplace(*path);
   }
   void write(const std::string& text) {
-    if (file_.is_open()) file_ << text;
-    else std::cout << text;
+    if (file_) file_->stream() << text;
+  }
+  void commit() {
+    if (file_) file_->commit();
   }
 
  private:
-  std::ofstream file_;
+  std::optional<StreamedFile> file_;
 };
 
 struct Options {
@@ -295,6 +365,7 @@ struct Options {
   bool verbose = false;
   bool quiet = false;
   bool color = false;
+  scenarios::Limits limits;
 };
 
 // A GTKWave save file beside the VCD: opens with the signals shown, grouped by end.
@@ -337,25 +408,49 @@ int run(const Options& o) {
   std::set<std::string> names;
   for (const auto& file : o.files) {
     loaded.push_back(scenarios::load_scenario_file(file));
+    (void)scenarios::resolve_limits(loaded.back(), o.limits);  // what the file shows, refused before anything runs
     if (!names.insert(loaded.back().name).second && o.vcd)
-      throw scenarios::ScenarioError(file + ": at /name: another scenario is also named \"" + loaded.back().name +
-                                     "\"; their waveforms would overwrite each other in " + *o.vcd);
+      throw scenarios::ScenarioError(file + ": at /name: another scenario is also named \"" +
+                                     scenarios::trimmed(loaded.back().name) + "\"; their waveforms would overwrite each other in " + *o.vcd);
   }
   const bool many = loaded.size() > 1;
+  std::vector<scenarios::OutputPath> outputs;
+  if (o.vcd) outputs.push_back({"--vcd", *o.vcd, many});
+  if (o.vcd && o.gtkw && !many) outputs.push_back({"--gtkw", std::filesystem::path(*o.vcd).replace_extension(".gtkw").string()});
+  if (o.json) outputs.push_back({"--json", *o.json});
+  if (o.junit) outputs.push_back({"--junit", *o.junit});
+  if (o.log) outputs.push_back({"--log", *o.log});
+  if (o.log_json) outputs.push_back({"--log-json", *o.log_json});
+  scenarios::check_output_paths(o.files, "a scenario file", outputs);
+  // Every file output opened before anything runs; each replaces its file only when complete.
+  std::optional<StreamedFile> json_file, junit_file;
+  if (o.json) json_file.emplace(*o.json);
+  if (o.junit) junit_file.emplace(*o.junit);
   LogSink log(o.log), log_json(o.log_json);
   // Progress only where someone watches it: not in logs, pipes or CI.
   const bool progress = !o.quiet && isatty(STDERR_FILENO) != 0;
   nlohmann::json all = nlohmann::json::array();
   std::vector<scenarios::ScenarioResult> results;
+  std::vector<scenarios::NotRun> not_run;
   bool passed = true;
+  std::string incomplete;  // the first reason a run ended early
+  int interrupted = 0;
   for (std::size_t i = 0; i < loaded.size(); ++i) {
     const auto& s = loaded[i];
+    if (interrupted != 0 || scenarios::interrupt_signal() != 0) {
+      interrupted = scenarios::interrupt_signal();
+      not_run.push_back({s.file, s.name, "not run: interrupted by " + scenarios::signal_name(interrupted)});
+      continue;
+    }
     scenarios::RunOptions ro;
     ro.seed = o.seed;
+    ro.limits = o.limits;
     if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", many);
     if (o.vcd && o.gtkw) write_gtkw(*ro.vcd_path);
     auto result = progress ? run_with_progress(s, ro, i + 1, loaded.size()) : scenarios::run_scenario(s, ro);
     passed = passed && result.passed();
+    if (!result.incomplete.empty() && incomplete.empty()) incomplete = result.name + ": " + result.incomplete;
+    if (result.interrupted != 0) interrupted = result.interrupted;
     if (!o.quiet || !result.passed()) {
       std::ostringstream summary;
       scenarios::write_summary(summary, result, o.verbose);
@@ -366,13 +461,42 @@ int run(const Options& o) {
     all.push_back(scenarios::to_json(result));
     if (o.junit) results.push_back(std::move(result));
   }
-  if (o.junit) write_file(*o.junit, scenarios::junit_xml(results));
-  if (o.json)
-    write_file(*o.json,
-               scenarios::json_file_text(nlohmann::json{{"endatsim", ENDATSIM_VERSION}, {"passed", passed}, {"scenarios", all}}));
+  if (interrupted != 0 && incomplete.empty()) incomplete = "interrupted by " + scenarios::signal_name(interrupted);
+  if (!incomplete.empty()) {
+    log.write("# incomplete: " + incomplete + "\n");
+    for (const auto& n : not_run) log.write("# " + n.file + ": " + n.reason + "\n");
+  }
+  if (junit_file) {
+    junit_file->stream() << scenarios::junit_xml(results, "endatsim", not_run);
+    junit_file->commit();
+  }
+  if (json_file) {
+    nlohmann::json j{{"endatsim", ENDATSIM_VERSION}, {"passed", passed && incomplete.empty()}, {"scenarios", all}};
+    if (!incomplete.empty()) {
+      j["complete"] = false;
+      j["incomplete"] = incomplete;
+      nlohmann::json files = nlohmann::json::array();
+      for (const auto& n : not_run) files.push_back(n.file);
+      if (!not_run.empty()) j["not_run"] = files;
+    }
+    json_file->stream() << scenarios::json_file_text(j);
+    json_file->commit();
+  }
+  log.commit();
+  log_json.commit();
   if (!o.quiet) {
-    const std::string verdict = passed ? "all scenarios passed" : "some scenarios failed";
-    std::cout << (o.color ? (passed ? "\033[32m" : "\033[31m") + verdict + "\033[0m" : verdict) << "\n";
+    const std::string verdict = !incomplete.empty() ? "incomplete: " + incomplete
+                                : passed            ? "all scenarios passed"
+                                                    : "some scenarios failed";
+    std::cout << (o.color ? (passed && incomplete.empty() ? "\033[32m" : "\033[31m") + verdict + "\033[0m" : verdict) << "\n";
+  }
+  if (interrupted != 0) {
+    std::cerr << "endatsim run: interrupted by " << scenarios::signal_name(interrupted) << "; the outputs say incomplete\n";
+    return interrupted_status(interrupted);
+  }
+  if (!incomplete.empty()) {
+    std::cerr << "endatsim run: " << incomplete << "\n";
+    return kIncomplete;
   }
   return passed ? kPass : kFail;
 }
@@ -387,11 +511,13 @@ struct SweepArgs {
   unsigned jobs = 1;
   bool quiet = false;
   bool verbose = false;
+  scenarios::Limits limits;
 };
 
 scenarios::SweepOptions sweep_run_options(const SweepArgs& o) {
   scenarios::SweepOptions so;
   so.jobs = o.jobs;
+  so.limits = o.limits;
   // A progress counter only where someone watches it: not in logs, pipes or CI.
   if (!o.quiet && isatty(STDERR_FILENO) != 0)
     so.progress = [](std::size_t done, std::size_t total) { std::cerr << "\r" << done << "/" << total << std::flush; };
@@ -409,37 +535,14 @@ void write_sweep_outputs(const SweepArgs& o, const scenarios::Sweep& result,
   if (o.svg) write_file(*o.svg, scenarios::maximum_svg(result, *table));
 }
 
-// Every output path is opened before the sweep runs, so that a typo in a directory shows at
-// once and not after all the points ran. Opened for appending, which leaves an existing file as
-// it is; a file the probe created goes again.
-void check_sweep_outputs(const SweepArgs& o) {
-  namespace fs = std::filesystem;
-  std::vector<std::pair<std::string, std::string>> outputs;  // option, path
-  if (o.csv) outputs.emplace_back("--csv", *o.csv);
-  if (o.json) outputs.emplace_back("--json", *o.json);
-  if (o.svg) outputs.emplace_back("--svg", *o.svg);
-  const auto same = [](const std::string& a, const std::string& b) {
-    std::error_code ea, eb;
-    const auto ca = fs::weakly_canonical(a, ea), cb = fs::weakly_canonical(b, eb);
-    return ea || eb ? a == b : ca == cb;
-  };
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    const auto& [option, path] = outputs[i];
-    for (std::size_t j = 0; j < i; ++j)
-      if (same(outputs[j].second, path))
-        throw std::runtime_error(outputs[j].first + " " + outputs[j].second + " and " + option + " " + path +
-                                 ": the same file");
-    if (same(o.file, path)) throw std::runtime_error(option + " " + path + ": that is the scenario file");
-    std::error_code ec;
-    const bool existed = fs::exists(path, ec);
-    bool ok = false;
-    {
-      std::ofstream probe(path, std::ios::binary | std::ios::app);
-      ok = static_cast<bool>(probe);
-    }
-    if (!ok) throw std::runtime_error(option + " " + path + ": cannot open the file for writing");
-    if (!existed) fs::remove(path, ec);
-  }
+// Every output path is checked before the sweep runs, so that a typo in a directory shows at
+// once and not after all the points ran.
+std::vector<scenarios::OutputPath> sweep_outputs(const SweepArgs& o) {
+  std::vector<scenarios::OutputPath> outputs;
+  if (o.csv) outputs.push_back({"--csv", *o.csv});
+  if (o.json) outputs.push_back({"--json", *o.json});
+  if (o.svg) outputs.push_back({"--svg", *o.svg});
+  return outputs;
 }
 
 int sweep(const SweepArgs& o) {
@@ -453,10 +556,18 @@ int sweep(const SweepArgs& o) {
     const auto table = scenarios::maximize(empty, *o.maximize);
     if (o.svg) (void)scenarios::maximum_svg(empty, table);
   }
-  check_sweep_outputs(o);
+  const auto outputs = sweep_outputs(o);
+  scenarios::check_output_paths({o.file}, "the scenario file", outputs);
   const auto options = sweep_run_options(o);
   const auto result = scenarios::run_sweep(base, o.file, grid, options);
   if (options.progress) std::cerr << "\n";
+  if (result.interrupted != 0) {
+    // Nothing written: an earlier sweep's outputs go too, so that none looks current.
+    std::cerr << "endatsim sweep: interrupted by " << scenarios::signal_name(result.interrupted) << "; no output written";
+    for (const auto& path : scenarios::remove_outputs(outputs)) std::cerr << "; removed " << path;
+    std::cerr << "\n";
+    return interrupted_status(result.interrupted);
+  }
   std::optional<scenarios::MaximumTable> table;
   if (o.maximize) table = scenarios::maximize(result, *o.maximize);
   write_sweep_outputs(o, result, table);
@@ -470,6 +581,14 @@ int sweep(const SweepArgs& o) {
     }
   if (!o.quiet) std::cout << result.points.size() << " points, " << clean << " clean\n";
   if (table) std::cout << scenarios::maximum_text(result, *table);
+  const auto incomplete =
+      std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return !p.incomplete.empty(); });
+  if (incomplete != 0) {
+    const auto first = std::find_if(result.points.begin(), result.points.end(), [](const auto& p) { return !p.incomplete.empty(); });
+    std::cerr << "endatsim sweep: " << incomplete << " points ended early, the first at grid point "
+              << (first - result.points.begin()) + 1 << ": " << first->incomplete << "\n";
+    return kIncomplete;
+  }
   return kPass;
 }
 
@@ -512,6 +631,7 @@ int sweep_command(const po::variables_map& vm) {
   }
   o.quiet = vm.count("quiet") != 0;
   o.verbose = vm.count("verbose") != 0;
+  if (!parse_limits(vm, "sweep", o.limits)) return kBadInput;
   return sweep(o);
 }
 
@@ -560,6 +680,7 @@ int run_command(const po::variables_map& vm) {
     return kBadInput;
   }
   o.color = use_color(color);
+  if (!parse_limits(vm, "run", o.limits)) return kBadInput;
   return run(o);
 }
 
@@ -569,11 +690,14 @@ int validate_command(const po::variables_map& vm) {
     std::cerr << "endatsim validate: no scenario file given\n" << kValidateUsage;
     return kBadInput;
   }
+  scenarios::Limits limits;
+  if (!parse_limits(vm, "validate", limits)) return kBadInput;
   bool ok = true;
   for (const auto& file : files) {
     try {
       const auto s = scenarios::load_scenario_file(file);
-      if (vm.count("quiet") == 0) std::cout << "valid " << file << " (" << s.name << ")\n";
+      (void)scenarios::resolve_limits(s, limits);
+      if (vm.count("quiet") == 0) std::cout << "valid " << file << " (" << scenarios::trimmed(s.name) << ")\n";
     } catch (const scenarios::ScenarioError& e) {
       std::cerr << "endatsim: " << e.what() << "\n";
       ok = false;
@@ -619,9 +743,24 @@ int diagram_command(const po::variables_map& vm) {
       return kBadInput;
     }
   }
+  if (!parse_limits(vm, "diagram", d.limits)) return kBadInput;
   const auto scenario = scenarios::load_scenario_file(files.front());
-  const auto diagram = scenarios::frame_diagram(scenario, d);
-  write_file(*svg, diagram.svg);
+  (void)scenarios::resolve_limits(scenario, d.limits);
+  const std::vector<scenarios::OutputPath> outputs{{"--svg", *svg}};
+  scenarios::check_output_paths(files, "the scenario file", outputs);
+  StreamedFile out(*svg);
+  scenarios::Diagram diagram;
+  try {
+    diagram = scenarios::frame_diagram(scenario, d);
+  } catch (const scenarios::Interrupted& e) {
+    std::cerr << "endatsim diagram: " << e.what() << "; no diagram written\n";
+    return interrupted_status(e.signal());
+  } catch (const scenarios::LimitReached& e) {
+    std::cerr << "endatsim diagram: " << e.what() << "; no diagram written\n";
+    return kIncomplete;
+  }
+  out.stream() << diagram.svg;
+  out.commit();
   if (vm.count("quiet") == 0) std::cout << diagram.caption << "\n";
   return kPass;
 }
@@ -773,6 +912,18 @@ int check_command(const po::variables_map& vm) {
   }
   if (!check_duration(vm, "resolution", sim::ms(1), o.resolution)) return kBadInput;
   const auto json = string_option(vm, "json"), log = string_option(vm, "log"), junit = string_option(vm, "junit");
+  {
+    std::vector<std::string> inputs = files;
+    if (const auto e = string_option(vm, "encoder")) inputs.push_back(*e);
+    std::vector<scenarios::OutputPath> outputs;
+    if (json) outputs.push_back({"--json", *json});
+    if (junit) outputs.push_back({"--junit", *junit});
+    if (log) outputs.push_back({"--log", *log});
+    scenarios::check_output_paths(inputs, "an input file", outputs);
+  }
+  std::optional<StreamedFile> json_file, junit_file;
+  if (json) json_file.emplace(*json);
+  if (junit) junit_file.emplace(*junit);
   // Each capture in turn; a bad one is reported and the others still checked. The outputs cover
   // the captures that could be read.
   // Progress on a terminal, at most twice a second, erased before the summary.
@@ -798,7 +949,15 @@ int check_command(const po::variables_map& vm) {
   // The log's header names every option that relaxes a row, as each report does.
   for (const auto& r : checker::relaxations(o.checker))
     if (log_file) log_file->stream() << "# relaxed by option: " << r.check << " (" << r.by << ")\n";
+  int interrupted = 0;
   for (const auto& file : files) {
+    if (interrupted == 0) interrupted = scenarios::interrupt_signal();
+    if (interrupted != 0) {
+      const std::string why = file + ": interrupted by " + scenarios::signal_name(interrupted) + ": not judged";
+      if (log_file) log_file->stream() << "# " << why << "\n";
+      unreadable.push_back({file, why});
+      continue;
+    }
     o.file = file;
     current = file;
     if (log_file && files.size() > 1) log_file->stream() << "# " << file << "\n";
@@ -807,6 +966,13 @@ int check_command(const po::variables_map& vm) {
       results.push_back(scenarios::check_capture(o));
       if (progress_shown) std::cerr << "\r\033[K" << std::flush;
       progress_shown = false;
+    } catch (const scenarios::Interrupted& e) {
+      if (progress_shown) std::cerr << "\n";
+      progress_shown = false;
+      interrupted = e.signal();
+      if (log_file) log_file->stream() << "# " << e.what() << "\n";
+      unreadable.push_back({file, e.what()});
+      continue;
     } catch (const capture::CaptureError& e) {
       if (progress_shown) std::cerr << "\n";
       progress_shown = false;
@@ -819,9 +985,9 @@ int check_command(const po::variables_map& vm) {
     conforms = conforms && r.conforms();
     if (vm.count("quiet") == 0 || !r.conforms()) scenarios::write_capture_summary(std::cout, r, vm.count("verbose") != 0);
   }
-  if (json) {
+  if (json_file) {
     if (files.size() == 1 && results.size() == 1) {
-      write_file(*json, scenarios::json_file_text(scenarios::capture_json(results.front())));
+      json_file->stream() << scenarios::json_file_text(scenarios::capture_json(results.front()));
     } else {
       // Every capture named, in order: a judged one, or one that could not be read.
       nlohmann::json all = nlohmann::json::array();
@@ -835,11 +1001,25 @@ int check_command(const po::variables_map& vm) {
           all.push_back(scenarios::capture_json(*judged++));
         }
       }
-      write_file(*json, scenarios::json_file_text(nlohmann::json{{"captures", all}}));
+      nlohmann::json j{{"captures", all}};
+      if (interrupted != 0) {
+        j["complete"] = false;
+        j["incomplete"] = "interrupted by " + scenarios::signal_name(interrupted);
+      }
+      json_file->stream() << scenarios::json_file_text(j);
     }
+    json_file->commit();
   }
-  if (junit) write_file(*junit, scenarios::junit_xml(results, unreadable));
+  if (junit_file) {
+    junit_file->stream() << scenarios::junit_xml(results, unreadable);
+    junit_file->commit();
+  }
   if (log_file) log_file->commit();
+  if (interrupted != 0) {
+    std::cerr << "endatsim check: interrupted by " << scenarios::signal_name(interrupted)
+              << "; the outputs list the captures not judged\n";
+    return interrupted_status(interrupted);
+  }
   if (!unreadable.empty()) return kBadInput;
   return conforms ? kPass : kFail;
 }
@@ -931,6 +1111,7 @@ int main(int argc, char** argv) {
     std::cout << "endatsim " << ENDATSIM_VERSION << "\n";
     return kPass;
   }
+  if (info->command != Command::Checks && info->command != Command::Validate) scenarios::install_interrupt_handlers();
   try {
     switch (info->command) {
       case Command::Run: return run_command(vm);

@@ -1,0 +1,77 @@
+#include "scenarios/limits.hpp"
+
+#include <algorithm>
+
+#include "scenarios/loader.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace endatsim::scenarios {
+namespace {
+
+std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+
+std::uint64_t saturating_mul(std::uint64_t a, std::uint64_t b) {
+  return a != 0 && b > UINT64_MAX / a ? UINT64_MAX : a * b;
+}
+
+std::uint64_t frames_of(const master::Operation& op) {
+  return saturating_mul(std::max<std::uint64_t>(op.count, 1), 1 + std::uint64_t{op.continuous_words});
+}
+
+[[noreturn]] void refuse(const Scenario& s, const std::string& path, const std::string& message) {
+  throw ScenarioError(s.file + ": at " + path + ": " + message);
+}
+
+std::uint64_t resolve(const Scenario& s, const std::optional<std::uint64_t>& asked, std::uint64_t granted,
+                      const char* key, const char* option) {
+  if (!asked) return granted;
+  if (*asked > granted)
+    refuse(s, std::string("/limits/") + key,
+           "expected at most " + std::to_string(granted) + " (the limit " + key + " this run grants; " + option +
+               " raises it), got " + std::to_string(*asked));
+  return *asked;
+}
+
+}  // namespace
+
+std::uint64_t script_frames(const Scenario& scenario) {
+  std::uint64_t total = 0;
+  for (const auto& op : scenario.script) total = saturating_add(total, frames_of(op));
+  return total;
+}
+
+Limits resolve_limits(const Scenario& s, const Limits& granted) {
+  Limits l = granted;
+  l.kernel_events = resolve(s, s.limits.kernel_events, granted.kernel_events, "kernel_events", kKernelEventsOption);
+  l.script_frames = resolve(s, s.limits.script_frames, granted.script_frames, "script_frames", kScriptFramesOption);
+  l.events = resolve(s, s.limits.events, granted.events, "events", kEventsOption);
+  l.records = resolve(s, s.limits.records, granted.records, "records", kRecordsOption);
+  if (s.events.size() > l.events)
+    refuse(s, "/events",
+           "expected at most " + std::to_string(l.events) + " events (limit events; " + kEventsOption +
+               " or limits.events changes it), got " + std::to_string(s.events.size()));
+  const std::uint64_t frames = script_frames(s);
+  if (frames > l.script_frames) {
+    // The entry that asks for the most, so that the file shows where.
+    std::size_t largest = 0;
+    for (std::size_t i = 1; i < s.script.size(); ++i)
+      if (frames_of(s.script[i]) > frames_of(s.script[largest])) largest = i;
+    refuse(s, "/script",
+           "expected at most " + std::to_string(l.script_frames) +
+               " frames and polls in all (limit script_frames: count x (1 + continuous_words), max_polls; " +
+               kScriptFramesOption + " or limits.script_frames changes it), got " +
+               (frames == UINT64_MAX ? std::string("more than 2^64") : std::to_string(frames)) + ", " +
+               std::to_string(frames_of(s.script[largest])) + " of them at /script/" + std::to_string(largest));
+  }
+  return l;
+}
+
+std::string trimmed(const std::string& text, std::size_t max) {
+  if (text.size() <= max) return text;
+  std::size_t cut = max;
+  // Not inside a UTF-8 sequence.
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+}  // namespace endatsim::scenarios
