@@ -1147,18 +1147,38 @@ namespace {
 // The encoder pins of a scenario's VCD written again at `timescale` femtoseconds per unit, with
 // RE1 of the `nth` frame whose first LOW phase lasts 1.5 .. 2.2 us (a compensated frame's t_ST;
 // the 200 kHz measurement frames' LOW phases last 2.5 us) moved by `shift_fs` femtoseconds.
-void to_femtoseconds(const fs::path& from, const fs::path& to, int nth, std::int64_t shift_fs) {
-  auto reader = capture::open_vcd(from.string());
+// The encoder pins' changes of a scenario's VCD: time (ps), pin (0 clock, 1 data, 2 the driver's
+// enable), level.
+using PinChanges = std::vector<std::tuple<std::int64_t, std::size_t, char>>;
+PinChanges encoder_pin_changes(const fs::path& vcd) {
+  auto reader = capture::open_vcd(vcd.string());
   const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
   std::vector<std::uint32_t> wanted;
   for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
   reader->select(wanted);
-  std::vector<std::tuple<std::int64_t, std::size_t, char>> changes;  // fs, signal, value
+  PinChanges changes;
   capture::Change c;
   while (reader->next(c)) {
     const auto i = static_cast<std::size_t>(std::find(wanted.begin(), wanted.end(), c.signal) - wanted.begin());
-    changes.emplace_back(c.time.count() * 1000, i, c.value);
+    changes.emplace_back(c.time.count(), i, c.value);
   }
+  return changes;
+}
+
+// The changes, sorted by time, as a VCD of the encoder's pins in `timescale` units.
+void write_encoder_pins(const fs::path& to, const std::string& timescale, PinChanges changes) {
+  std::stable_sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
+  std::ofstream out(to);
+  out << "$timescale " << timescale << " $end\n$scope module encoder $end\n"
+      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
+      << "$upscope $end\n$enddefinitions $end\n";
+  const char ids[] = {'c', 'd', 'e'};
+  for (const auto& [t, i, v] : changes) out << "#" << t << "\n" << v << ids[i] << "\n";
+}
+
+void to_femtoseconds(const fs::path& from, const fs::path& to, int nth, std::int64_t shift_fs) {
+  auto changes = encoder_pin_changes(from);
+  for (auto& [t, i, v] : changes) t *= 1000;  // fs
   std::int64_t fell = -1;
   int found = 0;
   for (auto& [t, i, v] : changes) {
@@ -1166,13 +1186,7 @@ void to_femtoseconds(const fs::path& from, const fs::path& to, int nth, std::int
     if (v == '0') fell = t;
     else if (fell >= 0 && t - fell > 1'500'000'000 && t - fell < 2'200'000'000 && ++found == nth) t += shift_fs;
   }
-  std::stable_sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
-  std::ofstream out(to);
-  out << "$timescale 1 fs $end\n$scope module encoder $end\n"
-      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
-      << "$upscope $end\n$enddefinitions $end\n";
-  const char ids[] = {'c', 'd', 'e'};
-  for (const auto& [t, i, v] : changes) out << "#" << t << "\n" << v << ids[i] << "\n";
+  write_encoder_pins(to, "1 fs", changes);
 }
 
 }  // namespace
@@ -1425,31 +1439,15 @@ namespace {
 // The encoder pins of a VCD rewritten with CLOCK unknown from time 0 until `known_at` (an RTL
 // master in reset), and unknown once more for 1 ns at `x_at`, if given.
 void with_unknown_clock(const fs::path& from, const fs::path& to, Time known_at, std::optional<Time> x_at) {
-  auto reader = capture::open_vcd(from.string());
-  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
-  std::vector<std::uint32_t> wanted;
-  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
-  reader->select(wanted);
-  std::vector<std::tuple<std::int64_t, std::size_t, char>> changes;
-  capture::Change c;
-  while (reader->next(c)) {
-    const auto i = static_cast<std::size_t>(std::find(wanted.begin(), wanted.end(), c.signal) - wanted.begin());
-    if (i == 0 && c.time < known_at) continue;
-    changes.emplace_back(c.time.count(), i, c.value);
-  }
+  auto changes = encoder_pin_changes(from);
+  std::erase_if(changes, [&](const auto& c) { return std::get<1>(c) == 0 && std::get<0>(c) < known_at.count(); });
   changes.emplace_back(0, 0, 'x');
   changes.emplace_back(known_at.count(), 0, '1');
   if (x_at) {
     changes.emplace_back(x_at->count(), 0, 'x');
     changes.emplace_back((*x_at + sim::ns(1)).count(), 0, '1');
   }
-  std::stable_sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
-  std::ofstream out(to);
-  out << "$timescale 1 ps $end\n$scope module encoder $end\n"
-      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
-      << "$upscope $end\n$enddefinitions $end\n";
-  const char ids[] = {'c', 'd', 'e'};
-  for (const auto& [t, i, v] : changes) out << "#" << t << "\n" << v << ids[i] << "\n";
+  write_encoder_pins(to, "1 ps", changes);
 }
 
 }  // namespace
