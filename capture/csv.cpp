@@ -424,7 +424,7 @@ class CsvReader final : public QueuedReader {
     std::vector<std::string> fields;
     bool header_seen = false;
     std::optional<std::int64_t> first;
-    std::int64_t step = 0;
+    std::uint64_t step = 0;
     for (std::size_t rows = 0; rows < kScanRows && scan.next(line);) {
       const std::string t = trim(line);
       if (t.empty() || t[0] == ';' || scan.overlong()) continue;
@@ -437,9 +437,14 @@ class CsvReader final : public QueuedReader {
       if (fields.empty() || !parse_seconds(fields[0], ps)) continue;
       ++rows;
       if (!first) first = ps;
-      else step = std::gcd(step, ps > *first ? ps - *first : *first - ps);
+      else {
+        // The distance in unsigned arithmetic: it may exceed the signed range (a trigger at the
+        // most negative time and a row at the most positive).
+        const auto a = static_cast<std::uint64_t>(ps), b = static_cast<std::uint64_t>(*first);
+        step = std::gcd(step, ps > *first ? a - b : b - a);
+      }
     }
-    return Time{std::max<std::int64_t>(step, 1)};
+    return Time{static_cast<std::int64_t>(std::clamp<std::uint64_t>(step, 1, INT64_MAX))};
   }
 
   Time time_of(std::uint64_t sample) const {
