@@ -43,6 +43,17 @@ fs::path temp(const std::string& name) {
   return fs::temp_directory_path() / ("endatsim_capture_check_" + std::to_string(getpid()) + "_" + name);
 }
 
+// A scenario's VCD opened on the encoder's pins: CLOCK, DATA and the driver's enable, selected
+// in that order.
+std::pair<std::unique_ptr<capture::Reader>, std::vector<std::uint32_t>> open_encoder_pins(const fs::path& vcd) {
+  auto reader = capture::open_vcd(vcd.string());
+  std::vector<std::uint32_t> wanted;
+  for (const char* n : {"encoder.clock", "encoder.data", "encoder.data_driver_enable"})
+    wanted.push_back(capture::find_signal(*reader, n));
+  reader->select(wanted);
+  return {std::move(reader), wanted};
+}
+
 // A scenario run to a VCD, and the options that check it at the encoder's connector as the
 // scenario declares its encoder (its transceivers in the delay at the connector).
 scenarios::ScenarioResult run_to_vcd(const scenarios::Scenario& scenario, const fs::path& vcd) {
@@ -127,17 +138,15 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureRoundTrip, ::testing::ValuesIn(round_
 
 // The capture a logic analyzer sampling every `period` would make of a scenario's encoder pins:
 // each change shows at the first sample at or after it; a pulse shorter than a sample may vanish.
-// Written as a VCD at 10 ns (a period that is a multiple of it). The analyzer was armed 100 us before the run began, so the capture
-// shows CLOCK at rest for longer than any t_m before the first frame (a logic analyzer's capture
-// may begin inside a frame: docs/analyzer.md).
+// Written as a VCD at 10 ns (a period that is a multiple of it). The analyzer was armed 100 us
+// before the run began, so the capture shows CLOCK at rest for longer than any t_m before the
+// first frame (a logic analyzer's capture may begin inside a frame: docs/analyzer.md).
 constexpr std::int64_t kArmedBeforeNs = 100'000;
 
 void resample(const fs::path& from, const fs::path& to, Time period) {
-  auto reader = capture::open_vcd(from.string());
-  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
-  std::vector<std::uint32_t> wanted;
-  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
-  reader->select(wanted);
+  auto pins = open_encoder_pins(from);
+  auto& reader = pins.first;
+  const auto& wanted = pins.second;
   std::ofstream out(to);
   constexpr Time unit = ns(10);
   out << "$timescale 10 ns $end\n$scope module encoder $end\n"
@@ -213,18 +222,12 @@ void expect_like_exact(const scenarios::CaptureCheckResult& exact, const scenari
 
 class CaptureResampled : public ::testing::TestWithParam<fs::path> {};
 
-// A logic analyzer needs some four samples per clock period to show each phase: the scenarios
-// whose clock allows that at 100 MHz (10 ns) and 25 MHz (40 ns) are checked at those rates. The
-// frames decode the same; no row fails that the exact capture passes; every row the exact
-// capture fails is failed or undecided.
 // A Saleae Logic 2 digital export of a capture: a row at the start and at every change, times
 // in seconds, no sample rate stated.
 void to_saleae(const fs::path& vcd, const fs::path& csv) {
-  auto reader = capture::open_vcd(vcd.string());
-  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
-  std::vector<std::uint32_t> wanted;
-  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
-  reader->select(wanted);
+  auto pins = open_encoder_pins(vcd);
+  auto& reader = pins.first;
+  const auto& wanted = pins.second;
   std::ofstream out(csv);
   out << "Time [s],clock,data,data_driver_enable\n";
   std::vector<char> level(3, '0');
@@ -251,6 +254,10 @@ void to_saleae(const fs::path& vcd, const fs::path& csv) {
   }
 }
 
+// A logic analyzer needs some four samples per clock period to show each phase: the scenarios
+// whose clock allows that at 100 MHz (10 ns) and 25 MHz (40 ns) are checked at those rates, as a
+// VCD and as a Saleae export. The frames decode the same; no row fails that the exact capture
+// passes; every row the exact capture fails is failed or undecided.
 TEST_P(CaptureResampled, LogicAnalyzerRatesGiveTheSameFramesAndUndecidedNearLimits) {
   const auto scenario = scenarios::load_scenario_file(GetParam().string());
   const fs::path vcd = temp(GetParam().stem().string() + "_exact.vcd");
@@ -974,11 +981,9 @@ namespace {
 // every change up to `end`. Times kept, or re-based so that the window opens at 0. Returns CLOCK's
 // level at `start`.
 char cut_vcd(const fs::path& from, const fs::path& to, Time start, Time end, bool rebase) {
-  auto reader = capture::open_vcd(from.string());
-  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
-  std::vector<std::uint32_t> wanted;
-  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
-  reader->select(wanted);
+  auto pins = open_encoder_pins(from);
+  auto& reader = pins.first;
+  const auto& wanted = pins.second;
   std::ofstream out(to);
   out << "$timescale 1 ps $end\n$scope module encoder $end\n"
       << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
@@ -1151,11 +1156,9 @@ namespace {
 // enable), level.
 using PinChanges = std::vector<std::tuple<std::int64_t, std::size_t, char>>;
 PinChanges encoder_pin_changes(const fs::path& vcd) {
-  auto reader = capture::open_vcd(vcd.string());
-  const std::vector<std::string> names{"encoder.clock", "encoder.data", "encoder.data_driver_enable"};
-  std::vector<std::uint32_t> wanted;
-  for (const auto& n : names) wanted.push_back(capture::find_signal(*reader, n));
-  reader->select(wanted);
+  auto pins = open_encoder_pins(vcd);
+  auto& reader = pins.first;
+  const auto& wanted = pins.second;
   PinChanges changes;
   capture::Change c;
   while (reader->next(c)) {
