@@ -66,12 +66,4 @@ Limits resolve_limits(const Scenario& s, const Limits& granted) {
   return l;
 }
 
-std::string trimmed(const std::string& text, std::size_t max) {
-  if (text.size() <= max) return text;
-  std::size_t cut = max;
-  // Not inside a UTF-8 sequence.
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
-  return text.substr(0, cut) + "... (" + std::to_string(text.size()) + " bytes)";
-}
-
 }  // namespace endatsim::scenarios

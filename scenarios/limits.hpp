@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "input/text.hpp"
 #include "sim/time.hpp"
 
 namespace endatsim::scenarios {
@@ -59,8 +60,6 @@ inline constexpr const char* kEventsOption = "--max-events";
 inline constexpr const char* kRecordsOption = "--max-records";
 inline constexpr const char* kMaxTimeOption = "--max-time";
 
-// Text no longer than `max` characters: longer text is cut with "... (N bytes)" so that a
-// hostile name or value cannot flood a message.
-std::string trimmed(const std::string& text, std::size_t max = 80);
+using input::trimmed;
 
 }  // namespace endatsim::scenarios

@@ -1,5 +1,6 @@
 #include "scenarios/loader.hpp"
 
+#include "input/json_input.hpp"
 #include "slave/profile.hpp"
 
 #include <algorithm>
@@ -7,8 +8,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -16,197 +15,55 @@
 namespace endatsim::scenarios {
 namespace {
 
-using nlohmann::json;
+using input::json;
+using input::Node;
+using input::Object;
+using input::trimmed;
 
-constexpr std::size_t kMaxDepth = 32;
-constexpr std::uintmax_t kMaxFileBytes = 4 << 20;
-
-std::string describe(const json& j) {
-  if (j.is_null()) return "null";
-  std::string dump = j.dump(-1, ' ', true, json::error_handler_t::replace);
-  if (dump.size() > 40) dump = dump.substr(0, 37) + "...";
-  return std::string(j.type_name()) + " " + dump;
+// A temperature in 0.1 K (3.9.6): an integer of 0.1 K steps, or a string "110 degC" / "383.1 K"
+// (0 degC = 273.1 K, as 3.9.6 scales it).
+std::uint16_t as_temperature(const Node& n) {
+  const std::string what =
+      "a temperature: an integer in 0.1 K (or a hex string) or a string such as \"110 degC\" or \"383.1 K\" (0 .. 6553.5 K)";
+  if (!n.raw().is_string()) return static_cast<std::uint16_t>(n.as_uint(0, 0xFFFF));
+  static const std::regex kTemperature(R"(^(-?[0-9]{1,5}(\.[0-9]{1,3})?) ?(K|degC)$)");
+  std::smatch m;
+  const std::string s = n.raw().get<std::string>();
+  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) return static_cast<std::uint16_t>(n.as_word(0xFFFF));
+  if (!std::regex_match(s, m, kTemperature)) n.fail(what);
+  const double x = std::stod(m[1].str());
+  const long tenth = m[3].str() == "degC" ? protocol::diagnosis::tenth_kelvin_of_celsius(x) : std::lround(x * 10.0);
+  if (tenth < 0 || tenth > 0xFFFF) n.fail(what);
+  return static_cast<std::uint16_t>(tenth);
 }
 
-class Node {
- public:
-  Node(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {}
-
-  [[noreturn]] void fail(const std::string& expected) const { fail_raw("expected " + expected + ", got " + describe(j_)); }
-  // A path or message from a hostile file (a key of megabytes) is cut, not echoed whole.
-  [[noreturn]] void fail_raw(const std::string& message) const {
-    throw ScenarioError(file_ + ": at " + trimmed(path_.empty() ? "/" : path_, 200) + ": " + trimmed(message, 2000));
-  }
-  const json& raw() const { return j_; }
-  const std::string& path() const { return path_; }
-  const std::string& file() const { return file_; }
-
-  std::string as_string() const {
-    if (!j_.is_string()) fail("a string");
-    return j_.get<std::string>();
-  }
-  bool as_bool() const {
-    if (!j_.is_boolean()) fail("true or false");
-    return j_.get<bool>();
-  }
-  std::uint64_t as_uint(std::uint64_t min, std::uint64_t max) const {
-    const std::string range = "an integer " + std::to_string(min) + " .. " + std::to_string(max);
-    if (!j_.is_number_integer() && !j_.is_number_unsigned()) fail(range);
-    if (j_.is_number_integer() && !j_.is_number_unsigned() && j_.get<std::int64_t>() < 0) fail(range);
-    const auto v = j_.get<std::uint64_t>();
-    if (v < min || v > max) fail(range);
-    return v;
-  }
-  std::int64_t as_int(std::int64_t min, std::int64_t max) const {
-    const std::string range = "an integer " + std::to_string(min) + " .. " + std::to_string(max);
-    if (j_.is_number_unsigned() && j_.get<std::uint64_t>() > static_cast<std::uint64_t>(max)) fail(range);
-    if (!j_.is_number_integer()) fail(range);
-    const auto v = j_.get<std::int64_t>();
-    if (v < min || v > max) fail(range);
-    return v;
-  }
-  double as_number(double min, double max, const std::string& unit) const {
-    std::ostringstream range;
-    range << "a number " << min << " .. " << max << unit;
-    if (!j_.is_number()) fail(range.str());
-    const double v = j_.get<double>();
-    if (!std::isfinite(v) || v < min || v > max) fail(range.str());
-    return v;
-  }
-  Time as_duration(Time min, Time max) const {
-    const std::string range = "a duration string " + sim::format_time(min) + " .. " + sim::format_time(max) +
-                              " such as \"2.5 us\"";
-    if (!j_.is_string()) fail(range);
-    Time t;
-    try {
-      t = sim::parse_duration(j_.get<std::string>());
-    } catch (const std::invalid_argument& e) {
-      fail_raw(e.what());
-    }
-    if (t < min || t > max) fail(range);
-    return t;
-  }
-  sim::Hertz as_frequency(sim::Hertz min, sim::Hertz max) const {
-    const std::string range = "a frequency string " + sim::format_frequency(min) + " .. " +
-                              sim::format_frequency(max) + " such as \"2 MHz\"";
-    if (!j_.is_string()) fail(range);
-    sim::Hertz f = 0;
-    try {
-      f = sim::parse_frequency(j_.get<std::string>());
-    } catch (const std::invalid_argument& e) {
-      fail_raw(e.what());
-    }
-    if (f < min || f > max) fail(range);
-    return f;
-  }
-  // An integer given as a number or as a string in hex ("0xA5B4") or decimal: memory words,
-  // addresses and MRS codes read best in hex.
-  std::uint64_t as_word(std::uint64_t max) const {
-    const std::string what = "an integer 0 .. " + std::to_string(max) + " or a hex string such as \"0x1F\"";
-    if (!j_.is_string()) {
-      if (!j_.is_number_unsigned() && !(j_.is_number_integer() && j_.get<std::int64_t>() >= 0)) fail(what);
-      if (j_.get<std::uint64_t>() > max) fail(what);
-      return j_.get<std::uint64_t>();
-    }
-    const std::string s = j_.get<std::string>();
-    const bool hex = s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
-    const std::string digits = hex ? s.substr(2) : s;
-    if (digits.empty() || digits.size() > 16 ||
-        digits.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789") != std::string::npos)
-      fail(what);
-    const std::uint64_t v = std::stoull(digits, nullptr, hex ? 16 : 10);
-    if (v > max) fail(what);
-    return v;
-  }
-  // A temperature in 0.1 K (3.9.6): an integer of 0.1 K steps, or a string "110 degC" / "383.1 K"
-  // (0 degC = 273.1 K, as 3.9.6 scales it).
-  std::uint16_t as_temperature() const {
-    const std::string what =
-        "a temperature: an integer in 0.1 K (or a hex string) or a string such as \"110 degC\" or \"383.1 K\" (0 .. 6553.5 K)";
-    if (!j_.is_string()) return static_cast<std::uint16_t>(as_uint(0, 0xFFFF));
-    static const std::regex kTemperature(R"(^(-?[0-9]{1,5}(\.[0-9]{1,3})?) ?(K|degC)$)");
-    std::smatch m;
-    const std::string s = j_.get<std::string>();
-    if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) return static_cast<std::uint16_t>(as_word(0xFFFF));
-    if (!std::regex_match(s, m, kTemperature)) fail(what);
-    const double x = std::stod(m[1].str());
-    const long tenth = m[3].str() == "degC" ? protocol::diagnosis::tenth_kelvin_of_celsius(x) : std::lround(x * 10.0);
-    if (tenth < 0 || tenth > 0xFFFF) fail(what);
-    return static_cast<std::uint16_t>(tenth);
-  }
-  template <class E>
-  E as_enum(std::initializer_list<std::pair<std::string_view, E>> choices) const {
-    std::string names;
-    for (const auto& c : choices) names += (names.empty() ? "" : ", ") + ("\"" + std::string(c.first) + "\"");
-    if (j_.is_string())
-      for (const auto& c : choices)
-        if (c.first == j_.get<std::string>()) return c.second;
-    fail("one of " + names);
-  }
-  CountMatcher as_count() const {
-    const std::string what = "a count: an integer, or a string \">=N\", \"<=N\" or \"N..M\"";
-    CountMatcher m;
-    if (j_.is_number_unsigned() || (j_.is_number_integer() && j_.get<std::int64_t>() >= 0)) {
-      m.min = m.max = j_.get<std::uint64_t>();
-      m.text = std::to_string(m.min);
-      return m;
-    }
-    if (!j_.is_string()) fail(what);
-    const std::string s = j_.get<std::string>();
-    const auto number = [&](const std::string& t) {
-      if (t.empty() || t.size() > 18 || t.find_first_not_of("0123456789") != std::string::npos) fail(what);
-      return std::stoull(t);
-    };
-    if (s.rfind(">=", 0) == 0) m.min = number(s.substr(2));
-    else if (s.rfind("<=", 0) == 0) m.max = number(s.substr(2));
-    else if (const auto dots = s.find(".."); dots != std::string::npos) {
-      m.min = number(s.substr(0, dots));
-      m.max = number(s.substr(dots + 2));
-      if (m.min > m.max) fail(what + " with N <= M");
-    } else {
-      m.min = m.max = number(s);
-    }
-    m.text = s;
+// How often something happened: an exact count, or ">=N", "<=N", "N..M".
+CountMatcher as_count(const Node& n) {
+  const std::string what = "a count: an integer, or a string \">=N\", \"<=N\" or \"N..M\"";
+  CountMatcher m;
+  if (n.raw().is_number_unsigned() || (n.raw().is_number_integer() && n.raw().get<std::int64_t>() >= 0)) {
+    m.min = m.max = n.raw().get<std::uint64_t>();
+    m.text = std::to_string(m.min);
     return m;
   }
-
- private:
-  const json& j_;
-  std::string path_;
-  const std::string& file_;
-};
-
-// An object whose keys must all be known: unknown keys are errors, not silently ignored.
-class Object {
- public:
-  explicit Object(const Node& n) : n_(n) {
-    if (!n.raw().is_object()) n.fail("an object");
+  if (!n.raw().is_string()) n.fail(what);
+  const std::string s = n.raw().get<std::string>();
+  const auto number = [&](const std::string& t) {
+    if (t.empty() || t.size() > 18 || t.find_first_not_of("0123456789") != std::string::npos) n.fail(what);
+    return std::stoull(t);
+  };
+  if (s.rfind(">=", 0) == 0) m.min = number(s.substr(2));
+  else if (s.rfind("<=", 0) == 0) m.max = number(s.substr(2));
+  else if (const auto dots = s.find(".."); dots != std::string::npos) {
+    m.min = number(s.substr(0, dots));
+    m.max = number(s.substr(dots + 2));
+    if (m.min > m.max) n.fail(what + " with N <= M");
+  } else {
+    m.min = m.max = number(s);
   }
-  std::optional<Node> opt(const std::string& key) {
-    known_.insert(key);
-    const auto it = n_.raw().find(key);
-    if (it == n_.raw().end()) return std::nullopt;
-    return Node(*it, n_.path() + "/" + key, n_.file());
-  }
-  Node req(const std::string& key) {
-    auto n = opt(key);
-    if (!n) n_.fail_raw("missing required key \"" + key + "\"");
-    return *n;
-  }
-  void done() const {
-    for (const auto& [key, value] : n_.raw().items()) {
-      if (known_.count(key) != 0) continue;
-      std::string names;
-      for (const auto& k : known_) names += (names.empty() ? "" : ", ") + k;
-      n_.fail_raw("unknown key \"" + key + "\" (expected one of: " + names + ")");
-    }
-  }
-  const Node& node() const { return n_; }
-
- private:
-  const Node& n_;
-  std::set<std::string> known_;
-};
+  m.text = s;
+  return m;
+}
 
 template <class F>
 void validated(const Node& n, F&& validate) {
@@ -243,7 +100,7 @@ std::vector<std::uint16_t> read_words(const Node& n, std::size_t max) {
   if (!n.raw().is_array() || n.raw().size() > max) n.fail("an array of at most " + std::to_string(max) + " words");
   std::vector<std::uint16_t> words;
   for (std::size_t i = 0; i < n.raw().size(); ++i)
-    words.push_back(static_cast<std::uint16_t>(Node(n.raw()[i], n.path() + "/" + std::to_string(i), n.file()).as_word(0xFFFF)));
+    words.push_back(static_cast<std::uint16_t>(n.item(i).as_word(0xFFFF)));
   return words;
 }
 
@@ -256,20 +113,20 @@ protocol::Information read_information(const Node& n) {
 // What the sensors measure (appendix A3, 2.3.5.1): in the encoder's sensors and in a "sensors" event.
 slave::SensorValues read_sensor_values(Object& o) {
   slave::SensorValues s;
-  if (auto v = o.opt("temperature_1")) s.temperature1 = v->as_temperature();
-  if (auto v = o.opt("temperature_2")) s.temperature2 = v->as_temperature();
+  if (auto v = o.opt("temperature_1")) s.temperature1 = as_temperature(*v);
+  if (auto v = o.opt("temperature_2")) s.temperature2 = as_temperature(*v);
   if (auto v = o.opt("additional_sensors")) {
     if (!v->raw().is_array() || v->raw().size() > 16) v->fail("an array of at most 16 temperatures (a 4-bit address, 2.3.5.1)");
     s.additional_sensors.emplace();
     for (std::size_t i = 0; i < v->raw().size(); ++i)
-      s.additional_sensors->push_back(Node(v->raw()[i], v->path() + "/" + std::to_string(i), v->file()).as_temperature());
+      s.additional_sensors->push_back(as_temperature(v->item(i)));
   }
   if (auto v = o.opt("valuation_numbers")) {
     if (!v->raw().is_array() || v->raw().size() != 6) v->fail("an array of the 6 valuation numbers (A3)");
     s.valuation_numbers.emplace();
     for (std::size_t i = 0; i < 6; ++i)
       (*s.valuation_numbers)[i] =
-          static_cast<std::uint8_t>(Node(v->raw()[i], v->path() + "/" + std::to_string(i), v->file()).as_word(0xFF));
+          static_cast<std::uint8_t>(v->item(i).as_word(0xFF));
   }
   return s;
 }
@@ -314,7 +171,7 @@ void read_sensors(const Node& n, slave::Sensors& s) {
   if (auto v = o.opt("not_updatable")) {
     if (!v->raw().is_array()) v->fail("an array of information codes");
     for (std::size_t i = 0; i < v->raw().size(); ++i)
-      s.not_updatable.push_back(read_information(Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file())));
+      s.not_updatable.push_back(read_information(v->item(i)));
   }
   o.done();
 }
@@ -439,7 +296,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     p.reference_marks.clear();
     for (std::size_t i = 0; i < v->raw().size(); ++i)
       p.reference_marks.push_back(
-          Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file()).as_uint(0, (std::uint64_t{1} << 48) - 1));
+          v->item(i).as_uint(0, (std::uint64_t{1} << 48) - 1));
   }
   if (auto v = o.opt("sensors")) read_sensors(*v, p.sensors);
   if (auto v = o.opt("motion")) {
@@ -490,7 +347,7 @@ void read_diagnostics(const Node& n, master::DiagnosticsParams& p) {
     p.configuration &= protocol::diagnosis::kSystemSpecificDataBit;
     for (std::size_t i = 0; i < v->raw().size(); ++i)
       p.configuration |= static_cast<std::uint16_t>(
-          1U << (Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file()).as_uint(1, 6) - 1));
+          1U << (v->item(i).as_uint(1, 6) - 1));
   }
   if (auto v = o.opt("system_specific_data"))
     p.configuration = static_cast<std::uint16_t>((p.configuration & ~protocol::diagnosis::kSystemSpecificDataBit) |
@@ -663,7 +520,7 @@ FrameExpectation read_frame_expectation(const Node& n) {
     if (!v->raw().is_array() || v->raw().size() > 2) v->fail("an array of at most two additional data");
     std::vector<AdditionalDataExpectation> list;
     for (std::size_t i = 0; i < v->raw().size(); ++i)
-      list.push_back(read_additional_data_expectation(Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file())));
+      list.push_back(read_additional_data_expectation(v->item(i)));
     e.additional_data = list;
   }
   o.done();
@@ -996,7 +853,7 @@ void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std
       names += (names.empty() ? "" : ", ") + std::string(a);
     }
     if (!ok) item.fail_raw("unknown name \"" + key + "\" (expected one of: " + names + ")");
-    out[key] = item.as_count();
+    out[key] = as_count(item);
   }
 }
 
@@ -1031,13 +888,13 @@ DiagnosisExpectation read_diagnosis_expectation(const Node& n) {
   if (auto v = o.opt("valuation_numbers"))
     read_address_map(*v, 1, 64, "8-bit valuation number (A3)",
                      [&](unsigned a, const Node& x) { e.valuation_numbers[a] = static_cast<unsigned>(x.as_word(0xFF)); });
-  if (auto v = o.opt("temperature_1")) e.temperature1 = v->as_temperature();
-  if (auto v = o.opt("temperature_2")) e.temperature2 = v->as_temperature();
+  if (auto v = o.opt("temperature_1")) e.temperature1 = as_temperature(*v);
+  if (auto v = o.opt("temperature_2")) e.temperature2 = as_temperature(*v);
   if (auto v = o.opt("additional_sensors"))
-    read_address_map(*v, 0, 15, "temperature", [&](unsigned a, const Node& x) { e.additional_sensors[a] = x.as_temperature(); });
+    read_address_map(*v, 0, 15, "temperature", [&](unsigned a, const Node& x) { e.additional_sensors[a] = as_temperature(x); });
   if (auto v = o.opt("configuration")) e.configuration = static_cast<std::uint16_t>(v->as_word(0xFFFF));
   if (auto v = o.opt("warnings")) e.warnings = static_cast<std::uint16_t>(v->as_word(0xFFFF));
-  if (auto v = o.opt("ignored_addresses")) e.ignored_addresses = v->as_count();
+  if (auto v = o.opt("ignored_addresses")) e.ignored_addresses = as_count(*v);
   o.done();
   return e;
 }
@@ -1052,7 +909,7 @@ void read_expect(const Node& n, Expectations& e) {
     if (!v->raw().is_array()) v->fail("an array of positions");
     std::vector<std::uint64_t> p;
     for (std::size_t i = 0; i < v->raw().size(); ++i)
-      p.push_back(Node(v->raw()[i], v->path() + "/" + std::to_string(i), n.file()).as_uint(0, (std::uint64_t{1} << 48) - 1));
+      p.push_back(v->item(i).as_uint(0, (std::uint64_t{1} << 48) - 1));
     e.positions = p;
   }
   if (auto v = o.opt("delay_measurement")) {
@@ -1069,11 +926,11 @@ void read_expect(const Node& n, Expectations& e) {
   if (auto v = o.opt("violations")) read_count_map(*v, e.violations, checker::check::all());
   if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_busy_timeouts")) e.max_busy_timeouts = v->as_uint(0, UINT64_MAX);
-  if (auto v = o.opt("busy_timeouts")) e.busy_timeouts = v->as_count();
+  if (auto v = o.opt("busy_timeouts")) e.busy_timeouts = as_count(*v);
   if (auto v = o.opt("checksum"))
     e.checksum_ok = v->as_enum<bool>({{"ok", true}, {"mismatch", false}});
-  if (auto v = o.opt("retries")) e.retries = v->as_count();
-  if (auto v = o.opt("remeasurements")) e.remeasurements = v->as_count();
+  if (auto v = o.opt("retries")) e.retries = as_count(*v);
+  if (auto v = o.opt("remeasurements")) e.remeasurements = as_count(*v);
   if (auto v = o.opt("startup")) {
     Object st(*v);
     StartupExpectation se;
@@ -1091,8 +948,8 @@ void read_expect(const Node& n, Expectations& e) {
     if (auto x = sf.opt("findings")) read_count_map(*x, se.findings, names_of<master::kSafetyFunctions>());
     if (auto x = sf.opt("axis_released")) se.axis_released = x->as_bool();
     if (auto x = sf.opt("release_position_correct")) se.release_position_correct = x->as_bool();
-    if (auto x = sf.opt("undetected_errors")) se.undetected_errors = x->as_count();
-    if (auto x = sf.opt("position_comparisons")) se.position_comparisons = x->as_count();
+    if (auto x = sf.opt("undetected_errors")) se.undetected_errors = as_count(*x);
+    if (auto x = sf.opt("position_comparisons")) se.position_comparisons = as_count(*x);
     sf.done();
     e.safety = se;
   }
@@ -1192,7 +1049,7 @@ Scenario read_scenario(const json& root, const std::string& file, ScenarioKind k
       v->fail("an array of 1 .. 31 further encoders on the bus (2.10)");
     for (std::size_t i = 0; i < v->raw().size(); ++i) {
       s.bus.emplace_back();
-      read_encoder(Node(v->raw()[i], v->path() + "/" + std::to_string(i), file), s.bus.back());
+      read_encoder(v->item(i), s.bus.back());
     }
   }
   if (!bench) {
@@ -1209,7 +1066,7 @@ Scenario read_scenario(const json& root, const std::string& file, ScenarioKind k
     if (bench) check_bench_events(*v);
     read_events(*v, s.line, s.events);
     for (std::size_t i = 0; i < s.events.size(); ++i)
-      check_event_against_encoder(s.events[i], s.encoder, Node(v->raw()[i], v->path() + "/" + std::to_string(i), top.file()));
+      check_event_against_encoder(s.events[i], s.encoder, v->item(i));
   }
   if (auto v = o.opt("expect")) {
     if (bench) check_bench_expect(*v);
@@ -1221,113 +1078,23 @@ Scenario read_scenario(const json& root, const std::string& file, ScenarioKind k
 
 }  // namespace
 
-// Tracks where the parser is, to reject what nlohmann::json would accept silently: nesting
-// deeper than kMaxDepth and a key given twice in one object (the last would win).
-class ParseGuard {
- public:
-  // `where` follows the path of the value read next, for errors nlohmann reports without one.
-  ParseGuard(const std::string& file, std::string& where) : file_(file), where_(&where) {}
-
-  bool operator()(int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-    using E = nlohmann::json::parse_event_t;
-    if (static_cast<std::size_t>(depth) > kMaxDepth)
-      throw ScenarioError(file_ + ": at " + trimmed(next_path(), 200) + ": nested deeper than " + std::to_string(kMaxDepth) + " levels");
-    switch (event) {
-      case E::object_start:
-      case E::array_start:
-        next_element();
-        stack_.push_back({event == E::array_start, -1, {}, {}});
-        break;
-      case E::object_end:
-      case E::array_end:
-        stack_.pop_back();
-        break;
-      case E::key: {
-        Level& top = stack_.back();
-        top.key = parsed.get<std::string>();
-        if (!top.keys.insert(top.key).second)
-          throw ScenarioError(file_ + ": at " + trimmed(path(), 200) + ": duplicate key \"" + trimmed(top.key) +
-                              "\" (each key may appear once per object)");
-        break;
-      }
-      case E::value:
-        next_element();
-        break;
-    }
-    *where_ = next_path();
-    return true;
-  }
-
- private:
-  struct Level {
-    bool array;
-    long index;
-    std::string key;
-    std::set<std::string> keys;
-  };
-  void next_element() {
-    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
-  }
-  std::string path() const {
-    std::string p;
-    for (const Level& l : stack_) p += "/" + (l.array ? std::to_string(l.index) : l.key);
-    return p;
-  }
-  // Like path(), but an array's last index is that of the element that comes next.
-  std::string next_path() const {
-    std::string p;
-    for (std::size_t i = 0; i < stack_.size(); ++i) {
-      const Level& l = stack_[i];
-      p += "/" + (l.array ? std::to_string(i + 1 == stack_.size() ? l.index + 1 : l.index) : l.key);
-    }
-    return p.empty() ? "/" : p;
-  }
-  const std::string& file_;
-  std::string* where_;
-  std::vector<Level> stack_;
-};
-
 Scenario load_scenario_text(const std::string& text, const std::string& file_name, ScenarioKind kind) {
-  json root;
-  std::string where = "/";
   try {
-    root = json::parse(text, ParseGuard(file_name, where));
-  } catch (const json::exception& e) {  // syntax, invalid UTF-8, number overflow
-    std::string what = e.what();
-    const auto bracket = what.find("] ");
-    const std::string at = e.id == 406 ? "at " + trimmed(where, 200) + ": " : "";  // 406: number overflow, reported without a place
-    throw ScenarioError(file_name + ": " + at + "not valid JSON: " +
-                        trimmed(bracket == std::string::npos ? what : what.substr(bracket + 2), 2000));
-  }
-  // The JSON parser takes a NUL byte for the end of the input: what it read may have parsed while
-  // the bytes after it were never looked at.
-  if (const auto nul = text.find('\0'); nul != std::string::npos) {
-    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
-    const std::size_t line_start = text.rfind('\n', nul == 0 ? 0 : nul - 1);
-    const std::size_t column = line_start == std::string::npos || nul == 0 ? nul + 1 : nul - line_start;
-    throw ScenarioError(file_name + ": not valid JSON: a NUL byte at line " + std::to_string(line) + ", column " +
-                        std::to_string(column) + " (a scenario is text; expected a JSON value or the end of the file)");
-  }
-  try {
-    return read_scenario(root, file_name, kind);
+    return read_scenario(input::parse(text, file_name), file_name, kind);
+  } catch (const input::InputError& e) {
+    throw ScenarioError(e.what());
   } catch (const json::exception& e) {
     throw ScenarioError(file_name + ": " + e.what());
   }
 }
 
 Scenario load_scenario_file(const std::string& path, ScenarioKind kind) {
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
-    throw ScenarioError(path + ": not a regular file, expected a JSON scenario");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path + ": cannot open the file");
   std::string text;
-  char buffer[65536];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMaxFileBytes) throw ScenarioError(path + ": larger than 4 MiB, not a scenario");
+  try {
+    text = input::read_file(path, {"scenario", "a"});
+  } catch (const input::InputError& e) {
+    throw ScenarioError(e.what());
   }
-  if (text.empty()) throw ScenarioError(path + ": at /: empty file, expected a JSON scenario object");
   return load_scenario_text(text, path, kind);
 }
 

@@ -1,5 +1,6 @@
 #include "slave/profile.hpp"
 
+#include "input/json_input.hpp"
 #include "slave/eib.hpp"
 #include "slave/reference.hpp"
 
@@ -8,17 +9,15 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace endatsim::slave {
 namespace {
 
 namespace pm = protocol::parameters;
-using json = nlohmann::json;
+using input::json;
+using input::Node;
 using Area = MemoryArea;
-
-constexpr std::size_t kMaxFileBytes = 4 << 20;
 
 std::string hex4(unsigned w) {
   char b[8];
@@ -49,59 +48,13 @@ std::string manufacturer_path(unsigned n) {
   return area_path(a) + "/" + std::to_string(n % 16);
 }
 
-std::string describe(const json& j) {
-  std::string dump = j.dump(-1, ' ', true, json::error_handler_t::replace);
-  if (dump.size() > 40) dump = dump.substr(0, 37) + "...";
-  return std::string(j.type_name()) + " " + dump;
+std::vector<std::uint16_t> as_words(const Node& n, std::size_t min, std::size_t max) {
+  const std::string count = min == max ? std::to_string(min) : std::to_string(min) + " .. " + std::to_string(max);
+  if (!n.raw().is_array() || n.raw().size() < min || n.raw().size() > max) n.fail("an array of " + count + " hex words");
+  std::vector<std::uint16_t> w;
+  for (std::size_t i = 0; i < n.raw().size(); ++i) w.push_back(n.item(i).as_hex_word());
+  return w;
 }
-
-class Node {
- public:
-  Node(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {}
-  [[noreturn]] void fail(const std::string& expected) const { fail_raw("expected " + expected + ", got " + describe(j_)); }
-  [[noreturn]] void fail_raw(const std::string& message) const {
-    throw ProfileError(file_ + ": at " + (path_.empty() ? "/" : path_) + ": " + message);
-  }
-  const json& raw() const { return j_; }
-  const std::string& path() const { return path_; }
-  Node child(const std::string& key) const { return Node(j_.at(key), path_ + "/" + key, file_); }
-  Node item(std::size_t i) const { return Node(j_.at(i), path_ + "/" + std::to_string(i), file_); }
-
-  std::string as_string() const {
-    if (!j_.is_string()) fail("a string");
-    return j_.get<std::string>();
-  }
-  unsigned as_uint(unsigned min, unsigned max) const {
-    const std::string range = "an integer " + std::to_string(min) + " .. " + std::to_string(max);
-    if (!j_.is_number_unsigned() && !(j_.is_number_integer() && j_.get<std::int64_t>() >= 0)) fail(range);
-    const auto v = j_.get<std::uint64_t>();
-    if (v < min || v > max) fail(range);
-    return static_cast<unsigned>(v);
-  }
-  std::uint16_t as_word() const {
-    const std::string what = "a 16-bit word as a hex string such as \"0x8019\"";
-    if (!j_.is_string()) fail(what);
-    const std::string s = j_.get<std::string>();
-    if (s.size() < 3 || s.size() > 6 || s[0] != '0' || (s[1] != 'x' && s[1] != 'X') ||
-        s.find_first_not_of("0123456789abcdefABCDEF", 2) != std::string::npos)
-      fail(what);
-    return static_cast<std::uint16_t>(std::stoul(s.substr(2), nullptr, 16));
-  }
-  std::vector<std::uint16_t> as_words(std::size_t min, std::size_t max) const {
-    const std::string what = "an array of " + (min == max ? std::to_string(min) : std::to_string(min) + " .. " +
-                                                                                     std::to_string(max)) +
-                             " hex words";
-    if (!j_.is_array() || j_.size() < min || j_.size() > max) fail(what);
-    std::vector<std::uint16_t> w;
-    for (std::size_t i = 0; i < j_.size(); ++i) w.push_back(item(i).as_word());
-    return w;
-  }
-
- private:
-  const json& j_;
-  std::string path_;
-  const std::string& file_;
-};
 
 // How many words each area holds in the file: fixed ones, OEM and compensation areas as words
 // 9..12 make them (slave::Memory checks those), operating parameters 2 up to 256.
@@ -125,7 +78,7 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
                                               "multiturn_bits", "memory"};
   for (const auto& [key, value] : root.items())
     if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end())
-      Node(value, "/" + key, file).fail_raw("unknown key \"" + key +
+      Node(value, "/" + key, file).fail_raw("unknown key \"" + input::trimmed(key) +
                                             "\" (expected name, description, version, kind, position_bits, "
                                             "multiturn_bits or memory)");
   for (const char* key : {"name", "version", "kind", "position_bits", "memory"})
@@ -145,8 +98,8 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
   else if (kind == "touch_probe") p.kind = EncoderKind::TouchProbe;
   else if (kind == "eib") p.kind = EncoderKind::Eib;
   else r.child("kind").fail("one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", \"eib\"");
-  p.position_bits = r.child("position_bits").as_uint(1, 48);
-  if (root.contains("multiturn_bits")) p.multiturn_bits = r.child("multiturn_bits").as_uint(0, p.position_bits - 1);
+  p.position_bits = static_cast<unsigned>(r.child("position_bits").as_uint(1, 48));
+  if (root.contains("multiturn_bits")) p.multiturn_bits = static_cast<unsigned>(r.child("multiturn_bits").as_uint(0, p.position_bits - 1));
 
   const Node m = r.child("memory");
   if (!m.raw().is_object()) m.fail("an object of memory area -> array of hex words");
@@ -154,7 +107,7 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
     const Node item = m.child(key);
     if (key == "section2_blocks") {
       if (!value.is_array() || value.size() > 256) item.fail("an array of at most 256 blocks of 256 hex words");
-      for (std::size_t i = 0; i < value.size(); ++i) p.memory.section2_blocks.push_back(item.item(i).as_words(256, 256));
+      for (std::size_t i = 0; i < value.size(); ++i) p.memory.section2_blocks.push_back(as_words(item.item(i), 256, 256));
       continue;
     }
     const auto area = protocol::memory_area_from_key(key);
@@ -163,7 +116,7 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
                     "\" (expected operating_status, manufacturer_1 .. 3, operating_parameters, oem_1 .. 4, "
                     "compensation_1 .. 4, manufacturer_endat22, operating_parameters2 or section2_blocks)");
     const auto [min, max] = size_limits(*area);
-    p.memory.areas[*area] = item.as_words(min, max);
+    p.memory.areas[*area] = as_words(item, min, max);
   }
   for (Area a : {Area::OperatingStatus, Area::Manufacturer1, Area::Manufacturer2, Area::Manufacturer3,
                  Area::OperatingParameters})
@@ -357,34 +310,22 @@ std::vector<std::pair<std::string, std::string>> describe_profile(const EncoderP
 }
 
 EncoderProfile load_profile_text(const std::string& text, const std::string& file_name) {
-  json root;
   try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    const auto bracket = what.find("] ");
-    throw ProfileError(file_name + ": not valid JSON: " + (bracket == std::string::npos ? what : what.substr(bracket + 2)));
-  }
-  try {
-    return read_profile(root, file_name);
+    return read_profile(input::parse(text, file_name), file_name);
+  } catch (const input::InputError& e) {
+    throw ProfileError(e.what());
   } catch (const json::exception& e) {
     throw ProfileError(file_name + ": " + e.what());
   }
 }
 
 EncoderProfile load_profile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
-    throw ProfileError(path + ": not a regular file, expected a JSON encoder profile");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ProfileError(path + ": cannot open the file");
   std::string text;
-  char buffer[65536];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMaxFileBytes) throw ProfileError(path + ": larger than 4 MiB, not an encoder profile");
+  try {
+    text = input::read_file(path, {"encoder profile", "an"});
+  } catch (const input::InputError& e) {
+    throw ProfileError(e.what());
   }
-  if (text.empty()) throw ProfileError(path + ": at /: empty file, expected a JSON encoder profile object");
   return load_profile_text(text, path);
 }
 

@@ -506,6 +506,33 @@ TEST(Profile, ErrorsNameFileJsonPathAndExpectation) {
     slave::load_profile(kProfiles + "does_not_exist.json");
     ADD_FAILURE();
   } catch (const ProfileError& err) {
-    EXPECT_EQ(std::string(err.what()), kProfiles + "does_not_exist.json: cannot open the file");
+    EXPECT_EQ(std::string(err.what()), kProfiles + "does_not_exist.json: cannot open the file: No such file or directory");
   }
+}
+
+// A profile is read like a scenario (one JSON reader): what the parser would take silently is refused.
+TEST(Profile, TextThatParsesSilentlyIsRefused) {
+  const std::string good = slave::profile_text(slave::build_profile(bundled_parameters().at(0)));
+  const auto error_of = [](const std::string& text) {
+    try {
+      slave::load_profile_text(text, "bad.json");
+    } catch (const ProfileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  ASSERT_EQ(error_of(good), "loaded");
+  EXPECT_EQ(error_of(good + std::string(1, '\0') + "garbage }}}"),
+            "bad.json: not valid JSON: a NUL byte at line " + std::to_string(std::count(good.begin(), good.end(), '\n') + 1) +
+                ", column 1 (a JSON file is text; expected a JSON value or the end of the file)");
+  EXPECT_EQ(error_of(replace(good, "\"name\": ", "\"name\": \"first\", \"name\": ")),
+            "bad.json: at /name: duplicate key \"name\" (each key may appear once per object)");
+  EXPECT_EQ(error_of(replace(good, "\"description\": \"", "\"description\": " + std::string(40, '[') + "\"")),
+            "bad.json: at /description/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0: nested deeper than 32 levels");
+  const std::string name = slave::build_profile(bundled_parameters().at(0)).name;
+  EXPECT_EQ(error_of(replace(good, "\"name\": \"" + name + "\"", "\"name\": null")),
+            "bad.json: at /name: expected a string, got null");
+  const std::string long_key = error_of(replace(good, "\"name\": ", "\"" + std::string(5000, 'k') + "\": 1, \"name\": "));
+  EXPECT_LT(long_key.size(), 600U) << long_key.substr(0, 300);
+  EXPECT_NE(long_key.find("unknown key"), std::string::npos) << long_key.substr(0, 300);
 }
