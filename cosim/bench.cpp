@@ -7,11 +7,14 @@
 #include "scenarios/capture_check.hpp"
 #include "scenarios/declarations.hpp"
 #include "scenarios/events.hpp"
+#include "scenarios/interrupt.hpp"
 #include "sim/vcd.hpp"
 #include "slave/encoder.hpp"
 
 namespace endatsim::cosim {
 namespace {
+
+constexpr std::uint64_t kWatchEvery = 4096;  // kernel events between looks at the limits
 
 // The encoder's delay from CLOCK to DATA at its own connector: receiver, logic and driver.
 Time clock_to_data_at_encoder(const scenarios::Scenario& s) {
@@ -53,8 +56,11 @@ struct Bench::Parts {
 
 Bench::Bench(const scenarios::Scenario& bench, BenchOptions options)
     : bench_(bench), options_(std::move(options)),
-      parts_(std::make_unique<Parts>(bench, options_.seed.value_or(bench.seed))) {
+      parts_(std::make_unique<Parts>(bench, options_.seed.value_or(bench.seed))),
+      limits_(scenarios::resolve_limits(bench, options_.limits)),
+      max_time_(limits_.max_time ? std::min(*limits_.max_time, bench.max_time) : bench.max_time) {
   auto& p = *parts_;
+  p.kernel.watch(std::min<std::uint64_t>(kWatchEvery, limits_.kernel_events), sim::bind<&Bench::check_limits>(this));
   p.line.master().data_in.on_change(sim::bind<&Bench::on_data_in_change>(this));
   const auto master_pins = p.line.pins(line::ObservationPoint::MasterPins);
   master_pins.clock.on_change(sim::bind<&Bench::on_master_clock>(this));
@@ -79,9 +85,13 @@ Bench::~Bench() = default;
 
 Time Bench::now() const { return parts_->kernel.now(); }
 
-void Bench::advance_to(Time t) { parts_->kernel.advance_to(t); }
+void Bench::advance_to(Time t) {
+  if (should_stop()) return;
+  parts_->kernel.advance_to(t);
+}
 
 void Bench::drive(MasterPin pin, bool level) {
+  if (should_stop()) return;
   auto m = parts_->line.master();
   switch (pin) {
     case MasterPin::Clock: m.clock_out.write(level); break;
@@ -91,7 +101,10 @@ void Bench::drive(MasterPin pin, bool level) {
   parts_->kernel.advance_to(parts_->kernel.now());  // commit the write and run its listeners now
 }
 
-std::optional<Time> Bench::next_event_time() const { return parts_->kernel.next_event_time(); }
+std::optional<Time> Bench::next_event_time() const {
+  if (!incomplete_.empty()) return std::nullopt;  // a bench that stopped wakes no one again
+  return parts_->kernel.next_event_time();
+}
 
 bool Bench::data_in() const { return parts_->line.master().data_in.read(); }
 
@@ -139,6 +152,7 @@ void Bench::report_position(std::uint64_t position) {
   Reported r{now(), position, std::nullopt};
   if (it != frames.rend()) r.truth = it->position;
   positions_.push_back(r);
+  check_limits();
 }
 
 void Bench::report_parameter(std::uint16_t parameter) {
@@ -151,6 +165,7 @@ void Bench::report_parameter(std::uint16_t parameter) {
       protocol::info(*f->command).answer == protocol::AnswerFormat::Parameter)
     truth = f->fields[static_cast<std::size_t>(protocol::Field::Parameter)];
   parameters_.push_back({now(), parameter, truth});
+  check_limits();
 }
 
 void Bench::note(std::string text) {
@@ -162,7 +177,39 @@ void Bench::unknown_level(std::string text) {
   note(std::move(text));
 }
 
-bool Bench::out_of_time() const { return now() >= bench_.max_time; }
+bool Bench::should_stop() {
+  if (incomplete_.empty() && scenarios::interrupt_signal() != 0) check_limits();
+  return !incomplete_.empty() || now() >= max_time_;
+}
+
+// Called every few thousand kernel events and as records are added.
+void Bench::check_limits() {
+  if (!incomplete_.empty()) return;
+  using namespace scenarios;
+  if (const int signal = interrupt_signal(); signal != 0) {
+    end_early("interrupted by " + signal_name(signal), signal);
+  } else if (parts_->kernel.events_processed() >= limits_.kernel_events) {
+    end_early("limit kernel_events reached: " + std::to_string(parts_->kernel.events_processed()) +
+              " kernel events, at most " + std::to_string(limits_.kernel_events) + " (" + kKernelEventsOption +
+              " or limits.kernel_events changes it)");
+  } else if (const std::uint64_t n = records(); n >= limits_.records) {
+    end_early("limit records reached: " + std::to_string(n) + " positions, parameters, frames and violations kept, at most " +
+              std::to_string(limits_.records) + " (" + kRecordsOption + " or limits.records changes it)");
+  }
+}
+
+void Bench::end_early(const std::string& why, int signal) {
+  incomplete_ = why + "; the run ended at " + sim::format_time(now());
+  interrupted_ = signal;
+  parts_->kernel.stop();
+}
+
+std::uint64_t Bench::records() const {
+  std::uint64_t n = positions_.size() + parameters_.size() + parts_->encoder.frames().size() +
+                    parts_->checker.violations().size();
+  for (const auto& e : parts_->bus) n += e->frames().size();
+  return n;
+}
 
 bool BenchResult::passed() const {
   return std::all_of(expectations.begin(), expectations.end(), [](const auto& e) { return e.passed; });
@@ -190,10 +237,10 @@ void Bench::judge(BenchResult& r) const {
   const auto& e = bench_.expect;
   // A master that never let the simulation end (hung polling, a testbench that never stops) did
   // not do what it was meant to.
-  r.expectations.push_back({"ended before max_time", r.simulated < bench_.max_time,
-                            r.simulated < bench_.max_time
-                                ? "at " + sim::format_time(r.simulated)
-                                : "still running at the bench's max_time " + sim::format_time(bench_.max_time)});
+  if (!incomplete_.empty()) r.expectations.push_back({"complete", false, incomplete_});
+  r.expectations.push_back({"ended before max_time", r.simulated < max_time_,
+                            r.simulated < max_time_ ? "at " + sim::format_time(r.simulated)
+                                                    : "still running at the bench's max_time " + sim::format_time(max_time_)});
   r.expectations.push_back({"pins at known levels", unknown_levels_ == 0,
                             unknown_levels_ == 0 ? "CLOCK and DATA's driver at 0 or 1 throughout"
                                                  : std::to_string(unknown_levels_) + " time(s) unknown (see the notes)"});
@@ -219,6 +266,7 @@ void Bench::judge(BenchResult& r) const {
 BenchResult Bench::finish() {
   if (finished_) throw std::logic_error("Bench::finish called twice");
   finished_ = true;
+  should_stop();  // a signal that came while the outside simulator was ending it
   auto& p = *parts_;
   p.checker.finish();
   p.at_encoder.finish();
@@ -240,6 +288,8 @@ BenchResult Bench::finish() {
   r.conformance = p.checker.conformance();
   r.conclusion = p.checker.conclusion();
   r.notes = notes_;
+  r.incomplete = incomplete_;
+  r.interrupted = interrupted_;
   judge(r);
   return r;
 }

@@ -21,6 +21,7 @@
 
 #include "checker/frame_decoder.hpp"
 #include "checker/timing_checker.hpp"
+#include "scenarios/limits.hpp"
 #include "scenarios/runner.hpp"
 #include "scenarios/scenario.hpp"
 
@@ -36,6 +37,10 @@ struct BenchOptions {
   std::optional<std::uint64_t> seed;    // overrides the bench's seed
   // Called with each frame the checker's decoder finds at the encoder's connector, as it ends.
   std::function<void(const checker::WireFrame&)> on_frame;
+  // Kernel events and records kept (positions, parameters, frames, violations), and a cap on the
+  // bench's max_time, as for `endatsim run` (scenarios/limits.hpp); the events list is checked
+  // when the bench is built.
+  scenarios::Limits limits;
 };
 
 // A value the master decoded, as it reported it, against what the wires or the encoder held.
@@ -61,12 +66,17 @@ struct BenchResult {
   checker::Conclusion conclusion;
   std::vector<scenarios::ExpectationResult> expectations;
   std::vector<std::string> notes;  // what the bridge had to assume (time precision, unknown levels)
+  // Why the run ended before the outside simulator did: a limit reached or a signal; such a
+  // result does not pass.
+  std::string incomplete;
+  int interrupted = 0;  // the signal (SIGINT, SIGTERM) that ended it, or 0
   bool passed() const;
 };
 
 class Bench {
  public:
-  // `bench`: a scenario loaded as scenarios::ScenarioKind::Bench (no master, no script).
+  // `bench`: a scenario loaded as scenarios::ScenarioKind::Bench (no master, no script). Throws
+  // scenarios::ScenarioError when the bench asks for more than options.limits grant.
   explicit Bench(const scenarios::Scenario& bench, BenchOptions options = {});
   ~Bench();
   Bench(const Bench&) = delete;
@@ -77,7 +87,8 @@ class Bench {
   void advance_to(Time t);
   // The master drives `pin` at the current instant; the change settles before this returns.
   void drive(MasterPin pin, bool level);
-  // When the bench must be woken next (an edge on its way along the cable, an encoder timer).
+  // When the bench must be woken next (an edge on its way along the cable, an encoder timer);
+  // none once a limit or a signal stopped it.
   std::optional<Time> next_event_time() const;
   // DATA at the master's receiver output, and a call at each change of it.
   bool data_in() const;
@@ -90,8 +101,12 @@ class Bench {
   // A pin of the master at an unknown level (X, Z, U …): noted, and the run fails "pins at known
   // levels" (a master whose outputs go unknown is broken even when the line survives it).
   void unknown_level(std::string text);
-  // True once the bench's max_time has passed: the outside simulator should stop.
-  bool out_of_time() const;
+  // True once the outside simulator should stop: the bench's max_time has passed, a limit was
+  // reached or SIGINT/SIGTERM asked to stop (scenarios/interrupt.hpp). From then on the bench
+  // stands still: advance_to and drive do nothing.
+  bool should_stop();
+  // The bench's max_time, or the limit's when that is earlier.
+  Time max_time() const { return max_time_; }
 
   // Ends the run: evaluates what is open and judges the expectations. Call once.
   BenchResult finish();
@@ -104,6 +119,9 @@ class Bench {
   void on_encoder_clock(std::uint64_t level);
   void on_encoder_data(std::uint64_t level);
   void drain_frames();
+  void check_limits();
+  void end_early(const std::string& why, int signal = 0);
+  std::uint64_t records() const;
   void judge(BenchResult& r) const;
 
   const scenarios::Scenario& bench_;
@@ -119,6 +137,10 @@ class Bench {
   std::vector<checker::WireFrame> frames_;
   std::optional<std::uint16_t> last_parameter_on_wires_;
   bool finished_ = false;
+  scenarios::Limits limits_;
+  Time max_time_;
+  std::string incomplete_;
+  int interrupted_ = 0;
 };
 
 }  // namespace endatsim::cosim

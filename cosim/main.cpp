@@ -6,13 +6,16 @@
 #include <string>
 
 #include "cosim/report.hpp"
+#include "scenarios/interrupt.hpp"
+#include "scenarios/limits.hpp"
 #include "scenarios/loader.hpp"
 
 namespace endatsim::cosim {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: PROGRAM BENCH.json [--json FILE] [--junit FILE] [--log FILE] [--vcd FILE] [--seed N] [--verbose]";
+    "usage: PROGRAM BENCH.json [--json FILE] [--junit FILE] [--log FILE] [--vcd FILE] [--seed N] [--verbose]\n"
+    "       [--max-time TIME] [--max-kernel-events N] [--max-records N]";
 
 struct MainOptions {
   std::string bench;
@@ -34,6 +37,8 @@ MainOptions parse(int argc, const char* const* argv) {
     else if (arg == "--log") o.outputs.log = value();
     else if (arg == "--vcd") o.bench_options.vcd_path = value();
     else if (arg == "--verbose") o.verbose = true;
+    else if (arg == "--max-time" || arg == "--max-kernel-events" || arg == "--max-records")
+      scenarios::set_limit(o.bench_options.limits, arg.substr(2), value());
     else if (arg == "--seed") {
       const std::string s = value();
       std::uint64_t seed = 0;
@@ -52,6 +57,7 @@ MainOptions parse(int argc, const char* const* argv) {
 }  // namespace
 
 int run_main(int argc, const char* const* argv, const std::function<void(Bench&)>& drive) {
+  scenarios::install_interrupt_handlers();
   MainOptions o;
   scenarios::Scenario bench_file;
   try {

@@ -1,6 +1,7 @@
 #include "cosim/report.hpp"
 
 #include "scenarios/capture_check.hpp"
+#include "scenarios/interrupt.hpp"
 #include "scenarios/junit.hpp"
 #include "scenarios/output_file.hpp"
 #include "scenarios/report.hpp"
@@ -33,6 +34,7 @@ void write_summary(std::ostream& out, const BenchResult& r, bool verbose) {
   out << "  the master reported " << r.positions.size() << " position(s) and " << r.parameters.size()
       << " parameter(s); judged from the wires alone (the master declares nothing)\n";
   for (const auto& n : r.notes) out << "  note: " << n << "\n";
+  if (!r.incomplete.empty()) out << "  INCOMPLETE: " << r.incomplete << "\n";
   if (verbose)
     for (const auto& f : r.frames) out << "  " << scenarios::frame_log_line(f);
   scenarios::write_violations(out, r.violations, verbose);
@@ -47,7 +49,7 @@ nlohmann::json to_json(const BenchResult& r) {
   using nlohmann::json;
   json expectations = json::array();
   for (const auto& e : r.expectations) expectations.push_back({{"name", e.name}, {"passed", e.passed}, {"detail", e.detail}});
-  return {{"name", r.name},
+  json j{{"name", r.name},
           {"file", r.file},
           {"seed", r.seed},
           {"passed", r.passed()},
@@ -64,21 +66,28 @@ nlohmann::json to_json(const BenchResult& r) {
           {"verdict", scenarios::verdict_json(r.conclusion)},
           {"conformance", scenarios::conformance_json(r.conformance)},
           {"expectations", expectations}};
+  if (!r.incomplete.empty()) {
+    j["incomplete"] = r.incomplete;
+    if (r.interrupted != 0) j["interrupted"] = scenarios::signal_name(r.interrupted);
+  }
+  return j;
 }
 
 std::string junit_xml(const BenchResult& r) {
   using scenarios::xml_escape;
-  std::size_t failures = 0;
+  std::size_t failures = 0, errors = 0;
   std::string cases;
   for (const auto& e : r.expectations) {
-    failures += e.passed ? 0 : 1;
-    cases += testcase(e.name, r.file,
-                      e.passed ? "" : "      <failure type=\"expectation\" message=\"" + xml_escape(e.detail) + "\"/>\n");
+    // A run that ended early is an error of the run, not a failed expectation of the master.
+    const bool error = !e.passed && e.name == "complete";
+    (error ? errors : failures) += e.passed ? 0 : 1;
+    const std::string type = error ? "error type=\"incomplete\"" : "failure type=\"expectation\"";
+    cases += testcase(e.name, r.file, e.passed ? "" : "      <" + type + " message=\"" + xml_escape(e.detail) + "\"/>\n");
   }
   const std::string tests = std::to_string(r.expectations.size());
-  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"endatsim cosim\" tests=\"" + tests +
-         "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\">\n  <testsuite name=\"" + xml_escape(r.name) +
-         "\" tests=\"" + tests + "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\" skipped=\"0\">\n" + cases +
+  const std::string counts = "\" failures=\"" + std::to_string(failures) + "\" errors=\"" + std::to_string(errors) + "\"";
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"endatsim cosim\" tests=\"" + tests + counts +
+         ">\n  <testsuite name=\"" + xml_escape(r.name) + "\" tests=\"" + tests + counts + " skipped=\"0\">\n" + cases +
          "  </testsuite>\n</testsuites>\n";
 }
 
@@ -97,6 +106,8 @@ int report(const BenchResult& r, const OutputPaths& outputs, bool verbose, std::
     err << "endatsim: " << e.what() << std::endl;
     return 2;
   }
+  if (r.interrupted != 0) return 128 + r.interrupted;
+  if (!r.incomplete.empty()) return 3;
   return r.passed() ? 0 : 1;
 }
 

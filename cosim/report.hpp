@@ -23,7 +23,8 @@ struct OutputPaths {
 };
 // Prints the summary to `out` and writes each output asked for (never half a file); returns the
 // exit status: 0 when every expectation held, 1 when one failed, 2 when an output could not be
-// written (said on `err`).
+// written (said on `err`), 3 when a limit ended the run, 128 + N when signal N did (the outputs
+// say incomplete).
 int report(const BenchResult& r, const OutputPaths& outputs, bool verbose, std::ostream& out, std::ostream& err);
 
 }  // namespace endatsim::cosim

@@ -57,14 +57,14 @@ void VerilatedMaster::read_reports() {
 
 bool VerilatedMaster::run_cycles(std::uint64_t cycles) {
   for (std::uint64_t i = 0; i < 2 * cycles; ++i) {
-    if (bench_.out_of_time()) return false;
+    if (bench_.should_stop()) return false;
     half_cycle();
   }
   return true;
 }
 
 bool VerilatedMaster::run_until(const std::function<bool()>& done) {
-  while (!bench_.out_of_time()) {
+  while (!bench_.should_stop()) {
     half_cycle();
     if (*ports_.sys_clk != 0 && done()) return true;
   }
@@ -74,7 +74,7 @@ bool VerilatedMaster::run_until(const std::function<bool()>& done) {
 bool VerilatedMaster::run_for(Time span) {
   const Time end = bench_.now() + span;
   while (bench_.now() + half_period_ <= end) {
-    if (bench_.out_of_time()) return false;
+    if (bench_.should_stop()) return false;
     half_cycle();
   }
   return true;

@@ -11,6 +11,19 @@ static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs a
 
 extern "C" void on_signal(int signal) { requested.store(signal, std::memory_order_relaxed); }
 
+struct sigaction previous_int {}, previous_term {};
+
+extern "C" void on_signal_chained(int signal, siginfo_t* info, void* context) {
+  requested.store(signal, std::memory_order_relaxed);
+  const struct sigaction& previous = signal == SIGINT ? previous_int : previous_term;
+  sigaction(signal, &previous, nullptr);  // the next one goes where it always went
+  if ((previous.sa_flags & SA_SIGINFO) != 0) {
+    if (previous.sa_sigaction != nullptr) previous.sa_sigaction(signal, info, context);
+  } else if (previous.sa_handler != SIG_DFL && previous.sa_handler != SIG_IGN && previous.sa_handler != nullptr) {
+    previous.sa_handler(signal);
+  }
+}
+
 }  // namespace
 
 void install_interrupt_handlers() {
@@ -20,6 +33,15 @@ void install_interrupt_handlers() {
   action.sa_flags = SA_RESETHAND;  // the next one ends the process
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+}
+
+void install_chained_interrupt_handlers() {
+  struct sigaction action {};
+  action.sa_sigaction = on_signal_chained;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_SIGINFO;
+  sigaction(SIGINT, &action, &previous_int);
+  sigaction(SIGTERM, &action, &previous_term);
 }
 
 int interrupt_signal() noexcept { return requested.load(std::memory_order_relaxed); }

@@ -11,6 +11,10 @@ namespace endatsim::scenarios {
 // Installs the handler for SIGINT and SIGTERM; a second signal of either kind ends the process
 // at once (the default action), for a run that does not stop.
 void install_interrupt_handlers();
+// For a library inside another program (the VPI bridge in a simulator): the signal is recorded,
+// then the program's own handler, if it had one, is put back and called, so that the simulator
+// stops as it always does and endatsim's results say why.
+void install_chained_interrupt_handlers();
 // The signal that asked to stop, or 0. Safe from any thread.
 int interrupt_signal() noexcept;
 // As the handler does (tests, and embedders that stop a run from elsewhere); 0 clears it.

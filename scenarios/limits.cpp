@@ -1,6 +1,8 @@
 #include "scenarios/limits.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <stdexcept>
 
 #include "scenarios/loader.hpp"
 #include "scenarios/scenario.hpp"
@@ -38,6 +40,31 @@ std::uint64_t script_frames(const Scenario& scenario) {
   std::uint64_t total = 0;
   for (const auto& op : scenario.script) total = saturating_add(total, frames_of(op));
   return total;
+}
+
+void set_limit(Limits& limits, const std::string& name, const std::string& text) {
+  if (name == "max-time") {
+    sim::Time t;
+    try {
+      t = sim::parse_duration(text);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--max-time: " + std::string(e.what()));
+    }
+    if (t <= sim::Time::zero()) throw std::invalid_argument("--max-time expects a duration above 0, got '" + trimmed(text) + "'");
+    limits.max_time = t;
+    return;
+  }
+  std::uint64_t Limits::*field = nullptr;
+  if (name == "max-kernel-events") field = &Limits::kernel_events;
+  else if (name == "max-script-frames") field = &Limits::script_frames;
+  else if (name == "max-events") field = &Limits::events;
+  else if (name == "max-records") field = &Limits::records;
+  else throw std::logic_error("set_limit: no limit " + name);
+  std::uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc{} || end != text.data() + text.size() || text.empty() || v == 0)
+    throw std::invalid_argument("--" + name + " expects an integer 1 .. 18446744073709551615, got '" + trimmed(text) + "'");
+  limits.*field = v;
 }
 
 Limits resolve_limits(const Scenario& s, const Limits& granted) {

@@ -60,6 +60,15 @@ inline constexpr const char* kEventsOption = "--max-events";
 inline constexpr const char* kRecordsOption = "--max-records";
 inline constexpr const char* kMaxTimeOption = "--max-time";
 
+// Sets one limit from text, as the command line and the co-simulation bridge give it: `name` is
+// "max-time" (a duration above 0) or "max-kernel-events", "max-script-frames", "max-events",
+// "max-records" (an integer 1 .. 2^64 - 1). Throws std::invalid_argument naming the option and
+// what it expects; an unknown name is a std::logic_error.
+void set_limit(Limits& limits, const std::string& name, const std::string& text);
+// The names set_limit takes.
+inline constexpr const char* kLimitNames[] = {"max-time", "max-kernel-events", "max-script-frames", "max-events",
+                                              "max-records"};
+
 using input::trimmed;
 
 }  // namespace endatsim::scenarios

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cosim/bench.hpp"
 #include "cosim/report.hpp"
 #include "line/line.hpp"
+#include "scenarios/interrupt.hpp"
 #include "scenarios/loader.hpp"
 #include "test_support.hpp"
 
@@ -172,6 +175,90 @@ TEST(CosimBench, TheSameBenchAndSeedGiveTheSameReport) {
     return cosim::to_json(bench.finish()).dump();
   };
   EXPECT_EQ(once(), once());
+}
+
+// What a run ended early reports: an "INCOMPLETE" line, JSON and JUnit that say so, the status.
+void expect_incomplete_report(const cosim::BenchResult& r, const std::string& reason, int status) {
+  EXPECT_FALSE(r.passed());
+  EXPECT_NE(r.incomplete.find(reason), std::string::npos) << r.incomplete;
+  const auto j = cosim::to_json(r);
+  EXPECT_FALSE(j["passed"].get<bool>());
+  EXPECT_EQ(j["incomplete"].get<std::string>(), r.incomplete);
+  EXPECT_NE(cosim::junit_xml(r).find("<error type=\"incomplete\""), std::string::npos);
+  std::ostringstream out, err;
+  EXPECT_EQ(cosim::report(r, {}, false, out, err), status);
+  EXPECT_NE(out.str().find("INCOMPLETE: " + r.incomplete), std::string::npos) << out.str();
+}
+
+TEST(CosimBenchLimits, KernelEventsEndTheRunAndTheBenchStandsStill) {
+  const auto s = scenarios::load_scenario_text(kBench, "bench.json", scenarios::ScenarioKind::Bench);
+  cosim::BenchOptions options;
+  options.limits.kernel_events = 200;  // one frame takes about a thousand
+  cosim::Bench bench(s, options);
+  EXPECT_FALSE(bench.should_stop());
+  drive(bench, three_reads());
+  EXPECT_TRUE(bench.should_stop());
+  const Time stopped_at = bench.now();
+  EXPECT_LT(stopped_at, us(120));
+  bench.advance_to(us(400));
+  bench.drive(MasterPin::Clock, false);
+  EXPECT_EQ(bench.now(), stopped_at);
+  const auto r = bench.finish();
+  EXPECT_GE(r.events, 200U);
+  EXPECT_LT(r.events, 200U + 4096U);
+  expect_incomplete_report(r, "limit kernel_events reached", 3);
+  EXPECT_NE(r.incomplete.find("--max-kernel-events or limits.kernel_events"), std::string::npos) << r.incomplete;
+  EXPECT_EQ(r.interrupted, 0);
+}
+
+TEST(CosimBenchLimits, RecordsBoundWhatAMasterReports) {
+  const auto s = scenarios::load_scenario_text(kBench, "bench.json", scenarios::ScenarioKind::Bench);
+  cosim::BenchOptions options;
+  options.limits.records = 50;
+  cosim::Bench bench(s, options);
+  drive(bench, {position_read_21(us(20))});
+  for (int i = 0; i < 1000 && !bench.should_stop(); ++i) bench.report_position(1);
+  const auto r = bench.finish();
+  EXPECT_LE(r.positions.size(), 50U);
+  expect_incomplete_report(r, "limit records reached: 50 ", 3);
+}
+
+TEST(CosimBenchLimits, MaxTimeCapsTheBenchsOwnAndABenchAskingForMoreIsRefused) {
+  const auto s = scenarios::load_scenario_text(kBench, "bench.json", scenarios::ScenarioKind::Bench);
+  cosim::BenchOptions options;
+  options.limits.max_time = us(100);
+  cosim::Bench bench(s, options);
+  EXPECT_EQ(bench.max_time(), us(100));
+  bench.advance_to(us(99));
+  EXPECT_FALSE(bench.should_stop());
+  bench.advance_to(us(100));
+  EXPECT_TRUE(bench.should_stop());
+  const auto r = bench.finish();
+  EXPECT_TRUE(r.incomplete.empty());  // max_time is the bench's end, not a limit's
+  EXPECT_FALSE(r.passed());           // "ended before max_time"
+  cosim::BenchOptions few_events;
+  few_events.limits.kernel_events = 10;
+  std::string text = kBench;
+  text.replace(text.find("\"expect\""), 0, R"("limits": {"kernel_events": 11}, )");
+  const auto asks_more = scenarios::load_scenario_text(text, "bench.json", scenarios::ScenarioKind::Bench);
+  EXPECT_THROW(cosim::Bench(asks_more, few_events), scenarios::ScenarioError);
+}
+
+TEST(CosimBenchLimits, SigintEndsTheRunMarkedInterrupted) {
+  const auto s = scenarios::load_scenario_text(kBench, "bench.json", scenarios::ScenarioKind::Bench);
+  cosim::Bench bench(s);
+  drive(bench, {position_read_21(us(20))});
+  EXPECT_FALSE(bench.should_stop());
+  scenarios::request_interrupt(SIGINT);
+  EXPECT_TRUE(bench.should_stop());
+  scenarios::request_interrupt(0);
+  const Time stopped_at = bench.now();
+  bench.advance_to(us(300));
+  EXPECT_EQ(bench.now(), stopped_at);
+  const auto r = bench.finish();
+  EXPECT_EQ(r.interrupted, SIGINT);
+  expect_incomplete_report(r, "interrupted by SIGINT", 128 + SIGINT);
+  EXPECT_EQ(cosim::to_json(r)["interrupted"], "SIGINT");
 }
 
 void expect_bench_error(const std::string& text, const std::string& fragment) {

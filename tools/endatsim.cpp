@@ -278,32 +278,14 @@ std::optional<std::uint64_t> parse_uint(const std::string& text) {
 
 // The --max-* options into `limits`; a message and false when one is not a number in range.
 bool parse_limits(const po::variables_map& vm, const char* command, scenarios::Limits& limits) {
-  if (vm.count("max-time") != 0) {
-    const auto text = vm["max-time"].as<std::string>();
-    try {
-      limits.max_time = sim::parse_duration(text);
-    } catch (const std::invalid_argument& e) {
-      std::cerr << "endatsim " << command << ": --max-time: " << e.what() << "\n";
-      return false;
-    }
-    if (*limits.max_time <= sim::Time::zero()) {
-      std::cerr << "endatsim " << command << ": --max-time expects a duration above 0, got '" << text << "'\n";
-      return false;
-    }
-  }
-  for (auto [name, field] : {std::pair{"max-kernel-events", &scenarios::Limits::kernel_events},
-                             {"max-script-frames", &scenarios::Limits::script_frames},
-                             {"max-events", &scenarios::Limits::events},
-                             {"max-records", &scenarios::Limits::records}}) {
+  for (const char* name : scenarios::kLimitNames) {
     if (vm.count(name) == 0) continue;
-    const auto text = vm[name].as<std::string>();
-    const auto v = parse_uint(text);
-    if (!v || *v == 0) {
-      std::cerr << "endatsim " << command << ": --" << name << " expects an integer 1 .. 18446744073709551615, got '"
-                << scenarios::trimmed(text) << "'\n";
+    try {
+      scenarios::set_limit(limits, name, vm[name].as<std::string>());
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "endatsim " << command << ": " << e.what() << "\n";
       return false;
     }
-    limits.*field = *v;
   }
   return true;
 }

@@ -22,11 +22,16 @@
 //   +endatsim_parameter=PATH +endatsim_parameter_valid=PATH    a watched parameter port
 //   +endatsim_json=FILE +endatsim_junit=FILE +endatsim_log=FILE +endatsim_vcd=FILE +endatsim_verbose
 //   +endatsim_seed=N
+//   +endatsim_max_time=TIME +endatsim_max_kernel_events=N +endatsim_max_records=N   limits, as
+//                                   endatsim run's --max-* (a run that reaches one ends, incomplete)
 // System tasks for Verilog: $endatsim_position(value) and $endatsim_parameter(value) report
 // what the master decoded. At the end of simulation the report is printed and written, and the
-// simulator exits with status 1 when an expectation failed (2 for bad configuration).
+// simulator exits with status 1 when an expectation failed (2 for bad configuration, 3 when a limit
+// ended the run, 128 + N when SIGINT or SIGTERM did: the simulator's own handler still runs, and
+// the outputs say incomplete).
 #include <vpi_user.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
@@ -44,7 +49,10 @@
 
 #include "cosim/bench.hpp"
 #include "cosim/report.hpp"
+#include "input/json_input.hpp"
 #include "scenarios/capture_check.hpp"
+#include "scenarios/interrupt.hpp"
+#include "scenarios/limits.hpp"
 #include "scenarios/loader.hpp"
 #include "scenarios/output_file.hpp"
 
@@ -68,7 +76,8 @@ constexpr std::uint64_t kEndOfTime = std::uint64_t{1} << 62;
 const std::set<std::string>& known_keys() {
   static const std::set<std::string> keys{
       "bench", "clock", "data", "data_out", "data_enable", "data_in", "enable_active_low", "position", "position_valid",
-      "parameter", "parameter_valid", "json", "junit", "log", "vcd", "verbose", "seed", "config"};
+      "parameter", "parameter_valid", "json", "junit", "log", "vcd", "verbose", "seed", "config",
+      "max_time", "max_kernel_events", "max_records"};
   return keys;
 }
 
@@ -133,13 +142,11 @@ class Config {
     plusargs_[key] = eq == std::string::npos ? std::string() : arg.substr(eq + 1);
   }
   void read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) bad_configuration(path + ": cannot open the configuration file");
     nlohmann::json j;
     try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      bad_configuration(path + ": not valid JSON: " + e.what());
+      j = endatsim::input::parse(endatsim::input::read_file(path, {"co-simulation configuration", "a"}), path);
+    } catch (const endatsim::input::InputError& e) {
+      bad_configuration(e.what());
     }
     if (!j.is_object()) bad_configuration(path + ": at /: expected an object of +endatsim_ keys without the prefix");
     for (const auto& [k, v] : j.items()) {
@@ -314,6 +321,7 @@ class Bridge {
       drive_data();
     });
     at_max_time();
+    running_ = true;
   }
 
   void report_position(std::uint64_t value) {
@@ -336,7 +344,7 @@ class Bridge {
     // then ends at the last instant it was moved to.
     const std::uint64_t ticks = sim_ticks();
     if (ticks < kEndOfTime) {
-      const Time end = std::min(scale_.to_ps(ticks), bench_file_.max_time);
+      const Time end = std::min(scale_.to_ps(ticks), bench_.max_time());
       if (end > bench_.now()) bench_.advance_to(end);
     }
     cosim::OutputPaths outputs;
@@ -370,6 +378,16 @@ class Bridge {
       if (ec != std::errc{} || end != s.data() + s.size() || s.empty())
         bad_configuration("+endatsim_seed=" + s + ": expected a whole number");
       o.seed = seed;
+    }
+    for (const char* key : {"max_time", "max_kernel_events", "max_records"}) {
+      if (!config.has(key)) continue;
+      std::string option = key;
+      std::replace(option.begin(), option.end(), '_', '-');
+      try {
+        endatsim::scenarios::set_limit(o.limits, option, config.get(key));
+      } catch (const std::invalid_argument& e) {
+        bad_configuration("+endatsim_" + std::string(key) + "=" + endatsim::scenarios::trimmed(config.get(key)) + ": " + e.what());
+      }
     }
     return o;
   }
@@ -409,6 +427,11 @@ class Bridge {
       deferred_.push_back(std::move(work));
       return;
     }
+    // SIGINT and SIGTERM recorded, then handed to the simulator's own handler, which Icarus sets
+    // after the start-of-simulation callbacks: so they are chained at the first call from a
+    // running simulation.
+    if (running_ && !handlers_chained_) endatsim::scenarios::install_chained_interrupt_handlers();
+    handlers_chained_ = running_;
     inside_ = true;
     work();
     for (std::size_t i = 0; i < deferred_.size(); ++i) {
@@ -417,6 +440,12 @@ class Bridge {
     }
     deferred_.clear();
     inside_ = false;
+    // max_time, a limit or SIGINT/SIGTERM: the simulation ends, and the bench with it.
+    if (bench_.should_stop()) {
+      if (!finish_requested_) vpi_control(vpiFinish, 0);
+      finish_requested_ = true;
+      return;
+    }
     schedule_wakeup();
   }
 
@@ -543,11 +572,10 @@ class Bridge {
 
   // The bench's max_time ends the simulation even when nothing happens on the pins (a master
   // held in reset, a testbench that never calls $finish).
-  void at_max_time() { after(scale_.to_ticks_ceil(bench_file_.max_time), &Bridge::on_max_time); }
+  void at_max_time() { after(scale_.to_ticks_ceil(bench_.max_time()), &Bridge::on_max_time); }
   static PLI_INT32 on_max_time(p_cb_data cb) {
     auto* self = reinterpret_cast<Bridge*>(cb->user_data);
     self->enter([self] { self->sync(); });
-    vpi_control(vpiFinish, 0);
     return 0;
   }
 
@@ -562,6 +590,9 @@ class Bridge {
   std::set<std::uint64_t> wakeups_;
   std::vector<std::unique_ptr<Watch>> watches_;
   bool inside_ = false;
+  bool finish_requested_ = false;
+  bool handlers_chained_ = false;
+  bool running_ = false;  // past the start-of-simulation callback
   std::vector<std::function<void()>> deferred_;
   bool clock_level_ = true;
 };
