@@ -9,6 +9,7 @@
 #include "scenarios/interrupt.hpp"
 #include "scenarios/limits.hpp"
 #include "scenarios/loader.hpp"
+#include "scenarios/output_file.hpp"
 
 namespace endatsim::cosim {
 namespace {
@@ -56,7 +57,9 @@ MainOptions parse(int argc, const char* const* argv) {
 
 }  // namespace
 
-int run_main(int argc, const char* const* argv, const std::function<void(Bench&)>& drive) {
+namespace {
+
+int run_bench(int argc, const char* const* argv, const std::function<void(Bench&)>& drive) {
   scenarios::install_interrupt_handlers();
   MainOptions o;
   scenarios::Scenario bench_file;
@@ -75,6 +78,13 @@ int run_main(int argc, const char* const* argv, const std::function<void(Bench&)
     std::cerr << "endatsim: " << e.what() << std::endl;
     return 2;
   }
+}
+
+}  // namespace
+
+int run_main(int argc, const char* const* argv, const std::function<void(Bench&)>& drive) {
+  scenarios::CheckedStdout out(argc > 0 ? argv[0] : "endatsim");
+  return out.finish(run_bench(argc, argv, drive));
 }
 
 }  // namespace endatsim::cosim

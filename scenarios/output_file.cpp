@@ -1,6 +1,7 @@
 #include "scenarios/output_file.hpp"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -90,8 +91,8 @@ std::ostream& StreamedFile::stream() { return path_ == "-" ? std::cout : file_; 
 
 void StreamedFile::commit() {
   stream().flush();
-  if (path_ == "-") {
-    if (!std::cout) fail(0);
+  if (path_ == "-") {  // the reason is kept by CheckedStdout, which the tools report at exit
+    if (!std::cout) throw std::runtime_error("cannot write to standard output");
     return;
   }
   if (buffer_.error() != 0 || !file_) fail(buffer_.error());
@@ -163,6 +164,58 @@ std::vector<std::string> remove_outputs(const std::vector<OutputPath>& outputs) 
     if (::unlink(o.path.c_str()) == 0) removed.push_back(o.path);
   }
   return removed;
+}
+
+// Passes everything to standard output's own buffer and keeps the errno of the first failure.
+class CheckedStdout::Watch : public std::streambuf {
+ public:
+  explicit Watch(std::streambuf* inner) : inner_(inner) {}
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return sync() == 0 ? traits_type::not_eof(c) : c;
+    errno = 0;
+    const int_type r = inner_->sputc(traits_type::to_char_type(c));
+    if (traits_type::eq_int_type(r, traits_type::eof())) failed();
+    return r;
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    errno = 0;
+    const std::streamsize written = inner_->sputn(s, n);
+    if (written < n) failed();
+    return written;
+  }
+  int sync() override {
+    errno = 0;
+    const int r = inner_->pubsync();
+    if (r != 0 || std::fflush(stdout) != 0) {
+      failed();
+      return -1;
+    }
+    return 0;
+  }
+
+ private:
+  void failed() {
+    if (error_ == 0) error_ = errno != 0 ? errno : EIO;
+  }
+  std::streambuf* inner_;
+  int error_ = 0;
+};
+
+CheckedStdout::CheckedStdout(std::string program)
+    : program_(std::move(program)), watch_(std::make_unique<Watch>(std::cout.rdbuf())), previous_(std::cout.rdbuf(watch_.get())) {}
+
+CheckedStdout::~CheckedStdout() { std::cout.rdbuf(previous_); }
+
+int CheckedStdout::finish(int status) {
+  std::cout.flush();
+  std::cout.rdbuf(previous_);
+  if (watch_->error() == 0 && std::ferror(stdout) == 0) return status;
+  const int error = watch_->error() != 0 ? watch_->error() : EIO;
+  std::cerr << program_ << ": cannot write to standard output: " << std::strerror(error) << std::endl;
+  return status >= 2 ? status : 2;
 }
 
 }  // namespace endatsim::scenarios

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <streambuf>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -76,6 +77,25 @@ struct OutputPath {
 // cannot be written. "-" (standard output) and character devices pass.
 void check_output_paths(const std::vector<std::string>& inputs, const std::string& inputs_are,
                         const std::vector<OutputPath>& outputs);
+
+// Standard output checked for a program's whole life (a full disk, `> /dev/full`): std::cout
+// keeps its buffering (line by line on a terminal) and the reason of its first failed write is
+// kept. finish() flushes it; when a write failed it says so on standard error, naming the program
+// and the reason, and returns 2 unless `status` already says worse; otherwise `status`.
+class CheckedStdout {
+ public:
+  explicit CheckedStdout(std::string program);
+  ~CheckedStdout();
+  CheckedStdout(const CheckedStdout&) = delete;
+  CheckedStdout& operator=(const CheckedStdout&) = delete;
+  int finish(int status);
+
+ private:
+  class Watch;
+  std::string program_;
+  std::unique_ptr<Watch> watch_;
+  std::streambuf* previous_;
+};
 
 // Removes what an interrupted command leaves at its output paths (an earlier run's results must not
 // stay in place as if current); "-" and devices are left alone. The paths removed.

@@ -383,6 +383,27 @@ TEST(HostileOutputs, AFullDeviceIsACleanErrorNamingThePath) {
   EXPECT_TRUE(contains(d.err, "No space left on device")) << d.err;
 }
 
+// Standard output is an output too: a summary, a table or "--json -" that cannot be written is
+// an error with the reason, not exit 0.
+TEST(HostileOutputs, StandardOutputThatCannotBeWrittenIsAnErrorWithTheReason) {
+  if (!fs::exists("/dev/full")) GTEST_FAIL() << "/dev/full is needed";
+  TempDir dir;
+  const auto file = write(dir / "in.json", base("in").dump());
+  for (const std::string& args : {"run " + file, "run " + file + " --quiet --json -", std::string("checks"),
+                                 std::string("--help"), "validate " + file}) {
+    const std::string err = dir / "stderr";
+    const int raw = std::system((std::string(ENDATSIM_EXE) + " " + args + " >/dev/full 2>" + err).c_str());
+    ASSERT_TRUE(WIFEXITED(raw)) << args;
+    EXPECT_EQ(WEXITSTATUS(raw), 2) << args;
+    EXPECT_TRUE(contains(slurp(err), "endatsim: cannot write to standard output: No space left on device\n"))
+        << args << ": " << slurp(err);
+  }
+  // The same command with somewhere to write gives its verdict.
+  const auto r = run("run " + file, dir);
+  EXPECT_TRUE(r.status == 0 || r.status == 1) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
 TEST(HostileOutputs, DiagramKeepsItsWaveformInAPrivateDirectoryAndRemovesIt) {
   TempDir dir, tmp;
   // What an attacker plants where the old code wrote its temporary file.

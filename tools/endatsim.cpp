@@ -1045,7 +1045,7 @@ void print_help_all() {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int dispatch(int argc, char** argv) {
   const std::string first = argc > 1 ? argv[1] : "";
   if (first == "--version") {
     std::cout << "endatsim " << ENDATSIM_VERSION << "\n";
@@ -1107,4 +1107,9 @@ int main(int argc, char** argv) {
     std::cerr << "endatsim: " << e.what() << "\n";
   }
   return kBadInput;
+}
+
+int main(int argc, char** argv) {
+  scenarios::CheckedStdout out("endatsim");
+  return out.finish(dispatch(argc, argv));
 }

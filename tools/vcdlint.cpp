@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "scenarios/output_file.hpp"
 #include "scenarios/vcd_reader.hpp"
 
 namespace {
@@ -31,7 +32,7 @@ const char* const kHelp =
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int run_lint(int argc, char** argv) {
   endatsim::scenarios::VcdLintOptions options;
   bool edges = false, quiet = false;
   std::vector<std::string> files;
@@ -74,4 +75,9 @@ int main(int argc, char** argv) {
       for (const auto& v : f.variables) std::cout << v.name << " " << v.rising << " " << v.falling << "\n";
   }
   return status;
+}
+
+int main(int argc, char** argv) {
+  endatsim::scenarios::CheckedStdout out("endatsim-vcdlint");
+  return out.finish(run_lint(argc, argv));
 }
