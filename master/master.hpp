@@ -220,7 +220,7 @@ struct Operation {
   enum class Purpose : std::uint8_t {
     None, Step, Errors, Warnings, Word13, Word37, ChecksumWord,
     ErrorSources, Endat22Lsb, Endat22Msb, ForcedTest, ForcedError1, ForcedError2, ForcedOff, DiagnosisWarnings,
-    DiagnosisConfiguration
+    DiagnosisConfiguration, CommandSet
   };
   Kind kind = Kind::ReadPosition;
   std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
@@ -345,6 +345,7 @@ class Master {
   void note_safety(FrameResult& f);
   void check_error_messages(FrameResult& f);
   void check_forced_sampling(const FrameResult& f);
+  void check_command_set(const FrameResult& f);
   void check_following_error(const FrameResult& f);
   void check_acknowledgement(const FrameResult& f);
   void check_position_value_2(const FrameResult& f);

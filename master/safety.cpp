@@ -60,6 +60,7 @@ std::string_view to_string(SafetyFunction f) {
     case SafetyFunction::Checksums: return "checksums";
     case SafetyFunction::Acknowledgements: return "acknowledgements";
     case SafetyFunction::FollowingError: return "following_error";
+    case SafetyFunction::CommandSet: return "command_set";
   }
   return "?";
 }
@@ -82,6 +83,7 @@ bool SafetyParams::enabled(SafetyFunction f) const {
     case SafetyFunction::Checksums: return checksums;
     case SafetyFunction::Acknowledgements: return acknowledgements;
     case SafetyFunction::FollowingError: return following_error;
+    case SafetyFunction::CommandSet: return command_set;
   }
   return false;
 }
@@ -151,6 +153,10 @@ void Master::expand_safety_startup() {
   const auto frame = [&plan](MC c, std::uint8_t address, P purpose) { plan.frame(c, address, 0, purpose); };
   const auto kind = [&](Operation::Kind k) { plan.add(k).command = current_->command; };
   if (s.crc_self_test) kind(Operation::Kind::CrcSelfTest);
+  if (s.command_set) {
+    frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::Manufacturer3), P::None);
+    frame(MC::EncoderSendParameters, protocol::word::manufacturer_address(protocol::word::kCommandSet), P::CommandSet);
+  }
   if (s.checksums || s.position_value_2) {
     kind(Operation::Kind::VerifyChecksum);
     kind(Operation::Kind::ReadEndat22Area);
@@ -179,7 +185,7 @@ void Master::expand_endat22_read() {
   endat22_lsb_.assign(64, std::nullopt);
   endat22_msb_.assign(64, std::nullopt);
   const std::uint64_t words = current_->endat22_words;
-  const auto word37 = parameter(mrs_of(protocol::MemoryArea::Manufacturer3), 37 - 32);
+  const auto word37 = parameter(mrs_of(protocol::MemoryArea::Manufacturer3), protocol::word::manufacturer_address(protocol::word::kCommandSet));
   if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
     if (words == ~std::uint64_t{0}) finish_checksums(false);
     return;
@@ -263,7 +269,7 @@ bool Master::startup_position_read(const FrameResult& f) {
   const unsigned needed = s.startup_positions ? s.startup_repetitions : 1;
   if (startup_agreeing_ >= needed) {
     static constexpr SafetyFunction kBlocking[] = {SafetyFunction::CrcSelfTest, SafetyFunction::Checksums,
-                                                   SafetyFunction::ForcedDynamicSampling};
+                                                   SafetyFunction::ForcedDynamicSampling, SafetyFunction::CommandSet};
     const bool blocked = std::any_of(std::begin(kBlocking), std::end(kBlocking),
                                      [this](SafetyFunction x) { return safety_.count(x) != 0; });
     safety_.axis_released = !blocked;
@@ -296,6 +302,7 @@ void Master::note_safety(FrameResult& f) {
   const bool position_answer = protocol::info(f.command).answer == protocol::AnswerFormat::Position;
   collect_words(f);
   check_acknowledgement(f);
+  check_command_set(f);
   if (!position_answer || f.outcome != FrameOutcome::Ok) return;
   check_error_messages(f);
   check_forced_sampling(f);
@@ -328,6 +335,21 @@ void Master::check_error_messages(FrameResult& f) {
   }
   disagree_state_ = disagree;
   error_state_ = f.error_detected;
+}
+
+// 2.3 and 3.5.22: word 37 declares the communication command with bits 4 and 5 stored inversely;
+// an encoder that supports it, or whose word 37 did not come back, is not released.
+void Master::check_command_set(const FrameResult& f) {
+  if (current_->purpose != P::CommandSet) return;
+  if (f.outcome != FrameOutcome::Ok) {
+    find(SafetyFunction::CommandSet, &f, "word 37 (3.5.22) could not be read: the axis stays blocked");
+    return;
+  }
+  if (protocol::parameters::decode_command_set(f.echo_parameter).communication_command)
+    find(SafetyFunction::CommandSet, &f,
+         "word 37 = " + protocol::parameters::command_set_string(f.echo_parameter) +
+             ": an encoder supporting \"Encoder receive communication command\" must not be used for safety-oriented "
+             "applications (2.3); the axis stays blocked");
 }
 
 void Master::check_forced_sampling(const FrameResult& f) {

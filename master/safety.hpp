@@ -29,11 +29,12 @@ enum class SafetyFunction : std::uint8_t {
   Checksums,              // words 47 (3.5.26) and 63 (3.9.37)
   Acknowledgements,       // what the encoder acknowledges equals what was written (2.6, 2.6.1)
   FollowingError,         // servo lag against the commanded motion
+  CommandSet,             // word 37 read at start-up: no communication command (2.3, 3.5.22)
 };
 inline constexpr std::array kSafetyFunctions{
     SafetyFunction::ErrorMessages,    SafetyFunction::PositionValue2, SafetyFunction::ForcedDynamicSampling,
     SafetyFunction::CrcSelfTest,      SafetyFunction::StartupPositions, SafetyFunction::Checksums,
-    SafetyFunction::Acknowledgements, SafetyFunction::FollowingError};
+    SafetyFunction::Acknowledgements, SafetyFunction::FollowingError, SafetyFunction::CommandSet};
 std::string_view to_string(SafetyFunction f);  // "error_messages", ...
 
 // The motion the drive commands: the set-point the following error is measured against.
@@ -60,6 +61,10 @@ struct SafetyParams {
   bool checksums = false;
   bool acknowledgements = false;
   bool following_error = false;
+  // 2.3: "Encoders supporting the mode command 'Encoder receive communication command' must not
+  // be used for safety-oriented applications": the start-up reads word 37 (3.5.22) and keeps the
+  // axis blocked when it declares that command, or cannot be read.
+  bool command_set = false;
   std::uint64_t following_error_limit = 1000;  // LSB
   MotionSetpoint setpoint;
 

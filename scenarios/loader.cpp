@@ -320,7 +320,8 @@ void read_safety(const Node& n, master::SafetyParams& p) {
                                   {"position_value_2", &p.position_value_2},
                                   {"forced_dynamic_sampling", &p.forced_dynamic_sampling}, {"crc_self_test", &p.crc_self_test},
                                   {"startup_positions", &p.startup_positions}, {"checksums", &p.checksums},
-                                  {"acknowledgements", &p.acknowledgements}, {"following_error", &p.following_error}})
+                                  {"acknowledgements", &p.acknowledgements}, {"following_error", &p.following_error},
+                                  {"command_set", &p.command_set}})
     if (auto v = o.opt(key)) *flag = v->as_bool();
   if (auto v = o.opt("forced_error1_port")) p.forced_error1_port = static_cast<std::uint8_t>(v->as_word(0xFF));
   if (auto v = o.opt("forced_error2_port")) p.forced_error2_port = static_cast<std::uint8_t>(v->as_word(0xFF));

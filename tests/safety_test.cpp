@@ -47,6 +47,7 @@ void set(master::SafetyParams& p, master::SafetyFunction f, bool on) {
     case F::Checksums: p.checksums = on; break;
     case F::Acknowledgements: p.acknowledgements = on; break;
     case F::FollowingError: p.following_error = on; break;
+    case F::CommandSet: p.command_set = on; break;
   }
 }
 
@@ -91,6 +92,7 @@ INSTANTIATE_TEST_SUITE_P(Library, SafetyPair, ::testing::ValuesIn(pairs()), [](c
 TEST(SafetyFunctions, AFaultlessEncoderGivesNoFindingWithEveryFunctionOn) {
   auto s = scenarios::load_scenario_file((kSafety / "08_position_value_2.json").string());
   s.events.clear();
+  s.encoder.communication_command_permitted = false;  // 2.3: no encoder for safety declares it
   for (auto f : master::kSafetyFunctions) set(s.master.safety, f, true);
   const auto r = scenarios::run_scenario(s);
   for (const auto& x : r.safety.findings) ADD_FAILURE() << master::to_string(x.function) << ": " << x.message;
@@ -100,6 +102,23 @@ TEST(SafetyFunctions, AFaultlessEncoderGivesNoFindingWithEveryFunctionOn) {
   EXPECT_EQ(r.undetected_errors, 0U);
   ASSERT_TRUE(r.safety.checksum63_stored.has_value());
   EXPECT_EQ(*r.safety.checksum63_stored, *r.safety.checksum63_computed);
+}
+
+// 2.3: only an encoder that declares the communication command is refused; one whose word 37
+// does not (3.5.22 bits 4/5 stored inversely as "not supported") is released.
+TEST(SafetyFunctions, CommandSetReleasesAnEncoderWithoutTheCommunicationCommand) {
+  auto s = scenarios::load_scenario_file((kSafety / "09_command_set.json").string());
+  s.encoder.communication_command_permitted = false;
+  s.expect = {};
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(r.safety.count(master::SafetyFunction::CommandSet), 0U);
+  EXPECT_TRUE(r.safety.axis_released);
+  s.encoder.communication_command_permitted = true;
+  const auto refused = scenarios::run_scenario(s);
+  ASSERT_EQ(refused.safety.count(master::SafetyFunction::CommandSet), 1U);
+  EXPECT_FALSE(refused.safety.axis_released);
+  EXPECT_NE(refused.safety.findings.front().message.find("must not be used for safety-oriented applications (2.3)"),
+            std::string::npos);
 }
 
 TEST(SafetyFunctions, ErrorMessagesReadWordZeroAfterTheErrorAppears) {
