@@ -48,8 +48,6 @@ constexpr int kBadInput = 2;
 constexpr int kIncomplete = 3;
 int interrupted_status(int signal) { return 128 + signal; }
 
-const char* const kLimitsUsage =
-    "[--max-time TIME] [--max-kernel-events N] [--max-script-frames N] [--max-events N] [--max-records N]";
 const char* const kRunUsage =
     "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH] [--log PATH] [--log-json PATH]\n"
     "                    [--seed N] [--verbose|--quiet] [--color auto|always|never]\n"
