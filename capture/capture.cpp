@@ -1,5 +1,7 @@
 #include "capture/capture.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <algorithm>
 #include <array>
 #include <fstream>
@@ -72,7 +74,7 @@ std::string list(const std::vector<std::string>& names, std::size_t at_most) {
 
 std::unique_ptr<Reader> open(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaptureError(path + ": cannot open the capture for reading");
+  if (!in) throw CaptureError(path + ": cannot open the capture for reading: " + std::strerror(errno));
   std::array<char, 4> magic{};
   in.read(magic.data(), magic.size());
   const bool zip = in.gcount() == 4 && magic[0] == 'P' && magic[1] == 'K' && magic[2] == 3 && magic[3] == 4;

@@ -29,6 +29,7 @@
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <numeric>
@@ -192,7 +193,7 @@ class LineStream {
 class CsvReader final : public QueuedReader {
  public:
   explicit CsvReader(const std::string& path) : QueuedReader(path), lines_(path) {
-    if (!lines_.good()) throw CaptureError(path + ": cannot open the capture for reading");
+    if (!lines_.good()) throw CaptureError(path + ": cannot open the capture for reading: " + std::strerror(errno));
     if (size_ == 0)
       throw CaptureError(path + ": empty file; expected a logic-analyzer CSV: sigrok-cli's (-O csv) or a Saleae "
                          "Logic 2 digital export ('Time [s],Channel 0,...')");

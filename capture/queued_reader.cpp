@@ -1,12 +1,14 @@
 #include "capture/queued_reader.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <sys/stat.h>
 
 namespace endatsim::capture {
 
 QueuedReader::QueuedReader(const std::string& path) : path_(path) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) throw CaptureError(path + ": cannot open the capture for reading");
+  if (::stat(path.c_str(), &st) != 0) throw CaptureError(path + ": cannot open the capture for reading: " + std::strerror(errno));
   if (!S_ISREG(st.st_mode)) throw CaptureError(path + ": not a regular file");
   size_ = static_cast<std::uint64_t>(st.st_size);
 }

@@ -11,6 +11,8 @@
 //                               (a single unchunked "logic-1" is read too)
 // Analog channels (analog-1-K-N entries) are ignored. The chunks are read through libzip in
 // bounded pieces, so memory does not depend on the length of the capture.
+#include <cerrno>
+#include <cstring>
 #include <zip.h>
 
 #include <algorithm>
@@ -62,7 +64,7 @@ class SigrokReader final : public Reader {
  public:
   explicit SigrokReader(const std::string& path) : path_(path) {
     struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) throw CaptureError(path + ": cannot open the capture for reading");
+    if (::stat(path.c_str(), &st) != 0) throw CaptureError(path + ": cannot open the capture for reading: " + std::strerror(errno));
     if (!S_ISREG(st.st_mode)) throw CaptureError(path + ": not a regular file");
     size_ = static_cast<std::uint64_t>(st.st_size);
     int code = 0;

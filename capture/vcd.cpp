@@ -4,6 +4,8 @@
 // nested scopes, identifiers of any printable characters, vectors split into one signal per bit
 // ("data[3]"), std_logic values (U X Z W - unknown, H and L weak 1 and 0), real variables ignored.
 // The body is streamed token by token.
+#include <cerrno>
+#include <cstring>
 #include <array>
 #include <charconv>
 #include <climits>
@@ -79,7 +81,7 @@ char normalize(char v) {
 class VcdReader final : public QueuedReader {
  public:
   explicit VcdReader(const std::string& path) : QueuedReader(path), tokens_(path) {
-    if (!tokens_.good()) throw CaptureError(path + ": cannot open the capture for reading");
+    if (!tokens_.good()) throw CaptureError(path + ": cannot open the capture for reading: " + std::strerror(errno));
     header();
     reset_levels();
   }

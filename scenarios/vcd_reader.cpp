@@ -1,5 +1,7 @@
 #include "scenarios/vcd_reader.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -272,7 +274,7 @@ VcdFile parse_vcd(const std::string& text, const VcdLintOptions& options) { retu
 
 VcdFile read_vcd_file(const std::string& path, const VcdLintOptions& options) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open '" + path + "'");
+  if (!in) throw std::runtime_error("cannot open '" + path + "': " + std::strerror(errno));
   std::ostringstream ss;
   ss << in.rdbuf();
   return parse_vcd(ss.str(), options);

@@ -545,6 +545,15 @@ TEST_F(CaptureReaders, ZipThatIsNoSessionIsRefused) {
   expect_mentions(error_of([&] { capture::open_sigrok(text); }), {text + ": ", "not a zip archive"});
 }
 
+TEST_F(CaptureReaders, AFileThatCannotBeOpenedSaysWhy) {
+  const std::string missing = file("missing.vcd");
+  for (const auto& opener : {+[](const std::string& p) { capture::open(p); }, +[](const std::string& p) { capture::open_vcd(p); },
+                             +[](const std::string& p) { capture::open_csv(p); },
+                             +[](const std::string& p) { capture::open_sigrok(p); }})
+    expect_mentions(error_of([&] { opener(missing); }),
+                    {missing + ": cannot open the capture for reading: No such file or directory"});
+}
+
 TEST_F(CaptureReaders, BadSessionMetadataIsRefused) {
   struct Case {
     std::string keys;
