@@ -68,7 +68,7 @@ class ScriptedFrame {
  public:
   ScriptedFrame(sim::Kernel& k, line::Line& line, sim::Time period, unsigned clocks, std::string drive,
                 sim::Time start = sim::Time::zero())
-      : k_(k), m_(line.master()), half_(period / 2), clocks_(clocks), drive_(std::move(drive)),
+      : m_(line.master()), half_(period / 2), clocks_(clocks), drive_(std::move(drive)),
         timer_(k, sim::bind<&ScriptedFrame::edge>(this)) {
     timer_.start(start - k.now());
   }
@@ -98,7 +98,6 @@ class ScriptedFrame {
     timer_.start(half_);
   }
 
-  sim::Kernel& k_;
   line::Line::MasterSide m_;
   sim::Time half_;
   unsigned clocks_;
