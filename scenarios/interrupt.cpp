@@ -30,7 +30,9 @@ void install_interrupt_handlers() {
   struct sigaction action {};
   action.sa_handler = on_signal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;  // the next one ends the process
+  // The next one ends the process. glibc's SA_RESETHAND is 0x80000000, an unsigned constant for
+  // the int field: converted on purpose (-fsanitize=implicit-conversion reports it otherwise).
+  action.sa_flags = static_cast<int>(SA_RESETHAND);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
 }
