@@ -636,8 +636,9 @@ void Encoder::answer_parameter_frame() {
         t_ac = params_.t_ac_write;
         break;
       case MC::EncoderSendParameters:  // 2.5
-        error = area_selected_ ? memory_.read(selection_area_, address, echo)
-                               : std::optional{ErrorCause::ImpermissibleMemoryArea};
+        if (!area_selected_) error = ErrorCause::ImpermissibleMemoryArea;
+        else if (const auto read = memory_.read(selection_area_, address)) echo = read.value;
+        else error = read.error;
         t_ac = params_.t_ac_read;
         break;
       case MC::EncoderReceiveReset:  // 2.7
@@ -787,9 +788,10 @@ void Encoder::process_supplement() {
       break;
     }
     case MC::EncoderSendPositionValuesAndSendParameter: {  // 2.5.1
-      std::uint16_t value = 0;
-      const auto error = area_selected_ ? memory_.read(selection_area_, address, value)
-                                        : std::optional{ErrorCause::ImpermissibleMemoryArea};
+      const auto read = area_selected_ ? memory_.read(selection_area_, address)
+                                       : Memory::WordRead{.value = 0, .error = ErrorCause::ImpermissibleMemoryArea};
+      const std::uint16_t value = read.value;
+      const auto error = read.error;
       f.error = error;
       in_progress_ = {Pending::Kind::None, selection_area_, address, error ? parameter : value};
       memory_error_ = error.has_value();
@@ -1081,9 +1083,8 @@ void Encoder::set_probe_deflected(bool deflected) {
   // UNCERTAIN (3.10.1 names operating parameters 2 word 2 "status of touch probes", no bits):
   // bit 0 follows the trigger status.
   const Selection status{MemoryArea::OperatingParameters2, 0};
-  std::uint16_t word = 0;
-  if (!memory_.read(status, word::kTouchProbeStatus, word))
-    memory_.force(status, word::kTouchProbeStatus, static_cast<std::uint16_t>((word & ~1U) | (deflected ? 1U : 0U)));
+  if (const auto read = memory_.read(status, word::kTouchProbeStatus))
+    memory_.force(status, word::kTouchProbeStatus, static_cast<std::uint16_t>((read.value & ~1U) | (deflected ? 1U : 0U)));
 }
 
 void Encoder::set_stuck_error_messages(bool error1_stuck, bool error2_stuck) {
@@ -1096,9 +1097,9 @@ void Encoder::slip(std::int64_t steps) { slip_ += steps; }
 void Encoder::set_position2_fault(std::int64_t deviation) { params_.sensors.position2_fault = deviation; }
 
 void Encoder::note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at) {
-  std::uint16_t old = 0;
-  if (memory_.read(s, address, old)) return;
-  nvm_write_ = NvmWrite{s, address, old, value, done_at, false};
+  const auto old = memory_.read(s, address);
+  if (!old) return;
+  nvm_write_ = NvmWrite{s, address, old.value, value, done_at, false};
 }
 
 // A write cut short keeps the old word or is torn (InterruptedNvmWrite); one whose t_ac had

@@ -222,8 +222,6 @@ class Encoder {
   std::optional<Information> additional_data_2() const { return selection_[1]; }
   // The transfer format in use: word 13 as activated (an EIB's changes at commissioning).
   unsigned position_bits() const { return position_bits_; }
-  // 3.5.7 / A2 cause 5: an EIB before initial commissioning is complete.
-  bool eib_not_initiated() const { return eib_not_initiated_; }
   bool referenced() const { return referenced_ && !rm_reset_at_; }  // RM (2.3.4.3); always for absolute encoders
   const ReferenceScheme& reference_scheme() const { return reference_; }
 
@@ -244,10 +242,6 @@ class Encoder {
   // What the sensors measure from now on (diagnosis, appendix A3): temperatures, valuation numbers.
   void set_sensor_values(const SensorValues& values);
   static constexpr Time kMaxFaultTime = sim::ms(10'000);
-
-  // Internal signals worth tracing: what the encoder logic drives before its output delay.
-  sim::Signal& data_logic() { return data_logic_; }
-  sim::Signal& enable_logic() { return enable_logic_; }
 
  private:
   enum class State : std::uint8_t {

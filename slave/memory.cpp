@@ -188,13 +188,12 @@ std::optional<ErrorCause> Memory::check_selection(std::uint8_t mrs, std::uint8_t
   return std::nullopt;
 }
 
-std::optional<ErrorCause> Memory::read(const Selection& s, std::uint8_t address, std::uint16_t& value) const {
+Memory::WordRead Memory::read(const Selection& s, std::uint8_t address) const {
   const auto range = address_range(s);
   if (!range || address < range->first || address > range->second)
-    return s.area == Area::OperatingParameters2 ? ErrorCause::UnknownCommunicationAddress
-                                                : ErrorCause::ImpermissibleAddress;
-  value = words(s)->at(address);
-  return std::nullopt;
+    return {.value = 0, .error = s.area == Area::OperatingParameters2 ? ErrorCause::UnknownCommunicationAddress
+                                                                      : ErrorCause::ImpermissibleAddress};
+  return {.value = words(s)->at(address), .error = std::nullopt};
 }
 
 bool Memory::write_protected(const Selection& s) const {
@@ -220,8 +219,7 @@ std::optional<ErrorCause> Memory::write(const Selection& s, std::uint8_t address
 }
 
 std::optional<ErrorCause> Memory::check_write(const Selection& s, std::uint8_t address, std::uint16_t value) const {
-  std::uint16_t old = 0;
-  if (const auto e = read(s, address, old)) return e;
+  if (const auto word = read(s, address); !word) return word.error;
   if (commissioning_ && eib_commissioning_area(s.area)) {
     // 3.5.7: "other parameters must be saved during initial commissioning".
     const unsigned n = address + (s.area == Area::Manufacturer2 ? 16U : s.area == Area::Manufacturer3 ? 32U : 0U);

@@ -59,7 +59,13 @@ class Memory {
 
   // 2.4.1 / 2.4.2.1 / 2.4.2.3 / A2 causes 2, 7, 11.
   std::optional<ErrorCause> check_selection(std::uint8_t mrs, std::uint8_t block, bool endat22_command) const;
-  std::optional<ErrorCause> read(const Selection& s, std::uint8_t address, std::uint16_t& value) const;
+  // A word read (true), or the A2 cause it is refused with (false).
+  struct WordRead {
+    std::uint16_t value = 0;
+    std::optional<ErrorCause> error;
+    explicit operator bool() const { return !error; }
+  };
+  WordRead read(const Selection& s, std::uint8_t address) const;
   // A2 causes 8, 9, 10, 12; words 0 and 1 can only be cleared as a whole, by 0000h that the next
   // "Encoder receive reset" carries out (3.4.1, 3.4.2).
   std::optional<ErrorCause> write(const Selection& s, std::uint8_t address, std::uint16_t value);
@@ -79,8 +85,6 @@ class Memory {
   // 3.5.7 / A2 cause 5: an EIB before initial commissioning. While open, the manufacturer areas
   // of slave/eib.hpp are writable except the words the box keeps (kEibFactoryWords).
   void set_initial_commissioning(bool open) { commissioning_ = open; }
-  bool initial_commissioning() const { return commissioning_; }
-  std::uint16_t active_write_protection() const { return active_protection_; }
   std::uint16_t active_function_initialization() const { return active_functions_; }
   const std::vector<std::uint16_t>& active_operating_parameters() const { return active_operating_; }
 
