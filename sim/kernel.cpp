@@ -25,6 +25,14 @@ void Kernel::schedule(Time delay, Action action) {
   std::push_heap(heap_.begin(), heap_.end(), Later{});
 }
 
+void Kernel::schedule_ordered(Time when, std::uint64_t seq, Action action) {
+  // `now` itself only from an event of this instant (a delay line's next change due at once),
+  // which the running time step still picks up in its order.
+  if (when < now_) throw std::logic_error("Kernel::schedule_ordered: time in the past");
+  heap_.push_back(Entry{when, seq, action});
+  std::push_heap(heap_.begin(), heap_.end(), Later{});
+}
+
 void Kernel::schedule_at(Time when, Action action) {
   if (when < now_) throw std::logic_error("Kernel::schedule_at: time in the past");
   schedule(when - now_, action);
@@ -109,15 +117,36 @@ std::optional<Time> Kernel::next_event_time() const {
 }
 
 void Timer::start(Time delay) {
-  ++generation_;
+  if (delay < Time::zero()) throw std::logic_error("Timer::start: negative delay");
   pending_ = true;
   expiry_ = kernel_.now() + delay;
-  kernel_.schedule(delay, Action{&Timer::fire, this, generation_});
+  if (delay == Time::zero()) {
+    // The next delta cycle, through the kernel's FIFO like any zero-delay wake-up.
+    queued_ = true;
+    queued_at_ = expiry_;
+    kernel_.schedule(Time::zero(), Action{&Timer::fire, this, ++entry_});
+    return;
+  }
+  seq_ = kernel_.take_seq();
+  // An entry due at the same instant carries an older order: only an earlier one can be kept.
+  if (!queued_ || queued_at_ >= expiry_) queue(expiry_);
 }
 
-void Timer::fire(void* self, std::uint64_t generation) {
+void Timer::queue(Time when) {
+  queued_ = true;
+  queued_at_ = when;
+  kernel_.schedule_ordered(when, seq_, Action{&Timer::fire, this, ++entry_});
+}
+
+void Timer::fire(void* self, std::uint64_t entry) {
   auto* t = static_cast<Timer*>(self);
-  if (!t->pending_ || generation != t->generation_) return;
+  if (entry != t->entry_) return;  // superseded by an entry for an earlier expiry
+  t->queued_ = false;
+  if (!t->pending_) return;
+  if (t->expiry_ > t->kernel_.now()) {  // restarted since this entry was queued
+    t->queue(t->expiry_);
+    return;
+  }
   t->pending_ = false;
   t->action_();
 }

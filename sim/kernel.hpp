@@ -49,6 +49,14 @@ class Kernel {
   void schedule(Time delay, Action action);
   void schedule_at(Time when, Action action);
 
+  // For models that keep their own queue of future work (a delay line, a timer restarted on
+  // every clock edge) and put only its earliest item into the kernel's heap: take_seq() at the
+  // moment the work is decided, and schedule_ordered(when, seq, ...) later. The entry runs in
+  // the order a schedule() at the moment of take_seq() would have given it, so keeping the
+  // queue outside changes no result, only how many entries the heap holds.
+  std::uint64_t take_seq() { return seq_++; }
+  void schedule_ordered(Time when, std::uint64_t seq, Action action);
+
   // Runs until no event is left, stop() is called, or the next event lies after `until`.
   void run(Time until = Time::max());
   void stop() { stopped_ = true; }
@@ -118,8 +126,11 @@ class Kernel {
   std::vector<Action> step_end_;
 };
 
-// A cancellable, restartable timer owned by a model. Cancelled expiries stay in the heap
-// and are discarded when they come up (generation check), so cancel() is O(1).
+// A cancellable, restartable timer owned by a model. It keeps at most one entry in the
+// kernel's heap: a restart to a later expiry (a watchdog restarted on every clock edge) leaves
+// the queued entry in place, and when that entry comes up it queues itself again for the
+// current expiry, in the order the restart took (Kernel::take_seq). Only a restart to an
+// earlier (or the same) expiry queues a second entry; the first one is then stale and ignored.
 class Timer {
  public:
   Timer(Kernel& kernel, Action action) : kernel_(kernel), action_(action) {}
@@ -127,17 +138,21 @@ class Timer {
   Timer& operator=(const Timer&) = delete;
 
   void start(Time delay);
-  void cancel() { pending_ = false; ++generation_; }
+  void cancel() { pending_ = false; }
   bool pending() const { return pending_; }
   Time expiry() const { return expiry_; }
 
  private:
-  static void fire(void* self, std::uint64_t generation);
+  static void fire(void* self, std::uint64_t entry);
+  void queue(Time when);
   Kernel& kernel_;
   Action action_;
-  std::uint64_t generation_ = 0;
   bool pending_ = false;
   Time expiry_{0};
+  std::uint64_t seq_ = 0;       // the order of the last start()
+  bool queued_ = false;         // an entry for this timer is in the kernel
+  Time queued_at_{0};           // when that entry comes up
+  std::uint64_t entry_ = 0;     // which entry is the live one (older ones are stale)
 };
 
 }  // namespace endatsim::sim

@@ -3,6 +3,8 @@
 namespace endatsim::sim {
 
 void Signal::write(bool v) {
+  // Writing the value it already has, with nothing pending, would commit as no change.
+  if (!pending_ && v == value_) return;
   next_ = v;
   if (!pending_) {
     pending_ = true;

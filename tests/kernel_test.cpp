@@ -230,3 +230,89 @@ TEST(KernelAdvance, AWriteAtTheCurrentInstantSettlesThereAndItsListenersRun) {
   EXPECT_TRUE(out.read());
   EXPECT_EQ(out.last_change(), ns(107));
 }
+
+// ---- Work queued outside the heap keeps the order a schedule() at decision time gives ----
+
+TEST(KernelOrder, ScheduleOrderedRunsInTheOrderOfItsTakenSequence) {
+  Kernel k;
+  Log log{&k, {}};
+  const std::uint64_t early = k.take_seq();         // decided first, queued last
+  k.schedule(ns(10), bind<&Log::record>(&log, 2));  // decided second
+  k.schedule_ordered(ns(10), early, bind<&Log::record>(&log, 1));
+  k.run();
+  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{{10'000, 1}, {10'000, 2}};
+  EXPECT_EQ(log.entries, expected);
+  EXPECT_THROW(k.schedule_ordered(ns(5), k.take_seq(), bind<&Log::record>(&log, 3)), std::logic_error);
+}
+
+namespace {
+// A timer restarted on every step, like a watchdog on every clock edge, beside a plain event
+// at its final expiry: which runs first says which order the timer's entry carries.
+struct Watchdog {
+  Kernel* k;
+  Log* log;
+  Timer* timer;
+  int restarts = 0;
+  void step() {
+    timer->start(ns(100));
+    if (++restarts == 3) k->schedule(ns(120), bind<&Log::record>(log, 2));  // due at 140 ns
+    if (restarts < 5) k->schedule(ns(10), bind<&Watchdog::step>(this));
+  }
+};
+}  // namespace
+
+TEST(KernelTimer, ARestartedTimerFiresInTheOrderOfItsLastRestart) {
+  Kernel k;
+  Log log{&k, {}};
+  Timer t(k, bind<&Log::record>(&log, 1));
+  Watchdog w{&k, &log, &t};
+  // The timer's last restart (at 40 ns, due at 140 ns) came after the plain event due at the
+  // same instant was decided (at 20 ns): the plain event runs first...
+  k.schedule(Time::zero(), bind<&Watchdog::step>(&w));
+  k.run();
+  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{{140'000, 2}, {140'000, 1}};
+  EXPECT_EQ(log.entries, expected);
+  // ... and one restart to the same expiry after the plain event was decided fires after it.
+  Log same{&k, {}};
+  Timer u(k, bind<&Log::record>(&same, 1));
+  u.start(ns(50));
+  k.schedule(ns(50), bind<&Log::record>(&same, 2));
+  u.cancel();
+  u.start(ns(50));
+  k.run();
+  const std::vector<std::pair<std::int64_t, std::uint64_t>> after{{190'000, 2}, {190'000, 1}};
+  EXPECT_EQ(same.entries, after);
+}
+
+TEST(KernelTimer, ARestartToAnEarlierExpiryFiresThereOnce) {
+  Kernel k;
+  Log log{&k, {}};
+  Timer t(k, bind<&Log::record>(&log, 7));
+  t.start(ns(100));
+  t.start(ns(10));
+  k.run();
+  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{{10'000, 7}};
+  EXPECT_EQ(log.entries, expected);
+}
+
+TEST(KernelDelay, AFasterFallOvertakesAnEarlierRiseAndEveryChangeArrivesOnTime) {
+  Kernel k;
+  Signal in(k, "in", false), out(k, "out", false);
+  TransportDelay d(k, in, out, ns(50), ns(10));  // rise 50 ns, fall 10 ns
+  Listener l{&k, {}};
+  out.on_change(bind<&Listener::on>(&l));
+  Writer w{&in};
+  struct Low {
+    Signal* s;
+    void low() { s->write(false); }
+  } low{&in};
+  k.schedule(ns(1), bind<&Writer::high>(&w));  // rise reaches out at 51 ns
+  k.schedule(ns(5), bind<&Low::low>(&low));    // fall reaches out at 15 ns, before the rise
+  k.schedule(ns(8), bind<&Writer::high>(&w));  // rise reaches out at 58 ns
+  k.run();
+  // The fall at 15 ns finds out already LOW (no change); the rises follow at 51 and 58 ns.
+  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{{51'000, 1}};
+  EXPECT_EQ(l.seen, expected);
+  EXPECT_EQ(out.last_change(), ns(51));
+  EXPECT_TRUE(out.read());
+}
