@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <unordered_map>
 
 #include "sim/vcd.hpp"
 
@@ -17,17 +18,6 @@ std::uint64_t count_outcome(const ScenarioResult& r, std::string_view name) {
   return static_cast<std::uint64_t>(std::count_if(r.frames.begin(), r.frames.end(), [&](const master::FrameResult& f) {
     return !f.measurement && master::to_string(f.outcome) == name;
   }));
-}
-
-// The encoder frame that began with the master's FE1: FE1 reaches the encoder logic after
-// the master's clock driver, the cable and the encoder's receiver; the cable is the scenario's
-// or one that an event put in.
-const slave::EncoderFrame* encoder_frame_for(const ScenarioResult& r, const master::FrameResult& f,
-                                             const std::vector<Time>& clock_paths) {
-  for (const auto& e : r.encoder_frames)
-    for (const Time path : clock_paths)
-      if (e.start == f.start + path) return &e;
-  return nullptr;
 }
 
 std::vector<Time> clock_paths(const Scenario& s) {
@@ -45,17 +35,42 @@ std::vector<Time> clock_paths(const Scenario& s) {
   return paths;
 }
 
+// The encoder frame that began with the master's FE1: FE1 reaches the encoder logic after
+// the master's clock driver, the cable and the encoder's receiver; the cable is the scenario's
+// or one that an event put in. Looked up by start instant, so that matching a run's frames
+// takes time in proportion to their number.
+class EncoderFrameIndex {
+ public:
+  EncoderFrameIndex(const Scenario& s, const std::vector<slave::EncoderFrame>& frames) : frames_(frames), paths_(clock_paths(s)) {
+    by_start_.reserve(frames.size());
+    for (std::size_t i = 0; i < frames.size(); ++i) by_start_.emplace(frames[i].start.count(), i);  // the first of an instant
+  }
+  // Of several cables that would fit, the encoder frame that came first.
+  const slave::EncoderFrame* find(const master::FrameResult& f) const {
+    std::optional<std::size_t> first;
+    for (const Time path : paths_)
+      if (const auto it = by_start_.find((f.start + path).count()); it != by_start_.end())
+        first = std::min(first.value_or(it->second), it->second);
+    return first ? &frames_[*first] : nullptr;
+  }
+
+ private:
+  const std::vector<slave::EncoderFrame>& frames_;
+  std::vector<Time> paths_;
+  std::unordered_map<std::int64_t, std::size_t> by_start_;
+};
+
 }  // namespace
 
 PositionComparison compare_positions_with_encoder(const Scenario& s, const ScenarioResult& r) {
-  const auto paths = clock_paths(s);
+  const EncoderFrameIndex encoder_frames(s, r.encoder_frames);
   std::string detail;
   std::uint64_t compared = 0;
   for (const auto& f : r.frames) {
     if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
         protocol::info(f.command).answer != protocol::AnswerFormat::Position)
       continue;
-    const auto* ef = encoder_frame_for(r, f, paths);
+    const auto* ef = encoder_frames.find(f);
     ++compared;
     // Word k > 0 of a continuous clock was latched at the falling edge after the HIGH bit.
     const bool latched = ef != nullptr && (f.word == 0 || f.word <= ef->continuous_positions.size());
@@ -209,12 +224,12 @@ void judge_startup(const StartupExpectation& e, ScenarioResult& r) {
 // Frames the master took as good (no error message as it evaluates them) while the encoder had an
 // error active, and the truth behind the released position.
 void compare_safety_with_encoder(const Scenario& s, ScenarioResult& r) {
-  const auto paths = clock_paths(s);
+  const EncoderFrameIndex encoder_frames(s, r.encoder_frames);
   for (const auto& f : r.frames) {
     if (f.measurement || f.outcome != master::FrameOutcome::Ok || f.word != 0 ||
         protocol::info(f.command).answer != protocol::AnswerFormat::Position)
       continue;
-    const auto* ef = encoder_frame_for(r, f, paths);
+    const auto* ef = encoder_frames.find(f);
     if (ef != nullptr && ef->error_present && !f.error_detected) ++r.undetected_errors;
     if (r.safety.release_frame == f.index && ef != nullptr) r.release_position_correct = ef->true_position == f.position;
   }

@@ -438,7 +438,7 @@ int run(const Options& o) {
     }
     if (o.log) log.write(scenarios::transaction_log_text(result));
     if (o.log_json) log_json.write(scenarios::transaction_log_jsonl(result));
-    all.push_back(scenarios::to_json(result));
+    if (o.json) all.push_back(scenarios::to_json(result));  // only for an output that was asked for
     if (o.junit) results.push_back(std::move(result));
   }
   if (interrupted != 0 && incomplete.empty()) incomplete = "interrupted by " + scenarios::signal_name(interrupted);
