@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -32,7 +33,10 @@ VcdWriter::VcdWriter(Kernel& kernel, const std::string& path) : kernel_(kernel),
   file_ = std::fopen(device ? path.c_str() : part_.c_str(), "wb");
   if (file_ == nullptr)
     throw std::runtime_error("cannot open VCD file '" + path + "' for writing: " + std::strerror(errno));
-  buffer_.reserve(1 << 16);
+  // One large buffer of our own, written with one call when full: the stream's own buffer
+  // would only copy it again.
+  std::setvbuf(file_, nullptr, _IONBF, 0);
+  buffer_.reserve(kBufferSize);
 }
 
 VcdWriter::~VcdWriter() {
@@ -86,9 +90,7 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
     const bool v = p.signal->read();
     if (v == p.written) continue;  // changed and changed back within the step
     if (!stamped) {
-      w->buffer_ += '#';
-      w->buffer_ += std::to_string(w->kernel_.now().count());
-      w->buffer_ += '\n';
+      w->stamp();
       stamped = true;
       w->stamped_ = w->kernel_.now();
     }
@@ -101,15 +103,23 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
   w->flush_if_full();
 }
 
+void VcdWriter::stamp() {
+  char text[24];
+  text[0] = '#';
+  const auto end = std::to_chars(text + 1, text + sizeof text - 1, kernel_.now().count()).ptr;
+  *end = '\n';
+  buffer_.append(text, static_cast<std::size_t>(end + 1 - text));
+}
+
 void VcdWriter::flush_if_full() {
-  if (buffer_.size() < (1 << 16) - 256) return;
+  if (buffer_.size() < kBufferSize - 4096) return;
   write_buffer();
 }
 
 void VcdWriter::write_buffer() {
   if (file_ == nullptr) return;
   errno = 0;
-  if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size() || std::fflush(file_) != 0) {
+  if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
     const int error = errno;
     std::fclose(file_);
     file_ = nullptr;
@@ -121,11 +131,7 @@ void VcdWriter::write_buffer() {
 void VcdWriter::finish() {
   if (finished_) return;
   finished_ = true;
-  if (stamped_ != kernel_.now()) {
-    buffer_ += '#';
-    buffer_ += std::to_string(kernel_.now().count());
-    buffer_ += '\n';
-  }
+  if (stamped_ != kernel_.now()) stamp();
   write_buffer();
   if (file_ == nullptr) throw std::runtime_error("write error on VCD file '" + path_ + "'");
   errno = 0;

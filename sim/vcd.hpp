@@ -41,7 +41,9 @@ class VcdWriter {
   };
   static void on_change(void* probe, std::uint64_t value);
   static void on_step_end(void* self, std::uint64_t);
+  void stamp();  // "#<now>" and a new line
   void flush_if_full();
+  static constexpr std::size_t kBufferSize = std::size_t{1} << 20;
   void write_buffer();
 
   Kernel& kernel_;
