@@ -11,7 +11,6 @@ Kernel::Kernel() {
   heap_.reserve(1024);
   fifo_.resize(256);
   updates_.reserve(64);
-  committing_.reserve(64);
   changed_.reserve(64);
 }
 
@@ -61,10 +60,11 @@ void Kernel::run_fifo_snapshot() {
 }
 
 void Kernel::commit_updates() {
-  committing_.swap(updates_);
-  for (SignalBase* s : committing_)
+  // Committing writes nothing: every request of this phase is in updates_ before the
+  // listeners, whose writes belong to the next one, run.
+  for (SignalBase* s : updates_)
     if (s->commit()) changed_.push_back(s);
-  committing_.clear();
+  updates_.clear();
   for (SignalBase* s : changed_) s->notify();
   changed_.clear();
 }

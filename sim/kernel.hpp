@@ -121,7 +121,6 @@ class Kernel {
   std::size_t fifo_head_ = 0;
   std::size_t fifo_size_ = 0;
   std::vector<SignalBase*> updates_;
-  std::vector<SignalBase*> committing_;
   std::vector<SignalBase*> changed_;
   std::vector<Action> step_end_;
 };
