@@ -255,38 +255,47 @@ Scenario load_point(const json& base, const std::string& file, const std::vector
 
 // Workers take the next index from a shared counter; each result lands at its own index, so
 // the order of completion never shows in the output. An interruption stops them taking more.
+// Calls work(i) for every i < n on up to `jobs` threads, until an interruption; rethrows the
+// exception of the lowest i, so that a bad point is reported as a serial loop would.
+template <class Work>
+void for_each_point(std::size_t n, unsigned jobs, const Work& work) {
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < n && interrupt_signal() == 0; i = next++) {
+      try {
+        work(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  {
+    const std::size_t threads = std::clamp<std::size_t>(jobs, 1, std::max<std::size_t>(n, 1));
+    std::vector<std::jthread> workers;
+    for (std::size_t w = 0; w < threads; ++w) workers.emplace_back(worker);
+  }  // the workers join here
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
 std::vector<SweepPoint> run_points(const json& base, const std::string& file, const std::vector<GridAxis>& grid,
                                    const SweepOptions& options) {
   const std::size_t n = grid_size(grid);
   std::vector<SweepPoint> points(n);
-  std::vector<std::exception_ptr> errors(n);
-  std::atomic<std::size_t> next{0};
   std::mutex progress_mutex;
   std::size_t done = 0;
   RunOptions run_options;
   run_options.limits = options.limits;
-  const auto work = [&] {
-    for (std::size_t i = next++; i < n && interrupt_signal() == 0; i = next++) {
-      try {
-        const Scenario scenario = load_point(base, file, grid, i, n);
-        const ScenarioResult r = run_scenario(scenario, run_options);
-        points[i] = summarize(scenario, r);
-        points[i].incomplete = r.incomplete;
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-      if (!options.progress) continue;
-      const std::lock_guard lock(progress_mutex);
-      options.progress(++done, n);
-    }
-  };
-  {
-    const std::size_t jobs = std::clamp<std::size_t>(options.jobs, 1, std::max<std::size_t>(n, 1));
-    std::vector<std::jthread> workers;
-    for (std::size_t w = 0; w < jobs; ++w) workers.emplace_back(work);
-  }  // the workers join here
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  for_each_point(n, options.jobs, [&](std::size_t i) {
+    const Scenario scenario = load_point(base, file, grid, i, n);
+    const ScenarioResult r = run_scenario(scenario, run_options);
+    points[i] = summarize(scenario, r);
+    points[i].incomplete = r.incomplete;
+    if (!options.progress) return;
+    const std::lock_guard lock(progress_mutex);
+    options.progress(++done, n);
+  });
   return points;
 }
 
@@ -373,10 +382,9 @@ void check_grid(const json& base, const std::string& file, const std::vector<Gri
 Sweep run_sweep(const json& base, const std::string& file, const std::vector<GridAxis>& grid, const SweepOptions& options) {
   check_grid(base, file, grid);
   const std::size_t n = grid_size(grid);
-  // Load every point before running any, so that bad input stops the sweep at once; one at a
-  // time, so that a large scenario over a large grid does not hold them all.
-  std::string name;
-  for (std::size_t i = 0; i < n && interrupt_signal() == 0; ++i) {
+  // Load every point before running any, so that bad input stops the sweep at once; on the
+  // sweep's threads, each keeping only the point it loads.
+  for_each_point(n, options.jobs, [&](std::size_t i) {
     const Scenario s = load_point(base, file, grid, i, n);
     try {
       (void)resolve_limits(s, options.limits);
@@ -384,8 +392,8 @@ Sweep run_sweep(const json& base, const std::string& file, const std::vector<Gri
       throw ScenarioError("grid point " + std::to_string(i + 1) + " of " + std::to_string(n) + " (" +
                           describe_point(grid, values_at(grid, i)) + "): " + e.what());
     }
-    if (i == 0) name = s.name;
-  }
+  });
+  const std::string name = n == 0 || interrupt_signal() != 0 ? std::string() : load_point(base, file, grid, 0, n).name;
   Sweep sweep{file, name, grid, {}};
   if ((sweep.interrupted = interrupt_signal()) != 0) return sweep;
   sweep.points = run_points(base, file, grid, options);

@@ -118,6 +118,21 @@ TEST(Sweep, ErrorsNameTheGridPoint) {
   }
 }
 
+TEST(Sweep, PointsLoadedInParallelReportTheFirstBadOneAsASerialLoopWould) {
+  const auto base = scenarios::read_scenario_json(kFigure2);
+  scenarios::SweepOptions options;
+  options.jobs = 4;
+  for (int attempt = 0; attempt < 20; ++attempt) {  // thread timing differs from one attempt to the next
+    try {
+      scenarios::run_sweep(base, "figure2.json",
+                           {scenarios::parse_grid_axis("/master/f_c=2 MHz,30 MHz,20 MHz,25 MHz")}, options);
+      FAIL() << "30 MHz loaded";
+    } catch (const scenarios::ScenarioError& e) {
+      ASSERT_NE(std::string(e.what()).find("grid point 2 of 4 (/master/f_c=30 MHz)"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // (c) a key the loader does not know is bad input, named in the message.
 TEST(SweepCli, UnknownPointerExitsTwoNamingIt) {
   const auto r = run_cli("sweep " + kFigure2 + " --grid /line/cable_lenght_m=1,2 --quiet");
