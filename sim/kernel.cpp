@@ -14,23 +14,7 @@ Kernel::Kernel() {
   changed_.reserve(64);
 }
 
-void Kernel::schedule(Time delay, Action action) {
-  if (delay < Time::zero()) throw std::logic_error("Kernel::schedule: negative delay");
-  if (delay == Time::zero()) {
-    push_fifo(action);
-    return;
-  }
-  heap_.push_back(Entry{now_ + delay, seq_++, action});
-  std::push_heap(heap_.begin(), heap_.end(), Later{});
-}
-
-void Kernel::schedule_ordered(Time when, std::uint64_t seq, Action action) {
-  // `now` itself only from an event of this instant (a delay line's next change due at once),
-  // which the running time step still picks up in its order.
-  if (when < now_) throw std::logic_error("Kernel::schedule_ordered: time in the past");
-  heap_.push_back(Entry{when, seq, action});
-  std::push_heap(heap_.begin(), heap_.end(), Later{});
-}
+void Kernel::refuse(const char* what) { throw std::logic_error(what); }
 
 void Kernel::schedule_at(Time when, Action action) {
   if (when < now_) throw std::logic_error("Kernel::schedule_at: time in the past");

@@ -4,6 +4,7 @@
 // allocation and no std::function per event.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <type_traits>
@@ -97,6 +98,9 @@ class Kernel {
       return a.when != b.when ? a.when > b.when : a.seq > b.seq;
     }
   };
+  // Out of line and cold, so that schedule() and schedule_ordered() inline into their callers
+  // (an Action handed through a call was copied through the stack, and stalled there).
+  [[noreturn]] static void refuse(const char* what);
   void settle();
   void end_time_step();
   void commit_updates();
@@ -153,5 +157,23 @@ class Timer {
   Time queued_at_{0};           // when that entry comes up
   std::uint64_t entry_ = 0;     // which entry is the live one (older ones are stale)
 };
+
+inline void Kernel::schedule(Time delay, Action action) {
+  if (delay < Time::zero()) refuse("Kernel::schedule: negative delay");
+  if (delay == Time::zero()) {
+    push_fifo(action);
+    return;
+  }
+  heap_.push_back(Entry{now_ + delay, seq_++, action});
+  std::push_heap(heap_.begin(), heap_.end(), Later{});
+}
+
+// `now` itself only from an event of this instant (a delay line's next change due at once),
+// which the running time step still picks up in its order.
+inline void Kernel::schedule_ordered(Time when, std::uint64_t seq, Action action) {
+  if (when < now_) refuse("Kernel::schedule_ordered: time in the past");
+  heap_.push_back(Entry{when, seq, action});
+  std::push_heap(heap_.begin(), heap_.end(), Later{});
+}
 
 }  // namespace endatsim::sim
