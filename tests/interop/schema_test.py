@@ -142,8 +142,18 @@ def main():
     if len(documents) < 2:
         sys.exit("FAIL: no bundled scenarios found in " + bundled)
 
+    # Every other scenario of the source tree is validated too (without mutants, which the
+    # documents above already cover): the field-bug library, the sweeps and the benchmark's.
+    others = []
+    for folder in (os.path.join(bundled, "..", "field"), os.path.join(bundled, "..", "sweeps"),
+                   os.path.join(bundled, "..", "..", "bench", "scenarios")):
+        found = sorted(glob.glob(os.path.join(folder, "*.json")))
+        if not found:
+            sys.exit("FAIL: no scenarios found in " + folder)
+        others += [(os.path.relpath(p, os.path.join(bundled, "..", "..")), json.load(open(p))) for p in found]
+
     problems = []
-    for name, doc in documents:
+    for name, doc in documents + others:
         errors = sorted(validator.iter_errors(doc), key=lambda e: list(e.absolute_path))
         for e in errors:
             problems.append("%s does not validate against %s at /%s: %s\n  -> update the schema to match "
