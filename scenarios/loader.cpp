@@ -843,12 +843,14 @@ void read_events(const Node& n, const line::LineParams& line, std::vector<Event>
   }
 }
 
-void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std::span<const std::string_view> allowed) {
+// `wildcard`: the map may also have kAnyOtherCheck ("*"), the count of everything not named.
+void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std::span<const std::string_view> allowed,
+                    bool wildcard = false) {
   if (!n.raw().is_object()) n.fail("an object of counts");
   for (const auto& [key, value] : n.raw().items()) {
     const Node item(value, n.path() + "/" + key, n.file());
-    bool ok = false;
-    std::string names;
+    bool ok = wildcard && key == kAnyOtherCheck;
+    std::string names = wildcard ? std::string(kAnyOtherCheck) : std::string();
     for (auto a : allowed) {
       ok = ok || a == key;
       names += (names.empty() ? "" : ", ") + std::string(a);
@@ -924,7 +926,7 @@ void read_expect(const Node& n, Expectations& e) {
     d.done();
     e.delay_measurement = de;
   }
-  if (auto v = o.opt("violations")) read_count_map(*v, e.violations, checker::check::all());
+  if (auto v = o.opt("violations")) read_count_map(*v, e.violations, checker::check::all(), true);
   if (auto v = o.opt("max_cycle_overruns")) e.max_cycle_overruns = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("max_busy_timeouts")) e.max_busy_timeouts = v->as_uint(0, UINT64_MAX);
   if (auto v = o.opt("busy_timeouts")) e.busy_timeouts = as_count(*v);

@@ -404,13 +404,28 @@ void judge_violations(const Expectations& expect, const std::vector<checker::Vio
   std::map<std::string, std::uint64_t> counts;
   for (const auto& v : violations) ++counts[v.check];
   for (const auto& [name, m] : expect.violations) {
+    if (name == kAnyOtherCheck) continue;  // judged below
     const auto n = counts[name];
     out.push_back({"violations." + name, m.matches(n), std::to_string(n) + " (expected " + m.text + ")"});
   }
+  const auto others = expect.violations.find(std::string(kAnyOtherCheck));
+  if (others == expect.violations.end()) {
+    for (const auto& [name, n] : counts) {
+      if (expect.violations.count(name) != 0 || n == 0) continue;
+      out.push_back({"violations." + name, false, std::to_string(n) + " (expected none: not listed)"});
+    }
+    return;
+  }
+  // "*": the findings of every check not named, counted together.
+  std::uint64_t total = 0;
+  std::string which;
   for (const auto& [name, n] : counts) {
     if (expect.violations.count(name) != 0 || n == 0) continue;
-    out.push_back({"violations." + name, false, std::to_string(n) + " (expected none: not listed)"});
+    total += n;
+    which += (which.empty() ? ": " : ", ") + name + " " + std::to_string(n);
   }
+  out.push_back({"violations." + std::string(kAnyOtherCheck), others->second.matches(total),
+                 std::to_string(total) + " of checks not named (expected " + others->second.text + ")" + which});
 }
 
 bool ScenarioResult::passed() const {

@@ -70,8 +70,9 @@ struct PositionComparison {
 };
 PositionComparison compare_positions_with_encoder(const Scenario& scenario, const ScenarioResult& r);
 
-// expect.violations against the findings: each listed check as often as it says, any other
-// check never (its findings as a count).
+// expect.violations against the findings: each listed check as often as it says; any other
+// check never (its findings as a count), or, with "*" (kAnyOtherCheck) listed, all the others
+// together as often as "*" says.
 void judge_violations(const Expectations& expect, const std::vector<checker::Violation>& violations,
                       std::vector<ExpectationResult>& out);
 

@@ -17,6 +17,9 @@ namespace endatsim::scenarios {
 using sim::Time;
 
 // "3", ">=1", "<=2", "2..5": how many times something must happen.
+// The key of expect.violations that counts every check the others do not name, together.
+inline constexpr std::string_view kAnyOtherCheck = "*";
+
 struct CountMatcher {
   std::uint64_t min = 0;
   std::uint64_t max = UINT64_MAX;

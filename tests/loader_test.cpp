@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "scenarios/loader.hpp"
+#include "scenarios/runner.hpp"
 
 using namespace endatsim;
 using scenarios::load_scenario_text;
@@ -158,4 +161,58 @@ TEST(ScenarioLoader, ReadsLineEventsInTimeOrder) {
   const std::string too_long =
       error_of(valid_with("\"script\"", "\"events\": [{\"at\": \"1 ms\", \"set_cable\": {\"cable_length_m\": 400}}], \"script\""));
   EXPECT_NE(too_long.find("at /events/0/set_cable/cable_length_m"), std::string::npos) << too_long;
+}
+
+// ---- expect.violations: "*" counts every check not named ----
+
+namespace {
+std::vector<scenarios::ExpectationResult> judged(const std::string& violations, const std::vector<std::string>& found) {
+  const auto s = load_scenario_text(valid_with("\"script\"", "\"expect\": {\"violations\": " + violations + "}, \"script\""), "v.json");
+  std::vector<checker::Violation> vs;
+  for (const auto& check : found) {
+    checker::Violation v;
+    v.check = check;
+    vs.push_back(v);
+  }
+  std::vector<scenarios::ExpectationResult> out;
+  scenarios::judge_violations(s.expect, vs, out);
+  return out;
+}
+bool all_passed(const std::vector<scenarios::ExpectationResult>& r) {
+  return std::all_of(r.begin(), r.end(), [](const auto& e) { return e.passed; });
+}
+}  // namespace
+
+TEST(ExpectViolations, ACheckNotNamedFailsWithoutTheWildcard) {
+  const auto r = judged(R"({"t_st": 1})", {"t_st", "f_c", "f_c"});
+  EXPECT_FALSE(all_passed(r));
+  ASSERT_EQ(r.size(), 2U);
+  EXPECT_EQ(r[1].name, "violations.f_c");
+  EXPECT_EQ(r[1].detail, "2 (expected none: not listed)");
+}
+
+TEST(ExpectViolations, TheWildcardCountsEveryCheckNotNamedTogether) {
+  const std::vector<std::string> found{"t_st", "f_c", "f_c", "t_lo"};
+  const auto any = judged(R"({"t_st": 1, "*": ">=0"})", found);
+  EXPECT_TRUE(all_passed(any));
+  ASSERT_EQ(any.size(), 2U);
+  EXPECT_EQ(any[1].name, "violations.*");
+  EXPECT_EQ(any[1].detail, "3 of checks not named (expected >=0): f_c 2, t_lo 1");
+  EXPECT_TRUE(all_passed(judged(R"({"t_st": 1, "*": 3})", found)));
+  EXPECT_FALSE(all_passed(judged(R"({"t_st": 1, "*": "<=2"})", found)));
+  EXPECT_FALSE(all_passed(judged(R"({"t_st": 1, "*": 4})", found)));
+  // The named checks are still judged on their own.
+  EXPECT_FALSE(all_passed(judged(R"({"t_st": 2, "*": ">=0"})", found)));
+  // With nothing else found, "*" sees zero.
+  EXPECT_FALSE(all_passed(judged(R"({"*": ">=1"})", {})));
+  EXPECT_TRUE(all_passed(judged(R"({"*": 0})", {})));
+}
+
+TEST(ExpectViolations, TheWildcardIsOnlyAKeyOfViolations) {
+  try {
+    load_scenario_text(valid_with("\"script\"", "\"expect\": {\"outcomes\": {\"*\": 1}}, \"script\""), "v.json");
+    FAIL() << "\"*\" was taken as an outcome";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("/expect/outcomes/*"), std::string::npos) << e.what();
+  }
 }
