@@ -383,9 +383,12 @@ Sweep run_sweep(const json& base, const std::string& file, const std::vector<Gri
   check_grid(base, file, grid);
   const std::size_t n = grid_size(grid);
   // Load every point before running any, so that bad input stops the sweep at once; on the
-  // sweep's threads, each keeping only the point it loads.
+  // sweep's threads, each keeping only the point it loads. The sweep is named after point 0
+  // (one thread loads it; the name is read after they have joined).
+  std::string name;
   for_each_point(n, options.jobs, [&](std::size_t i) {
     const Scenario s = load_point(base, file, grid, i, n);
+    if (i == 0) name = s.name;
     try {
       (void)resolve_limits(s, options.limits);
     } catch (const ScenarioError& e) {
@@ -393,7 +396,6 @@ Sweep run_sweep(const json& base, const std::string& file, const std::vector<Gri
                           describe_point(grid, values_at(grid, i)) + "): " + e.what());
     }
   });
-  const std::string name = n == 0 || interrupt_signal() != 0 ? std::string() : load_point(base, file, grid, 0, n).name;
   Sweep sweep{file, name, grid, {}};
   if ((sweep.interrupted = interrupt_signal()) != 0) return sweep;
   sweep.points = run_points(base, file, grid, options);

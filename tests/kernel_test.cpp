@@ -233,6 +233,8 @@ TEST(KernelAdvance, AWriteAtTheCurrentInstantSettlesThereAndItsListenersRun) {
 
 // ---- Work queued outside the heap keeps the order a schedule() at decision time gives ----
 
+using Entries = std::vector<std::pair<std::int64_t, std::uint64_t>>;  // (ps, tag) as Log records them
+
 TEST(KernelOrder, ScheduleOrderedRunsInTheOrderOfItsTakenSequence) {
   Kernel k;
   Log log{&k, {}};
@@ -240,7 +242,7 @@ TEST(KernelOrder, ScheduleOrderedRunsInTheOrderOfItsTakenSequence) {
   k.schedule(ns(10), bind<&Log::record>(&log, 2));  // decided second
   k.schedule_ordered(ns(10), early, bind<&Log::record>(&log, 1));
   k.run();
-  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{{10'000, 1}, {10'000, 2}};
+  const Entries expected{{10'000, 1}, {10'000, 2}};
   EXPECT_EQ(log.entries, expected);
   EXPECT_THROW(k.schedule_ordered(ns(5), k.take_seq(), bind<&Log::record>(&log, 3)), std::logic_error);
 }
@@ -270,7 +272,7 @@ TEST(KernelTimer, ARestartedTimerFiresInTheOrderOfItsLastRestart) {
   // same instant was decided (at 20 ns): the plain event runs first...
   k.schedule(Time::zero(), bind<&Watchdog::step>(&w));
   k.run();
-  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{{140'000, 2}, {140'000, 1}};
+  const Entries expected{{140'000, 2}, {140'000, 1}};
   EXPECT_EQ(log.entries, expected);
   // ... and one restart to the same expiry after the plain event was decided fires after it.
   Log same{&k, {}};
@@ -280,7 +282,7 @@ TEST(KernelTimer, ARestartedTimerFiresInTheOrderOfItsLastRestart) {
   u.cancel();
   u.start(ns(50));
   k.run();
-  const std::vector<std::pair<std::int64_t, std::uint64_t>> after{{190'000, 2}, {190'000, 1}};
+  const Entries after{{190'000, 2}, {190'000, 1}};
   EXPECT_EQ(same.entries, after);
 }
 
@@ -291,7 +293,7 @@ TEST(KernelTimer, ARestartToAnEarlierExpiryFiresThereOnce) {
   t.start(ns(100));
   t.start(ns(10));
   k.run();
-  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{{10'000, 7}};
+  const Entries expected{{10'000, 7}};
   EXPECT_EQ(log.entries, expected);
 }
 
@@ -311,7 +313,7 @@ TEST(KernelDelay, AFasterFallOvertakesAnEarlierRiseAndEveryChangeArrivesOnTime) 
   k.schedule(ns(8), bind<&Writer::high>(&w));  // rise reaches out at 58 ns
   k.run();
   // The fall at 15 ns finds out already LOW (no change); the rises follow at 51 and 58 ns.
-  const std::vector<std::pair<std::int64_t, std::uint64_t>> expected{{51'000, 1}};
+  const Entries expected{{51'000, 1}};
   EXPECT_EQ(l.seen, expected);
   EXPECT_EQ(out.last_change(), ns(51));
   EXPECT_TRUE(out.read());
