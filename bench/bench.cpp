@@ -14,13 +14,13 @@
 
 #include <unistd.h>
 
-#include "scenarios/capture_check.hpp"
-#include "scenarios/declarations.hpp"
-#include "scenarios/loader.hpp"
-#include "scenarios/runner.hpp"
-#include "sim/delay.hpp"
-#include "sim/kernel.hpp"
-#include "sim/signal.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/declarations.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/runner.hpp"
+#include "endatsim/sim/delay.hpp"
+#include "endatsim/sim/kernel.hpp"
+#include "endatsim/sim/signal.hpp"
 
 namespace {
 

@@ -13,9 +13,9 @@
 
 #include <unistd.h>
 
-#include "cosim/bench.hpp"
+#include "endatsim/cosim/bench.hpp"
 #include "endat_master_run.hpp"
-#include "scenarios/loader.hpp"
+#include "endatsim/scenarios/loader.hpp"
 
 namespace {
 

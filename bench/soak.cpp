@@ -26,7 +26,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "scenarios/runner.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "capture/capture.hpp"
+#include "endatsim/capture/capture.hpp"
 
 #include <cerrno>
 #include <cstring>

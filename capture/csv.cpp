@@ -37,7 +37,7 @@
 #include <set>
 #include <sys/stat.h>
 
-#include "capture/queued_reader.hpp"
+#include "endatsim/capture/queued_reader.hpp"
 
 namespace endatsim::capture {
 namespace {

@@ -1,4 +1,4 @@
-#include "capture/queued_reader.hpp"
+#include "endatsim/capture/queued_reader.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "capture/capture.hpp"
+#include "endatsim/capture/capture.hpp"
 
 namespace endatsim::capture {
 

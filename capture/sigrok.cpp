@@ -24,7 +24,7 @@
 #include <set>
 #include <sys/stat.h>
 
-#include "capture/capture.hpp"
+#include "endatsim/capture/capture.hpp"
 
 namespace endatsim::capture {
 namespace {

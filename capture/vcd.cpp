@@ -13,7 +13,7 @@
 #include <map>
 #include <sys/stat.h>
 
-#include "capture/queued_reader.hpp"
+#include "endatsim/capture/queued_reader.hpp"
 
 namespace endatsim::capture {
 namespace {

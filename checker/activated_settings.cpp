@@ -1,7 +1,7 @@
-#include "checker/activated_settings.hpp"
+#include "endatsim/checker/activated_settings.hpp"
 
-#include "protocol/memory_area.hpp"
-#include "protocol/parameters.hpp"
+#include "endatsim/protocol/memory_area.hpp"
+#include "endatsim/protocol/parameters.hpp"
 
 namespace endatsim::checker {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "protocol/mode_command.hpp"
+#include "endatsim/protocol/mode_command.hpp"
 
 namespace endatsim::checker {
 

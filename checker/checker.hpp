@@ -3,4 +3,4 @@
 // with where, when, by how much and which spec row says so (timing_checker.hpp).
 #pragma once
 
-#include "checker/timing_checker.hpp"
+#include "endatsim/checker/timing_checker.hpp"

@@ -1,4 +1,4 @@
-#include "checker/clock_fit.hpp"
+#include "endatsim/checker/clock_fit.hpp"
 
 #include <algorithm>
 #include <cmath>

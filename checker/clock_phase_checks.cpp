@@ -3,7 +3,7 @@
 #include <string>
 #include <tuple>
 
-#include "checker/timing_checker.hpp"
+#include "endatsim/checker/timing_checker.hpp"
 
 namespace endatsim::checker {
 namespace {

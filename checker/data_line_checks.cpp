@@ -5,8 +5,8 @@
 // on_encoder_driver).
 #include <algorithm>
 
-#include "checker/timing_checker.hpp"
-#include "protocol/frame.hpp"
+#include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/protocol/frame.hpp"
 
 namespace endatsim::checker {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "sim/time.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::checker {
 

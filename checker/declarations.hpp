@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <optional>
 
-#include "protocol/mode_command.hpp"
-#include "sim/time.hpp"
+#include "endatsim/protocol/mode_command.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::checker {
 

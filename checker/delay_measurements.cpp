@@ -1,4 +1,4 @@
-#include "checker/delay_measurements.hpp"
+#include "endatsim/checker/delay_measurements.hpp"
 
 #include <algorithm>
 #include <cstdlib>

@@ -15,7 +15,7 @@
 #include <optional>
 #include <vector>
 
-#include "sim/time.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::checker {
 

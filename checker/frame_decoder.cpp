@@ -1,13 +1,13 @@
-#include "checker/frame_decoder.hpp"
+#include "endatsim/checker/frame_decoder.hpp"
 
 #include <algorithm>
 #include <span>
 
-#include "protocol/additional_data.hpp"
-#include "protocol/crc.hpp"
-#include "protocol/memory_area.hpp"
-#include "protocol/parameters.hpp"
-#include "protocol/timing.hpp"
+#include "endatsim/protocol/additional_data.hpp"
+#include "endatsim/protocol/crc.hpp"
+#include "endatsim/protocol/memory_area.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/protocol/timing.hpp"
 
 namespace endatsim::checker {
 namespace {

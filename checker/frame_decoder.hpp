@@ -16,9 +16,9 @@
 #include <optional>
 #include <vector>
 
-#include "protocol/frame.hpp"
-#include "protocol/mode_command.hpp"
-#include "sim/time.hpp"
+#include "endatsim/protocol/frame.hpp"
+#include "endatsim/protocol/mode_command.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::checker {
 

@@ -1,8 +1,8 @@
-#include "checker/power_on.hpp"
+#include "endatsim/checker/power_on.hpp"
 
 #include <algorithm>
 
-#include "protocol/timing.hpp"
+#include "endatsim/protocol/timing.hpp"
 
 namespace endatsim::checker {
 

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "checker/decision.hpp"
-#include "sim/time.hpp"
+#include "endatsim/checker/decision.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::checker {
 

@@ -1,6 +1,6 @@
-#include "checker/row_margins.hpp"
+#include "endatsim/checker/row_margins.hpp"
 
-#include "sim/time.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::checker {
 

@@ -14,7 +14,7 @@
 #include <string_view>
 #include <vector>
 
-#include "checker/decision.hpp"
+#include "endatsim/checker/decision.hpp"
 
 namespace endatsim::checker {
 

@@ -1,4 +1,4 @@
-#include "checker/timing_checker.hpp"
+#include "endatsim/checker/timing_checker.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <tuple>
 
-#include "checker/clock_fit.hpp"
-#include "protocol/memory_area.hpp"
+#include "endatsim/checker/clock_fit.hpp"
+#include "endatsim/protocol/memory_area.hpp"
 
 namespace endatsim::checker {
 namespace {

@@ -8,16 +8,16 @@
 #include <string>
 #include <vector>
 
-#include "line/line.hpp"
-#include "checker/activated_settings.hpp"
-#include "checker/clock_fit.hpp"
-#include "checker/declarations.hpp"
-#include "checker/delay_measurements.hpp"
-#include "checker/decision.hpp"
-#include "checker/row_margins.hpp"
-#include "checker/frame_decoder.hpp"
-#include "checker/power_on.hpp"
-#include "protocol/timing.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/checker/activated_settings.hpp"
+#include "endatsim/checker/clock_fit.hpp"
+#include "endatsim/checker/declarations.hpp"
+#include "endatsim/checker/delay_measurements.hpp"
+#include "endatsim/checker/decision.hpp"
+#include "endatsim/checker/row_margins.hpp"
+#include "endatsim/checker/frame_decoder.hpp"
+#include "endatsim/checker/power_on.hpp"
+#include "endatsim/protocol/timing.hpp"
 
 namespace endatsim::checker {
 

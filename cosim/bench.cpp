@@ -1,15 +1,15 @@
-#include "cosim/bench.hpp"
+#include "endatsim/cosim/bench.hpp"
 
 #include <algorithm>
 #include <utility>
 
-#include "line/line.hpp"
-#include "scenarios/capture_check.hpp"
-#include "scenarios/declarations.hpp"
-#include "scenarios/events.hpp"
-#include "scenarios/interrupt.hpp"
-#include "sim/vcd.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/declarations.hpp"
+#include "endatsim/scenarios/events.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/sim/vcd.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 namespace endatsim::cosim {
 namespace {

@@ -19,11 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "checker/frame_decoder.hpp"
-#include "checker/timing_checker.hpp"
-#include "scenarios/limits.hpp"
-#include "scenarios/runner.hpp"
-#include "scenarios/scenario.hpp"
+#include "endatsim/checker/frame_decoder.hpp"
+#include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/scenarios/limits.hpp"
+#include "endatsim/scenarios/runner.hpp"
+#include "endatsim/scenarios/scenario.hpp"
 
 namespace endatsim::cosim {
 

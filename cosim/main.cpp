@@ -1,15 +1,15 @@
-#include "cosim/main.hpp"
+#include "endatsim/cosim/main.hpp"
 
 #include <charconv>
 #include <iostream>
 #include <stdexcept>
 #include <string>
 
-#include "cosim/report.hpp"
-#include "scenarios/interrupt.hpp"
-#include "scenarios/limits.hpp"
-#include "scenarios/loader.hpp"
-#include "scenarios/output_file.hpp"
+#include "endatsim/cosim/report.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/limits.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/output_file.hpp"
 
 namespace endatsim::cosim {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <functional>
 
-#include "cosim/bench.hpp"
+#include "endatsim/cosim/bench.hpp"
 
 namespace endatsim::cosim {
 

@@ -1,10 +1,10 @@
-#include "cosim/report.hpp"
+#include "endatsim/cosim/report.hpp"
 
-#include "scenarios/capture_check.hpp"
-#include "scenarios/interrupt.hpp"
-#include "scenarios/junit.hpp"
-#include "scenarios/output_file.hpp"
-#include "scenarios/report.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/junit.hpp"
+#include "endatsim/scenarios/output_file.hpp"
+#include "endatsim/scenarios/report.hpp"
 
 namespace endatsim::cosim {
 namespace {

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "cosim/bench.hpp"
+#include "endatsim/cosim/bench.hpp"
 
 namespace endatsim::cosim {
 

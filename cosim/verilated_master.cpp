@@ -1,4 +1,4 @@
-#include "cosim/verilated_master.hpp"
+#include "endatsim/cosim/verilated_master.hpp"
 
 #include <stdexcept>
 #include <utility>

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "cosim/bench.hpp"
+#include "endatsim/cosim/bench.hpp"
 
 namespace endatsim::cosim {
 

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "capture/capture.hpp"
+#include "endatsim/capture/capture.hpp"
 
 #ifndef ENDATSIM_FUZZ_CAPTURE
 #error "define ENDATSIM_FUZZ_CAPTURE as 1 (VCD), 2 (CSV) or 3 (sigrok)"

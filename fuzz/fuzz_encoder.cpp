@@ -13,8 +13,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include "line/line.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 using namespace endatsim;
 using sim::Time;

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "scenarios/loader.hpp"
+#include "endatsim/scenarios/loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

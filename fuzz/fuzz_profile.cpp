@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "slave/profile.hpp"
+#include "endatsim/slave/profile.hpp"
 
 namespace slave = endatsim::slave;
 

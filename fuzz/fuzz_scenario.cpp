@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "scenarios/loader.hpp"
-#include "scenarios/runner.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 using namespace endatsim;
 

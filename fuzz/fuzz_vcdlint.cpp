@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "scenarios/vcd_reader.hpp"
+#include "endatsim/scenarios/vcd_reader.hpp"
 
 namespace scenarios = endatsim::scenarios;
 

@@ -1,4 +1,6 @@
-#include "input/json_input.hpp"
+#include "endatsim/input/json_input.hpp"
+
+#include "endatsim/input/suggest.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -149,6 +151,13 @@ json parse(const std::string& text, const std::string& file) {
 
 void Node::fail(const std::string& expected) const { fail_raw("expected " + expected + ", got " + describe(j_)); }
 
+void Node::fail_choice(const std::vector<std::string>& names) const {
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
+  const std::string hint = j_.is_string() ? did_you_mean(j_.get_ref<const std::string&>(), names) : std::string();
+  fail_raw("expected one of " + list + ", got " + describe(j_) + (hint.empty() ? "" : " (" + hint.substr(0, hint.size() - 1) + ")"));
+}
+
 // A path or message from a hostile file (a key of megabytes) is cut, not echoed whole.
 void Node::fail_raw(const std::string& message) const { throw InputError(at(file_, path_) + trimmed(message, 2000)); }
 
@@ -269,9 +278,10 @@ Node Object::req(const std::string& key) {
 void Object::done() const {
   for (const auto& [key, value] : n_.raw().items()) {
     if (known_.count(key) != 0) continue;
+    const std::vector<std::string> known(known_.begin(), known_.end());
     std::string names;
-    for (const auto& k : known_) names += (names.empty() ? "" : ", ") + k;
-    n_.fail_raw("unknown key \"" + trimmed(key) + "\" (expected one of: " + names + ")");
+    for (const auto& k : known) names += (names.empty() ? "" : ", ") + k;
+    n_.fail_raw("unknown key \"" + trimmed(key) + "\" (" + did_you_mean(key, known) + "expected one of: " + names + ")");
   }
 }
 

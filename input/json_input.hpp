@@ -5,8 +5,8 @@
 // accessors whose errors name the file, the JSON path and what was expected. Every error is an
 // InputError whose message is complete; callers rethrow it as their own error type.
 
-#include "input/text.hpp"
-#include "sim/time.hpp"
+#include "endatsim/input/text.hpp"
+#include "endatsim/sim/time.hpp"
 
 #include <cstdint>
 #include <initializer_list>
@@ -17,6 +17,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace endatsim::input {
 
@@ -72,10 +73,12 @@ class Node {
     if (j_.is_string())
       for (const auto& c : choices)
         if (c.first == j_.get_ref<const std::string&>()) return c.second;
-    std::string names;
-    for (const auto& c : choices) names += (names.empty() ? "\"" : ", \"") + std::string(c.first) + "\"";
-    fail("one of " + names);
+    std::vector<std::string> names;
+    for (const auto& c : choices) names.emplace_back(c.first);
+    fail_choice(names);
   }
+  // "expected one of \"a\", \"b\", got ..." with a "did you mean" for a near miss.
+  [[noreturn]] void fail_choice(const std::vector<std::string>& names) const;
 
  private:
   const json& j_;

@@ -1,4 +1,4 @@
-#include "line/line.hpp"
+#include "endatsim/line/line.hpp"
 
 #include <cmath>
 #include <algorithm>

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/sim.hpp"
+#include "endatsim/sim/sim.hpp"
 
 namespace endatsim::line {
 

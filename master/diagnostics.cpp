@@ -1,14 +1,14 @@
 // The diagnosis the master collects (diagnostics.hpp), and the rolling selection of additional
 // data 1 that the diagnosis and the safety comparison of position value 2 share.
-#include "master/diagnostics.hpp"
+#include "endatsim/master/diagnostics.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <stdexcept>
 
-#include "master/master.hpp"
-#include "protocol/diagnosis.hpp"
-#include "protocol/parameters.hpp"
+#include "endatsim/master/master.hpp"
+#include "endatsim/protocol/diagnosis.hpp"
+#include "endatsim/protocol/parameters.hpp"
 
 namespace endatsim::master {
 namespace {

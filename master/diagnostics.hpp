@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/time.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::master {
 

@@ -1,4 +1,4 @@
-#include "master/master.hpp"
+#include "endatsim/master/master.hpp"
 
 #include <algorithm>
 #include <boost/random/uniform_int_distribution.hpp>

@@ -13,10 +13,10 @@
 
 #include <boost/random/mersenne_twister.hpp>
 
-#include "line/line.hpp"
-#include "master/diagnostics.hpp"
-#include "master/safety.hpp"
-#include "protocol/protocol.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/master/diagnostics.hpp"
+#include "endatsim/master/safety.hpp"
+#include "endatsim/protocol/protocol.hpp"
 
 namespace endatsim::master {
 

@@ -1,13 +1,13 @@
 // The safety functions of the master (safety.hpp): the start-up checks before the axis is
 // released and the checks of every frame read afterwards.
-#include "master/safety.hpp"
+#include "endatsim/master/safety.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "master/master.hpp"
-#include "protocol/parameters.hpp"
+#include "endatsim/master/master.hpp"
+#include "endatsim/protocol/parameters.hpp"
 
 namespace endatsim::master {
 namespace {

@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "protocol/protocol.hpp"
-#include "sim/time.hpp"
+#include "endatsim/protocol/protocol.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::master {
 

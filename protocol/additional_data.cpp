@@ -1,4 +1,4 @@
-#include "protocol/additional_data.hpp"
+#include "endatsim/protocol/additional_data.hpp"
 
 #include <array>
 

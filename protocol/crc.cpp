@@ -1,4 +1,4 @@
-#include "protocol/crc.hpp"
+#include "endatsim/protocol/crc.hpp"
 
 #include <boost/crc.hpp>
 #include <stdexcept>

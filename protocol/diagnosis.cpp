@@ -1,4 +1,4 @@
-#include "protocol/diagnosis.hpp"
+#include "endatsim/protocol/diagnosis.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "protocol/frame.hpp"
+#include "endatsim/protocol/frame.hpp"
 
 #include <stdexcept>
 
-#include "protocol/crc.hpp"
+#include "endatsim/protocol/crc.hpp"
 
 namespace endatsim::protocol {
 

@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "protocol/crc.hpp"
-#include "protocol/mode_command.hpp"
+#include "endatsim/protocol/crc.hpp"
+#include "endatsim/protocol/mode_command.hpp"
 
 namespace endatsim::protocol {
 

@@ -1,4 +1,4 @@
-#include "protocol/memory_area.hpp"
+#include "endatsim/protocol/memory_area.hpp"
 
 #include <array>
 

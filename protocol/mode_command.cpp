@@ -1,4 +1,4 @@
-#include "protocol/mode_command.hpp"
+#include "endatsim/protocol/mode_command.hpp"
 
 #include <array>
 

@@ -1,4 +1,4 @@
-#include "protocol/parameters.hpp"
+#include "endatsim/protocol/parameters.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,12 +8,12 @@
 // Master, encoder and checker use it; it depends only on sim/time.hpp.
 #pragma once
 
-#include "protocol/additional_data.hpp"
-#include "protocol/crc.hpp"
-#include "protocol/diagnosis.hpp"
-#include "protocol/error_handling.hpp"
-#include "protocol/frame.hpp"
-#include "protocol/memory_area.hpp"
-#include "protocol/mode_command.hpp"
-#include "protocol/parameters.hpp"
-#include "protocol/timing.hpp"
+#include "endatsim/protocol/additional_data.hpp"
+#include "endatsim/protocol/crc.hpp"
+#include "endatsim/protocol/diagnosis.hpp"
+#include "endatsim/protocol/error_handling.hpp"
+#include "endatsim/protocol/frame.hpp"
+#include "endatsim/protocol/memory_area.hpp"
+#include "endatsim/protocol/mode_command.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/protocol/timing.hpp"

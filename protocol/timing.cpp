@@ -1,4 +1,4 @@
-#include "protocol/timing.hpp"
+#include "endatsim/protocol/timing.hpp"
 
 #include <algorithm>
 #include <array>

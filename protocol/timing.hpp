@@ -16,7 +16,7 @@
 #include <string>
 #include <string_view>
 
-#include "sim/time.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::protocol {
 

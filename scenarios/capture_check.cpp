@@ -1,4 +1,4 @@
-#include "scenarios/capture_check.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +6,10 @@
 #include <ostream>
 #include <sstream>
 
-#include "capture/capture.hpp"
-#include "line/line.hpp"
-#include "scenarios/interrupt.hpp"
-#include "scenarios/report.hpp"
+#include "endatsim/capture/capture.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/report.hpp"
 
 namespace endatsim::scenarios {
 namespace {

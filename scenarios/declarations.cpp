@@ -1,8 +1,8 @@
-#include "scenarios/declarations.hpp"
+#include "endatsim/scenarios/declarations.hpp"
 
 #include <algorithm>
 
-#include "protocol/additional_data.hpp"
+#include "endatsim/protocol/additional_data.hpp"
 
 namespace endatsim::scenarios {
 

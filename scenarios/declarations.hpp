@@ -2,10 +2,10 @@
 // parameters as a datasheet would declare them, and the project's master declaring its frames.
 #pragma once
 
-#include "checker/declarations.hpp"
-#include "checker/timing_checker.hpp"
-#include "master/master.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/checker/declarations.hpp"
+#include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/master/master.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 namespace endatsim::scenarios {
 

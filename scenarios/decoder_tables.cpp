@@ -1,19 +1,19 @@
-#include "scenarios/decoder_tables.hpp"
+#include "endatsim/scenarios/decoder_tables.hpp"
 
 #include <cctype>
 #include <stdexcept>
 
-#include "checker/clock_fit.hpp"
-#include "checker/frame_decoder.hpp"
-#include "checker/timing_checker.hpp"
-#include "protocol/additional_data.hpp"
-#include "protocol/crc.hpp"
-#include "protocol/error_handling.hpp"
-#include "protocol/frame.hpp"
-#include "protocol/memory_area.hpp"
-#include "protocol/mode_command.hpp"
-#include "protocol/parameters.hpp"
-#include "protocol/timing.hpp"
+#include "endatsim/checker/clock_fit.hpp"
+#include "endatsim/checker/frame_decoder.hpp"
+#include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/protocol/additional_data.hpp"
+#include "endatsim/protocol/crc.hpp"
+#include "endatsim/protocol/error_handling.hpp"
+#include "endatsim/protocol/frame.hpp"
+#include "endatsim/protocol/memory_area.hpp"
+#include "endatsim/protocol/mode_command.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/protocol/timing.hpp"
 
 namespace endatsim::scenarios {
 namespace {

@@ -1,6 +1,6 @@
-#include "scenarios/diagram.hpp"
+#include "endatsim/scenarios/diagram.hpp"
 
-#include "scenarios/xml.hpp"
+#include "endatsim/scenarios/xml.hpp"
 
 #include <unistd.h>
 
@@ -14,9 +14,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "scenarios/interrupt.hpp"
-#include "scenarios/runner.hpp"
-#include "scenarios/vcd_reader.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/runner.hpp"
+#include "endatsim/scenarios/vcd_reader.hpp"
 
 namespace endatsim::scenarios {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <utility>
 
-#include "scenarios/scenario.hpp"
+#include "endatsim/scenarios/scenario.hpp"
 
 namespace endatsim::scenarios {
 

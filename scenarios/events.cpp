@@ -1,4 +1,4 @@
-#include "scenarios/events.hpp"
+#include "endatsim/scenarios/events.hpp"
 
 #include <algorithm>
 

@@ -8,7 +8,7 @@
 
 #include <boost/random/mersenne_twister.hpp>
 
-#include "scenarios/scenario.hpp"
+#include "endatsim/scenarios/scenario.hpp"
 
 namespace endatsim::scenarios {
 

@@ -1,4 +1,4 @@
-#include "scenarios/interrupt.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
 
 #include <atomic>
 #include <csignal>

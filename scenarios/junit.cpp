@@ -1,11 +1,11 @@
-#include "scenarios/junit.hpp"
+#include "endatsim/scenarios/junit.hpp"
 
 #include <algorithm>
 #include <sstream>
 
-#include "scenarios/capture_check.hpp"
-#include "scenarios/report.hpp"
-#include "scenarios/xml.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/report.hpp"
+#include "endatsim/scenarios/xml.hpp"
 
 namespace endatsim::scenarios {
 namespace {

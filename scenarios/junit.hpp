@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/capture_check.hpp"
-#include "scenarios/runner.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 namespace endatsim::scenarios {
 

@@ -1,11 +1,11 @@
-#include "scenarios/limits.hpp"
+#include "endatsim/scenarios/limits.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <stdexcept>
 
-#include "scenarios/loader.hpp"
-#include "scenarios/scenario.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/scenario.hpp"
 
 namespace endatsim::scenarios {
 namespace {

@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "input/text.hpp"
-#include "sim/time.hpp"
+#include "endatsim/input/text.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::scenarios {
 

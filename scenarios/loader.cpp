@@ -1,7 +1,9 @@
-#include "scenarios/loader.hpp"
+#include "endatsim/scenarios/loader.hpp"
 
-#include "input/json_input.hpp"
-#include "slave/profile.hpp"
+#include "endatsim/input/json_input.hpp"
+#include "endatsim/input/suggest.hpp"
+#include "endatsim/scenarios/bundled_profiles.hpp"
+#include "endatsim/slave/profile.hpp"
 
 #include <algorithm>
 #include <array>
@@ -219,13 +221,12 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   if (auto v = o.opt("profile")) {
     const std::string name = v->as_string();
     std::filesystem::path path = std::filesystem::path(n.file()).parent_path() / name;
-    if (name.find('/') == std::string::npos && !name.ends_with(".json")) {
-      // ENDATSIM_PROFILES, else the source tree's profiles/, else the installed ones.
-      const char* dir = std::getenv("ENDATSIM_PROFILES");
-      std::filesystem::path base = dir != nullptr ? dir : ENDATSIM_PROFILES_DIR;
-      std::error_code ec;
-      if (dir == nullptr && !std::filesystem::is_directory(base, ec)) base = ENDATSIM_INSTALLED_PROFILES_DIR;
-      path = base / (name + ".json");
+    if (is_bundled_profile_name(name)) {
+      try {
+        path = bundled_profile(name);
+      } catch (const std::runtime_error& e) {
+        v->fail_raw(e.what());
+      }
     }
     try {
       slave::load_profile(path.string()).apply(p);
@@ -851,11 +852,15 @@ void read_count_map(const Node& n, std::map<std::string, CountMatcher>& out, std
     const Node item(value, n.path() + "/" + key, n.file());
     bool ok = wildcard && key == kAnyOtherCheck;
     std::string names = wildcard ? std::string(kAnyOtherCheck) : std::string();
+    std::vector<std::string> known;
     for (auto a : allowed) {
       ok = ok || a == key;
       names += (names.empty() ? "" : ", ") + std::string(a);
+      known.emplace_back(a);
     }
-    if (!ok) item.fail_raw("unknown name \"" + key + "\" (expected one of: " + names + ")");
+    if (!ok)
+      item.fail_raw("unknown name \"" + input::trimmed(key) + "\" (" + input::did_you_mean(key, known) +
+                    "expected one of: " + names + ")");
     out[key] = as_count(item);
   }
 }

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "scenarios/scenario.hpp"
+#include "endatsim/scenarios/scenario.hpp"
 
 namespace endatsim::scenarios {
 

@@ -1,5 +1,6 @@
-#include "scenarios/output_file.hpp"
+#include "endatsim/scenarios/output_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -11,7 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "scenarios/limits.hpp"
+#include "endatsim/scenarios/limits.hpp"
 
 namespace endatsim::scenarios {
 namespace fs = std::filesystem;
@@ -122,7 +123,16 @@ void check_output_paths(const std::vector<std::string>& inputs, const std::strin
   };
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const auto& o = outputs[i];
-    if (o.path == "-") continue;
+    if (o.path == "-") {
+      // Two outputs through one stream would interleave into something neither reader can parse.
+      for (std::size_t j = 0; j < i; ++j)
+        if (outputs[j].path == "-")
+          throw std::runtime_error(outputs[j].option + " - and " + o.option +
+                                   " -: only one output can go to standard output; give the other a file");
+      if (o.directory)
+        throw std::runtime_error(o.option + " -: several files cannot go to standard output; give a directory");
+      continue;
+    }
     const std::string what = o.option + " " + trimmed(o.path, 200) + ": ";
     const std::string cannot = what + "cannot open the file for writing: ";
     if (o.path.empty()) throw std::runtime_error(o.option + ": an empty path");
@@ -153,6 +163,10 @@ void check_output_paths(const std::vector<std::string>& inputs, const std::strin
     if (!S_ISDIR(pt.st_mode)) throw std::runtime_error(cannot + shown(parent.string()) + " is not a directory");
     if (!writable(parent.string(), pt)) throw std::runtime_error(cannot + "its directory " + shown(parent.string()) + " is read-only");
   }
+}
+
+bool writes_to_stdout(const std::vector<OutputPath>& outputs) {
+  return std::any_of(outputs.begin(), outputs.end(), [](const OutputPath& o) { return o.path == "-"; });
 }
 
 std::vector<std::string> remove_outputs(const std::vector<OutputPath>& outputs) {

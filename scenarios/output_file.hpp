@@ -74,9 +74,14 @@ struct OutputPath {
 // an output is one of the inputs (`inputs_are` says what they are: "the scenario file"), when two
 // outputs are the same file, when it is a directory (unless expected), a FIFO, a socket or a block
 // device, when an existing file is read-only, or when the directory it goes into does not exist or
-// cannot be written. "-" (standard output) and character devices pass.
+// cannot be written. Character devices pass; "-" (standard output) passes for one output that is
+// a single file.
 void check_output_paths(const std::vector<std::string>& inputs, const std::string& inputs_are,
                         const std::vector<OutputPath>& outputs);
+
+// Whether one of the outputs is standard output ("-"): then the summary meant for a person goes
+// to standard error, so that standard output holds that output alone.
+bool writes_to_stdout(const std::vector<OutputPath>& outputs);
 
 // Standard output checked for a program's whole life (a full disk, `> /dev/full`): std::cout
 // keeps its buffering (line by line on a terminal) and the reason of its first failed write is

@@ -1,6 +1,6 @@
-#include "scenarios/report.hpp"
+#include "endatsim/scenarios/report.hpp"
 
-#include "protocol/parameters.hpp"
+#include "endatsim/protocol/parameters.hpp"
 
 #include <map>
 #include <set>

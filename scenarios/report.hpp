@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
-#include "scenarios/runner.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 namespace endatsim::scenarios {
 

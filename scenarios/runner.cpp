@@ -1,15 +1,15 @@
-#include "scenarios/runner.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
-#include "scenarios/declarations.hpp"
+#include "endatsim/scenarios/declarations.hpp"
 
-#include "scenarios/events.hpp"
-#include "scenarios/interrupt.hpp"
+#include "endatsim/scenarios/events.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
 
 #include <algorithm>
 #include <memory>
 #include <unordered_map>
 
-#include "sim/vcd.hpp"
+#include "endatsim/sim/vcd.hpp"
 
 namespace endatsim::scenarios {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/limits.hpp"
-#include "scenarios/scenario.hpp"
+#include "endatsim/scenarios/limits.hpp"
+#include "endatsim/scenarios/scenario.hpp"
 
 namespace endatsim::scenarios {
 

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "checker/timing_checker.hpp"
-#include "line/line.hpp"
-#include "master/master.hpp"
-#include "scenarios/limits.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/master/master.hpp"
+#include "endatsim/scenarios/limits.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 namespace endatsim::scenarios {
 

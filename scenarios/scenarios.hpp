@@ -5,10 +5,10 @@
 // judging a recorded waveform from its wires (capture_check.hpp).
 #pragma once
 
-#include "scenarios/capture_check.hpp"
-#include "scenarios/declarations.hpp"
-#include "scenarios/loader.hpp"
-#include "scenarios/report.hpp"
-#include "scenarios/runner.hpp"
-#include "scenarios/scenario.hpp"
-#include "scenarios/sweep.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/declarations.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/report.hpp"
+#include "endatsim/scenarios/runner.hpp"
+#include "endatsim/scenarios/scenario.hpp"
+#include "endatsim/scenarios/sweep.hpp"

@@ -1,6 +1,6 @@
-#include "scenarios/sweep.hpp"
+#include "endatsim/scenarios/sweep.hpp"
 
-#include "scenarios/xml.hpp"
+#include "endatsim/scenarios/xml.hpp"
 
 #include <algorithm>
 #include <array>
@@ -15,8 +15,8 @@
 #include <string_view>
 #include <thread>
 
-#include "scenarios/interrupt.hpp"
-#include "scenarios/loader.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/loader.hpp"
 
 namespace endatsim::scenarios {
 namespace {

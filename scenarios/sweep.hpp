@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/runner.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 namespace endatsim::scenarios {
 

@@ -1,4 +1,4 @@
-#include "scenarios/transaction_log.hpp"
+#include "endatsim/scenarios/transaction_log.hpp"
 
 #include <bitset>
 #include <cstdio>

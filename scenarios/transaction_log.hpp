@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "checker/timing_checker.hpp"
-#include "master/master.hpp"
-#include "scenarios/runner.hpp"
+#include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/master/master.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 namespace endatsim::scenarios {
 

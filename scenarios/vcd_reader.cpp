@@ -1,4 +1,4 @@
-#include "scenarios/vcd_reader.hpp"
+#include "endatsim/scenarios/vcd_reader.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -1,6 +1,6 @@
-#include "scenarios/xml.hpp"
+#include "endatsim/scenarios/xml.hpp"
 
-#include "capture/capture.hpp"
+#include "endatsim/capture/capture.hpp"
 
 namespace endatsim::scenarios {
 

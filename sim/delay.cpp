@@ -1,4 +1,4 @@
-#include "sim/delay.hpp"
+#include "endatsim/sim/delay.hpp"
 
 namespace endatsim::sim {
 

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "sim/signal.hpp"
+#include "endatsim/sim/signal.hpp"
 
 namespace endatsim::sim {
 

@@ -1,9 +1,9 @@
-#include "sim/kernel.hpp"
+#include "endatsim/sim/kernel.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "sim/signal.hpp"
+#include "endatsim/sim/signal.hpp"
 
 namespace endatsim::sim {
 

@@ -10,7 +10,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "sim/time.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::sim {
 

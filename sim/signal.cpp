@@ -1,4 +1,4 @@
-#include "sim/signal.hpp"
+#include "endatsim/sim/signal.hpp"
 
 namespace endatsim::sim {
 

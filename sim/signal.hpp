@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/kernel.hpp"
+#include "endatsim/sim/kernel.hpp"
 
 namespace endatsim::sim {
 

@@ -4,8 +4,8 @@
 // event-driven VCD writer (vcd.hpp). It depends on nothing else in endatsim.
 #pragma once
 
-#include "sim/delay.hpp"
-#include "sim/kernel.hpp"
-#include "sim/signal.hpp"
-#include "sim/time.hpp"
-#include "sim/vcd.hpp"
+#include "endatsim/sim/delay.hpp"
+#include "endatsim/sim/kernel.hpp"
+#include "endatsim/sim/signal.hpp"
+#include "endatsim/sim/time.hpp"
+#include "endatsim/sim/vcd.hpp"

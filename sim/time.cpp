@@ -1,4 +1,4 @@
-#include "sim/time.hpp"
+#include "endatsim/sim/time.hpp"
 
 #include <array>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "sim/vcd.hpp"
+#include "endatsim/sim/vcd.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -25,12 +25,20 @@ std::string short_id(std::size_t index) {
 }  // namespace
 
 VcdWriter::VcdWriter(Kernel& kernel, const std::string& path) : kernel_(kernel), file_(nullptr), path_(path) {
-  // A character device (/dev/null) is written directly; a file through its part file.
+  // "-" is standard output (a stream of its own, so that closing it leaves the program's); a
+  // character device (/dev/null) is written directly; a file through its part file.
   struct stat st {};
-  const bool device = ::stat(path.c_str(), &st) == 0 && S_ISCHR(st.st_mode);
+  const bool to_stdout = path == "-";
+  const bool device = to_stdout || (::stat(path.c_str(), &st) == 0 && S_ISCHR(st.st_mode));
   if (!device) part_ = path + ".part-" + std::to_string(::getpid());
   errno = 0;
-  file_ = std::fopen(device ? path.c_str() : part_.c_str(), "wb");
+  if (to_stdout) {
+    const int fd = ::dup(STDOUT_FILENO);
+    file_ = fd < 0 ? nullptr : ::fdopen(fd, "wb");
+    if (file_ == nullptr && fd >= 0) ::close(fd);
+  } else {
+    file_ = std::fopen(device ? path.c_str() : part_.c_str(), "wb");
+  }
   if (file_ == nullptr)
     throw std::runtime_error("cannot open VCD file '" + path + "' for writing: " + std::strerror(errno));
   // One large buffer of our own, written with one call when full: the stream's own buffer

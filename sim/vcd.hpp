@@ -4,7 +4,7 @@
 // so that the same run gives the same bytes. Written to a part file beside the path and renamed
 // into place by finish(), so that no half-written VCD ever carries the name; every write and the
 // close are checked (finish() throws, naming the path), and the destructor never throws: without
-// finish() the part file goes.
+// finish() the part file goes. "-" writes to standard output.
 #pragma once
 
 #include <cstdio>
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/signal.hpp"
+#include "endatsim/sim/signal.hpp"
 
 namespace endatsim::sim {
 

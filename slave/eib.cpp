@@ -1,4 +1,4 @@
-#include "slave/eib.hpp"
+#include "endatsim/slave/eib.hpp"
 
 #include <algorithm>
 

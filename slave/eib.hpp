@@ -6,8 +6,8 @@
 #include <array>
 #include <cstdint>
 
-#include "protocol/parameters.hpp"
-#include "slave/memory.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/slave/memory.hpp"
 
 namespace endatsim::slave {
 

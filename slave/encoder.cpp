@@ -1,10 +1,10 @@
-#include "slave/encoder.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "protocol/parameters.hpp"
-#include "slave/eib.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/slave/eib.hpp"
 
 namespace endatsim::slave {
 namespace {

@@ -7,10 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "line/line.hpp"
-#include "protocol/protocol.hpp"
-#include "slave/memory.hpp"
-#include "slave/reference.hpp"
+#include "endatsim/sim/int128.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/protocol/protocol.hpp"
+#include "endatsim/slave/memory.hpp"
+#include "endatsim/slave/reference.hpp"
 
 namespace endatsim::slave {
 
@@ -300,7 +301,7 @@ class Encoder {
   void clock_after_supplement();
   std::uint64_t output_position(std::uint64_t measured) const;
   void update_reference();
-  __int128 unwrapped_position(Time t) const;
+  sim::Int128 unwrapped_position(Time t) const;
   bool error_message_2() const;
   bool error_present() const;
   bool drives_bus() const;
@@ -362,7 +363,7 @@ class Encoder {
   std::uint64_t test_value_latched_ = 0;
   std::uint64_t async_latched_ = 0;
   std::uint8_t async_time_delay_ = 0;           // 2.4.2.3: 0 after switch-on or reset
-  __int128 counter_origin_ = 0;                 // 3.4.4: measuring steps where a counter reset zeroed the multiturn count
+  sim::Int128 counter_origin_ = 0;                 // 3.4.4: measuring steps where a counter reset zeroed the multiturn count
   bool multiturn_overflow_ = false;             // 3.4.4: overflow message (unlatched) in this frame
   // The word the NVM is programming (what a power interruption leaves).
   struct NvmWrite {
@@ -389,7 +390,7 @@ class Encoder {
   std::optional<std::uint64_t> frozen_position_;  // word 5 bit 2: the position sent while it is set (3.6.5)
   std::optional<Time> rm_reset_at_;             // RM reset by operating parameters 2 word 11 (3.10.5)
   bool bus_address_error_ = false;              // error bit 1 held by a bus address in word 4 (3.6.4)
-  __int128 reference_offset_ = 0;               // absolute = measured - offset (equidistant, first crossed)
+  sim::Int128 reference_offset_ = 0;               // absolute = measured - offset (equidistant, first crossed)
   unsigned position_bits_ = 0;                  // word 13 as activated
   bool eib_not_initiated_ = false;              // word 14 type Fh (3.5.7, A2 cause 5)
   Time reference_origin_{0};                    // switch-on: where relative positions start

@@ -1,7 +1,7 @@
-#include "slave/memory.hpp"
+#include "endatsim/slave/memory.hpp"
 
-#include "protocol/parameters.hpp"
-#include "slave/eib.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/slave/eib.hpp"
 
 #include <stdexcept>
 #include <string>

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "protocol/protocol.hpp"
+#include "endatsim/protocol/protocol.hpp"
 
 namespace endatsim::slave {
 

@@ -1,8 +1,9 @@
-#include "slave/profile.hpp"
+#include "endatsim/slave/profile.hpp"
 
-#include "input/json_input.hpp"
-#include "slave/eib.hpp"
-#include "slave/reference.hpp"
+#include "endatsim/input/json_input.hpp"
+#include "endatsim/input/suggest.hpp"
+#include "endatsim/slave/eib.hpp"
+#include "endatsim/slave/reference.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -78,8 +79,8 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
                                               "multiturn_bits", "memory"};
   for (const auto& [key, value] : root.items())
     if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end())
-      Node(value, "/" + key, file).fail_raw("unknown key \"" + input::trimmed(key) +
-                                            "\" (expected name, description, version, kind, position_bits, "
+      Node(value, "/" + key, file).fail_raw("unknown key \"" + input::trimmed(key) + "\" (" + input::did_you_mean(key, kKeys) +
+                                            "expected name, description, version, kind, position_bits, "
                                             "multiturn_bits or memory)");
   for (const char* key : {"name", "version", "kind", "position_bits", "memory"})
     if (!root.contains(key)) r.fail_raw(std::string("missing key \"") + key + "\"");

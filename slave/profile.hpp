@@ -26,8 +26,8 @@
 #include <utility>
 #include <vector>
 
-#include "protocol/parameters.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 namespace endatsim::slave {
 

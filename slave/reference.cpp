@@ -1,4 +1,4 @@
-#include "slave/reference.hpp"
+#include "endatsim/slave/reference.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -7,8 +7,9 @@
 #include <optional>
 #include <vector>
 
-#include "protocol/parameters.hpp"
-#include "slave/memory.hpp"
+#include "endatsim/sim/int128.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/slave/memory.hpp"
 
 namespace endatsim::slave {
 
@@ -37,6 +38,6 @@ ReferenceScheme reference_scheme(const Memory& memory, const std::vector<std::ui
 // reference mark crossed as the scheme needs it (marks in (min, max])? The answer is the
 // number of measuring steps the absolute position lies below the measured one: 0, or with
 // equidistant marks and no selection, the first mark crossed taken as the first mark.
-std::optional<__int128> find_reference(const ReferenceScheme& scheme, __int128 from, __int128 to, unsigned position_bits);
+std::optional<sim::Int128> find_reference(const ReferenceScheme& scheme, sim::Int128 from, sim::Int128 to, unsigned position_bits);
 
 }  // namespace endatsim::slave

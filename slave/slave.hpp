@@ -5,5 +5,5 @@
 // Encoder profiles (profile.hpp): memory images with their parameters as JSON, profiles/*.json.
 #pragma once
 
-#include "slave/encoder.hpp"
-#include "slave/profile.hpp"
+#include "endatsim/slave/encoder.hpp"
+#include "endatsim/slave/profile.hpp"

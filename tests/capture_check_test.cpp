@@ -17,8 +17,8 @@
 #include <unistd.h>
 #include <zip.h>
 
-#include "capture/capture.hpp"
-#include "scenarios/scenarios.hpp"
+#include "endatsim/capture/capture.hpp"
+#include "endatsim/scenarios/scenarios.hpp"
 #include "capture_support.hpp"
 #include "scenario_support.hpp"
 #include "sigrok_cli.hpp"

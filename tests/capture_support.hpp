@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "checker/timing_checker.hpp"
+#include "endatsim/checker/timing_checker.hpp"
 
 namespace endatsim::test_support {
 

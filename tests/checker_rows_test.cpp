@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "scenario_support.hpp"
-#include "scenarios/loader.hpp"
+#include "endatsim/scenarios/loader.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;

@@ -3,7 +3,7 @@
 #include <functional>
 
 #include "scenario_support.hpp"
-#include "scenarios/declarations.hpp"
+#include "endatsim/scenarios/declarations.hpp"
 #include "test_support.hpp"
 
 using namespace endatsim;

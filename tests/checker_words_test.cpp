@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <vector>
 
-#include "scenarios/declarations.hpp"
-#include "checker/checker.hpp"
-#include "protocol/frame.hpp"
+#include "endatsim/scenarios/declarations.hpp"
+#include "endatsim/checker/checker.hpp"
+#include "endatsim/protocol/frame.hpp"
 #include "scenario_support.hpp"
 
 using namespace endatsim;

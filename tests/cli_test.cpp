@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "endatsim/tools/exit_status.hpp"
 #include "scenario_support.hpp"
 
 namespace {
@@ -124,4 +125,24 @@ TEST(Cli, ReadmeScenarioExamplePasses) {
   const auto path = write_temp("endatsim_readme_example.json", doc.substr(begin + 8, end - begin - 8));
   const auto r = run("run " + path);
   EXPECT_EQ(r.status, 0) << r.out << r.err;
+}
+
+// Errors the input can cause exit 2; anything else is a bug: its own status and a request for a report.
+TEST(CliExitStatus, BadInputIsTwoAndAnInternalErrorIsSeventyWithARequestForABugReport) {
+  const auto status_of = [](auto exception, std::string& said) {
+    std::ostringstream err;
+    const int status = endatsim::tools::report_failure(std::make_exception_ptr(exception), err);
+    said = err.str();
+    return status;
+  };
+  std::string said;
+  EXPECT_EQ(status_of(std::runtime_error("x.json: at /line: bad"), said), 2);
+  EXPECT_EQ(said, "endatsim: x.json: at /line: bad\n");
+  EXPECT_EQ(status_of(std::invalid_argument("--max-time: not a duration"), said), 2);
+  EXPECT_EQ(status_of(std::logic_error("Kernel::schedule_at: time in the past"), said), 70);
+  EXPECT_NE(said.find("endatsim: internal error: Kernel::schedule_at: time in the past\n"), std::string::npos) << said;
+  EXPECT_NE(said.find("this is a bug in endatsim " ENDATSIM_VERSION "; please report it"), std::string::npos) << said;
+  EXPECT_EQ(status_of(std::bad_alloc(), said), 70);
+  EXPECT_EQ(status_of(42, said), 70);
+  EXPECT_NE(said.find("an exception of an unknown type"), std::string::npos) << said;
 }

@@ -3,8 +3,8 @@
 // values come from protocol::make_crc_*, which crc_test checks against the examples of A4.
 #include <gtest/gtest.h>
 
-#include "protocol/parameters.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/slave/encoder.hpp"
 #include "test_support.hpp"
 
 using namespace endatsim;

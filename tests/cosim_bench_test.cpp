@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "cosim/bench.hpp"
-#include "cosim/report.hpp"
-#include "line/line.hpp"
-#include "scenarios/interrupt.hpp"
-#include "scenarios/loader.hpp"
+#include "endatsim/cosim/bench.hpp"
+#include "endatsim/cosim/report.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/loader.hpp"
 #include "test_support.hpp"
 
 namespace {

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "protocol/crc.hpp"
+#include "endatsim/protocol/crc.hpp"
 
 using namespace endatsim::protocol;
 

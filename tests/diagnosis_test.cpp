@@ -4,12 +4,12 @@
 
 #include <algorithm>
 
-#include "master/diagnostics.hpp"
-#include "protocol/diagnosis.hpp"
+#include "endatsim/master/diagnostics.hpp"
+#include "endatsim/protocol/diagnosis.hpp"
 #include "scenario_support.hpp"
-#include "scenarios/loader.hpp"
-#include "scenarios/transaction_log.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/transaction_log.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 using namespace endatsim;
 namespace dg = protocol::diagnosis;

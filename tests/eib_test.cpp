@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <map>
 
-#include "protocol/parameters.hpp"
+#include "endatsim/protocol/parameters.hpp"
 #include "scenario_support.hpp"
-#include "slave/eib.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/slave/eib.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;

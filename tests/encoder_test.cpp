@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "slave/encoder.hpp"
-#include "slave/memory.hpp"
+#include "endatsim/slave/encoder.hpp"
+#include "endatsim/slave/memory.hpp"
 #include "test_support.hpp"
 
 using namespace endatsim;

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "scenario_support.hpp"
-#include "scenarios/loader.hpp"
+#include "endatsim/scenarios/loader.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;

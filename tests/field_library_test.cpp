@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "scenarios/loader.hpp"
-#include "scenarios/runner.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 using namespace endatsim;
 namespace fs = std::filesystem;

@@ -10,9 +10,9 @@
 #include <map>
 #include <unistd.h>
 
-#include "checker/frame_decoder.hpp"
-#include "scenarios/scenarios.hpp"
-#include "scenarios/vcd_reader.hpp"
+#include "endatsim/checker/frame_decoder.hpp"
+#include "endatsim/scenarios/scenarios.hpp"
+#include "endatsim/scenarios/vcd_reader.hpp"
 
 namespace {
 

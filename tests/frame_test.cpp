@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "protocol/frame.hpp"
-#include "protocol/mode_command.hpp"
+#include "endatsim/protocol/frame.hpp"
+#include "endatsim/protocol/mode_command.hpp"
 
 using namespace endatsim::protocol;
 

@@ -3,9 +3,9 @@
 // master reads and writes the encoder through its own frames; nothing looks inside the encoder.
 #include <gtest/gtest.h>
 
-#include "protocol/parameters.hpp"
+#include "endatsim/protocol/parameters.hpp"
 #include "scenario_support.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;

@@ -17,10 +17,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "scenarios/loader.hpp"
-#include "scenarios/runner.hpp"
-#include "scenarios/vcd_reader.hpp"
-#include "sim/kernel.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/runner.hpp"
+#include "endatsim/scenarios/vcd_reader.hpp"
+#include "endatsim/sim/kernel.hpp"
 
 namespace {
 

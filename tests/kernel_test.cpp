@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/sim.hpp"
+#include "endatsim/sim/sim.hpp"
 
 using namespace endatsim::sim;
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "line/line.hpp"
+#include "endatsim/line/line.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "scenarios/loader.hpp"
-#include "scenarios/runner.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 using namespace endatsim;
 using scenarios::load_scenario_text;

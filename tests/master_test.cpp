@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
 #include "scenario_support.hpp"
-#include "master/master.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/master/master.hpp"
+#include "endatsim/slave/encoder.hpp"
 
 using namespace endatsim;
 using namespace endatsim::sim;

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "protocol/parameters.hpp"
+#include "endatsim/protocol/parameters.hpp"
 
 using namespace endatsim::protocol::parameters;
 using namespace std::chrono_literals;

@@ -16,12 +16,12 @@
 #include <unistd.h>
 
 #include "capture_support.hpp"
-#include "checker/timing_checker.hpp"
-#include "line/line.hpp"
-#include "scenarios/capture_check.hpp"
-#include "scenarios/declarations.hpp"
-#include "sim/vcd.hpp"
-#include "slave/encoder.hpp"
+#include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/declarations.hpp"
+#include "endatsim/sim/vcd.hpp"
+#include "endatsim/slave/encoder.hpp"
 #include "test_support.hpp"
 
 namespace {

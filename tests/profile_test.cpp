@@ -16,8 +16,8 @@
 
 #include <unistd.h>
 
-#include "slave/eib.hpp"
-#include "slave/profile.hpp"
+#include "endatsim/slave/eib.hpp"
+#include "endatsim/slave/profile.hpp"
 
 using namespace endatsim;
 using namespace std::chrono_literals;
@@ -482,7 +482,10 @@ TEST(Profile, ErrorsNameFileJsonPathAndExpectation) {
             "bad.json: at /memory/manufacturer_3/5: expected bit pairs stored inversely, command set 2.1 (3.5.22), got "
             "0019h");
   EXPECT_EQ(error_of(replace(good, "\"name\"", "\"nmae\"")),
-            "bad.json: at /nmae: unknown key \"nmae\" (expected name, description, version, kind, position_bits, "
+            "bad.json: at /nmae: unknown key \"nmae\" (did you mean \"name\"? expected name, description, version, kind, "
+            "position_bits, multiturn_bits or memory)");
+  EXPECT_EQ(error_of(replace(good, "\"name\"", "\"colour\"")),
+            "bad.json: at /colour: unknown key \"colour\" (expected name, description, version, kind, position_bits, "
             "multiturn_bits or memory)");
   EXPECT_EQ(error_of(replace(good, "\"operating_status\": [\"0x0000\", ", "\"operating_status\": [")),
             "bad.json: at /memory/operating_status: expected an array of 4 hex words, got array "

@@ -1,6 +1,6 @@
 // The worst case of a row: the smallest margin to its limit over every occasion, kept apart for
 // the spec's limit and the declared encoder's.
-#include "checker/row_margins.hpp"
+#include "endatsim/checker/row_margins.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "master/safety.hpp"
-#include "protocol/crc.hpp"
-#include "protocol/parameters.hpp"
-#include "scenarios/loader.hpp"
-#include "scenarios/runner.hpp"
+#include "endatsim/master/safety.hpp"
+#include "endatsim/protocol/crc.hpp"
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/runner.hpp"
 
 using namespace endatsim;
 namespace fs = std::filesystem;

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "scenarios/runner.hpp"
-#include "scenarios/vcd_reader.hpp"
+#include "endatsim/scenarios/runner.hpp"
+#include "endatsim/scenarios/vcd_reader.hpp"
 
 namespace endatsim::test_support {
 

@@ -9,8 +9,8 @@
 #include <thread>
 #include <unistd.h>
 
-#include "scenarios/loader.hpp"
-#include "scenarios/sweep.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/sweep.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "line/line.hpp"
+#include "endatsim/line/line.hpp"
 
 namespace endatsim::test_support {
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "sim/time.hpp"
+#include "endatsim/sim/time.hpp"
 
 using namespace endatsim::sim;
 

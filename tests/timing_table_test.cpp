@@ -10,12 +10,12 @@
 #include <sstream>
 #include <string>
 
-#include "checker/timing_checker.hpp"
-#include "protocol/crc.hpp"
-#include "protocol/mode_command.hpp"
-#include "protocol/timing.hpp"
-#include "scenarios/decoder_tables.hpp"
-#include "scenarios/scenario.hpp"
+#include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/protocol/crc.hpp"
+#include "endatsim/protocol/mode_command.hpp"
+#include "endatsim/protocol/timing.hpp"
+#include "endatsim/scenarios/decoder_tables.hpp"
+#include "endatsim/scenarios/scenario.hpp"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "sim/sim.hpp"
+#include "endatsim/sim/sim.hpp"
 #include "scenario_support.hpp"
 
 using namespace endatsim::sim;

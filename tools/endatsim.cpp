@@ -22,18 +22,20 @@
 #include <sstream>
 #include <thread>
 
-#include "capture/capture.hpp"
-#include "slave/profile.hpp"
-#include "protocol/timing.hpp"
-#include "scenarios/decoder_tables.hpp"
-#include "scenarios/declarations.hpp"
-#include "scenarios/diagram.hpp"
-#include "scenarios/interrupt.hpp"
-#include "scenarios/junit.hpp"
-#include "scenarios/output_file.hpp"
-#include "scenarios/scenarios.hpp"
-#include "scenarios/sweep.hpp"
-#include "scenarios/transaction_log.hpp"
+#include "endatsim/capture/capture.hpp"
+#include "endatsim/input/suggest.hpp"
+#include "endatsim/slave/profile.hpp"
+#include "endatsim/protocol/timing.hpp"
+#include "endatsim/scenarios/decoder_tables.hpp"
+#include "endatsim/scenarios/declarations.hpp"
+#include "endatsim/scenarios/diagram.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/junit.hpp"
+#include "endatsim/scenarios/output_file.hpp"
+#include "endatsim/scenarios/scenarios.hpp"
+#include "endatsim/scenarios/sweep.hpp"
+#include "endatsim/scenarios/transaction_log.hpp"
+#include "exit_status.hpp"
 
 namespace po = boost::program_options;
 using namespace endatsim;
@@ -42,9 +44,10 @@ using scenarios::write_file;
 
 namespace {
 
+using tools::kBadInput;
+using tools::report_failure;
 constexpr int kPass = 0;
 constexpr int kFail = 1;
-constexpr int kBadInput = 2;
 constexpr int kIncomplete = 3;
 int interrupted_status(int signal) { return 128 + signal; }
 
@@ -71,6 +74,9 @@ std::string usage() {
          "       endatsim --help | --version | COMMAND --help | COMMAND --version\n";
 }
 
+// Every command: an exception that no input can cause (a bug) exits with its own status.
+#define ENDATSIM_INTERNAL_EXIT " 70 for an internal error (a bug: the message asks for a report).\n"
+
 const char* const kRunHelp =
     "run: runs EnDat scenarios (JSON files) through the cycle-accurate model of master, line and\n"
     "encoder, checks the timing conditions of spec 2.3.2 and judges each scenario's expectations.\n"
@@ -81,7 +87,10 @@ const char* const kRunHelp =
     "stderr when stderr is a terminal.\n"
     "--log writes the decoded transaction log (one line per frame: time, mode command, fields\n"
     "sent and received, CRC, additional data, outcome, violations), --log-json the same as JSON\n"
-    "lines; PATH - is stdout. --junit writes JUnit XML, one test case per scenario.\n"
+    "lines. --junit writes JUnit XML, one test case per scenario. For every output PATH - is stdout\n"
+    "(one output at most; the summary then goes to stderr). A folder as FILE stands for every\n"
+    "scenario (*.json) under it; --vcd PATH is a folder (NAME.vcd each) for several scenarios and\n"
+    "whenever PATH exists as one or ends in /.\n"
     "\n"
     "\n"
     "Limits: every run is bounded. --max-time caps each scenario's max_time; --max-kernel-events\n"
@@ -96,7 +105,7 @@ const char* const kRunHelp =
     "\n"
     "Exit status: 0 when every expectation of every scenario holds, 1 when one does not,\n"
     "2 for bad input (the message names the file, the JSON path and what was expected) or usage,\n"
-    "3 when a limit ended a run, 130 (SIGINT) or 143 (SIGTERM) when interrupted.\n";
+    "3 when a limit ended a run, 130 (SIGINT) or 143 (SIGTERM) when interrupted," ENDATSIM_INTERNAL_EXIT;
 
 const char* const kSweepHelp =
     "sweep: runs one scenario at every point of a grid: each --grid names a key by JSON pointer\n"
@@ -112,14 +121,15 @@ const char* const kSweepHelp =
     "progress counter goes to stderr when stderr is a terminal. Every point runs within the limits of\n"
     "run (--max-* options); a point that reaches one is not clean and marked incomplete in --json.\n"
     "Exit status: 0 when the sweep ran, 2 for bad input (the message names the grid point) or usage,\n"
-    "3 when a limit ended a point's run, 128 + N when interrupted by signal N (the outputs are removed).\n";
+    "3 when a limit ended a point's run, 128 + N when interrupted by signal N (the outputs are removed),\n"
+    ENDATSIM_INTERNAL_EXIT;
 
 const char* const kValidateHelp =
     "validate: loads scenario files without running them, as run would, and prints 'valid FILE'\n"
     "for each good one on stdout; errors (file, JSON path, what was expected) go to stderr.\n"
     "The JSON Schema schema/scenario.schema.json describes the same format for editors. A file that\n"
     "asks for more than the limits (--max-* options, as run) grant is not valid.\n"
-    "Exit status: 0 when every file is valid, 2 when one is not or for usage errors.\n";
+    "Exit status: 0 when every file is valid, 2 when one is not or for usage errors," ENDATSIM_INTERNAL_EXIT;
 
 const char* const kDiagramHelp =
     "diagram: runs a scenario and draws one frame (--frame N, the index in the run's frame list,\n"
@@ -130,7 +140,7 @@ const char* const kDiagramHelp =
     "values, and the checker's violations in red. The same input gives the same bytes. The run's\n"
     "waveform goes through a temporary directory private to the process, removed afterwards.\n"
     "Exit status: 0 when the diagram was written, 2 for bad input or usage, 3 when a limit (as run)\n"
-    "ended the run, 128 + N when interrupted by signal N (no diagram is written).\n";
+    "ended the run, 128 + N when interrupted by signal N (no diagram is written)," ENDATSIM_INTERNAL_EXIT;
 
 const char* const kChecksHelp =
     "checks: prints the checker's timing table as Markdown: one row per check name (the names\n"
@@ -169,7 +179,8 @@ const char* const kCheckHelp =
     "--resolution says otherwise) is undecided, never passed or failed.\n"
     "Exit status: 0 when every row conforms, 1 when one is broken or undecided, 2 for bad input\n"
     "(a capture that cannot be read, or in which CLOCK never begins a frame) or usage, 128 + N when\n"
-    "interrupted by signal N (the captures not judged are listed as such in --json and --junit).\n";
+    "interrupted by signal N (the captures not judged are listed as such in --json and --junit),\n"
+    ENDATSIM_INTERNAL_EXIT;
 
 enum class Command { Run, Sweep, Validate, Diagram, Check, Checks };
 
@@ -288,12 +299,43 @@ bool parse_limits(const po::variables_map& vm, const char* command, scenarios::L
   return true;
 }
 
-// Colour for the summary's verdicts, only where a person reads it.
-bool use_color(const std::string& mode) {
+// Colour for the summary's verdicts, only where a person reads it (`fd`: where the summary goes).
+bool use_color(const std::string& mode, int fd) {
   if (mode == "always") return true;
   if (mode == "never") return false;
   const char* no_color = std::getenv("NO_COLOR");
-  return isatty(STDOUT_FILENO) != 0 && (no_color == nullptr || *no_color == '\0');
+  return isatty(fd) != 0 && (no_color == nullptr || *no_color == '\0');
+}
+
+// Where the summary for a person goes: standard output, unless an output takes it ("--json -").
+struct SummaryStream {
+  explicit SummaryStream(const std::vector<scenarios::OutputPath>& outputs)
+      : to_stderr(scenarios::writes_to_stdout(outputs)), stream(to_stderr ? std::cerr : std::cout) {}
+  bool to_stderr;
+  std::ostream& stream;
+  int fd() const { return to_stderr ? STDERR_FILENO : STDOUT_FILENO; }
+};
+
+// Scenario files named on the command line, in the order given; a folder stands for every
+// scenario (*.json) anywhere under it, in path order.
+std::vector<std::string> scenario_files(const std::vector<std::string>& args) {
+  std::vector<std::string> files;
+  for (const auto& arg : args) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(arg, ec)) {
+      files.push_back(arg);
+      continue;
+    }
+    std::vector<std::string> found;
+    std::filesystem::recursive_directory_iterator it(arg, ec), end;
+    for (; !ec && it != end; it.increment(ec))
+      if (it->path().extension() == ".json" && it->is_regular_file(ec)) found.push_back(it->path().string());
+    if (ec) throw std::runtime_error(arg + ": cannot read the folder: " + ec.message());
+    if (found.empty()) throw std::runtime_error(arg + ": a folder with no scenario (*.json) in it or below it");
+    std::sort(found.begin(), found.end());
+    files.insert(files.end(), found.begin(), found.end());
+  }
+  return files;
 }
 
 std::string colorize(const std::string& text) {
@@ -344,7 +386,7 @@ struct Options {
   bool gtkw = false;
   bool verbose = false;
   bool quiet = false;
-  bool color = false;
+  std::string color = "auto";
   scenarios::Limits limits;
 };
 
@@ -393,15 +435,23 @@ int run(const Options& o) {
       throw scenarios::ScenarioError(file + ": at /name: another scenario is also named \"" +
                                      scenarios::trimmed(loaded.back().name) + "\"; their waveforms would overwrite each other in " + *o.vcd);
   }
-  const bool many = loaded.size() > 1;
+  // --vcd names a folder (NAME.vcd for each scenario) for several scenarios, and whenever it
+  // exists as one or ends in "/"; else the file.
+  std::error_code ec;
+  const bool vcd_folder = o.vcd && (loaded.size() > 1 || o.vcd->ends_with('/') || std::filesystem::is_directory(*o.vcd, ec));
   std::vector<scenarios::OutputPath> outputs;
-  if (o.vcd) outputs.push_back({"--vcd", *o.vcd, many});
-  if (o.vcd && o.gtkw && !many) outputs.push_back({"--gtkw", std::filesystem::path(*o.vcd).replace_extension(".gtkw").string()});
+  if (o.vcd) outputs.push_back({"--vcd", *o.vcd, vcd_folder});
+  if (o.vcd && o.gtkw && *o.vcd == "-")
+    throw std::runtime_error("--gtkw - : a GTKWave save file goes beside a VCD file; give --vcd a file or a folder");
+  if (o.vcd && o.gtkw && !vcd_folder)
+    outputs.push_back({"--gtkw", std::filesystem::path(*o.vcd).replace_extension(".gtkw").string()});
   if (o.json) outputs.push_back({"--json", *o.json});
   if (o.junit) outputs.push_back({"--junit", *o.junit});
   if (o.log) outputs.push_back({"--log", *o.log});
   if (o.log_json) outputs.push_back({"--log-json", *o.log_json});
   scenarios::check_output_paths(o.files, "a scenario file", outputs);
+  const SummaryStream summary_out(outputs);
+  const bool color = use_color(o.color, summary_out.fd());
   // Every file output opened before anything runs; each replaces its file only when complete.
   std::optional<StreamedFile> json_file, junit_file;
   if (o.json) json_file.emplace(*o.json);
@@ -425,7 +475,7 @@ int run(const Options& o) {
     scenarios::RunOptions ro;
     ro.seed = o.seed;
     ro.limits = o.limits;
-    if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", many);
+    if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", vcd_folder);
     if (o.vcd && o.gtkw) write_gtkw(*ro.vcd_path);
     auto result = progress ? run_with_progress(s, ro, i + 1, loaded.size()) : scenarios::run_scenario(s, ro);
     passed = passed && result.passed();
@@ -434,7 +484,7 @@ int run(const Options& o) {
     if (!o.quiet || !result.passed()) {
       std::ostringstream summary;
       scenarios::write_summary(summary, result, o.verbose);
-      std::cout << (o.color ? colorize(summary.str()) : summary.str()) << std::flush;
+      summary_out.stream << (color ? colorize(summary.str()) : summary.str()) << std::flush;
     }
     if (o.log) log.write(scenarios::transaction_log_text(result));
     if (o.log_json) log_json.write(scenarios::transaction_log_jsonl(result));
@@ -468,7 +518,7 @@ int run(const Options& o) {
     const std::string verdict = !incomplete.empty() ? "incomplete: " + incomplete
                                 : passed            ? "all scenarios passed"
                                                     : "some scenarios failed";
-    std::cout << (o.color ? (passed && incomplete.empty() ? "\033[32m" : "\033[31m") + verdict + "\033[0m" : verdict) << "\n";
+    summary_out.stream << (color ? (passed && incomplete.empty() ? "\033[32m" : "\033[31m") + verdict + "\033[0m" : verdict) << "\n";
   }
   if (interrupted != 0) {
     std::cerr << "endatsim run: interrupted by " << scenarios::signal_name(interrupted) << "; the outputs say incomplete\n";
@@ -551,16 +601,17 @@ int sweep(const SweepArgs& o) {
   std::optional<scenarios::MaximumTable> table;
   if (o.maximize) table = scenarios::maximize(result, *o.maximize);
   write_sweep_outputs(o, result, table);
+  std::ostream& out = SummaryStream(outputs).stream;
   const auto clean = std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return p.clean; });
   if (o.verbose)
     for (const auto& p : result.points) {
       std::string where;
       for (std::size_t i = 0; i < p.values.size() && i < grid.size(); ++i)
         where += (i == 0 ? "" : " ") + grid[i].pointer + "=" + p.values[i].dump();
-      std::cout << (p.clean ? "clean " : "not clean ") << where << "\n";
+      out << (p.clean ? "clean " : "not clean ") << where << "\n";
     }
-  if (!o.quiet) std::cout << result.points.size() << " points, " << clean << " clean\n";
-  if (table) std::cout << scenarios::maximum_text(result, *table);
+  if (!o.quiet) out << result.points.size() << " points, " << clean << " clean\n";
+  if (table) out << scenarios::maximum_text(result, *table);
   const auto incomplete =
       std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return !p.incomplete.empty(); });
   if (incomplete != 0) {
@@ -626,7 +677,7 @@ std::vector<std::string> files_of(const po::variables_map& vm) {
 
 int run_command(const po::variables_map& vm) {
   Options o;
-  o.files = files_of(vm);
+  o.files = scenario_files(files_of(vm));
   if (o.files.empty()) {
     std::cerr << "endatsim run: no scenario file given\n" << kRunUsage;
     return kBadInput;
@@ -659,13 +710,13 @@ int run_command(const po::variables_map& vm) {
     std::cerr << "endatsim run: --verbose and --quiet exclude each other\n";
     return kBadInput;
   }
-  o.color = use_color(color);
+  o.color = color;
   if (!parse_limits(vm, "run", o.limits)) return kBadInput;
   return run(o);
 }
 
 int validate_command(const po::variables_map& vm) {
-  const auto files = files_of(vm);
+  const auto files = scenario_files(files_of(vm));
   if (files.empty()) {
     std::cerr << "endatsim validate: no scenario file given\n" << kValidateUsage;
     return kBadInput;
@@ -741,7 +792,7 @@ int diagram_command(const po::variables_map& vm) {
   }
   out.stream() << diagram.svg;
   out.commit();
-  if (vm.count("quiet") == 0) std::cout << diagram.caption << "\n";
+  if (vm.count("quiet") == 0) SummaryStream(outputs).stream << diagram.caption << "\n";
   return kPass;
 }
 
@@ -892,15 +943,16 @@ int check_command(const po::variables_map& vm) {
   }
   if (!check_duration(vm, "resolution", sim::ms(1), o.resolution)) return kBadInput;
   const auto json = string_option(vm, "json"), log = string_option(vm, "log"), junit = string_option(vm, "junit");
+  std::vector<scenarios::OutputPath> outputs;
+  if (json) outputs.push_back({"--json", *json});
+  if (junit) outputs.push_back({"--junit", *junit});
+  if (log) outputs.push_back({"--log", *log});
   {
     std::vector<std::string> inputs = files;
     if (const auto e = string_option(vm, "encoder")) inputs.push_back(*e);
-    std::vector<scenarios::OutputPath> outputs;
-    if (json) outputs.push_back({"--json", *json});
-    if (junit) outputs.push_back({"--junit", *junit});
-    if (log) outputs.push_back({"--log", *log});
     scenarios::check_output_paths(inputs, "an input file", outputs);
   }
+  const SummaryStream summary_out(outputs);
   std::optional<StreamedFile> json_file, junit_file;
   if (json) json_file.emplace(*json);
   if (junit) junit_file.emplace(*junit);
@@ -963,7 +1015,7 @@ int check_command(const po::variables_map& vm) {
     }
     const auto& r = results.back();
     conforms = conforms && r.conforms();
-    if (vm.count("quiet") == 0 || !r.conforms()) scenarios::write_capture_summary(std::cout, r, vm.count("verbose") != 0);
+    if (vm.count("quiet") == 0 || !r.conforms()) scenarios::write_capture_summary(summary_out.stream, r, vm.count("verbose") != 0);
   }
   if (json_file) {
     if (files.size() == 1 && results.size() == 1) {
@@ -1055,9 +1107,13 @@ int dispatch(int argc, char** argv) {
   }
   const CommandInfo* info = find_command(first);
   if (info == nullptr) {
+    std::vector<std::string> names;
+    for (const auto& c : kCommands) names.emplace_back(c.name);
+    const auto near = input::closest_match(first, names);
     std::cerr << (first.empty() ? "endatsim: no command given\n"
                   : first[0] == '-' ? "endatsim: " + first + " before a command\n"
-                                    : "endatsim: unknown command '" + first + "'\n")
+                                    : "endatsim: unknown command \"" + scenarios::trimmed(first) + "\"" +
+                                          (near ? "; did you mean \"" + *near + "\"?" : "") + "\n")
               << usage();
     return kBadInput;
   }
@@ -1076,7 +1132,12 @@ int dispatch(int argc, char** argv) {
     if (const auto owner = owner_of(name, info->command))
       std::cerr << "endatsim " << info->name << ": --" << name << " is not an option of " << info->name
                 << " (it is one of " << *owner << ")\n";
-    else std::cerr << "endatsim " << info->name << ": " << e.what() << "\n";
+    else {
+      std::vector<std::string> names;
+      for (const auto& option : visible.options()) names.push_back(option->long_name());
+      const auto near = input::closest_match(name, names);
+      std::cerr << "endatsim " << info->name << ": " << e.what() << (near ? "; did you mean --" + *near + "?" : "") << "\n";
+    }
     std::cerr << info->usage;
     return kBadInput;
   } catch (const po::error& e) {
@@ -1101,8 +1162,8 @@ int dispatch(int argc, char** argv) {
       case Command::Check: return check_command(vm);
       case Command::Checks: return checks_command(vm);
     }
-  } catch (const std::exception& e) {  // ScenarioError included: bad input
-    std::cerr << "endatsim: " << e.what() << "\n";
+  } catch (...) {
+    return report_failure(std::current_exception(), std::cerr);
   }
   return kBadInput;
 }

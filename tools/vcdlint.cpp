@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/output_file.hpp"
-#include "scenarios/vcd_reader.hpp"
+#include "endatsim/scenarios/output_file.hpp"
+#include "endatsim/scenarios/vcd_reader.hpp"
 
 namespace {
 

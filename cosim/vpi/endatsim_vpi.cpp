@@ -47,14 +47,14 @@
 #include <string>
 #include <vector>
 
-#include "cosim/bench.hpp"
-#include "cosim/report.hpp"
-#include "input/json_input.hpp"
-#include "scenarios/capture_check.hpp"
-#include "scenarios/interrupt.hpp"
-#include "scenarios/limits.hpp"
-#include "scenarios/loader.hpp"
-#include "scenarios/output_file.hpp"
+#include "endatsim/cosim/bench.hpp"
+#include "endatsim/cosim/report.hpp"
+#include "endatsim/input/json_input.hpp"
+#include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/limits.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/output_file.hpp"
 
 namespace {
 

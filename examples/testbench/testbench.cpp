@@ -3,10 +3,10 @@
 // positions from endatsim's encoder model over 25 m of cable at 1 MHz, checks the CRC, and
 // lets endatsim's checker judge the timing on the pins. Exit status 0 when every read matches
 // the position the encoder latched and the checker found nothing.
-// The package puts include/endatsim on the include path: headers are named as inside the tree.
-#include <checker/timing_checker.hpp>
-#include <protocol/protocol.hpp>
-#include <slave/slave.hpp>
+// Headers are named <endatsim/PART/...>, as inside the tree.
+#include <endatsim/checker/timing_checker.hpp>
+#include <endatsim/protocol/protocol.hpp>
+#include <endatsim/slave/slave.hpp>
 
 #include <cstdio>
 #include <vector>

@@ -15,7 +15,7 @@
 #include <sstream>
 #include <utility>
 
-#include "capture/capture.hpp"
+#include "endatsim/capture/capture.hpp"
 #include "../sigrok_cli.hpp"
 
 namespace fs = std::filesystem;

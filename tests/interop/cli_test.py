@@ -161,6 +161,68 @@ check(r.returncode == 2 and "--to must be later than --from" in r.stderr, "diagr
 r = run("sweep", clean, "--grid", "/line/cable_length_m=1,2", "--verbose", "--jobs", "1")
 check(r.returncode == 0 and "clean /line/cable_length_m=1" in r.stdout and "2 points" in r.stdout, "sweep --verbose", r)
 
+# "-" is standard output for every output, which then holds that output alone (the summary goes
+# to stderr); two outputs cannot share it.
+with open(path("stdout_ref.vcd"), "w"):
+    pass
+r = run("run", clean, "--vcd", path("stdout_ref.vcd"), "--quiet")
+with open(path("stdout_ref.vcd")) as f:
+    reference_vcd = f.read()
+r = run("run", clean, "--vcd", "-")
+check(r.returncode == 0 and r.stdout == reference_vcd and "PASS endat21_1mhz_10m" in r.stderr, "run --vcd -", r)
+check(not os.path.exists("-") and not os.path.exists(path("-")), "run --vcd - makes no file named -")
+r = run("run", clean, "--json", "-")
+check(r.returncode == 0 and json.loads(r.stdout)["passed"] is True and "PASS" in r.stderr, "run --json -", r)
+r = run("run", clean, "--junit", "-")
+check(r.returncode == 0 and ET.fromstring(r.stdout).get("tests") == "1" and "PASS" in r.stderr, "run --junit -", r)
+r = run("run", clean, "--log-json", "-")
+check(r.returncode == 0 and all(json.loads(l)["scenario"] for l in r.stdout.splitlines()), "run --log-json -", r)
+r = run("sweep", clean, "--grid", "/line/cable_length_m=1,2", "--csv", "-", "--jobs", "1")
+check(r.returncode == 0 and r.stdout.startswith("/line/cable_length_m,clean,") and "2 points" in r.stderr, "sweep --csv -", r)
+r = run("sweep", clean, "--grid", "/line/cable_length_m=1,2", "--json", "-", "--jobs", "1")
+check(r.returncode == 0 and len(json.loads(r.stdout)["points"]) == 2, "sweep --json -", r)
+r = run("diagram", clean, "--svg", "-")
+check(r.returncode == 0 and r.stdout.startswith("<svg") and r.stdout.rstrip().endswith("</svg>") and r.stderr != "", "diagram --svg -", r)
+r = run("run", clean, "--vcd", "-", "--json", "-")
+check(r.returncode == 2 and "--vcd - and --json -: only one output can go to standard output" in r.stderr and r.stdout == "",
+      "two outputs to stdout", r)
+r = run("run", clean, uncompensated, "--vcd", "-")
+check(r.returncode == 2 and "--vcd -: several files cannot go to standard output" in r.stderr and r.stdout == "",
+      "--vcd - with several scenarios", r)
+r = run("run", clean, "--vcd", "-", "--gtkw")
+check(r.returncode == 2 and "--gtkw" in r.stderr and r.stdout == "", "--vcd - --gtkw", r)
+
+# --vcd DIR is a folder whenever it exists or ends in "/", also for one scenario.
+os.makedirs(path("vcd_folder"), exist_ok=True)
+r = run("run", clean, "--vcd", path("vcd_folder"), "--quiet")
+check(r.returncode == 0 and os.path.isfile(path("vcd_folder/endat21_1mhz_10m.vcd")), "--vcd existing folder", r)
+r = run("run", clean, "--vcd", path("new_vcd_folder") + "/", "--quiet")
+check(r.returncode == 0 and os.path.isfile(path("new_vcd_folder/endat21_1mhz_10m.vcd")), "--vcd folder/", r)
+
+# A folder as input stands for every scenario under it, in path order.
+r = run("validate", os.path.join(source, "scenarios"))
+lines = r.stdout.splitlines()
+files = [l.split(" ")[1] for l in lines]
+check(r.returncode == 0 and len(lines) >= 80 and files == sorted(files) and
+      any("/field/" in f for f in files) and any("/sweeps/" in f for f in files), "validate FOLDER", r)
+r = run("run", bundled, "--quiet", "--json", path("folder.json"))
+with open(path("folder.json")) as f:
+    ran = json.load(f)["scenarios"]
+check(r.returncode == 0 and len(ran) == len([n for n in os.listdir(bundled) if n.endswith(".json")]), "run FOLDER", r)
+os.makedirs(path("empty_folder"), exist_ok=True)
+r = run("run", path("empty_folder"))
+check(r.returncode == 2 and "a folder with no scenario (*.json) in it" in r.stderr, "run EMPTY_FOLDER", r)
+
+# Did you mean: subcommands and options.
+r = run("rnu", clean)
+check(r.returncode == 2 and 'unknown command "rnu"; did you mean "run"?' in r.stderr, "did you mean: command", r)
+r = run("run", clean, "--jsn", path("x.json"))
+check(r.returncode == 2 and "did you mean --json?" in r.stderr, "did you mean: option", r)
+r = run("sweep", clean, "--gird", "/x=1")
+check(r.returncode == 2 and "did you mean --grid?" in r.stderr, "did you mean: sweep option", r)
+r = run("run", clean, "--frobnicate")
+check(r.returncode == 2 and "did you mean" not in r.stderr, "no guess far off", r)
+
 if failures:
     print("FAIL:\n" + "\n".join(failures), file=sys.stderr)
     sys.exit(1)

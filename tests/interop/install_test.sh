@@ -14,6 +14,21 @@ for f in include/endatsim/scenarios/scenarios.hpp include/endatsim/checker/check
   [ -e "$work/prefix/$f" ] || { echo "FAIL: $f was not installed" >&2; exit 1; }
 done
 "$work/prefix/bin/endatsim" --version
+# Every scenario folder is installed, and the installed program finds the bundled profiles in its
+# own prefix: no path of the source or build tree is compiled into it.
+for folder in bundled field safety sweeps; do
+  [ -n "$(ls "$work/prefix/share/endatsim/scenarios/$folder"/*.json)" ] || { echo "FAIL: scenarios/$folder was not installed" >&2; exit 1; }
+done
+if grep -q -F -e "$source" -e "$build" "$work/prefix/bin/endatsim" "$work/prefix/bin/endatsim-vcdlint"; then
+  echo "FAIL: the installed programs hold a path of the source or build tree" >&2; exit 1
+fi
+( cd "$work" && env -u ENDATSIM_PROFILES "$work/prefix/bin/endatsim" run --quiet \
+    "$work/prefix/share/endatsim/scenarios/bundled/datum_shift_linear_3_6_2.json" ) \
+  || { echo "FAIL: the installed endatsim does not run a scenario with a bundled profile" >&2; exit 1; }
+# The project's warning flags stay its own: nothing exported asks a user's build for -Werror.
+if grep -r -q -e "-Werror" "$work/prefix/lib/cmake/endatsim"; then
+  echo "FAIL: the installed CMake package exports -Werror" >&2; exit 1
+fi
 # The EnDat decoder for sigrok loads from where it was installed.
 SIGROKDECODE_DIR="$work/prefix/share/endatsim/sigrok" sigrok-cli -L | grep -q "^ *endat " \
   || { echo "FAIL: sigrok-cli does not load the installed EnDat decoder" >&2; exit 1; }

@@ -3,10 +3,10 @@
 
 #include <sstream>
 
-#include "scenarios/diagram.hpp"
-#include "scenarios/junit.hpp"
-#include "scenarios/scenarios.hpp"
-#include "scenarios/transaction_log.hpp"
+#include "endatsim/scenarios/diagram.hpp"
+#include "endatsim/scenarios/junit.hpp"
+#include "endatsim/scenarios/scenarios.hpp"
+#include "endatsim/scenarios/transaction_log.hpp"
 
 using namespace endatsim;
 

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "scenarios/vcd_reader.hpp"
-#include "sim/sim.hpp"
+#include "endatsim/scenarios/vcd_reader.hpp"
+#include "endatsim/sim/sim.hpp"
 
 using namespace endatsim;
 using scenarios::parse_vcd;

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "Vendat_master.h"
-#include "cosim/verilated_master.hpp"
+#include "endatsim/cosim/verilated_master.hpp"
 
 inline void run_endat_master(endatsim::cosim::Bench& bench) {
   using namespace endatsim;

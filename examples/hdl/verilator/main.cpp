@@ -4,7 +4,7 @@
 // command line (cosim/main.hpp):  endat_master_verilated BENCH.json [--json FILE] [--junit FILE] ...
 #include <verilated.h>
 
-#include "cosim/main.hpp"
+#include "endatsim/cosim/main.hpp"
 #include "endat_master_run.hpp"
 
 int main(int argc, char** argv) { return endatsim::cosim::run_main(argc, argv, &run_endat_master); }

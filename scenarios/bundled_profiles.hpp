@@ -1,0 +1,28 @@
+#pragma once
+// The encoder profiles that come with endatsim, found by name ("rotary_singleturn_25bit").
+// They are looked up in $ENDATSIM_PROFILES when it is set, else in share/endatsim/profiles beside
+// the program: in the program's folder or one of its parents, as installed (PREFIX/bin and
+// PREFIX/share) and as the build tree lays them out (the build folder has share/endatsim/profiles),
+// else where `make install` puts them (for a program that embeds the library). No path of the
+// source or build tree is compiled in.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace endatsim::scenarios {
+
+// The folder of the bundled profiles; throws std::runtime_error saying where it looked.
+std::filesystem::path bundled_profiles_dir();
+
+// The names of the bundled profiles, sorted.
+std::vector<std::string> bundled_profile_names();
+
+// The file of the bundled profile `name`; throws std::runtime_error for a name that is none of
+// them, with a "did you mean" and the list of bundled profiles.
+std::filesystem::path bundled_profile(const std::string& name);
+
+// Whether a profile reference is a bundled profile's name (no folder, no ".json"), not a file.
+bool is_bundled_profile_name(const std::string& reference);
+
+}  // namespace endatsim::scenarios

@@ -1,0 +1,10 @@
+#pragma once
+// A 128-bit signed integer for products of picosecond times and counts that overflow 64 bits
+// (least-squares sums, positions unwrapped over many turns). GCC and Clang's __int128, marked as
+// the extension it is, so that a user's -Wpedantic build including our headers stays quiet.
+
+namespace endatsim::sim {
+
+__extension__ typedef __int128 Int128;
+
+}  // namespace endatsim::sim
