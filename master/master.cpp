@@ -403,19 +403,24 @@ void Master::operation_frame_done() {
   if (current_->kind == Operation::Kind::AwaitNotBusy) {
     // 2.5.1 / 2.6.1: poll additional data 1 until the busy bit is reset.
     const auto& ai = frames_.back().additional_data;
-    const bool ready = frames_.back().outcome == FrameOutcome::Ok &&
-                       std::any_of(ai.begin(), ai.end(), [](const AdditionalDatum& d) {
-                         return !protocol::is_additional_data_2(d.information()) && !d.busy();
-                       });
+    const bool ok = frames_.back().outcome == FrameOutcome::Ok;
+    const auto is_1 = [](const AdditionalDatum& d) { return !protocol::is_additional_data_2(d.information()); };
+    const bool ready = ok && std::any_of(ai.begin(), ai.end(), [&](const AdditionalDatum& d) { return is_1(d) && !d.busy(); });
+    const bool unreadable = ok && std::none_of(ai.begin(), ai.end(), is_1);
     if (ready) frames_left_ = 1;
-    else if (frames_left_ == 1) ++busy_timeouts_;
+    else if (unreadable) {
+      ++busy_unreadable_;
+      frames_left_ = 1;
+    } else if (frames_left_ == 1) ++busy_timeouts_;
   }
   if (current_->kind == Operation::Kind::StartupPositions && startup_position_read(frames_.back())) frames_left_ = 1;
   note_failures();
   if (retry_frame()) return;
   if (--frames_left_ > 0) {
     next_due_ += current_->kind != Operation::Kind::MeasureDelay ? current_->cycle : Time::zero();
-    if (ready_at_ > next_due_ && current_->cycle > Time::zero()) ++cycle_overruns_;
+    // The read cycle of a control loop; polls for the busy bit may come later than their interval.
+    if (ready_at_ > next_due_ && current_->cycle > Time::zero() && current_->kind == Operation::Kind::ReadPosition)
+      ++cycle_overruns_;
     const Time at = std::max(next_due_, ready_at_);
     kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
     return;
@@ -652,9 +657,9 @@ void Master::decode_answer() {
         AdditionalDatum d;
         d.status = static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Status)]);
         d.data = static_cast<std::uint16_t>(v[static_cast<std::size_t>(Field::AdditionalData)]);
-        d.crc_ok = crc_passes(static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Crc)]),
-                            protocol::make_crc_norm(d.status, d.data, params_.crc.generator)) &&
-                 v[static_cast<std::size_t>(Field::LeadingLow)] == 0;
+        d.crc_received = static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Crc)]);
+        d.crc_expected = protocol::make_crc_norm(d.status, d.data, params_.crc.generator);
+        d.crc_ok = crc_passes(d.crc_received, d.crc_expected) && v[static_cast<std::size_t>(Field::LeadingLow)] == 0;
         ok = ok && d.crc_ok;
         frame_.additional_data.push_back(d);
       }

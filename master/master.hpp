@@ -136,7 +136,9 @@ std::string_view to_string(FrameOutcome o);
 struct AdditionalDatum {
   std::uint8_t status = 0;  // WRN RM Busy I4..I0
   std::uint16_t data = 0;   // bytes 1 and 2
-  bool crc_ok = false;
+  std::uint8_t crc_received = 0;
+  std::uint8_t crc_expected = 0;  // over status and data (appendix A4)
+  bool crc_ok = false;            // the CRCs agree and the datum's leading bit is LOW
   protocol::Information information() const {
     return static_cast<protocol::Information>(status & protocol::AdditionalDataStatus::kInformation);
   }
@@ -283,6 +285,10 @@ class Master {
   std::optional<Time> t_d() const { return t_d_; }
   std::uint64_t cycle_overruns() const { return cycle_overruns_; }
   std::uint64_t busy_timeouts() const { return busy_timeouts_; }
+  // await_not_busy operations given up at once because a poll frame came back (without error)
+  // carrying no additional data 1, where the busy bit travels (D297403 2.5.1, 2.6.1): polling
+  // on could never see it reset.
+  std::uint64_t busy_unreadable() const { return busy_unreadable_; }
   const StartupInfo& startup() const { return startup_; }
   const std::optional<ChecksumCheck>& checksum() const { return checksum_; }
   std::uint64_t retries() const { return retries_done_; }
@@ -400,6 +406,7 @@ class Master {
   bool finished_ = false;
   std::uint64_t cycle_overruns_ = 0;
   std::uint64_t busy_timeouts_ = 0;
+  std::uint64_t busy_unreadable_ = 0;
   StartupInfo startup_;
   std::optional<ChecksumCheck> checksum_;
   std::vector<std::uint16_t> checksum_words_;

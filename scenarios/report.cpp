@@ -297,6 +297,18 @@ void write_violations(std::ostream& out, const std::vector<checker::Violation>& 
   }
 }
 
+// What the master could not do as the script asked, whether or not an expectation counts it.
+void write_master_warnings(std::ostream& out, const ScenarioResult& r) {
+  if (r.cycle_overruns != 0)
+    out << "  warning: " << r.cycle_overruns << " frame(s) started late: the read cycle could not be kept (the frame "
+        << "before, its recovery time or a retry took longer than the cycle)\n";
+  if (r.busy_timeouts != 0)
+    out << "  warning: " << r.busy_timeouts << " await_not_busy gave up: the busy bit stayed set for max_polls polls\n";
+  if (r.busy_unreadable != 0)
+    out << "  warning: " << r.busy_unreadable << " await_not_busy could not read the busy bit: its poll frames carried "
+        << "no additional data 1, which holds it (D297403 2.5.1); select additional data 1 first\n";
+}
+
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
   if (!r.incomplete.empty()) out << "  INCOMPLETE: " << r.incomplete << "\n";
@@ -346,6 +358,7 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
       break;
     }
   }
+  write_master_warnings(out, r);
   write_violations(out, r.violations, verbose);
   if (!r.violations.empty() || verbose) write_verdict(out, checker::conclude(r.violations), r.violations);
   write_relaxations(out, r.conformance);
@@ -448,6 +461,20 @@ nlohmann::json to_json(const ScenarioResult& r) {
       jf["crc_received"] = f.crc_received;
       jf["crc_expected"] = f.crc_expected;
     }
+    // Each additional datum with its own CRC: a frame can fail on one while the position's agrees.
+    if (!f.additional_data.empty()) {
+      json ad = json::array();
+      for (const auto& d : f.additional_data)
+        ad.push_back({{"information", protocol::info(d.information()).key},
+                      {"additional_data", protocol::is_additional_data_2(d.information()) ? 2 : 1},
+                      {"status", d.status},
+                      {"data", d.data},
+                      {"busy", d.busy()},
+                      {"crc_received", d.crc_received},
+                      {"crc_expected", d.crc_expected},
+                      {"crc_ok", d.crc_ok}});
+      jf["additional_data"] = ad;
+    }
     frames.push_back(jf);
   }
   j["frames"] = frames;
@@ -462,6 +489,9 @@ nlohmann::json to_json(const ScenarioResult& r) {
   j["delay_measurements"] = ms;
   j["retries"] = r.retries;
   j["remeasurements"] = r.remeasurements;
+  j["cycle_overruns"] = r.cycle_overruns;
+  j["busy_timeouts"] = r.busy_timeouts;
+  j["busy_unreadable"] = r.busy_unreadable;
   if (r.checksum)
     j["checksum"] = {{"complete", r.checksum->complete}, {"ok", r.checksum->ok()}, {"stored", r.checksum->stored},
                      {"computed", r.checksum->computed}};

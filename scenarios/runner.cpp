@@ -500,6 +500,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.conformance = checker.conformance();
   r.cycle_overruns = master.cycle_overruns();
   r.busy_timeouts = master.busy_timeouts();
+  r.busy_unreadable = master.busy_unreadable();
   r.startup = master.startup();
   r.checksum = master.checksum();
   r.retries = master.retries();

@@ -43,8 +43,9 @@ struct ScenarioResult {
   std::vector<slave::EncoderFrame> encoder_frames;
   std::vector<checker::Violation> violations;
   std::vector<checker::RowConformance> conformance;  // every row of the timing table
-  std::uint64_t cycle_overruns = 0;
+  std::uint64_t cycle_overruns = 0;    // frames that started later than their read cycle said
   std::uint64_t busy_timeouts = 0;     // await_not_busy operations that gave up
+  std::uint64_t busy_unreadable = 0;   // await_not_busy whose polls carried no additional data 1
   slave::MemoryImage encoder_memory;   // at the end of the run
   std::vector<slave::MemoryImage> bus_memory;  // of the further encoders on the bus
   std::vector<std::vector<slave::EncoderFrame>> bus_frames;

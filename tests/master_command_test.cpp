@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <sstream>
 
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/report.hpp"
 #include "scenario_support.hpp"
 
 using namespace endatsim;
@@ -367,4 +370,86 @@ TEST(CheckerPowerOn, WithoutAPulseTheFirstRequestIsTheWakeUpCycleAndTheNextEndsT
   // One request alone shows no t3: only t1 + t2 are judged, and kept.
   EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(400), false, 1)), 0U);
   EXPECT_EQ(power_on_findings(switched_on(sim::ms(900), sim::us(1), sim::ms(400), false, 1, sim::ms(1))), 1U);
+}
+
+// What the master could not do as the script asked is reported whether or not an expectation
+// counts it: a busy bit it could not read, a busy wait it gave up, a read cycle it could not keep.
+namespace {
+
+scenarios::ScenarioResult run_text(const std::string& script, const std::string& events = "[]",
+                                   const std::string& f_c = "1 MHz") {
+  const auto s = scenarios::load_scenario_text(
+      R"({"name": "reported", "line": {"cable_length_m": 10}, "master": {"f_c": ")" + f_c + R"("},
+          "encoder": {"t_ac_read": "2 ms"}, "events": )" + events + R"(, "script": )" + script + "}",
+      "reported.json");
+  return scenarios::run_scenario(s);
+}
+
+std::string summary_of(const scenarios::ScenarioResult& r) {
+  std::ostringstream out;
+  scenarios::write_summary(out, r, false);
+  return out.str();
+}
+
+}  // namespace
+
+TEST(MasterReports, AnAwaitNotBusyWithoutAdditionalData1GivesUpAtOnceAndSaysWhy) {
+  const auto r = run_text(R"([{"op": "await_not_busy"}])");
+  ASSERT_TRUE(r.finished);
+  EXPECT_EQ(r.frames.size(), 1U) << "one poll shows the busy bit cannot be read; not 1000";
+  EXPECT_EQ(r.busy_unreadable, 1U);
+  EXPECT_EQ(r.busy_timeouts, 0U);
+  EXPECT_NE(summary_of(r).find("warning: 1 await_not_busy could not read the busy bit: its poll frames carried no "
+                               "additional data 1"), std::string::npos) << summary_of(r);
+  EXPECT_EQ(scenarios::to_json(r).at("busy_unreadable"), 1);
+}
+
+TEST(MasterReports, AnAwaitNotBusyThatRunsOutOfPollsIsReportedWithoutAnExpectation) {
+  // Additional data 1 carries the busy bit; a read access of t_ac = 2 ms outlasts 5 polls.
+  const auto r = run_text(R"([{"op": "select_additional_data", "additional_data": "memory_parameter_lsb"},
+                              {"op": "select_memory_area", "mrs": "manufacturer_1"},
+                              {"op": "frame", "command": "encoder_send_position_values_and_send_parameter", "address": 13},
+                              {"op": "await_not_busy", "max_polls": 5}])");
+  ASSERT_TRUE(r.finished);
+  EXPECT_EQ(r.busy_timeouts, 1U);
+  EXPECT_EQ(r.busy_unreadable, 0U);
+  EXPECT_EQ(r.cycle_overruns, 0U) << "polls that come later than their interval are no read cycle overrun";
+  EXPECT_NE(summary_of(r).find("warning: 1 await_not_busy gave up: the busy bit stayed set for max_polls polls"),
+            std::string::npos) << summary_of(r);
+  EXPECT_EQ(scenarios::to_json(r).at("busy_timeouts"), 1);
+}
+
+TEST(MasterReports, AReadCycleThatCannotBeKeptIsReportedAsOverruns) {
+  // A frame of some 50 clocks at 1 MHz plus t_m cannot repeat every 20 us.
+  const auto late = run_text(R"([{"op": "read_position", "count": 5, "cycle": "20 us"}])");
+  EXPECT_EQ(late.cycle_overruns, 4U);
+  EXPECT_NE(summary_of(late).find("warning: 4 frame(s) started late: the read cycle could not be kept"), std::string::npos)
+      << summary_of(late);
+  EXPECT_EQ(scenarios::to_json(late).at("cycle_overruns"), 4);
+  const auto kept = run_text(R"([{"op": "read_position", "count": 5, "cycle": "200 us"}])");
+  EXPECT_EQ(kept.cycle_overruns, 0U);
+  EXPECT_EQ(summary_of(kept).find("started late"), std::string::npos) << summary_of(kept);
+}
+
+TEST(MasterReports, TheJsonResultsCarryTheCrcOfEachAdditionalDatum) {
+  // A DATA bit flipped inside additional data 1 (frame 1, 25-bit position): the position's CRC
+  // agrees, the datum's does not, and the frame is a CRC error.
+  const auto r = run_text(R"([{"op": "select_additional_data", "additional_data": "temperature_1"},
+                              {"op": "read_position", "command": "encoder_send_position_values_with_additional_data",
+                               "count": 2, "cycle": "200 us"}])",
+                          R"([{"frame": 2, "clock": 50, "bit_flip": {"wire": "data", "end": "master"}}])");
+  ASSERT_TRUE(r.finished);
+  const auto j = scenarios::to_json(r);
+  const auto& bad = j.at("frames").at(2);
+  EXPECT_EQ(bad.at("outcome"), "crc_error");
+  EXPECT_EQ(bad.at("crc_received"), bad.at("crc_expected")) << bad.dump();
+  ASSERT_EQ(bad.at("additional_data").size(), 1U) << bad.dump();
+  const auto& datum = bad.at("additional_data").at(0);
+  EXPECT_EQ(datum.at("additional_data"), 1);
+  EXPECT_FALSE(datum.at("crc_ok").get<bool>());
+  EXPECT_NE(datum.at("crc_received"), datum.at("crc_expected")) << datum.dump();
+  const auto& good = j.at("frames").at(1).at("additional_data").at(0);
+  EXPECT_EQ(good.at("information"), "temperature_1");
+  EXPECT_TRUE(good.at("crc_ok").get<bool>());
+  EXPECT_EQ(good.at("crc_received"), good.at("crc_expected"));
 }
