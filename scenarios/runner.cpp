@@ -364,6 +364,10 @@ class Watch {
         const std::vector<std::unique_ptr<slave::Encoder>>& bus, const checker::TimingChecker& checker, const Limits& limits)
       : kernel_(kernel), master_(master), encoder_(encoder), bus_(bus), checker_(checker), limits_(limits) {}
   void check() {
+    if (progress != nullptr) {
+      progress->simulated_ps.store(kernel_.now().count(), std::memory_order_relaxed);
+      progress->frames.store(master_.frames().size(), std::memory_order_relaxed);
+    }
     if (const int signal = interrupt_signal(); signal != 0) {
       interrupted = signal;
       end("interrupted by " + signal_name(signal));
@@ -377,6 +381,7 @@ class Watch {
   }
   std::string reason;
   int interrupted = 0;
+  RunProgress* progress = nullptr;  // kept up to date, when set
 
  private:
   std::uint64_t records() const {
@@ -469,6 +474,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
                      sim::period_of(master_params.f_c));
   master.start();
   Watch watch(kernel, master, encoder, bus, checker, limits);
+  watch.progress = options.progress;
+  if (options.progress != nullptr) options.progress->end_ps.store(max_time.count(), std::memory_order_relaxed);
   // Each record takes at least one event: looking as often as the lowest limit sees every one reached.
   kernel.watch(std::min({Watch::kEvery, limits.kernel_events, limits.records}), sim::bind<&Watch::check>(&watch));
   kernel.run(max_time);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,10 +10,19 @@
 
 namespace endatsim::scenarios {
 
+// How far a run has come, for a progress line drawn by another thread: updated every few
+// thousand kernel events.
+struct RunProgress {
+  std::atomic<std::int64_t> simulated_ps{0};
+  std::atomic<std::int64_t> end_ps{0};  // where the run stops at the latest (max_time and --max-time)
+  std::atomic<std::uint64_t> frames{0};
+};
+
 struct RunOptions {
   std::optional<std::string> vcd_path;
   std::optional<std::uint64_t> seed;  // overrides the scenario's seed
   Limits limits;                      // what the run may cost (see limits.hpp)
+  RunProgress* progress = nullptr;    // when set, kept up to date while the run runs
 };
 
 struct ExpectationResult {

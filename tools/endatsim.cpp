@@ -15,6 +15,7 @@
 #include <chrono>
 #include <filesystem>
 #include <future>
+#include <iomanip>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -83,7 +84,7 @@ const char* const kRunHelp =
     "\n"
     "Prints a summary per scenario on stdout: frames and their outcomes, positions, CRC errors,\n"
     "the measured propagation delay t_D, timing violations (time, measured value, limit, spec\n"
-    "section) and every expectation that failed. A progress line (scenario, elapsed time) goes to\n"
+    "section) and every expectation that failed. A progress line (scenario, simulated time, frames, time left) goes to\n"
     "stderr when stderr is a terminal.\n"
     "--log writes the decoded transaction log (one line per frame: time, mode command, fields\n"
     "sent and received, CRC, additional data, outcome, violations), --log-json the same as JSON\n"
@@ -410,16 +411,29 @@ std::string output_path(const std::string& base, const std::string& name, const 
   return (std::filesystem::path(base) / (name + ext)).string();
 }
 
-// Runs one scenario while a line on stderr shows which one and, after a second, the elapsed time.
-scenarios::ScenarioResult run_with_progress(const scenarios::Scenario& s, const scenarios::RunOptions& ro, std::size_t n,
+// Runs one scenario while a line on stderr shows which one and, after a second, how far it has
+// come: simulated time, frames, wall time, and the time left if the run goes on to its max_time
+// (an upper bound: a script that finishes earlier ends the run sooner).
+scenarios::ScenarioResult run_with_progress(const scenarios::Scenario& s, scenarios::RunOptions ro, std::size_t n,
                                             std::size_t total) {
+  scenarios::RunProgress progress;
+  ro.progress = &progress;
   auto future = std::async(std::launch::async, [&] { return scenarios::run_scenario(s, ro); });
   const auto begin = std::chrono::steady_clock::now();
   const std::string label = "[" + std::to_string(n) + "/" + std::to_string(total) + "] " + s.name;
   std::cerr << "\r\033[K" << label << std::flush;
   while (future.wait_for(std::chrono::milliseconds(250)) != std::future_status::ready) {
-    const auto tenths = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - begin).count() / 100;
-    if (tenths >= 10) std::cerr << "\r\033[K" << label << " (" << tenths / 10 << "." << tenths % 10 << " s)" << std::flush;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    if (elapsed < 1.0) continue;
+    const auto simulated = progress.simulated_ps.load(std::memory_order_relaxed);
+    const auto end = progress.end_ps.load(std::memory_order_relaxed);
+    std::ostringstream line;
+    line << label << ": " << sim::format_time(sim::Time(simulated)) << " of " << sim::format_time(sim::Time(end))
+         << " simulated, " << progress.frames.load(std::memory_order_relaxed) << " frames, " << std::fixed
+         << std::setprecision(1) << elapsed << " s";
+    if (simulated > 0 && end > simulated)
+      line << ", at most " << elapsed * static_cast<double>(end - simulated) / static_cast<double>(simulated) << " s left";
+    std::cerr << "\r\033[K" << line.str() << std::flush;
   }
   std::cerr << "\r\033[K" << std::flush;
   return future.get();

@@ -77,6 +77,17 @@ r = on_terminal(["run", clean], no_color=True)
 check(r.returncode == 0 and "[1/1] endat21_1mhz_10m" in r.stdout and "\033[32m" not in r.stdout, "terminal with NO_COLOR", r)
 r = on_terminal(["run", clean, "--quiet"])
 check(r.returncode == 0 and "[1/1]" not in r.stdout, "terminal with --quiet: no progress", r)
+# A run longer than a second: simulated time, frames, wall time and the time left at most.
+with open(os.path.join(source, "bench", "scenarios", "additional_data_loop_1s.json")) as f:
+    loop = json.load(f)
+loop.update({"name": "loop_3s", "max_time": "3 s", "expect": {}})
+loop.pop("$schema")
+loop["script"][-1]["count"] = 48000
+with open(path("loop_3s.json"), "w") as f:
+    json.dump(loop, f)
+r = on_terminal(["run", path("loop_3s.json"), "--max-kernel-events", "200000000", "--max-records", "500000"])
+check(" of 3 s simulated, " in r.stdout and " frames, " in r.stdout and " s left" in r.stdout,
+      "terminal: progress of a long run", r)
 
 # JUnit, JSON results, transaction logs.
 failing = path("failing.json")
@@ -94,6 +105,8 @@ check(root.tag == "testsuites" and suite.get("tests") == "3" and suite.get("fail
 failed = [c for c in cases if c.find("failure") is not None]
 check(len(failed) == 1 and failed[0].get("name") == "failing" and
       failed[0].find("failure").get("message") == "outcomes.ok: 1 (expected 2)", "JUnit: the failure names the expectation")
+check([c.get("classname") for c in cases] == ["endatsim.bundled", "endatsim.bundled", "endatsim.cli"],
+      "JUnit: the class is the scenario's folder")
 results = json.load(open(path("results.json")))
 schema = json.load(open(os.path.join(source, "schema", "results.schema.json")))
 try:
