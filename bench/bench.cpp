@@ -208,9 +208,9 @@ void BM_Check_Capture_EnDat22_16MHz_10m(benchmark::State& state) {
   scenarios::run_scenario(scenario, options);
   scenarios::CaptureCheckOptions o;
   o.file = *options.vcd_path;
-  o.clock = "encoder.clock";
-  o.data = "encoder.data";
-  o.data_enable = "encoder.data_driver_enable";
+  o.clock = "encoder_clock";
+  o.data = "encoder_data";
+  o.data_enable = "encoder_data_driver_enable";
   o.encoder = scenarios::declared_encoder(scenario.encoder);
   o.encoder.output_delay = scenario.line.encoder.receiver_delay + scenario.encoder.output_delay + scenario.line.encoder.driver_delay;
   std::size_t frames = 0;

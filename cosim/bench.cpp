@@ -8,6 +8,7 @@
 #include "endatsim/scenarios/declarations.hpp"
 #include "endatsim/scenarios/events.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/waveform_names.hpp"
 #include "endatsim/sim/vcd.hpp"
 #include "endatsim/slave/encoder.hpp"
 
@@ -70,13 +71,7 @@ Bench::Bench(const scenarios::Scenario& bench, BenchOptions options)
   encoder_pins.data.on_change(sim::bind<&Bench::on_encoder_data>(this));
   if (options_.vcd_path) {
     p.vcd = std::make_unique<sim::VcdWriter>(p.kernel, *options_.vcd_path);
-    for (auto where : {line::ObservationPoint::MasterPins, line::ObservationPoint::EncoderPins}) {
-      const std::string scope = where == line::ObservationPoint::MasterPins ? "master" : "encoder";
-      auto pins = p.line.pins(where);
-      p.vcd->add(pins.clock, scope, "clock");
-      p.vcd->add(pins.data, scope, "data");
-      p.vcd->add(pins.driver_enable, scope, "data_driver_enable");
-    }
+    scenarios::add_pin_waves(*p.vcd, p.line);
     p.vcd->start();
   }
 }

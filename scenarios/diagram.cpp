@@ -206,9 +206,9 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     if (v == nullptr) throw std::runtime_error("the waveform has no " + name);
     return Wave{v};
   };
-  const Wave m_clock = wave("master.clock"), m_data = wave("master.data"), m_en = wave("master.data_driver_enable"),
-             m_sample = wave("master.sample"), e_clock = wave("encoder.clock"), e_data = wave("encoder.data"),
-             e_en = wave("encoder.data_driver_enable");
+  const Wave m_clock = wave("endat.master_clock"), m_data = wave("endat.master_data"), m_en = wave("endat.master_data_driver_enable"),
+             m_sample = wave("endat.master_sample"), e_clock = wave("endat.encoder_clock"), e_data = wave("endat.encoder_data"),
+             e_en = wave("endat.encoder_data_driver_enable");
 
   // What to draw.
   const master::FrameResult* frame = nullptr;
@@ -273,7 +273,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
       m_re = m_clock.edges(fe1, to, 1);
       e_fe = e_clock.edges(e_fe1 - 1, to, 0);
       e_re = e_clock.edges(e_fe1, to, 1);
-      if (!m_re.empty()) measures.push_back({"t_ST", fe1, m_re.front(), "master.clock"});
+      if (!m_re.empty()) measures.push_back({"t_ST", fe1, m_re.front(), "endat.master_clock"});
       const bool word = frame->outcome == master::FrameOutcome::Ok || frame->outcome == master::FrameOutcome::CrcError;
       const T64 enabled = e_en.first(e_fe1, to, 1);
       if (word && enabled != kNone) e_start = e_data.first(enabled, to, 1);
@@ -281,16 +281,16 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
         // The edge that launched the start bit (at 8 MHz the internal delay exceeds a period).
         for (T64 re : e_re)
           if (re + internal <= e_start) ++launch;
-        measures.push_back({"t_cal", e_fe1, e_start, "encoder.data"});
+        measures.push_back({"t_cal", e_fe1, e_start, "endat.encoder_data"});
         if (launch >= 1 && launch <= m_re.size()) {
           const T64 re_s = m_re[launch - 1];
           m_start = m_data.first(re_s, to, 1);
-          if (m_start != kNone) measures.push_back({"t_D", re_s, m_start, "master.data"});
+          if (m_start != kNone) measures.push_back({"t_D", re_s, m_start, "endat.master_data"});
         }
       }
       if (!e_re.empty()) {
         const T64 low = e_data.first(e_re.back(), to, 0);
-        if (low != kNone && e_start != kNone) measures.push_back({"t_m", e_re.back(), low, "encoder.data"});
+        if (low != kNone && e_start != kNone) measures.push_back({"t_m", e_re.back(), low, "endat.encoder_data"});
       }
     }
   }
@@ -316,13 +316,13 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   const Axis axis(from, to, all_edges, forced, 8 * f_period, kLeft, kWidth);
 
   const std::vector<Row> rows{
-      {"master.clock", "CLOCK (master pins)", 80, false},
-      {"master.data", "DATA (master pins)", 176, false},
-      {"master.data_driver_enable", "master DATA driver on", 250, false},
-      {"master.sample", "master samples DATA", 300, true},
-      {"encoder.clock", "CLOCK (encoder pins)", 350, false},
-      {"encoder.data", "DATA (encoder pins)", 430, false},
-      {"encoder.data_driver_enable", "encoder DATA driver on", 504, false},
+      {"endat.master_clock", "CLOCK (master pins)", 80, false},
+      {"endat.master_data", "DATA (master pins)", 176, false},
+      {"endat.master_data_driver_enable", "master DATA driver on", 250, false},
+      {"endat.master_sample", "master samples DATA", 300, true},
+      {"endat.encoder_clock", "CLOCK (encoder pins)", 350, false},
+      {"endat.encoder_data", "DATA (encoder pins)", 430, false},
+      {"endat.encoder_data_driver_enable", "encoder DATA driver on", 504, false},
   };
   const auto row_y = [&](const std::string& name) {
     for (const auto& row : rows)
@@ -391,22 +391,22 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   }
   // Sampling instants across the master's DATA.
   for (T64 t : m_sample.edges(from, to, -1))
-    svg.line(axis.x(t), row_y("master.data") - 4, axis.x(t), row_y("master.sample"),
+    svg.line(axis.x(t), row_y("endat.master_data") - 4, axis.x(t), row_y("endat.master_sample"),
              "stroke=\"#1f7a3a\" stroke-dasharray=\"2 2\" stroke-width=\"0.8\"");
 
   // Fields.
   if (frame != nullptr && m_fe.size() >= 9) {
     std::string bits;
     for (int b = 5; b >= 0; --b) bits += ((frame->mode_bits >> b) & 1U) != 0 ? '1' : '0';
-    svg.field(axis.x(m_fe[2]), axis.x(m_fe[8]), row_y("master.data") - 22, "mode bits " + bits, bits);
-    svg.field(axis.x(m_fe[0]), axis.x(m_fe[2]), row_y("master.data") - 22, "turnaround", "");
+    svg.field(axis.x(m_fe[2]), axis.x(m_fe[8]), row_y("endat.master_data") - 22, "mode bits " + bits, bits);
+    svg.field(axis.x(m_fe[0]), axis.x(m_fe[2]), row_y("endat.master_data") - 22, "turnaround", "");
     // 2.1 parameter frames: 8 bits of address / MRS code / port and 16 bits after the mode bits.
     if (frame->payload && m_fe.size() >= 33) {
       char text[48];
       std::snprintf(text, sizeof text, "address 0x%02X", static_cast<unsigned>(*frame->payload >> 16 & 0xFFU));
-      svg.field(axis.x(m_fe[8]), axis.x(m_fe[16]), row_y("master.data") - 22, text, "address");
+      svg.field(axis.x(m_fe[8]), axis.x(m_fe[16]), row_y("endat.master_data") - 22, text, "address");
       std::snprintf(text, sizeof text, "parameter 0x%04X", static_cast<unsigned>(*frame->payload & 0xFFFFU));
-      svg.field(axis.x(m_fe[16]), axis.x(m_fe[32]), row_y("master.data") - 22, text, "parameter");
+      svg.field(axis.x(m_fe[16]), axis.x(m_fe[32]), row_y("endat.master_data") - 22, text, "parameter");
     }
   }
   if (e_start != kNone && frame != nullptr && launch >= 1) {
@@ -422,7 +422,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
       std::string short_name = spec.field == protocol::Field::StartBit ? "S" : name;
       if (spec.field == protocol::Field::Position) name += " (" + std::to_string(spec.width) + " bits, LSB first)";
       if (spec.field == protocol::Field::Crc) name += " (5 bits)";
-      svg.field(axis.x(a), axis.x(b), row_y("encoder.data") - 22, name, short_name);
+      svg.field(axis.x(a), axis.x(b), row_y("endat.encoder_data") - 22, name, short_name);
       slot = last;
     }
   }
@@ -447,8 +447,8 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   if (!violations.empty()) svg.text(20, list_y, "Violations", "font-weight=\"bold\" fill=\"#c00000\"");
   for (const auto* v : violations) {
     const bool encoder_side = v->where == line::ObservationPoint::EncoderPins;
-    const double y1 = encoder_side ? row_y("encoder.clock") - 6 : row_y("master.clock") - 6;
-    const double y2 = encoder_side ? row_y("encoder.data_driver_enable") + kRowHeight : row_y("master.sample") + kRowHeight;
+    const double y1 = encoder_side ? row_y("endat.encoder_clock") - 6 : row_y("endat.master_clock") - 6;
+    const double y2 = encoder_side ? row_y("endat.encoder_data_driver_enable") + kRowHeight : row_y("endat.master_sample") + kRowHeight;
     const double x = axis.x(std::clamp(v->time.count(), from, to));
     svg.line(x, y1, x, y2, "stroke=\"#c00000\" stroke-width=\"1.5\"");
     double label_y = y1 + 8;

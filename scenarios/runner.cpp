@@ -4,6 +4,7 @@
 
 #include "endatsim/scenarios/events.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/waveform_names.hpp"
 
 #include <algorithm>
 #include <memory>
@@ -457,15 +458,9 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   std::unique_ptr<sim::VcdWriter> vcd;
   if (options.vcd_path) {
     vcd = std::make_unique<sim::VcdWriter>(kernel, *options.vcd_path);
-    for (auto where : {line::ObservationPoint::MasterPins, line::ObservationPoint::EncoderPins}) {
-      const std::string scope = where == line::ObservationPoint::MasterPins ? "master" : "encoder";
-      auto pins = line.pins(where);
-      vcd->add(pins.clock, scope, "clock");
-      vcd->add(pins.data, scope, "data");
-      vcd->add(pins.driver_enable, scope, "data_driver_enable");
-    }
-    vcd->add(master.sample_strobe(), "master", "sample");
-    vcd->add(master.frame_active(), "master", "frame");
+    add_pin_waves(*vcd, line);
+    vcd->add(master.sample_strobe(), std::string(kWaveformScope), "master_sample");
+    vcd->add(master.frame_active(), std::string(kWaveformScope), "master_frame");
     vcd->start();
   }
 

@@ -48,7 +48,7 @@ fs::path temp(const std::string& name) {
 std::pair<std::unique_ptr<capture::Reader>, std::vector<std::uint32_t>> open_encoder_pins(const fs::path& vcd) {
   auto reader = capture::open_vcd(vcd.string());
   std::vector<std::uint32_t> wanted;
-  for (const char* n : {"encoder.clock", "encoder.data", "encoder.data_driver_enable"})
+  for (const char* n : {"encoder_clock", "encoder_data", "encoder_data_driver_enable"})
     wanted.push_back(capture::find_signal(*reader, n));
   reader->select(wanted);
   return {std::move(reader), wanted};
@@ -65,9 +65,9 @@ scenarios::ScenarioResult run_to_vcd(const scenarios::Scenario& scenario, const 
 scenarios::CaptureCheckOptions encoder_pins_of(const scenarios::Scenario& scenario, const fs::path& vcd) {
   scenarios::CaptureCheckOptions o;
   o.file = vcd.string();
-  o.clock = "encoder.clock";
-  o.data = "encoder.data";
-  o.data_enable = "encoder.data_driver_enable";
+  o.clock = "encoder_clock";
+  o.data = "encoder_data";
+  o.data_enable = "encoder_data_driver_enable";
   o.encoder = scenarios::declared_encoder(scenario.encoder);
   o.encoder.output_delay = scenario.line.encoder.receiver_delay + scenario.encoder.output_delay +
                            scenario.line.encoder.driver_delay;
@@ -149,8 +149,8 @@ void resample(const fs::path& from, const fs::path& to, Time period) {
   const auto& wanted = pins.second;
   std::ofstream out(to);
   constexpr Time unit = ns(10);
-  out << "$timescale 10 ns $end\n$scope module encoder $end\n"
-      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
+  out << "$timescale 10 ns $end\n$scope module endat $end\n"
+      << "$var wire 1 c encoder_clock $end\n$var wire 1 d encoder_data $end\n$var wire 1 e encoder_data_driver_enable $end\n"
       << "$upscope $end\n$enddefinitions $end\n";
   const char ids[] = {'c', 'd', 'e'};
   std::vector<char> shown(3, '?'), pending(3, '?');
@@ -428,7 +428,7 @@ TEST(CheckCommand, ADefectInACaptureExitsOneWithItsRow) {
   scenarios::RunOptions options;
   options.vcd_path = vcd.string();
   scenarios::run_scenario(s, options);
-  const auto r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable");
+  const auto r = cli("check '" + vcd.string() + "' --clock encoder_clock --data encoder_data --data-enable encoder_data_driver_enable");
   fs::remove(vcd);
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("violation t_st"), std::string::npos) << r.out;
@@ -437,7 +437,7 @@ TEST(CheckCommand, ADefectInACaptureExitsOneWithItsRow) {
 
   // Without the encoder's enable the release of DATA cannot be seen, and the table says so.
   scenarios::run_scenario(s, options);
-  const auto bare = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data");
+  const auto bare = cli("check '" + vcd.string() + "' --clock encoder_clock --data encoder_data");
   fs::remove(vcd);
   EXPECT_EQ(bare.status, 1) << bare.out << bare.err;
   EXPECT_NE(bare.out.find("t_z: not observable (needs the DATA drivers' enables)"), std::string::npos) << bare.out;
@@ -455,7 +455,7 @@ TEST(CheckCommand, ALimitWithinOneSampleIsUndecidedNeverPassedOrFailed) {
   options.vcd_path = vcd.string();
   scenarios::run_scenario(scenario, options);
   resample(vcd, sampled, ns(10));
-  const std::string signals = " --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable";
+  const std::string signals = " --clock encoder_clock --data encoder_data --data-enable encoder_data_driver_enable";
   auto r = cli("check '" + vcd.string() + "'" + signals);
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("event times exact"), std::string::npos) << r.out;
@@ -505,7 +505,7 @@ TEST(CheckCommand, SeveralCapturesGiveOneJunitSuiteEachAndTheWorstExitStatus) {
   fast.master.t_m_wait = sim::us(5);  // into the encoder's t_m
   options.vcd_path = broken.string();
   scenarios::run_scenario(fast, options);
-  const std::string signals = " --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable";
+  const std::string signals = " --clock encoder_clock --data encoder_data --data-enable encoder_data_driver_enable";
   auto r = cli("check '" + clean.string() + "' '" + broken.string() + "'" + signals + " --junit '" + junit.string() +
                "' --json '" + json.string() + "'");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
@@ -560,7 +560,7 @@ TEST(CheckCommand, TheLogHoldsEveryFrameAndAScenarioBringsItsCable) {
   scenarios::RunOptions options;
   options.vcd_path = vcd.string();
   scenarios::run_scenario(scenarios::load_scenario_file(scenario), options);
-  const std::string signals = " --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable";
+  const std::string signals = " --clock encoder_clock --data encoder_data --data-enable encoder_data_driver_enable";
   auto r = cli("check '" + vcd.string() + "'" + signals + " --encoder '" + scenario + "' --log '" + log.string() + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("  cable 10 m: "), std::string::npos) << r.out;
@@ -591,7 +591,7 @@ TEST(CheckCommand, ABenchFileDeclaresTheEncodersDatasheetTimes) {
   scenarios::RunOptions options;
   options.vcd_path = vcd.string();
   scenarios::run_scenario(scenarios::load_scenario_file(scenario), options);
-  const std::string signals = " --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable";
+  const std::string signals = " --clock encoder_clock --data encoder_data --data-enable encoder_data_driver_enable";
   std::ofstream(bench) << R"({"name": "datasheet", "line": {"cable_length_m": 10},
     "encoder": {"version": "2.2", "t_lo_max": "0.4 us"}, "checker": {"t_st_reduced_for_cable": true}})";
   auto r = cli("check '" + vcd.string() + "'" + signals + " --encoder '" + bench.string() + "'");
@@ -650,19 +650,19 @@ TEST(CheckCommand, AtTheMastersConnectorTheRoundTripIsJudged) {
   std::size_t t_d_in_run = 0;
   for (const auto& v : run.violations) t_d_in_run += v.check == checker::check::kDataDelay;
   ASSERT_GE(t_d_in_run, 1U);
-  const std::string encoder_side = " --clock encoder.clock --data encoder.data --clock-to-data 370ns";
+  const std::string encoder_side = " --clock encoder_clock --data encoder_data --clock-to-data 370ns";
   auto r = cli("check '" + vcd.string() + "'" + encoder_side + " --verbose");
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("t_d: not observable (the round trip shows only at the master's connector)"), std::string::npos)
       << r.out;
-  const std::string master_side = " --clock master.clock --data master.data --at master --cable 10 --clock-to-data 370ns";
+  const std::string master_side = " --clock master_clock --data master_data --at master --cable 10 --clock-to-data 370ns";
   r = cli("check '" + vcd.string() + "'" + master_side + " --verbose");
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("violation t_d x" + std::to_string(t_d_in_run)), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("at the master's connector"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("5 with a complete answer and a good CRC"), std::string::npos) << r.out;
   // Usage: --at master needs the cable; --t-d belongs to it; a bad length.
-  EXPECT_EQ(cli("check '" + vcd.string() + "' --clock master.clock --data master.data --at master").status, 2);
+  EXPECT_EQ(cli("check '" + vcd.string() + "' --clock master_clock --data master_data --at master").status, 2);
   r = cli("check '" + vcd.string() + "'" + encoder_side + " --t-d 400ns");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--t-d is the round trip at the master's connector"), std::string::npos) << r.err;
@@ -680,9 +680,9 @@ TEST(CheckCommand, AnRtlMastersSplitDataIsJudgedAtItsConnector) {
   run_to_vcd(scenario, vcd);
   {
     auto reader = capture::open_vcd(vcd.string());
-    const std::vector<std::uint32_t> wanted{capture::find_signal(*reader, "master.clock"),
-                                            capture::find_signal(*reader, "master.data"),
-                                            capture::find_signal(*reader, "master.data_driver_enable")};
+    const std::vector<std::uint32_t> wanted{capture::find_signal(*reader, "master_clock"),
+                                            capture::find_signal(*reader, "master_data"),
+                                            capture::find_signal(*reader, "master_data_driver_enable")};
     reader->select(wanted);
     std::ofstream out(split);
     out << "$timescale 1 ps $end\n$scope module tb $end\n$scope module dut $end\n$var wire 1 ! clk $end\n"
@@ -892,7 +892,7 @@ TEST(CheckCapture, BothDriversEnablesShowABusContentionOnceAtTheRecordedConnecto
   };
   ASSERT_GT(at_encoder(run.violations), 0);
   auto o = encoder_pins_of(scenario, vcd);
-  o.master_data_enable = "master.data_driver_enable";
+  o.master_data_enable = "master_data_driver_enable";
   const auto both = scenarios::check_capture(o);
   EXPECT_EQ(contentions(both.violations), at_encoder(run.violations));
   EXPECT_EQ(at_encoder(both.violations), at_encoder(run.violations));
@@ -904,19 +904,19 @@ TEST(CheckCapture, BothDriversEnablesShowABusContentionOnceAtTheRecordedConnecto
   ASSERT_NE(row, one.conformance.end());
   EXPECT_EQ(row->status, checker::RowConformance::Status::NotObservable);
   // Through the command line, the master's enable needs the encoder's beside it.
-  auto r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --master-data-enable master.data_driver_enable");
+  auto r = cli("check '" + vcd.string() + "' --clock encoder_clock --data encoder_data --master-data-enable master_data_driver_enable");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--master-data-enable goes with one DATA wire (--data) and the encoder's --data-enable"),
             std::string::npos)
       << r.err;
-  r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable "
-          "--master-data-enable master.data_driver_enable");
+  r = cli("check '" + vcd.string() + "' --clock encoder_clock --data encoder_data --data-enable encoder_data_driver_enable "
+          "--master-data-enable master_data_driver_enable");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.out.find("violation bus_contention"), std::string::npos) << r.out;
   // Without a cable the two connectors are one; with one, the summary warns of the skew.
   EXPECT_EQ(r.out.find("an enable recorded at the other end is off by the cable's delay"), std::string::npos) << r.out;
-  r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --data-enable encoder.data_driver_enable "
-          "--master-data-enable master.data_driver_enable --cable 20");
+  r = cli("check '" + vcd.string() + "' --clock encoder_clock --data encoder_data --data-enable encoder_data_driver_enable "
+          "--master-data-enable master_data_driver_enable --cable 20");
   EXPECT_NE(r.out.find("an enable recorded at the other end is off by the cable's delay"), std::string::npos) << r.out;
   fs::remove(vcd);
 }
@@ -985,8 +985,8 @@ char cut_vcd(const fs::path& from, const fs::path& to, Time start, Time end, boo
   auto& reader = pins.first;
   const auto& wanted = pins.second;
   std::ofstream out(to);
-  out << "$timescale 1 ps $end\n$scope module encoder $end\n"
-      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
+  out << "$timescale 1 ps $end\n$scope module endat $end\n"
+      << "$var wire 1 c encoder_clock $end\n$var wire 1 d encoder_data $end\n$var wire 1 e encoder_data_driver_enable $end\n"
       << "$upscope $end\n$enddefinitions $end\n";
   const char ids[] = {'c', 'd', 'e'};
   std::vector<char> level(3, 'x');
@@ -1133,8 +1133,8 @@ TEST(CheckCommand, AnUndecidedCapturesVerdictIsUndecided) {
                                                "/scenarios/bundled/endat22_8mhz_100m_compensated.json");
   const fs::path vcd = temp("undecided_verdict.vcd"), json = temp("undecided_verdict.json");
   run_to_vcd(s, vcd);
-  const auto r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --data-enable "
-                     "encoder.data_driver_enable --cable 100 --resolution 10ns --json '" + json.string() + "'");
+  const auto r = cli("check '" + vcd.string() + "' --clock encoder_clock --data encoder_data --data-enable "
+                     "encoder_data_driver_enable --cable 100 --resolution 10ns --json '" + json.string() + "'");
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_EQ(r.out.find("conforms to the spec envelope"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  verdict: undecided at this resolution for the spec envelope and for this encoder\n"),
@@ -1172,8 +1172,8 @@ PinChanges encoder_pin_changes(const fs::path& vcd) {
 void write_encoder_pins(const fs::path& to, const std::string& timescale, PinChanges changes) {
   std::stable_sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
   std::ofstream out(to);
-  out << "$timescale " << timescale << " $end\n$scope module encoder $end\n"
-      << "$var wire 1 c clock $end\n$var wire 1 d data $end\n$var wire 1 e data_driver_enable $end\n"
+  out << "$timescale " << timescale << " $end\n$scope module endat $end\n"
+      << "$var wire 1 c encoder_clock $end\n$var wire 1 d encoder_data $end\n$var wire 1 e encoder_data_driver_enable $end\n"
       << "$upscope $end\n$enddefinitions $end\n";
   const char ids[] = {'c', 'd', 'e'};
   for (const auto& [t, i, v] : changes) out << "#" << t << "\n" << v << ids[i] << "\n";
@@ -1289,7 +1289,7 @@ TEST(CheckCommand, TheOptionThatRelaxesARowIsNamedInEveryReport) {
                  json = temp("relaxed.json"), scenario = temp("relaxed_scenario.json");
   run_to_vcd(scenarios::load_scenario_file(bundled), vcd);
   const std::string named = "t_st_reduced_for_cable: a t_ST shorter than note 8";
-  auto r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --cable 20 "
+  auto r = cli("check '" + vcd.string() + "' --clock encoder_clock --data encoder_data --cable 20 "
                "--t-st-reduced-for-cable --junit '" + junit.string() + "' --log '" + log.string() + "' --json '" +
                json.string() + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
@@ -1305,7 +1305,7 @@ TEST(CheckCommand, TheOptionThatRelaxesARowIsNamedInEveryReport) {
   EXPECT_EQ(slurp_file(log).rfind("# relaxed by option: t_st (" + named, 0), 0U) << slurp_file(log);
   EXPECT_NE(slurp_file(json).find("\"relaxed_by\": \"" + named), std::string::npos);
   // Without the option no report names it.
-  r = cli("check '" + vcd.string() + "' --clock encoder.clock --data encoder.data --cable 20 --junit '" + junit.string() +
+  r = cli("check '" + vcd.string() + "' --clock encoder_clock --data encoder_data --cable 20 --junit '" + junit.string() +
           "' --log '" + log.string() + "'");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_EQ(slurp_file(junit).find("relaxed_by"), std::string::npos);
@@ -1365,8 +1365,8 @@ TEST(CheckCapture, CompensationWithoutAMeasurementInTheRecordingIsNotObservableW
   scenarios::run_scenario(scenario, options);
   scenarios::CaptureCheckOptions o;
   o.file = vcd.string();
-  o.clock = "master.clock";
-  o.data = "master.data";
+  o.clock = "master_clock";
+  o.data = "master_data";
   o.at = scenarios::CaptureCheckOptions::At::Master;
   o.cable_m = scenario.line.cable_length_m;
   o.encoder = scenarios::declared_encoder(scenario.encoder);
@@ -1420,7 +1420,7 @@ TEST(CheckCommand, BytesThatAreNotUtf8AreShownEscapedAndEveryReportIsStillWritte
                                                       "/scenarios/bundled/endat21_1mhz_10m.json");
   run_to_vcd(scenario, good);
   auto r = cli("check '" + garbage.string() + "' '" + good.string() +
-               "' --clock encoder.clock --data encoder.data --json '" + json.string() + "' --junit '" + junit.string() +
+               "' --clock encoder_clock --data encoder_data --json '" + json.string() + "' --junit '" + junit.string() +
                "'");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("(got '\\xFF\\xFE$garbage\\x01')"), std::string::npos) << r.err;

@@ -39,8 +39,8 @@ checker::DecoderParams declared(const scenarios::Scenario& s) {
 // Decodes the encoder pins of a VCD written by `endatsim run`.
 std::vector<checker::WireFrame> decode_vcd(const std::string& path, const checker::DecoderParams& params) {
   const auto vcd = scenarios::read_vcd_file(path);
-  const auto* clock = vcd.find("encoder.clock");
-  const auto* data = vcd.find("encoder.data");
+  const auto* clock = vcd.find("endat.encoder_clock");
+  const auto* data = vcd.find("endat.encoder_data");
   EXPECT_NE(clock, nullptr);
   EXPECT_NE(data, nullptr);
   if (clock == nullptr || data == nullptr) return {};

@@ -73,7 +73,7 @@ EOF
 "$exe" run "$dir/capture.json" --quiet $raise --vcd "$dir/capture.vcd" >/dev/null 2>&1
 [ -s "$dir/capture.vcd" ] || fail "check: no capture to judge"
 c="$dir/capture.vcd"
-"$exe" check $c $c $c $c $c $c $c $c $c $c --clock encoder.clock --data encoder.data --quiet \
+"$exe" check $c $c $c $c $c $c $c $c $c $c --clock encoder_clock --data encoder_data --quiet \
   --json "$dir/check.json" --junit "$dir/check.xml" --log "$dir/check.log" >"$dir/check.out" 2>"$dir/check.err" &
 pid=$!
 wait_for "$dir/check.log.part-*"

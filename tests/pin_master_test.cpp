@@ -18,6 +18,7 @@
 #include "capture_support.hpp"
 #include "endatsim/checker/timing_checker.hpp"
 #include "endatsim/line/line.hpp"
+#include "endatsim/scenarios/waveform_names.hpp"
 #include "endatsim/scenarios/capture_check.hpp"
 #include "endatsim/scenarios/declarations.hpp"
 #include "endatsim/sim/vcd.hpp"
@@ -136,9 +137,9 @@ void expect_capture_agrees(const std::filesystem::path& vcd, const Run& live, co
                            const line::LineParams& lp, const checker::CheckerParams& params) {
   scenarios::CaptureCheckOptions at_encoder;
   at_encoder.file = vcd.string();
-  at_encoder.clock = "encoder.clock";
-  at_encoder.data = "encoder.data";
-  at_encoder.data_enable = "encoder.data_driver_enable";
+  at_encoder.clock = "encoder_clock";
+  at_encoder.data = "encoder_data";
+  at_encoder.data_enable = "encoder_data_driver_enable";
   at_encoder.encoder = scenarios::declared_encoder(encoder);
   at_encoder.encoder.output_delay = lp.encoder.receiver_delay + encoder.output_delay + lp.encoder.driver_delay;
   at_encoder.checker = params;
@@ -149,8 +150,8 @@ void expect_capture_agrees(const std::filesystem::path& vcd, const Run& live, co
 
   auto at_master = at_encoder;
   at_master.at = scenarios::CaptureCheckOptions::At::Master;
-  at_master.clock = "master.clock";
-  at_master.data = "master.data";
+  at_master.clock = "master_clock";
+  at_master.data = "master_data";
   at_master.data_enable.reset();
   const auto m = scenarios::check_capture(at_master);
   const auto round_trip_rows = [&](const std::vector<checker::Violation>& v) {
@@ -177,13 +178,7 @@ Run run(const std::vector<PinFrame>& frames, slave::EncoderParams encoder = {}, 
   PinMaster m(k, line, frames);
   test_support::PinSampler at_encoder(k, line);
   sim::VcdWriter recording(k, vcd.string());
-  for (auto where : {line::ObservationPoint::MasterPins, line::ObservationPoint::EncoderPins}) {
-    const std::string scope = where == line::ObservationPoint::MasterPins ? "master" : "encoder";
-    auto pins = line.pins(where);
-    recording.add(pins.clock, scope, "clock");
-    recording.add(pins.data, scope, "data");
-    recording.add(pins.driver_enable, scope, "data_driver_enable");
-  }
+  scenarios::add_pin_waves(recording, line);
   recording.start();
   for (const auto& change : cable_changes) {
     k.run(change.at);

@@ -30,6 +30,7 @@
 #include "endatsim/scenarios/decoder_tables.hpp"
 #include "endatsim/scenarios/declarations.hpp"
 #include "endatsim/scenarios/diagram.hpp"
+#include "endatsim/scenarios/gtkw.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/junit.hpp"
 #include "endatsim/scenarios/output_file.hpp"
@@ -391,20 +392,6 @@ struct Options {
   scenarios::Limits limits;
 };
 
-// A GTKWave save file beside the VCD: opens with the signals shown, grouped by end.
-void write_gtkw(const std::string& vcd_path) {
-  std::filesystem::path path(vcd_path);
-  path.replace_extension(".gtkw");
-  std::string text = "[*] endatsim " ENDATSIM_VERSION "\n[dumpfile] \"" +
-                     std::filesystem::absolute(vcd_path).lexically_normal().string() + "\"\n[timestart] 0\n";
-  for (const char* end : {"master", "encoder"}) {
-    text += std::string("@200\n-") + end + " pins\n@28\n";
-    for (const char* signal : {"clock", "data", "data_driver_enable"}) text += std::string(end) + "." + signal + "\n";
-    if (std::string(end) == "master") text += "master.sample\nmaster.frame\n";
-  }
-  write_file(path.string(), text);
-}
-
 std::string output_path(const std::string& base, const std::string& name, const std::string& ext, bool many) {
   if (!many) return base;
   std::filesystem::create_directories(base);
@@ -490,8 +477,11 @@ int run(const Options& o) {
     ro.seed = o.seed;
     ro.limits = o.limits;
     if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", vcd_folder);
-    if (o.vcd && o.gtkw) write_gtkw(*ro.vcd_path);
     auto result = progress ? run_with_progress(s, ro, i + 1, loaded.size()) : scenarios::run_scenario(s, ro);
+    // A GTKWave save file beside the VCD, opening on the first frame with markers at the violations.
+    if (o.vcd && o.gtkw)
+      write_file(std::filesystem::path(*ro.vcd_path).replace_extension(".gtkw").string(),
+                 scenarios::gtkw_save_file(result, *ro.vcd_path));
     passed = passed && result.passed();
     if (!result.incomplete.empty() && incomplete.empty()) incomplete = result.name + ": " + result.incomplete;
     if (result.interrupted != 0) interrupted = result.interrupted;

@@ -137,7 +137,7 @@ check(any(rec["crc_ok"] is False and rec["violations"] for rec in records), "--l
 vcd = path("compensated.vcd")
 r = run("run", os.path.join(bundled, "endat22_8mhz_100m_compensated.json"), "--quiet", "--vcd", vcd)
 check(r.returncode == 0, "run --vcd", r)
-r = run("check", vcd, "--clock", "encoder.clock", "--data", "encoder.data", "--cable", "100", "--resolution", "10ns",
+r = run("check", vcd, "--clock", "encoder_clock", "--data", "encoder_data", "--cable", "100", "--resolution", "10ns",
         "--json", path("check.json"))
 check(r.returncode == 1, "check of an undecided capture exits 1", r)
 verdict = json.load(open(path("check.json")))["verdict"]

@@ -217,8 +217,8 @@ class Suite:
         clock, clock_id = sigrok_channel(variables, "clock")
         data, _ = sigrok_channel(variables, "data")
         enable, _ = sigrok_channel(variables, "data_driver_enable")
-        run([self.endatsim, "check", vcd, "--clock", "encoder.clock", "--data", "encoder.data", "--data-enable",
-             "encoder.data_driver_enable", "--encoder", scenario, "--log", log, "--json", check_json, "--quiet"], ok=(0, 1))
+        run([self.endatsim, "check", vcd, "--clock", "encoder_clock", "--data", "encoder_data", "--data-enable",
+             "encoder_data_driver_enable", "--encoder", scenario, "--log", log, "--json", check_json, "--quiet"], ok=(0, 1))
         checked = json.load(open(check_json))
         log_frames = []
         for line in open(log):

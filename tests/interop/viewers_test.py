@@ -81,8 +81,8 @@ def main():
     ours = [(n, int(r), int(f)) for n, r, f in (line.split() for line in lint.stdout.splitlines())]
     by_name = {n: (r, f) for n, r, f in ours}
     for end in ("master", "encoder"):
-        if by_name[end + ".clock"][0] != pulses:
-            fail("%s.clock has %d rising edges, the master reports %d pulses" % (end, by_name[end + ".clock"][0], pulses))
+        if by_name["endat." + end + "_clock"][0] != pulses:
+            fail("%s_clock has %d rising edges, the master reports %d pulses" % (end, by_name["endat." + end + "_clock"][0], pulses))
     print("endatsim: %d clock pulses in %d frames; %d signals" % (pulses, len(per_frame), len(ours)))
 
     # sigrok-cli: imports the VCD as a logic capture (1 ns samples) and exports it again.
@@ -94,7 +94,10 @@ def main():
     for (name, r, f), (sname, sr, sf) in zip(ours, seen):  # sigrok drops the scopes, keeps the order
         if not name.endswith("." + sname) or (r, f) != (sr, sf):
             fail("sigrok-cli sees %s with %d/%d edges, endatsim wrote %s with %d/%d" % (sname, sr, sf, name, r, f))
-    print("sigrok-cli: same edges on all %d channels" % len(seen))
+    # Without the scopes every name still says which end it is.
+    if len({n for n, _, _ in seen}) != len(seen):
+        fail("sigrok-cli shows channels of the same name: %s" % [n for n, _, _ in seen])
+    print("sigrok-cli: same edges on all %d channels, each name unique" % len(seen))
 
     # GTKWave's VCD reader, through its converters.
     fst, back = os.path.join(work, "wave.fst"), os.path.join(work, "fst2vcd.vcd")
@@ -122,17 +125,30 @@ def main():
             fail("GTKWave sees %s with %s edges, endatsim wrote %s" % (name, gtk[name], edges))
     print("gtkwave: same edges on all %d signals" % len(gtk))
 
-    # The save file written by --gtkw: GTKWave opens with every signal shown, master first.
+    # The save file written by --gtkw: GTKWave opens with every signal shown, master first, on
+    # the first frame that is not a delay measurement (the view from a tenth of its length before
+    # FE1, the marker at FE1), with named markers at the violations.
     shown = os.path.join(work, "shown.tcl")
     with open(shown, "w") as out:
-        out.write('puts "displayed [gtkwave::getDisplayedSignals]"\ngtkwave::/File/Quit\n')
+        out.write('puts "displayed [gtkwave::getDisplayedSignals]"\n'
+                  'puts "start [gtkwave::getWindowStartTime]"\nputs "marker [gtkwave::getMarker]"\n'
+                  'puts "named [gtkwave::getNamedMarker A]"\ngtkwave::/File/Quit\n')
     r = run(["xvfb-run", "-a", "gtkwave", "-S", shown, vcd, os.path.join(work, "wave.gtkw")], cwd=work)
-    displayed = [line.split()[1:] for line in r.stdout.splitlines() if line.startswith("displayed")]
-    expected = ["master.clock", "master.data", "master.data_driver_enable", "master.sample", "master.frame",
-                "encoder.clock", "encoder.data", "encoder.data_driver_enable"]
-    if displayed != [expected]:
-        fail("GTKWave shows %s with the save file, expected %s" % (displayed, expected))
-    print("gtkwave: the .gtkw save file shows all %d signals" % len(expected))
-
+    said = {line.split()[0]: line.split()[1:] for line in r.stdout.splitlines()
+            if line.split() and line.split()[0] in ("displayed", "start", "marker", "named")}
+    expected = ["endat.master_clock", "endat.master_data", "endat.master_data_driver_enable", "endat.master_sample",
+                "endat.master_frame", "endat.encoder_clock", "endat.encoder_data", "endat.encoder_data_driver_enable"]
+    if said.get("displayed") != expected:
+        fail("GTKWave shows %s with the save file, expected %s" % (said.get("displayed"), expected))
+    first = next((f for f in frames if not f["measurement"]), frames[0])
+    length = first["end_ps"] - first["start_ps"]
+    if said.get("start") != [str(max(0, first["start_ps"] - length // 10))] or said.get("marker") != [str(first["start_ps"])]:
+        fail("GTKWave opens at %s with the marker at %s; the first frame starts at %d ps"
+             % (said.get("start"), said.get("marker"), first["start_ps"]))
+    violations = sorted(v["time_ps"] for v in json.load(open(results))["scenarios"][0]["violations"])
+    if said.get("named") != [str(violations[0] if violations else -1)]:
+        fail("GTKWave's marker A is at %s; the first violation at %s" % (said.get("named"), violations[:1]))
+    print("gtkwave: the .gtkw save file shows all %d signals from %s ps, marker A at %s"
+          % (len(expected), said["start"][0], said["named"][0]))
 
 main()
