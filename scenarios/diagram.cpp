@@ -178,6 +178,18 @@ class Svg {
                               : static_cast<double>(short_label.size()) * 6.2 + 2 < width ? short_label
                                                                                            : "";
     if (!shown.empty()) text((x1 + x2) / 2, y + 12, shown, "text-anchor=\"middle\" font-size=\"10\"");
+    // Too narrow for any label inside (a one-bit field at a high clock): the short label above it.
+    else if (!short_label.empty()) text((x1 + x2) / 2, y - 2, short_label, "text-anchor=\"middle\" font-size=\"8\"");
+  }
+  // Numbers over the rising edges of a CLOCK row (RE1 the first after FE1), as violations cite
+  // them ("clock 9"); where they would crowd, every fifth.
+  void clock_numbers(const std::vector<double>& xs, double y) {
+    double spacing = 1e9;
+    for (std::size_t i = 1; i < xs.size(); ++i) spacing = std::min(spacing, xs[i] - xs[i - 1]);
+    const std::size_t every = spacing >= 14 ? 1 : 5;
+    for (std::size_t i = 0; i < xs.size(); ++i)
+      if ((i + 1) % every == 0 || i == 0)
+        text(xs[i], y, std::to_string(i + 1), "text-anchor=\"middle\" fill=\"#666\" font-size=\"8\"");
   }
 };
 
@@ -285,7 +297,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
         if (launch >= 1 && launch <= m_re.size()) {
           const T64 re_s = m_re[launch - 1];
           m_start = m_data.first(re_s, to, 1);
-          if (m_start != kNone) measures.push_back({"t_D", re_s, m_start, "endat.master_data"});
+          if (m_start != kNone) measures.push_back({"t_D on the wires", re_s, m_start, "endat.master_data"});
         }
       }
       if (!e_re.empty()) {
@@ -355,11 +367,15 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     title += ": " + sim::format_time(sim::Time{from}) + " .. " + sim::format_time(sim::Time{to});
   }
   svg.text(20, 26, title, "font-size=\"16\" font-weight=\"bold\"");
+  // The t_D the master compensates with (its measurement) is not the t_D drawn on the wires.
+  const std::string compensation =
+      frame != nullptr ? (frame->compensated ? "compensating with the measured t_D " + sim::format_time(frame->t_d_used)
+                                             : std::string("no delay compensation"))
+                       : (scenario.master.delay_compensation ? std::string("delay compensation on")
+                                                             : std::string("no delay compensation"));
   std::string subtitle = "f_c " + sim::format_frequency(frame != nullptr ? frame->f_c : scenario.master.f_c) + ", cable " +
-                         num(scenario.line.cable_length_m) + " m, " +
-                         (frame != nullptr && frame->compensated ? "delay compensation t_D = " + sim::format_time(frame->t_d_used)
-                                                                 : std::string("no delay compensation")) +
-                         ", true round trip " + sim::format_time(r.true_round_trip) + ", seed " + std::to_string(r.seed);
+                         num(scenario.line.cable_length_m) + " m, " + compensation + ", true round trip " +
+                         sim::format_time(r.true_round_trip) + ", seed " + std::to_string(r.seed);
   svg.text(20, 46, subtitle, "fill=\"#444\"");
 
   // Axis breaks as grey bands.
@@ -425,6 +441,41 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
       svg.field(axis.x(a), axis.x(b), row_y("endat.encoder_data") - 22, name, short_name);
       slot = last;
     }
+    // 2.2 additional data after the CRC, in wire order (additional data 2 first): each a LOW bit,
+    // WRN, RM, Busy, the information code, two data bytes and its own CRC (D297403 2.3.5).
+    for (const auto& d : frame->additional_data) {
+      const std::size_t last = slot + protocol::kAdditionalDatumBits;
+      if (last > e_re.size()) break;
+      const auto edge = [&](std::size_t i) { return (i < e_re.size() ? e_re[i] : e_re[i - 1] + f_period) + internal; };
+      const bool second = protocol::is_additional_data_2(d.information());
+      svg.field(axis.x(edge(slot)), axis.x(edge(last)), row_y("endat.encoder_data") - 22,
+                std::string(second ? "additional data 2: " : "additional data 1: ") +
+                    std::string(protocol::info(d.information()).key) + (d.crc_ok ? "" : " (CRC FAIL)"),
+                second ? "AD2" : "AD1");
+      const std::size_t busy = slot + 3;  // after the LOW bit, WRN and RM
+      svg.field(axis.x(edge(busy)), axis.x(edge(busy + 1)), row_y("endat.encoder_data") - 40,
+                d.busy() ? "Busy 1" : "Busy 0", d.busy() ? "B1" : "B0");
+      slot = last;
+    }
+  }
+  // The 2.2 command supplement the master drives after the encoder's data (MRS code or address,
+  // then 16 bits): while the master's DATA driver is on after the answer.
+  if (frame != nullptr && frame->supplement && e_start != kNone) {
+    const T64 on = m_en.first(e_start, to, 1);
+    const T64 off = on != kNone ? m_en.first(on, to, 0) : kNone;
+    if (on != kNone) {
+      char text[64];
+      std::snprintf(text, sizeof text, "command supplement 0x%02X 0x%04X", static_cast<unsigned>(*frame->supplement >> 16 & 0xFFU),
+                    static_cast<unsigned>(*frame->supplement & 0xFFFFU));
+      svg.field(axis.x(on), axis.x(off != kNone ? off : to), row_y("endat.master_data") - 22, text, "supplement");
+    }
+  }
+  // Clock numbers at both ends.
+  for (const auto& [edges, row] : {std::pair{&m_re, "endat.master_clock"}, std::pair{&e_re, "endat.encoder_clock"}}) {
+    std::vector<double> xs;
+    for (T64 t : *edges)
+      if (t >= from && t <= to) xs.push_back(axis.x(t));
+    svg.clock_numbers(xs, row_y(row) - 3);
   }
 
   // Timing parameters.
@@ -436,7 +487,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   for (const auto& m : measures) {
     const double y = row_y(m.row) + kRowHeight + 18;
     const std::string value = sim::format_time(sim::Time{m.b - m.a});
-    const std::string check = m.name == "t_ST" ? "t_st" : m.name == "t_cal" ? "t_cal" : m.name == "t_D" ? "t_d" : "t_m_t_r";
+    const std::string check = m.name == "t_ST" ? "t_st" : m.name == "t_cal" ? "t_cal" : m.name.starts_with("t_D") ? "t_d" : "t_m_t_r";
     svg.dimension(axis.x(m.a), axis.x(m.b), y, m.name + " = " + value, bad_check(check));
     caption += (caption.empty() ? "" : ", ") + m.name + " " + value;
   }

@@ -650,6 +650,20 @@ Legend legend_of(const Sweep& sweep, const MaximumTable& m, const ChartShape& sh
   return legend;
 }
 
+// Series that coincide must all stay visible: each is drawn narrower than the ones before it
+// and with a dash pattern of its own, so that a later line over an earlier one leaves the
+// earlier showing at its sides and in the gaps of the dashes.
+std::string series_stroke(std::size_t k, std::size_t count) {
+  static const char* const kDashes[] = {"", "10 4", "3 3", "12 3 3 3", "6 2 2 2"};
+  const double width = std::min(2.0 + 1.5 * static_cast<double>(count - 1 - k), 8.0);
+  std::string style = "stroke=\"" + std::string(kColours[k % kColours.size()]) + "\" stroke-width=\"" + px(width) + "\"";
+  const char* dash = kDashes[k % std::size(kDashes)];
+  if (*dash != '\0') style += " stroke-dasharray=\"" + std::string(dash) + "\"";
+  return style;
+}
+
+double dot_radius(std::size_t k, std::size_t count) { return std::min(3.0 + 1.5 * static_cast<double>(count - 1 - k), 9.0); }
+
 void draw_legend(std::ostream& out, const Legend& legend) {
   double y = kTop + 10;
   if (!legend.heading.empty()) {
@@ -658,7 +672,7 @@ void draw_legend(std::ostream& out, const Legend& legend) {
   }
   for (std::size_t k = 0; k < legend.entries.size(); ++k, y += 22)
     out << "<line x1=\"" << kRight + 15 << "\" y1=\"" << px(y) << "\" x2=\"" << kRight + 40 << "\" y2=\"" << px(y)
-        << "\" stroke=\"" << kColours[k % kColours.size()] << "\" stroke-width=\"2\"/><text x=\"" << kRight + 46
+        << "\" " << series_stroke(k, legend.entries.size()) << "/><text x=\"" << kRight + 46
         << "\" y=\"" << px(y + 4) << "\">" << xml_escape(legend.entries[k]) << "</text>\n";
   if (!legend.gaps) return;
   draw_cross(out, kRight + 27.5, y, "#555");
@@ -692,7 +706,7 @@ void draw_series(std::ostream& out, const Sweep& sweep, const MaximumTable& m, c
     std::size_t count = 0;
     const auto flush = [&] {
       if (count > 1)
-        out << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\" points=\"" << points << "\"/>\n";
+        out << "<polyline fill=\"none\" " << series_stroke(k, series_count) << " points=\"" << points << "\"/>\n";
       points.clear();
       count = 0;
     };
@@ -705,7 +719,8 @@ void draw_series(std::ostream& out, const Sweep& sweep, const MaximumTable& m, c
       }
       points += (points.empty() ? "" : " ") + px(x(xv)) + "," + px(y(*yv));
       ++count;
-      out << "<circle cx=\"" << px(x(xv)) << "\" cy=\"" << px(y(*yv)) << "\" r=\"3\" fill=\"" << colour << "\"/>\n";
+      out << "<circle cx=\"" << px(x(xv)) << "\" cy=\"" << px(y(*yv)) << "\" r=\"" << px(dot_radius(k, series_count))
+          << "\" fill=\"" << colour << "\"/>\n";
     }
     flush();
   }

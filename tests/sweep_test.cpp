@@ -441,3 +441,30 @@ TEST(SweepCli, UnwritableOutputsExitTwoBeforeTheSweepRuns) {
   std::filesystem::remove(csv);
   std::filesystem::remove(svg);
 }
+
+// Two series with the same maxima draw the same line: the first is wider and the second dashed,
+// so that the first stays visible under the second, and the legend shows the same strokes.
+TEST(Sweep, SvgKeepsCoincidingLinesApart) {
+  scenarios::Sweep s;
+  s.name = "coinciding";
+  s.grid = {scenarios::parse_grid_axis("/line/cable_length_m=0,10,20"),
+            scenarios::parse_grid_axis("/master/f_c=1 MHz,2 MHz"),
+            scenarios::parse_grid_axis("/master/delay_compensation=false,true")};
+  for (std::size_t l = 0; l < 3; ++l)
+    for (std::size_t f = 0; f < 2; ++f)
+      for (bool compensated : {false, true}) {
+        scenarios::SweepPoint p;
+        p.values = {s.grid[0].values[l], s.grid[1].values[f], compensated};
+        p.clean = true;  // both series reach 2 MHz everywhere: one line on top of the other
+        s.points.push_back(p);
+      }
+  const auto svg = scenarios::maximum_svg(s, scenarios::maximize(s, "/master/f_c"));
+  const auto first = svg.find("<polyline"), second = svg.find("<polyline", first + 1);
+  ASSERT_NE(second, std::string::npos) << svg;
+  const std::string a = svg.substr(first, svg.find("/>", first) - first), b = svg.substr(second, svg.find("/>", second) - second);
+  EXPECT_NE(a.find("stroke-width=\"3.5\""), std::string::npos) << a;
+  EXPECT_EQ(a.find("stroke-dasharray"), std::string::npos) << a;
+  EXPECT_NE(b.find("stroke-width=\"2.0\""), std::string::npos) << b;
+  EXPECT_NE(b.find("stroke-dasharray=\"10 4\""), std::string::npos) << b;
+  EXPECT_NE(svg.find("stroke-dasharray=\"10 4\"/><text"), std::string::npos) << "the legend's second entry is dashed too";
+}

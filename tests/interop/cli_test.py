@@ -160,7 +160,7 @@ check(r.returncode == 2 and r.stdout == "valid %s (endat21_1mhz_10m)\n" % clean 
 
 # diagram: an SVG that parses; bad requests are usage errors.
 r = run("diagram", uncompensated, "--svg", path("frame.svg"))
-check(r.returncode == 0 and "t_D 1.06 us" in r.stdout, "diagram", r)
+check(r.returncode == 0 and "t_D on the wires 1.06 us" in r.stdout, "diagram", r)
 svg = ET.parse(path("frame.svg")).getroot()
 check(svg.tag == "{http://www.w3.org/2000/svg}svg", "diagram: an SVG document")
 r = run("diagram", uncompensated, "--svg", path("frame2.svg"), "--frame", "99")

@@ -125,7 +125,7 @@ TEST(Diagram, DrawsTheFrameWithMeasuredTimingAndViolations) {
   const auto d = scenarios::frame_diagram(s, {});
   EXPECT_EQ(d.svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0), 0U);
   // At the master's pins the round trip lacks the master's own driver and receiver (40 + 100 ns).
-  EXPECT_NE(d.svg.find(">t_D = 1.06 us</text>"), std::string::npos);
+  EXPECT_NE(d.svg.find(">t_D on the wires = 1.06 us</text>"), std::string::npos);
   EXPECT_NE(d.svg.find(">t_ST = 2 us</text>"), std::string::npos);
   EXPECT_NE(d.svg.find(">t_m = 20.06 us</text>"), std::string::npos);
   EXPECT_NE(d.svg.find(">t_cal = "), std::string::npos);
@@ -144,7 +144,7 @@ TEST(Diagram, DrawsTheFrameWithMeasuredTimingAndViolations) {
 TEST(Diagram, CleanCompensatedFrameHasTheCrcAndNoRed) {
   const auto s = scenarios::load_scenario_file(kBundled + "endat22_8mhz_100m_compensated.json");
   const auto d = scenarios::frame_diagram(s, {});
-  EXPECT_NE(d.svg.find(">t_D = 1.06 us</text>"), std::string::npos);  // 8 MHz: t_D is 8.5 periods
+  EXPECT_NE(d.svg.find(">t_D on the wires = 1.06 us</text>"), std::string::npos);  // 8 MHz: t_D is 8.5 periods
   EXPECT_NE(d.svg.find(">CRC"), std::string::npos);  // "CRC (5 bits)" or, when narrow, "CRC"
   EXPECT_EQ(d.svg.find("#c00000\" font-size"), std::string::npos);
 }
@@ -202,4 +202,31 @@ TEST(Diagram, ParameterFrameShowsThePayloadAndBreaksTheMemoryAccessWait) {
   EXPECT_EQ(d.svg.find(">position"), std::string::npos);  // the answer is an echo, not a position
   // The polling while the encoder writes its memory is one axis break of about 2 ms.
   EXPECT_NE(d.svg.find(">// 1.99"), std::string::npos) << d.caption;
+}
+
+// What a frame carries besides the position: each additional datum with its Busy bit, the
+// command supplement, and the clock numbers that violations cite.
+TEST(Diagram, LabelsAdditionalDataTheBusyBitTheSupplementAndNumbersTheClocks) {
+  const auto s = scenarios::load_scenario_file(kBundled + "additional_data_rolling_selection.json");
+  scenarios::DiagramOptions o;
+  o.frame = 5;
+  const auto d = scenarios::frame_diagram(s, o);
+  EXPECT_NE(d.svg.find(">additional data 1: temperature_1</text>"), std::string::npos);
+  EXPECT_EQ(count(d.svg, "additional data 2: operating_status_error_sources") + count(d.svg, ">AD2</text>"), 1U);
+  EXPECT_EQ(count(d.svg, ">Busy 0</text>") + count(d.svg, ">B0</text>"), 2U);  // one per datum
+  EXPECT_NE(d.svg.find("supplement"), std::string::npos);
+  for (const char* n : {">1</text>", ">10</text>", ">20</text>"})  // crowded: every fifth
+    EXPECT_NE(d.svg.find(std::string("fill=\"#666\" font-size=\"8\"") + n), std::string::npos) << n;
+}
+
+// The subtitle says whether the master compensates, also for a time window, and never calls
+// the compensation value and the wires' delay by one name.
+TEST(Diagram, TheSubtitleNamesTheCompensationInWindowsToo) {
+  const auto s = scenarios::load_scenario_file(kBundled + "endat22_8mhz_100m_compensated.json");
+  EXPECT_NE(scenarios::frame_diagram(s, {}).svg.find("compensating with the measured t_D "), std::string::npos);
+  scenarios::DiagramOptions o;
+  o.window = std::make_pair(sim::us(700), sim::us(760));
+  const auto window = scenarios::frame_diagram(s, o).svg;
+  EXPECT_NE(window.find("delay compensation on"), std::string::npos);
+  EXPECT_EQ(window.find("no delay compensation"), std::string::npos);
 }
