@@ -426,20 +426,28 @@ scenarios::ScenarioResult run_with_progress(const scenarios::Scenario& s, scenar
   return future.get();
 }
 
-int run(const Options& o) {
-  std::vector<scenarios::Scenario> loaded;
-  std::set<std::string> names;
-  for (const auto& file : o.files) {
-    loaded.push_back(scenarios::load_scenario_file(file));
-    (void)scenarios::resolve_limits(loaded.back(), o.limits);  // what the file shows, refused before anything runs
-    if (!names.insert(loaded.back().name).second && o.vcd)
-      throw scenarios::ScenarioError(file + ": at /name: another scenario is also named \"" +
-                                     scenarios::trimmed(loaded.back().name) + "\"; their waveforms would overwrite each other in " + *o.vcd);
+// Bad input found after the output paths were checked: what an earlier run left at those paths
+// goes, so that no stale result looks like this run's (the paths are known not to be inputs).
+template <class Load>
+void load_or_clear_outputs(const char* command, const std::vector<scenarios::OutputPath>& outputs, Load load) {
+  try {
+    load();
+  } catch (...) {
+    const auto removed = scenarios::remove_outputs(outputs);
+    if (!removed.empty()) {
+      std::cerr << "endatsim " << command << ": no output written; removed the earlier";
+      for (const auto& path : removed) std::cerr << " " << path;
+      std::cerr << "\n";
+    }
+    throw;
   }
+}
+
+int run(const Options& o) {
   // --vcd names a folder (NAME.vcd for each scenario) for several scenarios, and whenever it
   // exists as one or ends in "/"; else the file.
   std::error_code ec;
-  const bool vcd_folder = o.vcd && (loaded.size() > 1 || o.vcd->ends_with('/') || std::filesystem::is_directory(*o.vcd, ec));
+  const bool vcd_folder = o.vcd && (o.files.size() > 1 || o.vcd->ends_with('/') || std::filesystem::is_directory(*o.vcd, ec));
   std::vector<scenarios::OutputPath> outputs;
   if (o.vcd) outputs.push_back({"--vcd", *o.vcd, vcd_folder});
   if (o.vcd && o.gtkw && *o.vcd == "-")
@@ -451,6 +459,18 @@ int run(const Options& o) {
   if (o.log) outputs.push_back({"--log", *o.log});
   if (o.log_json) outputs.push_back({"--log-json", *o.log_json});
   scenarios::check_output_paths(o.files, "a scenario file", outputs);
+  std::vector<scenarios::Scenario> loaded;
+  load_or_clear_outputs("run", outputs, [&] {
+    std::set<std::string> names;
+    for (const auto& file : o.files) {
+      loaded.push_back(scenarios::load_scenario_file(file));
+      (void)scenarios::resolve_limits(loaded.back(), o.limits);  // what the file shows, refused before anything runs
+      if (!names.insert(loaded.back().name).second && o.vcd)
+        throw scenarios::ScenarioError(file + ": at /name: another scenario is also named \"" +
+                                       scenarios::trimmed(loaded.back().name) +
+                                       "\"; their waveforms would overwrite each other in " + *o.vcd);
+    }
+  });
   const SummaryStream summary_out(outputs);
   const bool color = use_color(o.color, summary_out.fd());
   // Every file output opened before anything runs; each replaces its file only when complete.
@@ -580,20 +600,23 @@ std::vector<scenarios::OutputPath> sweep_outputs(const SweepArgs& o) {
 }
 
 int sweep(const SweepArgs& o) {
-  std::vector<scenarios::GridAxis> grid;
-  for (const auto& g : o.grid) grid.push_back(scenarios::parse_grid_axis(g));
-  const auto base = scenarios::read_scenario_json(o.file);
-  scenarios::check_grid(base, o.file, grid);
-  if (o.maximize) {
-    // A bad --maximize or chart shape stops the sweep before it runs, not after.
-    const scenarios::Sweep empty{o.file, "", grid, {}};
-    const auto table = scenarios::maximize(empty, *o.maximize);
-    if (o.svg) (void)scenarios::maximum_svg(empty, table);
-  }
   const auto outputs = sweep_outputs(o);
   scenarios::check_output_paths({o.file}, "the scenario file", outputs);
   const auto options = sweep_run_options(o);
-  const auto result = scenarios::run_sweep(base, o.file, grid, options);
+  scenarios::Sweep result;
+  std::vector<scenarios::GridAxis> grid;
+  load_or_clear_outputs("sweep", outputs, [&] {
+    for (const auto& g : o.grid) grid.push_back(scenarios::parse_grid_axis(g));
+    const auto base = scenarios::read_scenario_json(o.file);
+    scenarios::check_grid(base, o.file, grid);
+    if (o.maximize) {
+      // A bad --maximize or chart shape stops the sweep before it runs, not after.
+      const scenarios::Sweep empty{o.file, "", grid, {}};
+      const auto table = scenarios::maximize(empty, *o.maximize);
+      if (o.svg) (void)scenarios::maximum_svg(empty, table);
+    }
+    result = scenarios::run_sweep(base, o.file, grid, options);  // every point is checked before any runs
+  });
   if (options.progress) std::cerr << "\n";
   if (result.interrupted != 0) {
     // Nothing written: an earlier sweep's outputs go too, so that none looks current.
@@ -779,14 +802,17 @@ int diagram_command(const po::variables_map& vm) {
     }
   }
   if (!parse_limits(vm, "diagram", d.limits)) return kBadInput;
-  const auto scenario = scenarios::load_scenario_file(files.front());
-  (void)scenarios::resolve_limits(scenario, d.limits);
   const std::vector<scenarios::OutputPath> outputs{{"--svg", *svg}};
   scenarios::check_output_paths(files, "the scenario file", outputs);
+  scenarios::Scenario scenario;
+  load_or_clear_outputs("diagram", outputs, [&] {
+    scenario = scenarios::load_scenario_file(files.front());
+    (void)scenarios::resolve_limits(scenario, d.limits);
+  });
   StreamedFile out(*svg);
   scenarios::Diagram diagram;
   try {
-    diagram = scenarios::frame_diagram(scenario, d);
+    load_or_clear_outputs("diagram", outputs, [&] { diagram = scenarios::frame_diagram(scenario, d); });
   } catch (const scenarios::Interrupted& e) {
     std::cerr << "endatsim diagram: " << e.what() << "; no diagram written\n";
     return interrupted_status(e.signal());

@@ -236,6 +236,24 @@ check(r.returncode == 2 and "did you mean --grid?" in r.stderr, "did you mean: s
 r = run("run", clean, "--frobnicate")
 check(r.returncode == 2 and "did you mean" not in r.stderr, "no guess far off", r)
 
+# Bad input found after the output paths were checked: an earlier run's outputs go, so that none
+# looks like this run's; an output that is an input is refused before anything is removed.
+for name in ("stale.xml", "stale.csv", "stale.svg"):
+    with open(path(name), "w") as f:
+        f.write("from an earlier run\n")
+bad_scenario = path("bad_late.json")
+with open(bad_scenario, "w") as f:
+    json.dump({"name": "bad", "master": {"f_c": "1 MHz"}, "script": [{"op": "read_position"}]}, f)
+r = run("run", clean, bad_scenario, "--junit", path("stale.xml"))
+check(r.returncode == 2 and not os.path.exists(path("stale.xml")) and "removed the earlier" in r.stderr,
+      "run: bad input removes an earlier --junit file", r)
+r = run("sweep", clean, "--grid", "/line/cable_length_m=1,-5", "--csv", path("stale.csv"), "--jobs", "1")
+check(r.returncode == 2 and not os.path.exists(path("stale.csv")), "sweep: a bad grid point removes an earlier --csv file", r)
+r = run("diagram", clean, "--svg", path("stale.svg"), "--frame", "99")
+check(r.returncode == 2 and not os.path.exists(path("stale.svg")), "diagram: a bad frame removes an earlier --svg file", r)
+r = run("run", bad_scenario, "--json", bad_scenario)
+check(r.returncode == 2 and os.path.exists(bad_scenario), "an output that is an input is refused, not removed", r)
+
 if failures:
     print("FAIL:\n" + "\n".join(failures), file=sys.stderr)
     sys.exit(1)
