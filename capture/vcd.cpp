@@ -2,7 +2,7 @@
 // ones. Any $timescale (1, 10 or 100 of s .. fs; femtoseconds are rounded to the picosecond,
 // which is then the resolution),
 // nested scopes, identifiers of any printable characters, vectors split into one signal per bit
-// ("data[3]"), std_logic values (U X Z W - unknown, H and L weak 1 and 0), real variables ignored.
+// ("data[3]"), std_logic values (U X Z W - unknown, H and L weak 1 and 0), real and text (GTKWave's "string") variables ignored.
 // The body is streamed token by token.
 #include <cerrno>
 #include <cstring>
@@ -186,7 +186,8 @@ class VcdReader final : public QueuedReader {
     Variable v;
     v.first = static_cast<std::uint32_t>(signals_.size());
     v.width = width;
-    v.real = type == "real" || type == "realtime";
+    // Reals and GTKWave's text traces ("string") carry no logic level: read past, never signals.
+    v.real = type == "real" || type == "realtime" || type == "string";
     if (!v.real) {
       const auto bits = bit_names(name, full, range, width);
       signals_.insert(signals_.end(), bits.begin(), bits.end());
@@ -269,6 +270,7 @@ class VcdReader final : public QueuedReader {
       }
       case 'b': case 'B': vector(t.substr(1), token("the vector's identifier")); return true;
       case 'r': case 'R': lookup(token("the real's identifier")); return true;
+      case 's': case 'S': lookup(token("the text's identifier")); return true;
       default: break;
     }
     const char v = normalize(t[0]);

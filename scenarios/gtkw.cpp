@@ -62,7 +62,7 @@ std::string gtkw_save_file(const ScenarioResult& result, const std::string& vcd_
     const bool master = end == line::ObservationPoint::MasterPins;
     text += std::string("@200\n-") + (master ? "master" : "encoder") + " pins\n@28\n";
     for (const char* signal : {"clock", "data", "data_driver_enable"}) text += scope + pin_wave_name(end, signal) + "\n";
-    if (master) text += scope + "master_sample\n" + scope + "master_frame\n";
+    if (master) text += scope + "master_sample\n" + scope + "master_frame\n" + scope + "decoded\n";
   }
   return text;
 }

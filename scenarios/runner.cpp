@@ -4,6 +4,7 @@
 
 #include "endatsim/scenarios/events.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
+#include "endatsim/scenarios/transaction_log.hpp"
 #include "endatsim/scenarios/waveform_names.hpp"
 
 #include <algorithm>
@@ -356,6 +357,26 @@ void judge(const Scenario& s, ScenarioResult& r) {
   }
 }
 
+// The decoded frames as a text trace of the VCD: the mode command from FE1 on, what came back
+// from the frame's end on.
+class DecodedTrace final : public master::MasterObserver {
+ public:
+  explicit DecodedTrace(sim::VcdWriter& vcd) : vcd_(vcd), trace_(vcd.add_text(std::string(kWaveformScope), "decoded")) {}
+  void on_frame_start(const master::FrameResult& frame) override {
+    vcd_.set_text(trace_, "#" + std::to_string(frame.index) + " " + std::string(protocol::info(frame.command).key));
+  }
+  void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
+  void on_frame_end(const master::FrameResult& frame) override {
+    std::string line = transaction_line(transaction_of(frame, {}));
+    line.erase(0, line.find('#'));  // the time is the trace's own
+    vcd_.set_text(trace_, line);
+  }
+
+ private:
+  sim::VcdWriter& vcd_;
+  std::size_t trace_;
+};
+
 // Looks at the run every few thousand kernel events: an interruption, or a limit reached, stops
 // the kernel at that event boundary.
 class Watch {
@@ -456,11 +477,16 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   master.add_observer(&declarations);
 
   std::unique_ptr<sim::VcdWriter> vcd;
+  std::unique_ptr<DecodedTrace> decoded;
   if (options.vcd_path) {
     vcd = std::make_unique<sim::VcdWriter>(kernel, *options.vcd_path);
     add_pin_waves(*vcd, line);
     vcd->add(master.sample_strobe(), std::string(kWaveformScope), "master_sample");
     vcd->add(master.frame_active(), std::string(kWaveformScope), "master_frame");
+    if (options.vcd_decoded) {
+      decoded = std::make_unique<DecodedTrace>(*vcd);
+      master.add_observer(decoded.get());
+    }
     vcd->start();
   }
 

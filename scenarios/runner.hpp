@@ -23,6 +23,9 @@ struct RunOptions {
   std::optional<std::uint64_t> seed;  // overrides the scenario's seed
   Limits limits;                      // what the run may cost (see limits.hpp)
   RunProgress* progress = nullptr;    // when set, kept up to date while the run runs
+  // The VCD also gets a text trace, endat.decoded, with each frame's mode command from its FE1
+  // and what the master decoded from its end: for GTKWave (sigrok skips text traces).
+  bool vcd_decoded = false;
 };
 
 struct ExpectationResult {

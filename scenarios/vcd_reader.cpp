@@ -173,7 +173,9 @@ class Parser {
     v.id = args[2].text;
     for (const auto& s : scopes_) v.name += s + ".";
     v.name += args[3].text;
-    if (options_.sigrok && v.width != 1)
+    if (options_.sigrok && v.type == "string")
+      issue(t.line, "text variable " + v.name + ": sigrok-cli skips its values, with a warning for each");
+    else if (options_.sigrok && v.width != 1)
       issue(t.line, "vector variable " + v.name + " (width " + args[1].text + "): sigrok-cli drops it silently");
     if (ids_.count(v.id) != 0) {
       // An alias of an earlier variable: legal VCD, one value for both.
@@ -224,6 +226,16 @@ class Parser {
       if (v == nullptr) return;
       if (v->width != 1) issue(t.line, "scalar value for " + v->name + " of width " + std::to_string(v->width));
       record(*v, c);
+      return;
+    }
+    if (c == 's' || c == 'S') {  // GTKWave's text value: any token, then the identifier
+      Token id;
+      if (!tokens_.next(id)) {
+        issue(t.line, "text value " + t.text + " without an identifier");
+        return;
+      }
+      VcdVariable* v = target(id, id.text);
+      if (v != nullptr && v->type != "string") issue(t.line, "text value for " + v->name + ", which is no string variable");
       return;
     }
     if (c == 'b' || c == 'B' || c == 'r' || c == 'R') {

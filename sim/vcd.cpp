@@ -59,13 +59,36 @@ void VcdWriter::add(Signal& signal, const std::string& scope, const std::string&
   signal.on_change(Action{&VcdWriter::on_change, &probes_.back(), 0});
 }
 
+std::size_t VcdWriter::add_text(const std::string& scope, const std::string& name) {
+  if (started_) throw std::logic_error("VcdWriter::add_text after start");
+  texts_.push_back(TextProbe{scope, name, "", "-", false});
+  return texts_.size() - 1;
+}
+
+void VcdWriter::set_text(std::size_t handle, const std::string& text) {
+  if (!started_ || finished_) return;
+  TextProbe& t = texts_.at(handle);
+  // One token: each run of white space becomes one '_'.
+  t.pending.clear();
+  for (char c : text) {
+    const bool space = c == ' ' || c == '\t' || c == '\n' || c == '\r';
+    if (!space) t.pending += c;
+    else if (!t.pending.empty() && t.pending.back() != '_') t.pending += '_';
+  }
+  if (t.pending.empty()) t.pending = "-";
+  t.dirty = true;
+  texts_dirty_ = true;
+}
+
 void VcdWriter::start() {
   buffer_ += "$version endatsim $end\n$timescale 1ps $end\n";
-  std::map<std::string, std::vector<const Probe*>> scopes;
-  for (const Probe& p : probes_) scopes[p.scope].push_back(&p);
-  for (const auto& [scope, probes] : scopes) {
+  for (std::size_t k = 0; k < texts_.size(); ++k) texts_[k].id = short_id(probes_.size() + k);
+  std::map<std::string, std::vector<std::string>> scopes;
+  for (const Probe& p : probes_) scopes[p.scope].push_back("$var wire 1 " + p.id + " " + p.name + " $end\n");
+  for (const TextProbe& t : texts_) scopes[t.scope].push_back("$var string 1 " + t.id + " " + t.name + " $end\n");
+  for (const auto& [scope, vars] : scopes) {
     buffer_ += "$scope module " + scope + " $end\n";
-    for (const Probe* p : probes) buffer_ += "$var wire 1 " + p->id + " " + p->name + " $end\n";
+    for (const auto& v : vars) buffer_ += v;
     buffer_ += "$upscope $end\n";
   }
   buffer_ += "$enddefinitions $end\n#" + std::to_string(kernel_.now().count()) + "\n$dumpvars\n";
@@ -74,6 +97,7 @@ void VcdWriter::start() {
     p.written = p.signal->read();
     buffer_ += (p.written ? '1' : '0') + p.id + "\n";
   }
+  for (const TextProbe& t : texts_) buffer_ += "s" + t.pending + " " + t.id + "\n";
   buffer_ += "$end\n";
   kernel_.on_time_step_end(Action{&VcdWriter::on_step_end, this, 0});
   started_ = true;
@@ -90,8 +114,21 @@ void VcdWriter::on_change(void* probe, std::uint64_t) {
 
 void VcdWriter::on_step_end(void* self, std::uint64_t) {
   auto* w = static_cast<VcdWriter*>(self);
-  if (w->dirty_.empty()) return;
+  if (w->dirty_.empty() && !w->texts_dirty_) return;
   bool stamped = w->stamped_ == w->kernel_.now();
+  if (w->texts_dirty_) {
+    if (!stamped) {
+      w->stamp();
+      stamped = true;
+      w->stamped_ = w->kernel_.now();
+    }
+    for (TextProbe& t : w->texts_) {
+      if (!t.dirty) continue;
+      t.dirty = false;
+      w->buffer_ += "s" + t.pending + " " + t.id + "\n";
+    }
+    w->texts_dirty_ = false;
+  }
   for (std::size_t index : w->dirty_) {
     Probe& p = w->probes_[index];
     p.dirty = false;

@@ -25,6 +25,11 @@ class VcdWriter {
 
   // Register before start(); `scope` groups wires in viewers (e.g. "master", "encoder").
   void add(Signal& signal, const std::string& scope, const std::string& name);
+  // A text trace: a VCD "string" variable, GTKWave's extension (sigrok skips its values).
+  // Register before start(); the handle is for set_text().
+  std::size_t add_text(const std::string& scope, const std::string& name);
+  // The text the trace shows from now on; each run of spaces becomes one '_' (a VCD value is one token).
+  void set_text(std::size_t handle, const std::string& text);
   void start();
   void finish();
 
@@ -50,7 +55,16 @@ class VcdWriter {
   std::FILE* file_;
   std::string path_;
   std::string part_;
+  struct TextProbe {
+    std::string scope;
+    std::string name;
+    std::string id;
+    std::string pending;
+    bool dirty = false;
+  };
   std::deque<Probe> probes_;  // stable addresses: each is its signal's listener context
+  std::vector<TextProbe> texts_;
+  bool texts_dirty_ = false;
   std::vector<std::size_t> dirty_;
   std::string buffer_;
   Time stamped_{-1};  // the last "#time" written

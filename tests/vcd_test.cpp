@@ -92,3 +92,47 @@ TEST(VcdWriter, ChangesAtTimeZeroAreStampedZero) {
   endatsim::test_support::expect_clean_vcd(text, path);
   std::filesystem::remove(path);
 }
+
+// A text trace (GTKWave's "string" variable): declared after the wires of its scope, "-" until
+// set, written at the end of the time step it was set in (the last text of a step counts), each
+// run of spaces one '_'. The lint reads it; for sigrok it is an issue, since sigrok skips it.
+TEST(VcdWriter, TextTracesAreStringVariablesWrittenAtTheirTimeStep) {
+  const std::string path = (std::filesystem::temp_directory_path() / "endatsim_vcd_text_test.vcd").string();
+  {
+    Kernel k;
+    Signal a(k, "a", false);
+    VcdWriter vcd(k, path);
+    vcd.add(a, "top", "a");
+    const auto trace = vcd.add_text("top", "decoded");
+    vcd.start();
+    struct Texts {
+      VcdWriter* vcd;
+      std::size_t trace;
+      Signal* a;
+      void first() {
+        vcd->set_text(trace, "ignored: a later text in the same step counts");
+        vcd->set_text(trace, "#0  mode   bits");
+      }
+      void second() {
+        a->write(true);
+        vcd->set_text(trace, "");
+      }
+    } texts{&vcd, trace, &a};
+    k.schedule(ns(1), bind<&Texts::first>(&texts));
+    k.schedule(ns(2), bind<&Texts::second>(&texts));
+    k.run();
+    vcd.finish();
+  }
+  const std::string text = read_file(path);
+  EXPECT_NE(text.find("$var wire 1 ! a $end\n$var string 1 \" decoded $end\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("0!\ns- \"\n$end\n"), std::string::npos) << text;
+  const auto body = text.substr(text.find("$end\n", text.find("$dumpvars")) + 5);
+  EXPECT_EQ(body, "#1000\ns#0_mode_bits \"\n#2000\ns- \"\n1!\n");
+  EXPECT_TRUE(endatsim::scenarios::parse_vcd(text, {}).issues.empty());
+  endatsim::scenarios::VcdLintOptions sigrok;
+  sigrok.sigrok = true;
+  const auto issues = endatsim::scenarios::parse_vcd(text, sigrok).issues;
+  ASSERT_EQ(issues.size(), 1U);
+  EXPECT_NE(issues[0].message.find("text variable top.decoded: sigrok-cli skips its values"), std::string::npos);
+  std::filesystem::remove(path);
+}

@@ -497,6 +497,7 @@ int run(const Options& o) {
     ro.seed = o.seed;
     ro.limits = o.limits;
     if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", vcd_folder);
+    ro.vcd_decoded = o.gtkw;  // the text trace is for GTKWave
     auto result = progress ? run_with_progress(s, ro, i + 1, loaded.size()) : scenarios::run_scenario(s, ro);
     // A GTKWave save file beside the VCD, opening on the first frame with markers at the violations.
     if (o.vcd && o.gtkw)

@@ -254,6 +254,11 @@ check(r.returncode == 2 and not os.path.exists(path("stale.svg")), "diagram: a b
 r = run("run", bad_scenario, "--json", bad_scenario)
 check(r.returncode == 2 and os.path.exists(bad_scenario), "an output that is an input is refused, not removed", r)
 
+# A VCD with the --gtkw text trace is still a capture for check: the text variable is read past.
+r = run("run", clean, "--vcd", path("with_text.vcd"), "--gtkw", "--quiet")
+r = run("check", path("with_text.vcd"), "--clock", "encoder_clock", "--data", "encoder_data", "--quiet")
+check(r.returncode == 0, "check reads a VCD with a text trace", r)
+
 if failures:
     print("FAIL:\n" + "\n".join(failures), file=sys.stderr)
     sys.exit(1)

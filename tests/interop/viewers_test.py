@@ -66,7 +66,7 @@ def main():
             fail(tool + " is not installed (tools/quickstart installs it: sigrok-cli, gtkwave, xvfb)")
     os.makedirs(work, exist_ok=True)
     vcd, results = os.path.join(work, "wave.vcd"), os.path.join(work, "results.json")
-    run([endatsim, "run", scenario, "--vcd", vcd, "--gtkw", "--json", results, "--quiet"])
+    run([endatsim, "run", scenario, "--vcd", vcd, "--json", results, "--quiet"])
     frames = json.load(open(results))["scenarios"][0]["frames"]
     # Continuous-clock words report the pulses counted since FE1: a frame's last word has them all.
     per_frame = {}
@@ -132,12 +132,18 @@ def main():
     with open(shown, "w") as out:
         out.write('puts "displayed [gtkwave::getDisplayedSignals]"\n'
                   'puts "start [gtkwave::getWindowStartTime]"\nputs "marker [gtkwave::getMarker]"\n'
-                  'puts "named [gtkwave::getNamedMarker A]"\ngtkwave::/File/Quit\n')
-    r = run(["xvfb-run", "-a", "gtkwave", "-S", shown, vcd, os.path.join(work, "wave.gtkw")], cwd=work)
+                  'puts "named [gtkwave::getNamedMarker A]"\n'
+                  'puts "decoded [gtkwave::getTraceValueAtMarkerFromName endat.decoded]"\ngtkwave::/File/Quit\n')
+    # --gtkw adds the text trace endat.decoded (GTKWave's string variables; sigrok skips them).
+    gtk_vcd = os.path.join(work, "gtk.vcd")
+    run([endatsim, "run", scenario, "--vcd", gtk_vcd, "--gtkw", "--quiet"])
+    lint = run([vcdlint, gtk_vcd])
+    r = run(["xvfb-run", "-a", "gtkwave", "-S", shown, gtk_vcd, os.path.join(work, "gtk.gtkw")], cwd=work)
     said = {line.split()[0]: line.split()[1:] for line in r.stdout.splitlines()
-            if line.split() and line.split()[0] in ("displayed", "start", "marker", "named")}
+            if line.split() and line.split()[0] in ("displayed", "start", "marker", "named", "decoded")}
     expected = ["endat.master_clock", "endat.master_data", "endat.master_data_driver_enable", "endat.master_sample",
-                "endat.master_frame", "endat.encoder_clock", "endat.encoder_data", "endat.encoder_data_driver_enable"]
+                "endat.master_frame", "endat.decoded", "endat.encoder_clock", "endat.encoder_data",
+                "endat.encoder_data_driver_enable"]
     if said.get("displayed") != expected:
         fail("GTKWave shows %s with the save file, expected %s" % (said.get("displayed"), expected))
     first = next((f for f in frames if not f["measurement"]), frames[0])
@@ -145,10 +151,13 @@ def main():
     if said.get("start") != [str(max(0, first["start_ps"] - length // 10))] or said.get("marker") != [str(first["start_ps"])]:
         fail("GTKWave opens at %s with the marker at %s; the first frame starts at %d ps"
              % (said.get("start"), said.get("marker"), first["start_ps"]))
+    # At FE1 the text trace names the frame and its mode command.
+    if said.get("decoded") != ["#%d_%s" % (first["index"], first["command"])]:
+        fail("GTKWave's text trace at the first frame's FE1 says %s" % said.get("decoded"))
     violations = sorted(v["time_ps"] for v in json.load(open(results))["scenarios"][0]["violations"])
     if said.get("named") != [str(violations[0] if violations else -1)]:
         fail("GTKWave's marker A is at %s; the first violation at %s" % (said.get("named"), violations[:1]))
-    print("gtkwave: the .gtkw save file shows all %d signals from %s ps, marker A at %s"
-          % (len(expected), said["start"][0], said["named"][0]))
+    print("gtkwave: the .gtkw save file shows all %d signals from %s ps, marker A at %s, %s"
+          % (len(expected), said["start"][0], said["named"][0], said["decoded"][0]))
 
 main()
