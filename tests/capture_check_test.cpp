@@ -346,9 +346,9 @@ TEST_P(CaptureThroughSigrok, SessionsAndCsvGiveTheSameFramesAndVerdicts) {
     for (const fs::path& file : {sr, csv}) {
       auto from = o;
       from.file = file.string();
-      from.clock = "clock";
-      from.data = "data";
-      from.data_enable = "data_driver_enable";
+      from.clock = "encoder_clock";
+      from.data = "encoder_data";
+      from.data_enable = "encoder_data_driver_enable";
       const auto r = scenarios::check_capture(from);
       EXPECT_EQ(r.resolution, period) << file;
       expect_like_exact(exact, r, file.extension().string() + " at " + sim::format_time(period));
