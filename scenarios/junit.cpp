@@ -44,8 +44,66 @@ std::string classname(const std::string& suite_name, const std::string& file) {
 
 }  // namespace
 
+namespace {
+
+// "outcomes.ok" belongs to the group "outcomes"; "positions_match_encoder" is a group of its own.
+std::string group_of(const std::string& expectation) { return expectation.substr(0, expectation.find('.')); }
+
+// A test case per group of each scenario's expectations, in the order they were judged.
+std::string expectation_cases(const std::vector<ScenarioResult>& results, const std::string& suite_name,
+                              const std::vector<NotRun>& not_run) {
+  struct Case {
+    std::string classname, name, file, failure, text, error;
+  };
+  std::vector<Case> cases;
+  for (const auto& r : results) {
+    const std::string cls = classname(suite_name, r.file) + "." + r.name;
+    if (!r.incomplete.empty()) cases.push_back({cls, "complete", r.file, "", "", r.incomplete});
+    std::vector<std::string> groups;
+    for (const auto& e : r.expectations)
+      if (group_of(e.name) != "complete" && std::find(groups.begin(), groups.end(), group_of(e.name)) == groups.end())
+        groups.push_back(group_of(e.name));
+    if (groups.empty() && r.incomplete.empty()) cases.push_back({cls, "run", r.file, "", "", ""});
+    for (const auto& g : groups) {
+      Case c{cls, g, r.file, "", "", ""};
+      for (const auto& e : r.expectations) {
+        if (group_of(e.name) != g || e.passed) continue;
+        if (c.failure.empty()) c.failure = e.name + ": " + e.detail;
+        c.text += "expectation " + e.name + ": " + e.detail + "\n";
+      }
+      cases.push_back(c);
+    }
+  }
+  for (const auto& n : not_run) cases.push_back({classname(suite_name, n.file) + "." + n.name, "run", n.file, "", "", n.reason});
+  std::size_t failures = 0, errors = 0;
+  for (const auto& c : cases) (c.error.empty() ? failures : errors) += c.failure.empty() && c.error.empty() ? 0 : 1;
+  const std::string counts = "\" tests=\"" + std::to_string(cases.size()) + "\" failures=\"" + std::to_string(failures) +
+                             "\" errors=\"" + std::to_string(errors) + "\"";
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"" + xml_escape(suite_name) + counts + ">\n";
+  x += "  <testsuite name=\"" + xml_escape(suite_name) + counts + " skipped=\"0\">\n";
+  for (const auto& c : cases) {
+    x += "    <testcase classname=\"" + xml_escape(c.classname) + "\" name=\"" + xml_escape(c.name) + "\" file=\"" +
+         xml_escape(c.file) + "\"";
+    if (c.failure.empty() && c.error.empty()) {
+      x += "/>\n";
+      continue;
+    }
+    x += ">\n";
+    if (!c.error.empty())
+      x += "      <error type=\"" + std::string(c.name == "complete" ? "incomplete" : "not run") + "\" message=\"" +
+           xml_escape(c.error) + "\"/>\n";
+    else
+      x += "      <failure type=\"expectation\" message=\"" + xml_escape(c.failure) + "\">" + xml_escape(c.text) + "</failure>\n";
+    x += "    </testcase>\n";
+  }
+  return x + "  </testsuite>\n</testsuites>\n";
+}
+
+}  // namespace
+
 std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name,
-                      const std::vector<NotRun>& not_run) {
+                      const std::vector<NotRun>& not_run, JunitCases cases) {
+  if (cases == JunitCases::Expectation) return expectation_cases(results, suite_name, not_run);
   std::size_t failures = 0, errors = not_run.size();
   for (const auto& r : results) (r.incomplete.empty() ? failures : errors) += r.passed() ? 0 : 1;
   const std::string tests = std::to_string(results.size() + not_run.size());

@@ -1,9 +1,10 @@
 // JUnit XML for CI servers (Jenkins, GitLab, GitHub test reporters): one <testsuite> for a
-// run, one <testcase> per scenario, a <failure> per scenario whose expectations do not all
-// hold, carrying the violated expectations and the timing violations. No wall-clock times or
+// run, one <testcase> per scenario (or per group of its expectations), a <failure> per test case
+// whose expectations do not all hold, carrying the violated expectations and the timing violations. No wall-clock times or
 // host names: the same run gives the same bytes.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,8 +17,13 @@ namespace endatsim::scenarios {
 struct NotRun {
   std::string file, name, reason;
 };
+// What a <testcase> is: a scenario (its class the scenario's folder: "endatsim.field"), or one
+// group of a scenario's expectations ("outcomes", "violations", "positions_match_encoder"...;
+// its class the folder and the scenario: "endatsim.field.09_cable_changed_while_running"), so
+// that a CI server lists which expectation broke.
+enum class JunitCases : std::uint8_t { Scenario, Expectation };
 std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name = "endatsim",
-                      const std::vector<NotRun>& not_run = {});
+                      const std::vector<NotRun>& not_run = {}, JunitCases cases = JunitCases::Scenario);
 
 // `endatsim check`: one <testsuite> per capture, one <testcase> per row of the timing table; a
 // row with violations or undecided findings fails, a row not applicable or not observable in

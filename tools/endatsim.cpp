@@ -54,7 +54,8 @@ constexpr int kIncomplete = 3;
 int interrupted_status(int signal) { return 128 + signal; }
 
 const char* const kRunUsage =
-    "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH] [--log PATH] [--log-json PATH]\n"
+    "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH [--junit-cases scenario|expectation]]\n"
+    "                    [--log PATH] [--log-json PATH]\n"
     "                    [--seed N] [--verbose|--quiet] [--color auto|always|never]\n"
     "                    [--max-time TIME] [--max-kernel-events N] [--max-script-frames N] [--max-events N] [--max-records N]\n";
 const char* const kSweepUsage =
@@ -222,6 +223,8 @@ po::options_description options_of(Command c) {
           "gtkw", "also write a GTKWave save file (.gtkw) beside each VCD, signals grouped by end")(
           "json", po::value<std::string>(), "write results as JSON to this file")(
           "junit", po::value<std::string>(), "write JUnit XML (one test case per scenario) to this file")(
+          "junit-cases", po::value<std::string>(),
+          "scenario (default): a JUnit test case per scenario; expectation: one per group of its expectations")(
           "log", po::value<std::string>(), "write the decoded transaction log (text; - for stdout)")(
           "log-json", po::value<std::string>(), "write the transaction log as JSON lines (- for stdout)")(
           "seed", po::value<std::string>(), "override every scenario's seed (0 .. 2^64-1)")(
@@ -386,6 +389,7 @@ struct Options {
   std::optional<std::string> log_json;
   std::optional<std::uint64_t> seed;
   bool gtkw = false;
+  scenarios::JunitCases junit_cases = scenarios::JunitCases::Scenario;
   bool verbose = false;
   bool quiet = false;
   std::string color = "auto";
@@ -522,7 +526,7 @@ int run(const Options& o) {
     for (const auto& n : not_run) log.write("# " + n.file + ": " + n.reason + "\n");
   }
   if (junit_file) {
-    junit_file->stream() << scenarios::junit_xml(results, "endatsim", not_run);
+    junit_file->stream() << scenarios::junit_xml(results, "endatsim", not_run, o.junit_cases);
     junit_file->commit();
   }
   if (json_file) {
@@ -716,6 +720,17 @@ int run_command(const po::variables_map& vm) {
   o.log = string_option(vm, "log");
   o.log_json = string_option(vm, "log-json");
   o.gtkw = vm.count("gtkw") != 0;
+  if (const auto cases = string_option(vm, "junit-cases")) {
+    if (*cases != "scenario" && *cases != "expectation") {
+      std::cerr << "endatsim run: --junit-cases expects scenario or expectation, got '" << scenarios::trimmed(*cases) << "'\n";
+      return kBadInput;
+    }
+    if (!o.junit) {
+      std::cerr << "endatsim run: --junit-cases shapes the --junit file; give --junit PATH\n";
+      return kBadInput;
+    }
+    o.junit_cases = *cases == "expectation" ? scenarios::JunitCases::Expectation : scenarios::JunitCases::Scenario;
+  }
   if (o.gtkw && !o.vcd) {
     std::cerr << "endatsim run: --gtkw writes a GTKWave save file beside each --vcd file; give --vcd PATH\n";
     return kBadInput;

@@ -259,6 +259,17 @@ r = run("run", clean, "--vcd", path("with_text.vcd"), "--gtkw", "--quiet")
 r = run("check", path("with_text.vcd"), "--clock", "encoder_clock", "--data", "encoder_data", "--quiet")
 check(r.returncode == 0, "check reads a VCD with a text trace", r)
 
+# --junit-cases expectation: a test case per group of each scenario's expectations, its class the
+# folder and the scenario, so that a CI server lists which expectation broke.
+r = run("run", clean, failing, "--quiet", "--junit", path("cases.xml"), "--junit-cases", "expectation")
+cases = ET.parse(path("cases.xml")).getroot().find("testsuite").findall("testcase")
+broken = [(c.get("classname"), c.get("name")) for c in cases if c.find("failure") is not None]
+check(r.returncode == 1 and broken == [("endatsim.cli.failing", "outcomes")] and
+      ("endatsim.bundled.endat21_1mhz_10m", "outcomes") in [(c.get("classname"), c.get("name")) for c in cases],
+      "--junit-cases expectation", r)
+r = run("run", clean, "--junit", path("cases.xml"), "--junit-cases", "rows")
+check(r.returncode == 2 and "--junit-cases expects scenario or expectation" in r.stderr, "--junit-cases value", r)
+
 if failures:
     print("FAIL:\n" + "\n".join(failures), file=sys.stderr)
     sys.exit(1)
