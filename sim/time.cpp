@@ -1,5 +1,6 @@
 #include "endatsim/sim/time.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <stdexcept>
@@ -73,8 +74,18 @@ std::int64_t parse_quantity(std::string_view text, const std::array<Unit, N>& un
   }
   std::string names;
   for (const Unit& u : units) names += (names.empty() ? "" : ", ") + std::string(u.name);
-  throw std::invalid_argument("expected " + expected + " with a unit (" + names + "), got \"" +
-                              std::string(text) + "\"");
+  // The two mistakes people make most: a micro sign from a datasheet, and the wrong case.
+  std::string hint;
+  const bool micro = unit.find("\xC2\xB5") != std::string_view::npos || unit.find("\xCE\xBC") != std::string_view::npos;
+  if (micro) hint = " (units are ASCII: write u for the micro sign, as in \"2.5 us\")";
+  for (const Unit& u : units)
+    if (!micro && unit.size() == u.name.size() &&
+        std::equal(unit.begin(), unit.end(), u.name.begin(), [](char a, char b) {
+          return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+        }))
+      hint = " (units are case-sensitive: did you mean \"" + std::string(u.name) + "\"?)";
+  throw std::invalid_argument("expected " + expected + " with a unit (" + names + "), got \"" + std::string(text) + "\"" +
+                              hint);
 }
 
 std::string format_scaled(std::int64_t value, std::int64_t scale, std::string_view unit) {

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "endatsim/sim/time.hpp"
 
 using namespace endatsim::sim;
@@ -56,4 +58,23 @@ TEST(TimeParse, RefusesNumbersBeyondTheArithmeticInsteadOfWrapping) {
   EXPECT_EQ(parse_duration("1.00000000000000000000 us"), us(1));  // 20 digits are fine
   EXPECT_EQ(parse_duration("4611686 s"), Time{4'611'686'000'000'000'000});  // below INT64_MAX / 2 ps
   EXPECT_THROW(parse_duration("4611687 s"), std::invalid_argument);
+}
+
+// A micro sign from a datasheet, or a unit in the wrong case, is refused with the fix.
+TEST(TimeParse, TheMicroSignAndTheWrongCaseAreRefusedWithTheFix) {
+  const auto error_of = [](auto parse, const std::string& text) {
+    try {
+      parse(text);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  const auto duration = [](const std::string& t) { return endatsim::sim::parse_duration(t); };
+  const auto frequency = [](const std::string& t) { return endatsim::sim::parse_frequency(t); };
+  EXPECT_NE(error_of(duration, "0.5 \xC2\xB5s").find("(units are ASCII: write u for the micro sign"), std::string::npos);
+  EXPECT_NE(error_of(duration, "0.5 \xCE\xBCs").find("(units are ASCII: write u for the micro sign"), std::string::npos);
+  EXPECT_NE(error_of(duration, "3 MS").find("(units are case-sensitive: did you mean \"ms\"?)"), std::string::npos);
+  EXPECT_NE(error_of(frequency, "2 mhz").find("(units are case-sensitive: did you mean \"MHz\"?)"), std::string::npos);
+  EXPECT_EQ(error_of(duration, "3 weeks").find("(units"), std::string::npos);
 }
