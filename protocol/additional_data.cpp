@@ -1,4 +1,5 @@
 #include "endatsim/protocol/additional_data.hpp"
+#include "endatsim/protocol/indexed_table.hpp"
 
 #include <array>
 
@@ -51,6 +52,8 @@ constexpr std::array kCodes{
     InformationInfo{Type3Error2, "Type III error handling (additional data 2)", "type3_error_2", false,
                     std::nullopt},
 };
+static_assert(indexed_by(kCodes, &InformationInfo::code, Information::Type3Error2),
+              "kCodes: one row per information code, in order");
 
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "endatsim/protocol/memory_area.hpp"
+#include "endatsim/protocol/indexed_table.hpp"
 
 #include <array>
 
@@ -33,6 +34,8 @@ constexpr std::array kAreas{
     MemoryAreaInfo{AsynchronousPosition, 0x60, "Asynchronous position value", "asynchronous_position", true,
                    std::nullopt},
 };
+static_assert(indexed_by(kAreas, &MemoryAreaInfo::area, MemoryArea::AsynchronousPosition),
+              "kAreas: one row per memory area, in order");
 
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "endatsim/protocol/mode_command.hpp"
+#include "endatsim/protocol/indexed_table.hpp"
 
 #include <array>
 
@@ -42,6 +43,8 @@ constexpr std::array kModeCommands{
     ModeCommandInfo{EncoderReceiveCommunicationCommand, 0b010010, V2_2, "Encoder receive communication command",
                     "encoder_receive_communication_command", kPayloadBits, Parameter, false},
 };
+static_assert(indexed_by(kModeCommands, &ModeCommandInfo::command, ModeCommand::EncoderReceiveCommunicationCommand),
+              "kModeCommands: one row per mode command, in order");
 
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "endatsim/protocol/parameters.hpp"
+#include "endatsim/protocol/indexed_table.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -397,6 +398,8 @@ constexpr std::array<FunctionBits, 9> kFunctionBits{{
     {F::MultiturnCounterReset, "multiturn counter reset", 0x1800, 0x0800},
     {F::DiagnosticsReset, "diagnostics reset", 0x2000, 0x2000},
 }};
+static_assert(indexed_by(kFunctionBits, &FunctionBits::function, EncoderFunction::DiagnosticsReset),
+              "kFunctionBits: one row per encoder function, in order");
 }  // namespace
 
 std::span<const FunctionBits> function_initialization_bits() { return kFunctionBits; }
