@@ -1,5 +1,6 @@
 // Rows of table 2.3.2 judged at their limits: t_b, the t_cal minimum, the delay measurement's
-// clock and counter (2.1.2) and t_HI maximum, each just inside (no violation) and just outside
+// clock and counter (2.1.2), t_HI maximum, the recovery time t_m + t_R, the wait after an error,
+// f_c (also for the cable) and the pulse widths, each just inside (no violation) and just outside
 // (a violation) by one picosecond, one count or one hertz, whichever is the quantity's step.
 // The clock's phases are set to the picosecond with a hand-driven clock (HandClock below).
 #include <gtest/gtest.h>
@@ -446,4 +447,67 @@ TEST(CheckerClockFrequency, AboveTheDeclaredEncodersMaximumToTheHertz) {
   EXPECT_EQ(this_encoder(MHz(1) + 1, false, std::nullopt), 0U);  // the model's word 25: 16 MHz
   EXPECT_EQ(this_encoder(MHz(2), true, std::nullopt), 0U);
   EXPECT_EQ(this_encoder(MHz(2) + 4, true, std::nullopt), 2U);
+}
+
+TEST(CheckerBoundaries, RecoveryTimeByOnePicosecond) {
+  auto s = make_scenario(1, MHz(1), false, 2);
+  s.script.back().cycle = Time::zero();
+  using checker::Verdict;
+  // This encoder: gap = t_m_wait + t_r_wait = 20.5 us = its t_m + t_R; the envelope wants 30.5 us.
+  s.master.t_m_wait = us(20);
+  auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery), 1U);
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery, Verdict::SpecEnvelope), 1U);
+  EXPECT_TRUE(checker::conclude(r.violations).this_encoder);
+  EXPECT_FALSE(checker::conclude(r.violations).spec_envelope);
+  s.master.t_m_wait = us(20) - ps(1);
+  r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kRecovery, Verdict::Both), 1U);
+  EXPECT_FALSE(checker::conclude(r.violations).this_encoder);
+  // The envelope: t_m 30 us + t_R 500 ns.
+  s.master.t_m_wait = us(30);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kRecovery), 0U);
+  s.master.t_m_wait = us(30) - ps(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kRecovery, Verdict::SpecEnvelope), 1U);
+}
+
+TEST(CheckerBoundaries, WaitAfterErrorHandlingByOnePicosecond) {
+  auto s = make_scenario(1, MHz(1), false, 1);
+  test_support::prepend_disturbed_read(s, 0b000101);
+  s.master.error_wait = ns(29'500);  // + t_r_wait 0.5 us = 30 us
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kErrorRecovery), 0U);
+  s.master.error_wait = ns(29'500) - ps(1);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kErrorRecovery), 1U);
+}
+
+TEST(CheckerBoundaries, ClockFrequencyByOnePicosecondOfPeriod) {
+  auto s = make_scenario(1, MHz(2), false, 1);  // period 500000 ps
+  s.checker.f_c_tolerance_ppm = 0;
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 0U);
+  s.master.f_c = Hertz{2'000'004};  // period 499999 ps
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 1U);
+}
+
+TEST(CheckerBoundaries, ClockFrequencyForTheCableByOnePicosecondOfPeriod) {
+  // 30 m without compensation: 2 t_D max = 2 x (0.2 + 0.01 x 30) us = 1 us (2.1.1 note 4).
+  auto s = make_scenario(30, MHz(1), false, 1);
+  s.checker.f_c_tolerance_ppm = 0;
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency), 0U);
+  s.master.f_c = Hertz{1'000'001};  // period 999999 ps
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_violations(r, checker::check::kClockFrequency), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kClockFrequency) {
+      EXPECT_EQ(v.limit, "period >= 2 t_D = 1 us");
+      EXPECT_EQ(v.measured, "1.000001 MHz over 30 m");
+      EXPECT_NE(v.spec.find("2.1.1 note 4"), std::string::npos) << v.spec;
+    }
+}
+
+TEST(CheckerBoundaries, PulseWidthByOnePicosecond) {
+  auto s = make_scenario(1, kHz(2500), false, 1);  // 400000 ps: HIGH and LOW 200000 ps = 0.2 us
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kPulseHigh), 0U);
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kPulseLow), 0U);
+  s.master.f_c = Hertz{2'500'007};  // 399999 ps: HIGH 199999 ps
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kPulseHigh), 1U);
 }

@@ -229,3 +229,13 @@ TEST(CheckerContinuousClock, ADriverThatGoesOffBetweenWordsLeavesDataFloating) {
       EXPECT_GT(v.clock.value_or(0), 43U) << "after the first word";
     }
 }
+
+TEST(CheckerContinuousClock, EveryWordIsJudgedOnItsOwn) {
+  // 2 MHz over 40 m without compensation: t_D 0.6 us > T/2, every word is sampled off-window.
+  auto s = make_scenario(40, MHz(2), false, 1);
+  s.encoder.version = protocol::EndatVersion::V2_1;
+  s.script.back().command = protocol::ModeCommand::EncoderSendPositionValues;
+  s.script.back().continuous_words = 4;
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kSamplingWindow), 5U);
+}

@@ -428,7 +428,7 @@ TEST(ModeCommandType1, A21EncoderAnswers22CommandsAsNotSupported) {
   EXPECT_EQ(b.sampler.slots(10, 20), "11111111111");  // docs/model.md §10, hypothesis A: DATA HIGH
 }
 
-TEST(ModeCommandCommunicationCommand, HighImpedanceBroadcastSilencesTheEncoder) {
+TEST(ModeCommandEncoderReceiveCommunicationCommand, HighImpedanceBroadcastSilencesTheEncoder) {
   // 2.10 / A2 cause 6: address 0000h with "data driver at high-impedance": the acknowledgment
   // is inverted, then the encoder keeps off the bus.
   Bench b(params());
