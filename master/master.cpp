@@ -42,6 +42,7 @@ std::string_view to_string(FrameOutcome o) {
     case FrameOutcome::Type1Error: return "type1_error";
     case FrameOutcome::Type2Error: return "type2_error";
     case FrameOutcome::EchoMismatch: return "echo_mismatch";
+    case FrameOutcome::TooFewClocks: return "too_few_clocks";
   }
   return "?";
 }
@@ -312,7 +313,7 @@ void Master::note_failures() {
   if (frames_.back().measurement) return;
   const auto o = frames_.back().outcome;
   const bool failed = o == FrameOutcome::CrcError || o == FrameOutcome::NoStartBit || o == FrameOutcome::Type1Error ||
-                      o == FrameOutcome::EchoMismatch;
+                      o == FrameOutcome::EchoMismatch || o == FrameOutcome::TooFewClocks;
   failures_in_a_row_ = failed ? failures_in_a_row_ + 1 : 0;
   const unsigned k = params_.careful.remeasure_after_crc_errors;
   if (k != 0 && failures_in_a_row_ >= k && params_.delay_compensation) {
@@ -585,7 +586,7 @@ void Master::rising_edge() {
 
 void Master::incomplete(std::uint64_t tag) {
   if ((tag >> 32) != epoch_ || rx_ != Rx::Receiving) return;
-  end_reception(FrameOutcome::CrcError);
+  end_reception(FrameOutcome::TooFewClocks);
 }
 
 void Master::sample(std::uint64_t tag) {

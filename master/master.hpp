@@ -5,6 +5,7 @@
 // is in safety.hpp, the diagnosis it collects for a service engineer in diagnostics.hpp.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -129,7 +130,12 @@ struct MasterParams {
 
 // Type2Error: a 2.1 parameter frame whose echo came back inverted (A2 type II). EchoMismatch:
 // one whose echo differs from what was sent otherwise (CarefulMaster::verify_echo).
-enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error, Type2Error, EchoMismatch };
+// TooFewClocks: the master's clock pulses ended before the answer it expected was complete (the
+// start bit came later than the pulses it gives allow); no CRC was judged.
+enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error, Type2Error, EchoMismatch, TooFewClocks };
+inline constexpr std::array kFrameOutcomes{FrameOutcome::Ok,         FrameOutcome::CrcError,   FrameOutcome::NoStartBit,
+                                           FrameOutcome::Type1Error, FrameOutcome::Type2Error, FrameOutcome::EchoMismatch,
+                                           FrameOutcome::TooFewClocks};
 std::string_view to_string(FrameOutcome o);
 
 // One additional datum as received (2.3.5).
