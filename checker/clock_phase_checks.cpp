@@ -70,10 +70,17 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
   const auto emit = [&](const WorstPhase& w, std::string_view name, const std::string& bound, const std::string& spec,
                         const char* what, Verdict verdict = Verdict::Both) {
     report_unless_passed(w.decision,
-                         {std::string(name), spec, ObservationPoint::EncoderPins, w.at, f.header.index, w.clock,
-                          format_time(w.width), bound, Severity::Error,
-                          std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)",
-                          verdict});
+        {.check = std::string(name),
+         .spec = spec,
+         .where = ObservationPoint::EncoderPins,
+         .time = w.at,
+         .frame = f.header.index,
+         .clock = w.clock,
+         .measured = format_time(w.width),
+         .limit = bound,
+         .severity = Severity::Error,
+         .message = std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)",
+         .verdict = verdict});
   };
   const std::string at_least_min = ">= " + format_time(limit::kPulseWidthMin);
   emit(low, check::kPulseLow, at_least_min, "2.3.2 t_LO minimum 0.2 us (without delay compensation)",
@@ -124,11 +131,17 @@ void TimingChecker::check_on_off_ratio(const PinFrame& f) {
     worst.add(j.decision, w, k, at, true, is_high ? "HIGH" : "LOW");
   });
   report_unless_passed(worst.decision,
-                       {std::string(check::kOnOffRatio), spec, ObservationPoint::EncoderPins, worst.at,
-                        f.header.index, worst.clock, format_time(worst.width), bound,
-                        Severity::Error,
-                        "CLOCK " + std::string(worst.phase) + " phase too short for the clock's period (" +
-                            std::to_string(worst.count) + " phase(s) in this frame; worst shown)"});
+      {.check = std::string(check::kOnOffRatio),
+       .spec = spec,
+       .where = ObservationPoint::EncoderPins,
+       .time = worst.at,
+       .frame = f.header.index,
+       .clock = worst.clock,
+       .measured = format_time(worst.width),
+       .limit = bound,
+       .severity = Severity::Error,
+       .message = "CLOCK " + std::string(worst.phase) + " phase too short for the clock's period ("
+                  + std::to_string(worst.count) + " phase(s) in this frame; worst shown)"});
 }
 
 }  // namespace endatsim::checker

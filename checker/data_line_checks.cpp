@@ -44,11 +44,16 @@ std::optional<Time> TimingChecker::turnaround_bound() const {
 
 void TimingChecker::judge_release(const Release& r, Time bound) {
   report_unless_passed(at_most(r.t_z, bound, params_.resolution),
-                       {std::string(check::kDriverOff), "2.3.2 t_z (clock low to data inactive)",
-                        ObservationPoint::EncoderPins, r.at, current_.header.index, r.clock, format_time(r.t_z),
-                        "<= T = " + format_time(bound), Severity::Error,
-                        "the encoder released DATA too late after FE1: the master drives from FE2"},
-                       "FE1 release");
+      {.check = std::string(check::kDriverOff),
+       .spec = "2.3.2 t_z (clock low to data inactive)",
+       .where = ObservationPoint::EncoderPins,
+       .time = r.at,
+       .frame = current_.header.index,
+       .clock = r.clock,
+       .measured = format_time(r.t_z),
+       .limit = "<= T = " + format_time(bound),
+       .severity = Severity::Error,
+       .message = "the encoder released DATA too late after FE1: the master drives from FE2"}, "FE1 release");
 }
 
 // On the wires alone the frame's f_c shows from its second rising edge, after the release: the
@@ -85,19 +90,33 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
     const Time period = turnaround_bound().value_or(limit::kPeriodAtFcMin);
     const unsigned turnaround = position::kTurnaround + current_.header.payload_bits;
     if (current_.falling.size() < turnaround) {
-      report({std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
-              now, current_.header.index, clock, "before FE" + std::to_string(turnaround),
-              "after FE" + std::to_string(turnaround), Severity::Error,
-              "the encoder drove DATA while the master still sends the mode command"}, "turnaround");
+      report({.check = std::string(check::kDriverOn),
+              .spec = "2.3.2 t_OE (clock low to data active)",
+              .where = ObservationPoint::EncoderPins,
+              .time = now,
+              .frame = current_.header.index,
+              .clock = clock,
+              .measured = "before FE" + std::to_string(turnaround),
+              .limit = "after FE" + std::to_string(turnaround),
+              .severity = Severity::Error,
+              .message = "the encoder drove DATA while the master still sends the mode command"}, "turnaround");
       return;
     }
     // Read from FE9, after which the master has released DATA; the alternative reading starts
     // at FE10 and would allow one more period.
     const Time t_oe = now - current_.falling[turnaround - 1];
-    report_unless_passed(at_most(t_oe, period, params_.resolution), {std::string(check::kDriverOn), "2.3.2 t_OE (clock low to data active)", ObservationPoint::EncoderPins,
-              now, current_.header.index, clock, format_time(t_oe), "<= T = " + format_time(period), Severity::Error,
-              "the encoder took longer than one clock period after FE" + std::to_string(turnaround) +
-                  " to drive DATA"}, "turnaround");
+    report_unless_passed(at_most(t_oe, period, params_.resolution),
+        {.check = std::string(check::kDriverOn),
+         .spec = "2.3.2 t_OE (clock low to data active)",
+         .where = ObservationPoint::EncoderPins,
+         .time = now,
+         .frame = current_.header.index,
+         .clock = clock,
+         .measured = format_time(t_oe),
+         .limit = "<= T = " + format_time(period),
+         .severity = Severity::Error,
+         .message = "the encoder took longer than one clock period after FE" + std::to_string(turnaround)
+                    + " to drive DATA"}, "turnaround");
   }
 }
 
@@ -175,10 +194,17 @@ void TimingChecker::check_calculation_time_maximum() {
   judge(protocol::check::row_index(check::kCalculationTime));
   const Time t_cal = current_.rising[start_clock_ - 1] - current_.fe1;
   const Time bound = limit::kCalculationTimeMax + sim::period_of(current_.header.f_c);
-  report_unless_passed(at_most(t_cal, bound, params_.resolution), {std::string(check::kCalculationTime), "2.3.2 t_cal maximum 1 ms", ObservationPoint::EncoderPins,
-            kernel_.now(), current_.header.index, start_clock_, format_time(t_cal),
-            "<= 1 ms + T = " + format_time(bound), Severity::Error,
-            "the start bit came later than the longest calculation time allows"}, "start bit");
+  report_unless_passed(at_most(t_cal, bound, params_.resolution),
+      {.check = std::string(check::kCalculationTime),
+       .spec = "2.3.2 t_cal maximum 1 ms",
+       .where = ObservationPoint::EncoderPins,
+       .time = kernel_.now(),
+       .frame = current_.header.index,
+       .clock = start_clock_,
+       .measured = format_time(t_cal),
+       .limit = "<= 1 ms + T = " + format_time(bound),
+       .severity = Severity::Error,
+       .message = "the start bit came later than the longest calculation time allows"}, "start bit");
 }
 
 // 2.3.1.1, continuous clock: after the CRC the encoder drives one HIGH bit, LOW bits and the next
@@ -196,13 +222,17 @@ void TimingChecker::next_word_start_bit(unsigned clock) {
   judge(protocol::check::row_index(check::kCalculationTime));
   const unsigned low_bits = clock - low_clock_;
   if (low_bits <= limit::kContinuousClockMaxLowBits) return;
-  report({std::string(check::kCalculationTime),
-          "2.3.1.1 continuous clock: at most 7 LOW bits before the next word (in place of t_cal)",
-          ObservationPoint::EncoderPins, kernel_.now(), current_.header.index + word_, clock,
-          std::to_string(low_bits) + " LOW bits", "<= " + std::to_string(limit::kContinuousClockMaxLowBits) + " LOW bits", Severity::Error,
-          "continuous word " + std::to_string(word_) +
-              ": the start bit came later than the encoder's internal synchronization allows"},
-         "start bit");
+  report({.check = std::string(check::kCalculationTime),
+          .spec = "2.3.1.1 continuous clock: at most 7 LOW bits before the next word (in place of t_cal)",
+          .where = ObservationPoint::EncoderPins,
+          .time = kernel_.now(),
+          .frame = current_.header.index + word_,
+          .clock = clock,
+          .measured = std::to_string(low_bits) + " LOW bits",
+          .limit = "<= " + std::to_string(limit::kContinuousClockMaxLowBits) + " LOW bits",
+          .severity = Severity::Error,
+          .message = "continuous word " + std::to_string(word_)
+                     + ": the start bit came later than the encoder's internal synchronization allows"}, "start bit");
 }
 
 // 2.3.2 t_cal minimum 10.5/f_c: with the clock's first LOW half a period, RE11 comes 10.5 periods
@@ -210,10 +240,16 @@ void TimingChecker::next_word_start_bit(unsigned clock) {
 // duty cycle or t_ST (docs/model.md §1, §7).
 void TimingChecker::check_calculation_time_minimum() {
   if (start_clock_ >= position::kEarliestStartBit) return;
-  report({std::string(check::kCalculationTime), "2.3.2 t_cal minimum 10.5/f_c", ObservationPoint::EncoderPins,
-          kernel_.now(), current_.header.index, start_clock_, "RE" + std::to_string(start_clock_),
-          "RE" + std::to_string(position::kEarliestStartBit) + " or later (10.5 periods after FE1)", Severity::Error,
-          "the start bit came before the shortest calculation time"}, "start bit");
+  report({.check = std::string(check::kCalculationTime),
+          .spec = "2.3.2 t_cal minimum 10.5/f_c",
+          .where = ObservationPoint::EncoderPins,
+          .time = kernel_.now(),
+          .frame = current_.header.index,
+          .clock = start_clock_,
+          .measured = "RE" + std::to_string(start_clock_),
+          .limit = "RE" + std::to_string(position::kEarliestStartBit) + " or later (10.5 periods after FE1)",
+          .severity = Severity::Error,
+          .message = "the start bit came before the shortest calculation time"}, "start bit");
 }
 
 // 2.1 parameter frames: the acknowledgment's start bit waits for the memory access, which
@@ -224,9 +260,17 @@ void TimingChecker::check_memory_access_time() {
   judge(protocol::check::row_index(check::kMemoryAccess));
   const Time t_ac = current_.rising[start_clock_ - 1] - current_.rising[last_payload - 1];
   const Time bound = limit::kMemoryAccessMax + sim::period_of(current_.header.f_c);
-  report_unless_passed(at_most(t_ac, bound, params_.resolution), {std::string(check::kMemoryAccess), "2.3.2 t_ac maximum 12 ms", ObservationPoint::EncoderPins,
-            kernel_.now(), current_.header.index, start_clock_, format_time(t_ac), "<= 12 ms + T = " + format_time(bound),
-            Severity::Error, "the acknowledgment came later than the longest memory access time allows"}, "start bit");
+  report_unless_passed(at_most(t_ac, bound, params_.resolution),
+      {.check = std::string(check::kMemoryAccess),
+       .spec = "2.3.2 t_ac maximum 12 ms",
+       .where = ObservationPoint::EncoderPins,
+       .time = kernel_.now(),
+       .frame = current_.header.index,
+       .clock = start_clock_,
+       .measured = format_time(t_ac),
+       .limit = "<= 12 ms + T = " + format_time(bound),
+       .severity = Severity::Error,
+       .message = "the acknowledgment came later than the longest memory access time allows"}, "start bit");
 }
 
 // t_D ends where the start bit's edge reaches the master logic: one cable delay and one receiver
@@ -273,9 +317,17 @@ void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
   if (start.measurement) delay_measurements_.measured(start.frame, t_d);
   judge(protocol::check::row_index(check::kDataDelay));
   const Time bound = limit::data_delay_max(cable_length_m());
-  report_unless_passed(at_most(t_d, bound, params_.resolution), {std::string(check::kDataDelay), "2.3.2 t_D maximum (0.2 + 0.01 x L) us", ObservationPoint::MasterPins,
-            kernel_.now(), start.frame, start.clock, format_time(t_d), "<= " + format_time(bound), Severity::Error,
-            "the round trip of the line and the encoder is longer than the spec allows"}, "start bit");
+  report_unless_passed(at_most(t_d, bound, params_.resolution),
+      {.check = std::string(check::kDataDelay),
+       .spec = "2.3.2 t_D maximum (0.2 + 0.01 x L) us",
+       .where = ObservationPoint::MasterPins,
+       .time = kernel_.now(),
+       .frame = start.frame,
+       .clock = start.clock,
+       .measured = format_time(t_d),
+       .limit = "<= " + format_time(bound),
+       .severity = Severity::Error,
+       .message = "the round trip of the line and the encoder is longer than the spec allows"}, "start bit");
 }
 
 // 2.3: "the set Data Delay Time with a tolerance of +/-10 % x f_c must not be exceeded": the t_D
@@ -287,11 +339,17 @@ void TimingChecker::check_delay_tolerance(const StartBitInFlight& start, Time t_
   const Time tenth = start.period * limit::kDataDelayTolerancePercent / 100;
   note(check::kDataDelayTolerance, at_most(error, tenth, Time::zero()));
   if (error > tenth)
-    report({std::string(check::kDataDelayTolerance), "2.3 (data delay time within +/-10 % of the period)",
-            ObservationPoint::MasterPins, kernel_.now(), start.frame, start.clock, format_time(error),
-            "<= T/10 = " + format_time(tenth), Severity::Error,
-            "the master compensates with t_D = " + format_time(start.t_d_used) + " but the line's is " +
-                format_time(t_d)}, "start bit");
+    report({.check = std::string(check::kDataDelayTolerance),
+            .spec = "2.3 (data delay time within +/-10 % of the period)",
+            .where = ObservationPoint::MasterPins,
+            .time = kernel_.now(),
+            .frame = start.frame,
+            .clock = start.clock,
+            .measured = format_time(error),
+            .limit = "<= T/10 = " + format_time(tenth),
+            .severity = Severity::Error,
+            .message = "the master compensates with t_D = " + format_time(start.t_d_used) + " but the line's is "
+                       + format_time(t_d)}, "start bit");
 }
 
 }  // namespace endatsim::checker
@@ -322,22 +380,33 @@ void TimingChecker::check_start_delay(const PinFrame& f) {
   const Time t_st = f.rising.front() - f.fe1;
   const bool reduced = params_.t_st_reduced_for_cable;
   const Time required = required_start_delay(f.header.f_c, cable_length_m(), reduced);
-  report_unless_passed(at_least(t_st, required, params_.resolution), {std::string(check::kStartDelay),
-            reduced ? "2.3.2 t_ST and note 8, reduced for the cable (option t_st_reduced_for_cable)"
-                    : "2.3.2 t_ST and note 8",
-            ObservationPoint::EncoderPins, f.fe1, f.header.index, 1U, format_time(t_st), ">= " + format_time(required),
-            Severity::Error,
-            "first LOW phase shorter than t_ST for this clock" + std::string(reduced ? " and cable" : "") +
-                ": the encoder's driver may still be on when the master drives DATA"},
-           "first LOW phase");
+  report_unless_passed(at_least(t_st, required, params_.resolution),
+      {.check = std::string(check::kStartDelay),
+       .spec = reduced ? "2.3.2 t_ST and note 8, reduced for the cable (option t_st_reduced_for_cable)" : "2.3.2 "
+               "t_ST and note 8",
+       .where = ObservationPoint::EncoderPins,
+       .time = f.fe1,
+       .frame = f.header.index,
+       .clock = 1U,
+       .measured = format_time(t_st),
+       .limit = ">= " + format_time(required),
+       .severity = Severity::Error,
+       .message = "first LOW phase shorter than t_ST for this clock" + std::string(reduced ? " and cable" : "")
+                  + ": the encoder's driver may still be on when the master drives DATA"}, "first LOW phase");
   // The maximum is the encoder's own ("see encoder specifications"): no envelope to judge.
   if (!encoder_.t_st_max) return;
   report_unless_passed(at_most(t_st, *encoder_.t_st_max, params_.resolution),
-                       {std::string(check::kStartDelay), "2.3.2 t_ST maximum (see encoder specifications)",
-                        ObservationPoint::EncoderPins, f.fe1, f.header.index, 1U, format_time(t_st),
-                        "<= " + format_time(*encoder_.t_st_max) + " (this encoder's t_ST maximum)", Severity::Error,
-                        "first LOW phase longer than this encoder's datasheet allows", Verdict::ThisEncoder},
-                       "first LOW phase");
+      {.check = std::string(check::kStartDelay),
+       .spec = "2.3.2 t_ST maximum (see encoder specifications)",
+       .where = ObservationPoint::EncoderPins,
+       .time = f.fe1,
+       .frame = f.header.index,
+       .clock = 1U,
+       .measured = format_time(t_st),
+       .limit = "<= " + format_time(*encoder_.t_st_max) + " (this encoder's t_ST maximum)",
+       .severity = Severity::Error,
+       .message = "first LOW phase longer than this encoder's datasheet allows",
+       .verdict = Verdict::ThisEncoder}, "first LOW phase");
 }
 
 void TimingChecker::on_master_driven(std::uint64_t driven) {
@@ -351,9 +420,16 @@ void TimingChecker::check_encoder_sample(unsigned clock) {
   if (floating_reported_) return;
   if (line_.pins(ObservationPoint::EncoderPins).data_driven.read()) return;
   floating_reported_ = true;
-  report({std::string(check::kFloatingData), "2.3 (mode bits taken on rising edges)", ObservationPoint::EncoderPins,
-          kernel_.now(), current_.header.index, clock, "undriven", "driven by the master", Severity::Error,
-          "the encoder took a mode bit from an undriven line (fail-safe level)"}, "mode bits");
+  report({.check = std::string(check::kFloatingData),
+          .spec = "2.3 (mode bits taken on rising edges)",
+          .where = ObservationPoint::EncoderPins,
+          .time = kernel_.now(),
+          .frame = current_.header.index,
+          .clock = clock,
+          .measured = "undriven",
+          .limit = "driven by the master",
+          .severity = Severity::Error,
+          .message = "the encoder took a mode bit from an undriven line (fail-safe level)"}, "mode bits");
 }
 
 // The master's receiver output at its sampling instant shows its pins one receiver delay earlier.
@@ -365,10 +441,16 @@ void TimingChecker::check_master_sample(const DeclaredFrame& frame, unsigned clo
     if (when <= at_pins) driven = value;
   if (driven) return;
   floating_reported_ = true;
-  report({std::string(check::kFloatingData), "2.3 (observe the data line for the start bit)",
-          ObservationPoint::MasterPins, kernel_.now(), frame.index, clock, "undriven", "driven by the encoder",
-          Severity::Error, "the master sampled DATA while no driver was on (fail-safe level)"},
-         field_of(frame, clock));
+  report({.check = std::string(check::kFloatingData),
+          .spec = "2.3 (observe the data line for the start bit)",
+          .where = ObservationPoint::MasterPins,
+          .time = kernel_.now(),
+          .frame = frame.index,
+          .clock = clock,
+          .measured = "undriven",
+          .limit = "driven by the encoder",
+          .severity = Severity::Error,
+          .message = "the master sampled DATA while no driver was on (fail-safe level)"}, field_of(frame, clock));
 }
 
 // The frame needs its last bit clocked out (RE_(s + width - 1)) and may have one more pulse,
@@ -423,21 +505,23 @@ void TimingChecker::judge_polling(const PinFrame& f, Time from, const PollingLim
   const bool encoder_fails = to_encoder != Decision::Pass;
   const std::string symbol(l.symbol);
   const std::string declared = l.declared ? format_time(*l.declared) : "";
-  report_unless_passed(
-      l.declared && encoder_fails ? to_encoder : to_envelope.decision,
-      {std::string(l.check), std::string(l.spec), ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
-       static_cast<unsigned>(f.rising.size()), format_time(polled),
-       !encoder_fails ? ">= " + format_time(l.envelope) + " (spec envelope)"
-       : l.declared   ? ">= " + declared + " (this encoder's " + symbol + ")"
-                      : ">= " + format_time(l.envelope),
-       Severity::Error,
-       !encoder_fails ? "the master stopped polling for the start bit after " + format_time(polled) +
-                            ": suits this encoder (" + symbol + " " + declared + "), but any compliant encoder may take up to " +
-                            format_time(l.envelope)
-       : l.declared   ? "the master stopped polling for the start bit before this encoder's " + symbol
-                      : "the master stopped polling for the start bit before " + symbol + " max",
-       encoder_fails ? Verdict::Both : Verdict::SpecEnvelope},
-      "start-bit polling");
+  report_unless_passed(l.declared && encoder_fails ? to_encoder : to_envelope.decision,
+      {.check = std::string(l.check),
+       .spec = std::string(l.spec),
+       .where = ObservationPoint::EncoderPins,
+       .time = f.rising.back(),
+       .frame = f.header.index,
+       .clock = static_cast<unsigned>(f.rising.size()),
+       .measured = format_time(polled),
+       .limit = !encoder_fails ? ">= " + format_time(l.envelope) + " (spec envelope)" : l.declared ? ">= " + declared
+                + " (this encoder's " + symbol + ")" : ">= " + format_time(l.envelope),
+       .severity = Severity::Error,
+       .message = !encoder_fails ? "the master stopped polling for the start bit after " + format_time(polled)
+                  + ": suits this encoder (" + symbol + " " + declared
+                  + "), but any compliant encoder may take up to "
+                  + format_time(l.envelope) : l.declared ? "the master stopped polling for the start bit before "
+                  "this encoder's " + symbol : "the master stopped polling for the start bit before " + symbol + " max",
+       .verdict = encoder_fails ? Verdict::Both : Verdict::SpecEnvelope}, "start-bit polling");
 }
 
 void TimingChecker::check_clock_count(const PinFrame& f) {
@@ -457,21 +541,41 @@ void TimingChecker::check_clock_count(const PinFrame& f) {
   else if (f.header.supplement && f.header.supplement_last_clock != 0)
     note(check::kClockCount, clocks, f.header.supplement_last_clock, Bound::AtMost, Unit::Count);
   if (clocks < last_bit)
-    report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
-            clocks, std::to_string(clocks) + " pulses", ">= " + std::to_string(last_bit), Severity::Error,
-            "the clock stopped before the encoder's last bit: the encoder hangs in the middle of the cycle"}, "end of frame");
+    report({.check = std::string(check::kClockCount),
+            .spec = spec,
+            .where = ObservationPoint::EncoderPins,
+            .time = f.rising.back(),
+            .frame = f.header.index,
+            .clock = clocks,
+            .measured = std::to_string(clocks) + " pulses",
+            .limit = ">= " + std::to_string(last_bit),
+            .severity = Severity::Error,
+            .message = "the clock stopped before the encoder's last bit: the encoder hangs in the middle of the cycle"},
+            "end of frame");
   else if ((v22 || parameter_frame) && !f.header.supplement && clocks > last_bit + 1)
-    report({std::string(check::kClockCount), spec, ObservationPoint::EncoderPins, f.rising.back(), f.header.index,
-            clocks, std::to_string(clocks) + " pulses", "<= " + std::to_string(last_bit + 1),
-            parameter_frame ? Severity::Error : Severity::Warning,
-            parameter_frame ? "more clock pulses than required: the encoder discards the access (2.4.1)"
-                            : "clock pulses beyond the end of the frame"}, "end of frame");
+    report({.check = std::string(check::kClockCount),
+            .spec = spec,
+            .where = ObservationPoint::EncoderPins,
+            .time = f.rising.back(),
+            .frame = f.header.index,
+            .clock = clocks,
+            .measured = std::to_string(clocks) + " pulses",
+            .limit = "<= " + std::to_string(last_bit + 1),
+            .severity = parameter_frame ? Severity::Error : Severity::Warning,
+            .message = parameter_frame ? "more clock pulses than required: the encoder discards the access "
+                       "(2.4.1)" : "clock pulses beyond the end of the frame"}, "end of frame");
   else if (f.header.supplement && f.header.supplement_last_clock != 0 && clocks > f.header.supplement_last_clock)
-    report({std::string(check::kClockCount), "2.4.2.1 (more clock pulses than necessary after the command supplement)",
-            ObservationPoint::EncoderPins, f.rising.back(), f.header.index, clocks, std::to_string(clocks) + " pulses",
-            "<= " + std::to_string(f.header.supplement_last_clock) + " (the supplement's last bit)", Severity::Error,
-            "more clock pulses than necessary after the command supplement: the encoder outputs an error message "
-            "(A2)"}, "command supplement");
+    report({.check = std::string(check::kClockCount),
+            .spec = "2.4.2.1 (more clock pulses than necessary after the command supplement)",
+            .where = ObservationPoint::EncoderPins,
+            .time = f.rising.back(),
+            .frame = f.header.index,
+            .clock = clocks,
+            .measured = std::to_string(clocks) + " pulses",
+            .limit = "<= " + std::to_string(f.header.supplement_last_clock) + " (the supplement's last bit)",
+            .severity = Severity::Error,
+            .message = "more clock pulses than necessary after the command supplement: the encoder outputs an error "
+                       "message " "(A2)"}, "command supplement");
 }
 
 }  // namespace endatsim::checker

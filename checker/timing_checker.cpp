@@ -192,13 +192,27 @@ void TimingChecker::check_measurement_procedure(const DeclaredFrame& frame) {
   const std::string spec = "2.1.2 propagation-delay measurement";
   judge(protocol::check::row_index(check::kMeasurementProcedure));
   if (f_e * 10 < 72 * master_.f_c)
-    report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
-            std::nullopt, format_frequency(f_e), ">= " + format_frequency(8 * master_.f_c) + " - 10 %",
-            Severity::Error, "counter clock f_e below eight times the intended f_c"});
+    report({.check = std::string(check::kMeasurementProcedure),
+            .spec = spec,
+            .where = ObservationPoint::MasterPins,
+            .time = frame.start,
+            .frame = frame.index,
+            .clock = std::nullopt,
+            .measured = format_frequency(f_e),
+            .limit = ">= " + format_frequency(8 * master_.f_c) + " - 10 %",
+            .severity = Severity::Error,
+            .message = "counter clock f_e below eight times the intended f_c"});
   if (master_.measurements < limit::kMeasurementsMin)
-    report({std::string(check::kMeasurementProcedure), spec, ObservationPoint::MasterPins, frame.start, frame.index,
-            std::nullopt, std::to_string(master_.measurements) + " measurement(s)", ">= 3", Severity::Error,
-            "fewer than three measurements averaged"});
+    report({.check = std::string(check::kMeasurementProcedure),
+            .spec = spec,
+            .where = ObservationPoint::MasterPins,
+            .time = frame.start,
+            .frame = frame.index,
+            .clock = std::nullopt,
+            .measured = std::to_string(master_.measurements) + " measurement(s)",
+            .limit = ">= 3",
+            .severity = Severity::Error,
+            .message = "fewer than three measurements averaged"});
 }
 
 // A frame that measures t_D (2.1.2): declared so by the master, or, on the wires, an "Encoder send
@@ -223,10 +237,17 @@ void TimingChecker::check_measurement_spread(const PinFrame& f) {
     if (!wires_only_ || !encoder_.switched_on_in_run || unmeasured_on_wires_reported_) return;
     unmeasured_on_wires_reported_ = true;
     judge(protocol::check::row_index(check::kMeasurementSpread));
-    report({std::string(check::kMeasurementSpread), spec, ObservationPoint::MasterPins, f.fe1, f.header.index,
-            std::nullopt, "no measurement", ">= 3 measurements at 100 .. 200 kHz", Severity::Error,
-            "the master compensates (f_c " + format_frequency(f.header.f_c) +
-                ") without measuring t_D after switching on"});
+    report({.check = std::string(check::kMeasurementSpread),
+            .spec = spec,
+            .where = ObservationPoint::MasterPins,
+            .time = f.fe1,
+            .frame = f.header.index,
+            .clock = std::nullopt,
+            .measured = "no measurement",
+            .limit = ">= 3 measurements at 100 .. 200 kHz",
+            .severity = Severity::Error,
+            .message = "the master compensates (f_c " + format_frequency(f.header.f_c)
+                       + ") without measuring t_D after switching on"});
     return;
   }
   const auto j = delay_measurements_.compensated(sim::period_of(f.header.f_c), params_.resolution);
@@ -235,20 +256,32 @@ void TimingChecker::check_measurement_spread(const PinFrame& f) {
   // A capture that begins inside the measurements may hold only the last of them.
   const bool count_observable = encoder_.switched_on_in_run || j->first_frame != first_frame_;
   if (!j->enough && count_observable)
-    report({std::string(check::kMeasurementSpread), spec, ObservationPoint::MasterPins, f.fe1, f.header.index,
-            std::nullopt, std::to_string(j->measurements) + " measurement(s)", ">= 3", Severity::Error,
-            "the master compensates after fewer than three measurements of t_D"});
+    report({.check = std::string(check::kMeasurementSpread),
+            .spec = spec,
+            .where = ObservationPoint::MasterPins,
+            .time = f.fe1,
+            .frame = f.header.index,
+            .clock = std::nullopt,
+            .measured = std::to_string(j->measurements) + " measurement(s)",
+            .limit = ">= 3",
+            .severity = Severity::Error,
+            .message = "the master compensates after fewer than three measurements of t_D"});
   note(check::kMeasurementSpread, at_most(j->deviation, j->limit, params_.resolution));
   if (j->consistent) return;
   const std::string which = "measurement " + std::to_string(j->worst + 1) + " of " + std::to_string(j->measurements) +
                             " (frame " + std::to_string(j->worst_frame) + ")";
   report_unless_passed(j->undecided ? Decision::Undecided : Decision::Fail,
-                       {std::string(check::kMeasurementSpread), spec, ObservationPoint::MasterPins, f.fe1,
-                        f.header.index, std::nullopt, format_time(j->deviation) + " from the mean",
-                        "<= T/8 = " + format_time(j->limit) + " (f_c " + format_frequency(f.header.f_c) + ")",
-                        Severity::Error,
-                        "the master compensates with delay measurements that disagree: " + which +
-                            " deviates from the mean of the latest three"});
+      {.check = std::string(check::kMeasurementSpread),
+       .spec = spec,
+       .where = ObservationPoint::MasterPins,
+       .time = f.fe1,
+       .frame = f.header.index,
+       .clock = std::nullopt,
+       .measured = format_time(j->deviation) + " from the mean",
+       .limit = "<= T/8 = " + format_time(j->limit) + " (f_c " + format_frequency(f.header.f_c) + ")",
+       .severity = Severity::Error,
+       .message = "the master compensates with delay measurements that disagree: " + which
+                  + " deviates from the mean of the latest three"});
 }
 
 // 2.3.3, judged at the encoder's pins (power_on.hpp) after each switch-on the run shows.
@@ -266,10 +299,17 @@ void TimingChecker::report_power_on(const std::optional<PowerOnSequence::Judgeme
   if (!j) return;
   judge(protocol::check::row_index(check::kPowerOn));
   for (const auto& f : *j)
-    report_unless_passed(f.decision, {std::string(check::kPowerOn), "2.3.3 power-on conditions (t1, t2, pulse > 125 ns or a request cycle, t3)",
-                                      ObservationPoint::EncoderPins, f.at, f.frame, std::nullopt, f.measured, f.bound,
-                                      Severity::Error, f.message},
-                         "power-on");
+    report_unless_passed(f.decision,
+        {.check = std::string(check::kPowerOn),
+         .spec = "2.3.3 power-on conditions (t1, t2, pulse > 125 ns or a request cycle, t3)",
+         .where = ObservationPoint::EncoderPins,
+         .time = f.at,
+         .frame = f.frame,
+         .clock = std::nullopt,
+         .measured = f.measured,
+         .limit = f.bound,
+         .severity = Severity::Error,
+         .message = f.message}, "power-on");
 }
 
 void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
@@ -291,16 +331,29 @@ void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
   if (frame.compensated) judge(protocol::check::row_index(check::kMeasurementProcedure));
   if (frame.compensated && !measured_ && !unmeasured_reported_) {
     unmeasured_reported_ = true;
-    report({std::string(check::kMeasurementProcedure), "2.1.2 (measure the propagation delay, after each power interruption)",
-            ObservationPoint::MasterPins, frame.start, frame.index, std::nullopt, "no measurement",
-            "a measurement before compensating", Severity::Error,
-            "the master compensates with a delay it never measured on this line"});
+    report({.check = std::string(check::kMeasurementProcedure),
+            .spec = "2.1.2 (measure the propagation delay, after each power interruption)",
+            .where = ObservationPoint::MasterPins,
+            .time = frame.start,
+            .frame = frame.index,
+            .clock = std::nullopt,
+            .measured = "no measurement",
+            .limit = "a measurement before compensating",
+            .severity = Severity::Error,
+            .message = "the master compensates with a delay it never measured on this line"});
   }
   if (frame.compensated && t_d_stale_) {
     t_d_stale_ = false;  // one report per change
-    report({std::string(check::kMeasurementProcedure), "2.1.2 (measure again after every change of the transmission path)",
-            ObservationPoint::MasterPins, frame.start, frame.index, std::nullopt, "t_D from before the change",
-            "a new measurement", Severity::Error, "the master compensates with a delay measured on the old line"});
+    report({.check = std::string(check::kMeasurementProcedure),
+            .spec = "2.1.2 (measure again after every change of the transmission path)",
+            .where = ObservationPoint::MasterPins,
+            .time = frame.start,
+            .frame = frame.index,
+            .clock = std::nullopt,
+            .measured = "t_D from before the change",
+            .limit = "a new measurement",
+            .severity = Severity::Error,
+            .message = "the master compensates with a delay measured on the old line"});
   }
   last_frame_was_measurement_ = frame.measurement;
   frame_starts_.emplace_back(frame.start, frame.index);
@@ -487,9 +540,16 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   if (f.header.measurement) {
     note_range(check::kMeasurementClock, limit::kMeasurementFcMin, limit::kMeasurementFcMax);
     if (fit.below(limit::kMeasurementFcMin, tol) || fit.above(limit::kMeasurementFcMax, tol))
-      report({std::string(check::kMeasurementClock), "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
-              ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc),
-              "100 kHz .. 200 kHz", Severity::Error, "delay measured with a clock outside the prescribed range"});
+      report({.check = std::string(check::kMeasurementClock),
+              .spec = "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
+              .where = ObservationPoint::EncoderPins,
+              .time = at,
+              .frame = f.header.index,
+              .clock = std::nullopt,
+              .measured = format_frequency(fc),
+              .limit = "100 kHz .. 200 kHz",
+              .severity = Severity::Error,
+              .message = "delay measured with a clock outside the prescribed range"});
     return;
   }
   const bool short_tm = f.header.command_type == protocol::EndatVersion::V2_2 && settings_.short_t_m();
@@ -499,9 +559,16 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   }
   if (short_tm &&
       fit.below(limit::kShortRecoveryTimeFcMin, tol))
-    report({std::string(check::kShortRecoveryClock), "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
-            ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), ">= 1 MHz",
-            Severity::Error, "the short recovery time is selected but the clock is slower than 1 MHz"});
+    report({.check = std::string(check::kShortRecoveryClock),
+            .spec = "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
+            .where = ObservationPoint::EncoderPins,
+            .time = at,
+            .frame = f.header.index,
+            .clock = std::nullopt,
+            .measured = format_frequency(fc),
+            .limit = ">= 1 MHz",
+            .severity = Severity::Error,
+            .message = "the short recovery time is selected but the clock is slower than 1 MHz"});
   check_frequency_for_encoder(f, fit);
   check_frequency_for_cable(f, fit);
   const bool compensated = f.header.compensated;
@@ -514,12 +581,27 @@ void TimingChecker::check_frequency(const PinFrame& f) {
     const std::string applied = compensated ? format_frequency(limit::kFcMin) + " .. " + format_frequency(limit::kFcMaxSpecial) +
                                                   " (above 8 MHz only for special applications)"
                                             : range;
-    report({std::string(check::kClockFrequency), spec, ObservationPoint::EncoderPins, at, f.header.index, std::nullopt,
-            format_frequency(fc), applied, Severity::Error, "clock frequency outside the table's range"});
+    report({.check = std::string(check::kClockFrequency),
+            .spec = spec,
+            .where = ObservationPoint::EncoderPins,
+            .time = at,
+            .frame = f.header.index,
+            .clock = std::nullopt,
+            .measured = format_frequency(fc),
+            .limit = applied,
+            .severity = Severity::Error,
+            .message = "clock frequency outside the table's range"});
   } else if (fit.above(max, tol)) {
-    report({std::string(check::kClockFrequency), "2.1.2 (8 .. 16 MHz for special applications)",
-            ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc), range,
-            Severity::Warning, "clock above 8 MHz: only for special applications with short cables (t_ST 1 us at 16 MHz)"});
+    report({.check = std::string(check::kClockFrequency),
+            .spec = "2.1.2 (8 .. 16 MHz for special applications)",
+            .where = ObservationPoint::EncoderPins,
+            .time = at,
+            .frame = f.header.index,
+            .clock = std::nullopt,
+            .measured = format_frequency(fc),
+            .limit = range,
+            .severity = Severity::Warning,
+            .message = "clock above 8 MHz: only for special applications with short cables (t_ST 1 us at 16 MHz)"});
   }
 }
 
@@ -548,14 +630,18 @@ void TimingChecker::check_frequency_for_cable(const PinFrame& f, const FittedFre
   const auto fc = fit.hertz();
   note(check::kClockFrequency, fc, sim::frequency_of(min), Bound::AtMost, Unit::Frequency);
   if (!fit.period_below(min, tol)) return;
-  report({std::string(check::kClockFrequency), "2.1.1 note 4, Figure 2 (without delay compensation: f_c <= 1 / (2 t_D(L)))",
-          ObservationPoint::EncoderPins, f.rising[1], f.header.index, std::nullopt,
-          format_frequency(fc) + " over " + format_length(cable), "period >= 2 t_D = " + format_time(min),
-          Severity::Error,
-          wires_only_ ? "a clock too fast for the cable without delay compensation, and no delay measurement before it: "
-                        "the master samples before the data arrive"
-                      : "a clock too fast for the cable without delay compensation: the master samples before the data "
-                        "arrive"});
+  report({.check = std::string(check::kClockFrequency),
+          .spec = "2.1.1 note 4, Figure 2 (without delay compensation: f_c <= 1 / (2 t_D(L)))",
+          .where = ObservationPoint::EncoderPins,
+          .time = f.rising[1],
+          .frame = f.header.index,
+          .clock = std::nullopt,
+          .measured = format_frequency(fc) + " over " + format_length(cable),
+          .limit = "period >= 2 t_D = " + format_time(min),
+          .severity = Severity::Error,
+          .message = wires_only_ ? "a clock too fast for the cable without delay compensation, and no delay "
+                     "measurement before it: " "the master samples before the data arrive" : "a clock too fast for "
+                     "the cable without delay compensation: the master samples before the data " "arrive"});
 }
 
 // What the declared encoder allows of f_c beyond the table: word 25's maximum (3.9.19), 2 MHz for
@@ -566,9 +652,17 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
   const std::int64_t tol = params_.f_c_tolerance_ppm;
   const Time at = f.rising[1];
   const auto exceeds = [&](sim::Hertz bound, std::string spec, std::string message) {
-    report({std::string(check::kClockFrequency), std::move(spec), ObservationPoint::EncoderPins, at, f.header.index,
-            std::nullopt, format_frequency(fc), "<= " + format_frequency(bound), Severity::Error, std::move(message),
-            Verdict::ThisEncoder});
+    report({.check = std::string(check::kClockFrequency),
+            .spec = std::move(spec),
+            .where = ObservationPoint::EncoderPins,
+            .time = at,
+            .frame = f.header.index,
+            .clock = std::nullopt,
+            .measured = format_frequency(fc),
+            .limit = "<= " + format_frequency(bound),
+            .severity = Severity::Error,
+            .message = std::move(message),
+            .verdict = Verdict::ThisEncoder});
   };
   if (encoder_.f_c_max)
     note(check::kClockFrequency, fc, *encoder_.f_c_max, Bound::AtMost, Unit::Frequency, LimitOf::ThisEncoder);
@@ -583,10 +677,17 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
             "clock above 2 MHz for an EnDat 2.1 encoder, which knows no delay compensation");
   const double cable = cable_length_m();
   if (f.header.compensated && cable > limit::kCompensatedCableMaxMetres && fit.above(limit::kFcMaxWithoutCompensation, tol))
-    report({std::string(check::kClockFrequency), "2.1.2 (with delay compensation up to 100 m of cable)",
-            ObservationPoint::EncoderPins, at, f.header.index, std::nullopt, format_frequency(fc) + " over " +
-            format_length(cable), "100 m", Severity::Warning,
-            "a compensated clock above 2 MHz over more than 100 m of cable: only after consulting the encoder's maker"});
+    report({.check = std::string(check::kClockFrequency),
+            .spec = "2.1.2 (with delay compensation up to 100 m of cable)",
+            .where = ObservationPoint::EncoderPins,
+            .time = at,
+            .frame = f.header.index,
+            .clock = std::nullopt,
+            .measured = format_frequency(fc) + " over " + format_length(cable),
+            .limit = "100 m",
+            .severity = Severity::Warning,
+            .message = "a compensated clock above 2 MHz over more than 100 m of cable: only after consulting the "
+                       "encoder's maker"});
 }
 
 // 2.3.2 "time between cycle t_b, EnDat 2.1 commands: t_b > 1 ms". UNCERTAIN (docs/model.md §7):
@@ -598,11 +699,19 @@ void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_ri
   judge(protocol::check::row_index(check::kTimeBetweenCycles));
   const Time gap = next.fe1 - last_rise;
   report_unless_passed(more_than(gap, limit::kTimeBetweenCyclesMin, params_.resolution),
-         {std::string(check::kTimeBetweenCycles), "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
-          ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(gap), "> 1 ms", Severity::Error,
-          "a 2.1 memory or parameter frame followed the previous frame too soon (read here: last rising edge to FE1 "
-          "of 2.1 frames with 8 + 16 bits; other readings: start to start, or every 2.1 command)"},
-         "between frames");
+      {.check = std::string(check::kTimeBetweenCycles),
+       .spec = "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
+       .where = ObservationPoint::EncoderPins,
+       .time = next.fe1,
+       .frame = next.header.index,
+       .clock = 1U,
+       .measured = format_time(gap),
+       .limit = "> 1 ms",
+       .severity = Severity::Error,
+       .message = "a 2.1 memory or parameter frame followed the previous frame too soon (read here: last rising "
+                  "edge to FE1 of 2.1 frames with 8 + 16 bits; other readings: start to start, or "
+                  "every 2.1 command)"},
+                  "between frames");
 }
 
 void TimingChecker::check_recovery(const PinFrame& next) {
@@ -613,11 +722,16 @@ void TimingChecker::check_recovery(const PinFrame& next) {
   // A2: "After an error handling, the maximum t_m of 30 us must at least be waited".
   if (error_handling_frame_ == index)
     report_unless_passed(at_least(next.fe1 - last_rise, limit::kErrorRecoveryWait, params_.resolution),
-                         {std::string(check::kErrorRecovery), "A2 (wait the maximum t_m after an error handling)",
-                          ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U,
-                          format_time(next.fe1 - last_rise), ">= 30 us", Severity::Error,
-                          "the next frame followed an error handling too soon"},
-                         "between frames");
+        {.check = std::string(check::kErrorRecovery),
+         .spec = "A2 (wait the maximum t_m after an error handling)",
+         .where = ObservationPoint::EncoderPins,
+         .time = next.fe1,
+         .frame = next.header.index,
+         .clock = 1U,
+         .measured = format_time(next.fe1 - last_rise),
+         .limit = ">= 30 us",
+         .severity = Severity::Error,
+         .message = "the next frame followed an error handling too soon"}, "between frames");
   check_time_between_cycles(next, last_rise);
   // The declared encoder's t_m (short where word 3 has activated it) against the envelope's
   // longest t_m for the same setting; t_R is "500 ns .. any" (note 9): the envelope takes 500 ns.
@@ -648,10 +762,17 @@ void TimingChecker::check_recovery(const PinFrame& next) {
                "any compliant encoder may need t_m " + format_time(envelope - limit::kRecoveryTime2Min) + setting +
                " + t_R 500 ns = " + format_time(envelope);
   report_unless_passed(shown,
-                       {std::string(check::kRecovery), "2.3.2 recovery time I (t_m) and II (t_R)",
-                        ObservationPoint::EncoderPins, next.fe1, next.header.index, 1U, format_time(gap), bound,
-                        Severity::Error, message, verdict},
-                       "between frames");
+      {.check = std::string(check::kRecovery),
+       .spec = "2.3.2 recovery time I (t_m) and II (t_R)",
+       .where = ObservationPoint::EncoderPins,
+       .time = next.fe1,
+       .frame = next.header.index,
+       .clock = 1U,
+       .measured = format_time(gap),
+       .limit = bound,
+       .severity = Severity::Error,
+       .message = message,
+       .verdict = verdict}, "between frames");
 }
 
 void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
@@ -693,14 +814,19 @@ void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
   sampling_reported_ = true;
   const Time slot = clock < master_rising_.size() ? arrival(clock + 1) - arrival(clock) : sim::period_of(frame.f_c);
   const Time offset = clock <= master_rising_.size() ? now - arrival(clock) : Time::zero();
-  report({std::string(check::kSamplingWindow), "2.3 (data taken at the falling edge + t_D) and 2.1.2",
-          ObservationPoint::MasterPins, now, frame.index, clock, format_time(offset),
-          format_time(params_.sample_setup) + " .. " + format_time(slot - params_.sample_hold),
-          Severity::Error,
-          "master sampled bit slot " + std::to_string(clock) + " outside its data-valid window (" +
-              (latest == 0 ? std::string("no bit had arrived yet")
-                           : "the line carried slot " + std::to_string(latest)) +
-              "; true round trip " + format_time(rt) + ", t_D used " + format_time(frame.t_d_used) + ")"}, field_of(frame, clock));
+  report({.check = std::string(check::kSamplingWindow),
+          .spec = "2.3 (data taken at the falling edge + t_D) and 2.1.2",
+          .where = ObservationPoint::MasterPins,
+          .time = now,
+          .frame = frame.index,
+          .clock = clock,
+          .measured = format_time(offset),
+          .limit = format_time(params_.sample_setup) + " .. " + format_time(slot - params_.sample_hold),
+          .severity = Severity::Error,
+          .message = "master sampled bit slot " + std::to_string(clock) + " outside its data-valid window ("
+                     + (latest == 0 ? std::string("no bit had arrived yet") : "the line carried slot "
+                     + std::to_string(latest)) + "; true round trip " + format_time(rt) + ", t_D used "
+                     + format_time(frame.t_d_used) + ")"}, field_of(frame, clock));
 }
 
 void TimingChecker::on_frame_end(const DeclaredFrame& frame) {
@@ -736,12 +862,18 @@ void TimingChecker::check_access_while_busy(const AccessEvidence& frame) {
   if (!access_21 && !access_22) return;
   if (awaiting_not_busy_) {
     judge(protocol::check::row_index(check::kAccessWhileBusy));
-    report({std::string(check::kAccessWhileBusy), "2.5.1, 2.6.1 (no access while Busy)", ObservationPoint::EncoderPins,
-            frame.start, frame.index, std::nullopt, std::string(info.key),
-            "a frame with Busy = 0 after the access of frame #" + std::to_string(*awaiting_not_busy_), Severity::Error,
-            "a memory access or reset while the encoder may still be busy with the 2.2 access of frame #" +
-                std::to_string(*awaiting_not_busy_) + ": no frame since showed Busy = 0 in additional data 1"},
-           access_22 ? "command supplement" : "mode command");
+    report({.check = std::string(check::kAccessWhileBusy),
+            .spec = "2.5.1, 2.6.1 (no access while Busy)",
+            .where = ObservationPoint::EncoderPins,
+            .time = frame.start,
+            .frame = frame.index,
+            .clock = std::nullopt,
+            .measured = std::string(info.key),
+            .limit = "a frame with Busy = 0 after the access of frame #" + std::to_string(*awaiting_not_busy_),
+            .severity = Severity::Error,
+            .message = "a memory access or reset while the encoder may still be busy with the 2.2 access of frame #"
+                       + std::to_string(*awaiting_not_busy_) + ": no frame since showed Busy = 0 in additional data 1"},
+                       access_22 ? "command supplement" : "mode command");
   } else if (access_22 || awaiting_known_) {
     judge(protocol::check::row_index(check::kAccessWhileBusy));
   }
@@ -775,13 +907,18 @@ void TimingChecker::check_busy_time(const AccessEvidence& frame) {
   const Time busy_for = frame.start - *busy_since_;
   const Time bound = limit::kMemoryAccessMax + sim::period_of(frame.f_c);
   if (busy_reported_) return;
-  busy_reported_ = report_unless_passed(
-      at_most(busy_for, bound, params_.resolution),
-      {std::string(check::kMemoryAccess), "2.3.2 t_ac maximum 12 ms (EnDat 2.2: busy bit)", ObservationPoint::MasterPins,
-       frame.start, frame.index, std::nullopt, "busy after " + format_time(busy_for),
-       "<= 12 ms + T = " + format_time(bound), Severity::Error,
-       "the encoder's memory access outlasts the longest access time: Busy is still set"},
-      "additional data 1");
+  busy_reported_ = report_unless_passed(at_most(busy_for, bound, params_.resolution),
+      {.check = std::string(check::kMemoryAccess),
+       .spec = "2.3.2 t_ac maximum 12 ms (EnDat 2.2: busy bit)",
+       .where = ObservationPoint::MasterPins,
+       .time = frame.start,
+       .frame = frame.index,
+       .clock = std::nullopt,
+       .measured = "busy after " + format_time(busy_for),
+       .limit = "<= 12 ms + T = " + format_time(bound),
+       .severity = Severity::Error,
+       .message = "the encoder's memory access outlasts the longest access time: Busy is still set"},
+       "additional data 1");
 }
 
 void TimingChecker::begin_capture(Time start, bool at_rest) {
@@ -812,11 +949,17 @@ void TimingChecker::finish() {
     std::optional<std::uint64_t> frame;
     for (const auto& [start, index] : frame_starts_)
       if (start <= c.start) frame = index;
-    report({std::string(check::kContention), "2.3 (collision between the data drivers)", c.where, c.start,
-            frame, std::nullopt, format_time(end - c.start), "0 ps (one driver at a time)", Severity::Error,
-            c.between_encoders ? "two encoders on the bus drove DATA at the same time (2.10)"
-                               : "master and encoder drove DATA at the same time"},
-           frame ? "inside a frame" : "between frames");
+    report({.check = std::string(check::kContention),
+            .spec = "2.3 (collision between the data drivers)",
+            .where = c.where,
+            .time = c.start,
+            .frame = frame,
+            .clock = std::nullopt,
+            .measured = format_time(end - c.start),
+            .limit = "0 ps (one driver at a time)",
+            .severity = Severity::Error,
+            .message = c.between_encoders ? "two encoders on the bus drove DATA at the same time (2.10)" : "master "
+                       "and encoder drove DATA at the same time"}, frame ? "inside a frame" : "between frames");
   }
   std::stable_sort(violations_.begin(), violations_.end(),
                    [](const Violation& a, const Violation& b) { return a.time < b.time; });
