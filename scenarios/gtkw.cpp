@@ -52,9 +52,13 @@ std::string gtkw_save_file(const ScenarioResult& result, const std::string& vcd_
 
   char zoom[32];
   std::snprintf(zoom, sizeof zoom, "%.6f", view.zoom);
-  std::string text = "[*] endatsim " + result.name + "\n[dumpfile] \"" +
-                     std::filesystem::absolute(vcd_path).lexically_normal().string() + "\"\n[size] " + std::to_string(kWindowWidth) + " " + std::to_string(kWindowHeight) + "\n[timestart] " +
-                     std::to_string(view.start.count()) + "\n*" + zoom + " " + std::to_string(view.marker.count());
+  std::string title = result.name;  // a comment line: a name from a file must not end it early
+  std::replace_if(title.begin(), title.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::string text = "[*] endatsim " + title + "\n";
+  text += "[dumpfile] \"" + std::filesystem::absolute(vcd_path).lexically_normal().string() + "\"\n";
+  text += "[size] " + std::to_string(kWindowWidth) + " " + std::to_string(kWindowHeight) + "\n";
+  text += "[timestart] " + std::to_string(view.start.count()) + "\n";
+  text += "*" + std::string(zoom) + " " + std::to_string(view.marker.count());
   for (const auto t : named) text += " " + std::to_string(t.count());
   text += "\n";
   const std::string scope = std::string(kWaveformScope) + ".";

@@ -2,7 +2,8 @@
 // A GTKWave save file (.gtkw) for a run's waveform: it opens on the first frame that is not a
 // propagation-delay measurement (the view starts a little before its FE1 and is zoomed to show
 // the whole frame; the primary marker sits at FE1), puts a named marker (A, B, ...) at each of
-// the first 26 violations, and shows the signals grouped by end, the master's first.
+// the first 26 violations, and shows the signals grouped by end, the master's first, with the
+// text trace of the decoded frames (RunOptions::vcd_decoded) among the master's.
 
 #include <string>
 

@@ -1,9 +1,12 @@
 // JUnit XML, the decoded transaction log and frame diagrams, from real runs of bundled scenarios.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
+#include <vector>
 
 #include "endatsim/scenarios/diagram.hpp"
+#include "endatsim/scenarios/gtkw.hpp"
 #include "endatsim/scenarios/junit.hpp"
 #include "endatsim/scenarios/scenarios.hpp"
 #include "endatsim/scenarios/transaction_log.hpp"
@@ -229,4 +232,25 @@ TEST(Diagram, TheSubtitleNamesTheCompensationInWindowsToo) {
   const auto window = scenarios::frame_diagram(s, o).svg;
   EXPECT_NE(window.find("delay compensation on"), std::string::npos);
   EXPECT_EQ(window.find("no delay compensation"), std::string::npos);
+}
+
+// The GTKWave save file: opens on the first frame that is not a delay measurement, named markers
+// at the violations in time order, and a scenario name from a file cannot break its lines.
+TEST(Gtkw, OpensOnTheFirstFrameWithMarkersAtTheViolations) {
+  auto r = run_bundled("endat22_2mhz_100m_uncompensated");
+  const auto& first = r.frames.front();  // no delay measurement in this scenario
+  const auto length = first.end - first.start;
+  auto text = scenarios::gtkw_save_file(r, "/tmp/w.vcd");
+  EXPECT_NE(text.find("[timestart] " + std::to_string(std::max<std::int64_t>(0, (first.start - length / 10).count())) + "\n"),
+            std::string::npos) << text;
+  std::vector<std::int64_t> times;
+  for (const auto& v : r.violations) times.push_back(v.time.count());
+  std::sort(times.begin(), times.end());
+  EXPECT_NE(text.find("\n*-"), std::string::npos);
+  EXPECT_NE(text.find(" " + std::to_string(first.start.count()) + " " + std::to_string(times.front()) + " "),
+            std::string::npos) << text;
+  EXPECT_NE(text.find("endat.decoded\n"), std::string::npos);
+  r.name = "two\nlines";
+  text = scenarios::gtkw_save_file(r, "/tmp/w.vcd");
+  EXPECT_EQ(text.rfind("[*] endatsim two lines\n", 0), 0U) << text;
 }
