@@ -5,6 +5,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <numeric>
 #include <tuple>
 
 #include "endatsim/checker/clock_fit.hpp"
@@ -45,15 +46,37 @@ std::string_view to_string(Severity s) {
 }
 
 void TimingChecker::report(Finding f, std::string_view field) {
-  Tally& t = tally_.at(protocol::check::row_of(f.check));
+  report(Violation{std::move(f), std::string(field)}, std::nullopt);
+}
+
+// `contention`: the line's sequence number of the contention reported (Contention::sequence).
+void TimingChecker::report(Violation v, std::optional<std::uint64_t> contention) {
+  Tally& t = tally_.at(protocol::check::row_of(v.check));
   const std::uint64_t kept = t.errors + t.warnings + t.undecided;
-  ++(f.severity == Severity::Error ? t.errors : f.severity == Severity::Warning ? t.warnings : t.undecided);
-  conclusion_.count(f.severity, f.verdict);
+  ++(v.severity == Severity::Error ? t.errors : v.severity == Severity::Warning ? t.warnings : t.undecided);
+  conclusion_.count(v.severity, v.verdict);
   if (kept >= params_.max_findings_per_check) {
     ++not_kept_;
+    // Contentions are reported as they end, not in the order they began: the row keeps the ones
+    // that began first, as when finish() reported them all in that order.
+    const auto& latest = latest_contention_kept_;
+    if (!contention || !latest || *contention_of_[*latest] < *contention) return;
+    violations_[*latest] = std::move(v);
+    contention_of_[*latest] = contention;
+    find_latest_contention_kept();
     return;
   }
-  violations_.push_back({std::move(f), std::string(field)});
+  violations_.push_back(std::move(v));
+  contention_of_.push_back(contention);
+  if (contention && (!latest_contention_kept_ || *contention_of_[*latest_contention_kept_] < *contention))
+    latest_contention_kept_ = violations_.size() - 1;
+}
+
+void TimingChecker::find_latest_contention_kept() {
+  latest_contention_kept_.reset();
+  for (std::size_t i = 0; i < violations_.size(); ++i)
+    if (contention_of_[i] && (!latest_contention_kept_ || *contention_of_[*latest_contention_kept_] < *contention_of_[i]))
+      latest_contention_kept_ = i;
 }
 
 bool TimingChecker::report_unless_passed(Decision d, Finding f, std::string_view field) {
@@ -183,6 +206,11 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
   encoder_pins.data.on_change(sim::bind<&TimingChecker::on_encoder_data>(this));
   line.master().data_in.on_change(sim::bind<&TimingChecker::on_master_data>(this));
   line.pins(ObservationPoint::MasterPins).data_driven.on_change(sim::bind<&TimingChecker::on_master_driven>(this));
+  // Contentions that began before the checker (those the line has logged) are judged too.
+  for (const line::Contention& c : line.contentions())
+    if (contentions_reported() && (!params_.recorded_at || c.where == *params_.recorded_at))
+      contentions_.push_back({c, std::nullopt});
+  line.on_contention([this](const line::Contention& c) { on_contention(c); });
 }
 
 void TimingChecker::check_measurement_procedure(const DeclaredFrame& frame) {
@@ -319,6 +347,7 @@ void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
     wires_only_ = false;
     in_frame_ = false;
     frame_starts_.clear();
+    for (PendingContention& p : contentions_) p.frame.reset();
     previous_end_.reset();
     error_handling_frame_.reset();
   }
@@ -356,7 +385,7 @@ void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
             .message = "the master compensates with a delay measured on the old line"});
   }
   last_frame_was_measurement_ = frame.measurement;
-  frame_starts_.emplace_back(frame.start, frame.index);
+  contention_frame_started(frame.start, frame.index);
   if (!first_frame_) first_frame_ = frame.index;
   // The answer as the encoder sends it: its own position width, the additional data the master
   // selected.
@@ -382,6 +411,7 @@ void TimingChecker::on_master_clock(std::uint64_t level) {
 
 void TimingChecker::on_encoder_clock(std::uint64_t level) {
   const Time now = kernel_.now();
+  if (!contentions_.empty()) settle_contentions();
   power_on_.clock(now, level != 0);
   if (!mode_decided_ && level == 0) {  // a master declares its frames before their FE1 gets here
     mode_decided_ = true;
@@ -474,7 +504,7 @@ void TimingChecker::begin_wire_frame(Time now) {
   // The master's edges of this frame at its logic: from its FE1, one clock path earlier.
   const Time master_fe1 = now - clock_path();
   std::erase_if(master_rising_, [&](Time t) { return t < master_fe1; });
-  frame_starts_.emplace_back(master_fe1, started->index);
+  contention_frame_started(master_fe1, started->index);
   if (!first_frame_) first_frame_ = started->index;
   start_data_line_checks();
   recovery_checked_ = false;  // once the mode command is known (t_b depends on it)
@@ -939,30 +969,105 @@ void TimingChecker::finish() {
     in_frame_ = false;
   }
   report_power_on(power_on_.finish());
-  for (const line::Contention& c : line_.contentions()) {
-    const Time end = c.end == Time::max() ? kernel_.now() : c.end;
-    // One recorded DATA wire shows no collision; two drivers handing over at the same
-    // picosecond do not collide.
-    if (!params_.driver_enables_observable || !params_.master_enable_observable || end == c.start) continue;
-    if (params_.recorded_at && c.where != *params_.recorded_at) continue;
-    // The frame that had begun (FE1 at the master logic) when the contention began.
-    std::optional<std::uint64_t> frame;
-    for (const auto& [start, index] : frame_starts_)
-      if (start <= c.start) frame = index;
-    report({.check = std::string(check::kContention),
-            .spec = "2.3 (collision between the data drivers)",
-            .where = c.where,
-            .time = c.start,
-            .frame = frame,
-            .clock = std::nullopt,
-            .measured = format_time(end - c.start),
-            .limit = "0 ps (one driver at a time)",
-            .severity = Severity::Error,
-            .message = c.between_encoders ? "two encoders on the bus drove DATA at the same time (2.10)" : "master "
-                       "and encoder drove DATA at the same time"}, frame ? "inside a frame" : "between frames");
+  settle_contentions(true);
+  // In time order; among findings of the same time in the order reported, but contentions after
+  // the others in the order they began: where they stood when finish() reported every contention
+  // (before any listener), so the order is the same whenever they are reported.
+  std::vector<std::size_t> order(violations_.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (violations_[a].time != violations_[b].time) return violations_[a].time < violations_[b].time;
+    const auto& ca = contention_of_[a];
+    const auto& cb = contention_of_[b];
+    if (ca.has_value() != cb.has_value()) return !ca.has_value();
+    return ca.has_value() && *ca < *cb;
+  });
+  std::vector<Violation> sorted;
+  std::vector<std::optional<std::uint64_t>> sorted_of;
+  sorted.reserve(order.size());
+  sorted_of.reserve(order.size());
+  for (const std::size_t i : order) {
+    sorted.push_back(std::move(violations_[i]));
+    sorted_of.push_back(contention_of_[i]);
   }
-  std::stable_sort(violations_.begin(), violations_.end(),
-                   [](const Violation& a, const Violation& b) { return a.time < b.time; });
+  violations_ = std::move(sorted);
+  contention_of_ = std::move(sorted_of);
+  find_latest_contention_kept();
+  finished_ = true;
+}
+
+// 2.3: one driver on DATA at a time. The line tells each contention as it begins and ends; it is
+// reported when it ends (at finish() if it goes on), against the frame that had begun (FE1 at
+// the master logic) when it began, and between frames against none.
+void TimingChecker::on_contention(const line::Contention& c) {
+  if (finished_) return;
+  // One recorded DATA wire shows no collision; a capture shows one connector's contentions.
+  if (!contentions_reported() || (params_.recorded_at && c.where != *params_.recorded_at)) return;
+  if (c.end == Time::max()) {
+    std::optional<std::uint64_t> frame;
+    for (auto it = frame_starts_.rbegin(); it != frame_starts_.rend(); ++it)
+      if (it->first <= c.start) {
+        frame = it->second;
+        break;
+      }
+    contentions_.push_back({c, frame});
+  } else {
+    for (PendingContention& p : contentions_)
+      if (p.contention.sequence == c.sequence) p.contention.end = c.end;
+  }
+  settle_contentions();
+}
+
+// A frame begins at `start` (FE1 at the master logic): the frame of every contention that has
+// begun since. Only the latest start at or before now is kept for contentions to come.
+void TimingChecker::contention_frame_started(Time start, std::uint64_t index) {
+  frame_starts_.emplace_back(start, index);
+  const Time now = kernel_.now();
+  while (frame_starts_.size() > 1 && frame_starts_[1].first <= now) frame_starts_.pop_front();
+  for (PendingContention& p : contentions_)
+    if (start <= p.contention.start) p.frame = index;
+  settle_contentions();
+}
+
+// Reports the contentions that have ended and whose frame is known for good. A master declares
+// each frame at its FE1 (at its logic), so by a contention's end every frame that had begun before
+// it has been declared. A frame found on the wires is noted at its FE1 at the encoder pins, one
+// clock path (the master's driver and the cable) after its FE1 at the master logic: until the
+// longest path the line allows has passed since the contention began, a frame may still be found
+// that had begun before it. `finishing`: the run is over, every contention is reported (one that
+// goes on ends now).
+void TimingChecker::settle_contentions(bool finishing) {
+  static constexpr Time kLongestClockPath =
+      line::LineParams::kMaxTransceiverDelay +
+      Time{static_cast<std::int64_t>(line::LineParams::kMaxCableLengthM *
+                                     static_cast<double>(line::LineParams::kMaxCableDelayPerM.count()))};
+  const Time now = kernel_.now();
+  const bool declared = !wires_only_ && !frame_starts_.empty();
+  for (auto it = contentions_.begin(); it != contentions_.end();) {
+    const line::Contention& c = it->contention;
+    const bool ended = c.end != Time::max();
+    if (!finishing && (!ended || (!declared && now - c.start <= kLongestClockPath))) {
+      ++it;
+      continue;
+    }
+    const Time end = ended ? c.end : now;
+    // Two drivers handing over at the same picosecond do not collide.
+    if (end != c.start)
+      report(Violation{{.check = std::string(check::kContention),
+                        .spec = "2.3 (collision between the data drivers)",
+                        .where = c.where,
+                        .time = c.start,
+                        .frame = it->frame,
+                        .clock = std::nullopt,
+                        .measured = format_time(end - c.start),
+                        .limit = "0 ps (one driver at a time)",
+                        .severity = Severity::Error,
+                        .message = c.between_encoders ? "two encoders on the bus drove DATA at the same time (2.10)"
+                                                      : "master and encoder drove DATA at the same time"},
+                       it->frame ? "inside a frame" : "between frames"},
+             c.sequence);
+    it = contentions_.erase(it);
+  }
 }
 
 }  // namespace endatsim::checker

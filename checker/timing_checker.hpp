@@ -293,9 +293,18 @@ class TimingChecker final {
   void check_measurement_procedure(const DeclaredFrame& frame);
   bool measures_delay(const FrameHeader& h) const;
   void check_measurement_spread(const PinFrame& f);
-  // Counts the finding for its row and the verdicts, and keeps it unless its check already has
-  // CheckerParams::max_findings_per_check.
+  // Counts the finding for its row and the verdicts, and keeps it unless its
+  // check already has CheckerParams::max_findings_per_check.
   void report(Finding f, std::string_view field = {});
+  void report(Violation v, std::optional<std::uint64_t> contention);
+  void find_latest_contention_kept();
+  // Line contentions (2.3, collision of the data drivers), told by the line as they begin and end.
+  void on_contention(const line::Contention& c);
+  void contention_frame_started(Time start, std::uint64_t index);
+  void settle_contentions(bool finishing = false);
+  bool contentions_reported() const {
+    return params_.driver_enables_observable && params_.master_enable_observable;
+  }
   // Reports `f` if `d` fails, as undecided if it is undecided at the resolution; true if reported.
   bool report_unless_passed(Decision d, Finding f, std::string_view field = {});
   // The same, and notes the measured value against the limit for the row's worst case.
@@ -344,7 +353,22 @@ class TimingChecker final {
   bool measured_ = false;
   bool unmeasured_reported_ = false;
   std::uint64_t sampled_frame_ = UINT64_MAX;
-  std::vector<std::pair<Time, std::uint64_t>> frame_starts_;  // FE1 at the master logic, frame index
+  // FE1 at the master logic and the frame's index, in the order noted: the latest one at or
+  // before now and any later, the frames a contention that begins from now on can belong to.
+  std::deque<std::pair<Time, std::uint64_t>> frame_starts_;
+  // A contention from its beginning until it is reported, with the frame that had begun (FE1
+  // at the master logic) when it began, as far as the frames noted so far show.
+  struct PendingContention {
+    line::Contention contention;
+    std::optional<std::uint64_t> frame;
+  };
+  std::deque<PendingContention> contentions_;  // in the order they began
+  bool finished_ = false;
+  // Per kept violation, how finish() orders it among findings of the same time: the others in
+  // the order reported, then contentions in the order they began (as when all contentions were
+  // reported by finish()).
+  std::vector<std::optional<std::uint64_t>> contention_of_;
+  std::optional<std::size_t> latest_contention_kept_;  // the kept contention that began last
   // Per frame, at the encoder pins: driver released (t_z), driver on again (t_OE), the first
   // word's start bit seen on rising edge `start_clock_` (t_cal, clock count), the current word's
   // on `word_start_clock_` (with a continuous clock words count from 0); DATA last went LOW on

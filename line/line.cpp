@@ -19,7 +19,7 @@ void LineParams::validate() const {
   if (!std::isfinite(cable_length_m) || cable_length_m < 0.0 || cable_length_m > kMaxCableLengthM)
     throw std::invalid_argument("cable length must be 0 .. " + std::to_string(static_cast<int>(kMaxCableLengthM)) +
                                 " m (spec 2.1.2: up to 300 m on request), got " + std::to_string(cable_length_m) + " m");
-  if (cable_delay_per_m < Time::zero() || cable_delay_per_m > sim::ns(20))
+  if (cable_delay_per_m < Time::zero() || cable_delay_per_m > kMaxCableDelayPerM)
     throw std::invalid_argument("cable delay per metre must be 0 .. 20 ns/m, got " +
                                 sim::format_time(cable_delay_per_m));
   for (const auto* t : {&master, &encoder}) {
@@ -34,14 +34,26 @@ std::string_view to_string(ObservationPoint p) {
   return p == ObservationPoint::MasterPins ? "master pins" : "encoder pins";
 }
 
+// The resolvers' way to the line's contentions (log and listeners).
+class ContentionLog {
+ public:
+  explicit ContentionLog(Line& line) : line_(line) {}
+  std::uint64_t begin(ObservationPoint where, bool between_encoders) {
+    return line_.begin_contention(where, between_encoders);
+  }
+  void end(std::uint64_t sequence) { line_.end_contention(sequence); }
+
+ private:
+  Line& line_;
+};
+
 // One end of the DATA pair: the local driver is seen at once, the remote one after the cable.
 class PinResolver {
  public:
   PinResolver(ObservationPoint where, Signal& local_en, Signal& local_level, Signal& remote_en,
-              Signal& remote_level, Signal& pin, Signal& driven, std::vector<Contention>& log, sim::Kernel& kernel,
-              bool& failsafe)
+              Signal& remote_level, Signal& pin, Signal& driven, ContentionLog log, bool& failsafe)
       : where_(where), local_en_(local_en), local_level_(local_level), remote_en_(remote_en),
-        remote_level_(remote_level), pin_(pin), driven_(driven), log_(log), kernel_(kernel), failsafe_(failsafe) {
+        remote_level_(remote_level), pin_(pin), driven_(driven), log_(log), failsafe_(failsafe) {
     for (Signal* s : {&local_en, &local_level, &remote_en, &remote_level})
       s->on_change(sim::bind<&PinResolver::resolve>(this));
   }
@@ -51,12 +63,10 @@ class PinResolver {
     const bool remote = remote_en_.read();
     const bool both = local && remote;
     if (both && !open_) {
-      log_.push_back(Contention{where_, kernel_.now(), Time::max()});
-      open_index_ = log_.size() - 1;
-      open_ = true;
+      open_ = log_.begin(where_, false);
     } else if (!both && open_) {
-      log_[open_index_].end = kernel_.now();
-      open_ = false;
+      log_.end(*open_);
+      open_.reset();
     }
     driven_.write(local || remote);
     // During contention the near driver dominates its own end of the pair.
@@ -73,10 +83,8 @@ class PinResolver {
   Signal& remote_level_;
   Signal& pin_;
   Signal& driven_;
-  std::vector<Contention>& log_;
-  bool open_ = false;
-  std::size_t open_index_ = 0;
-  sim::Kernel& kernel_;
+  ContentionLog log_;
+  std::optional<std::uint64_t> open_;  // the contention going on here
   bool& failsafe_;
 };
 
@@ -115,8 +123,8 @@ class PinFault {
 // driver delays, resolve into the one driver the cable and the master see.
 class EncoderBus {
  public:
-  EncoderBus(Signal& drive_en, Signal& drive_level, std::vector<Contention>& log, sim::Kernel& kernel)
-      : drive_en_(drive_en), drive_level_(drive_level), log_(log), kernel_(kernel) {}
+  EncoderBus(Signal& drive_en, Signal& drive_level, ContentionLog log)
+      : drive_en_(drive_en), drive_level_(drive_level), log_(log) {}
   void add(Signal& en, Signal& level) {
     taps_.emplace_back(&en, &level);
     en.on_change(sim::bind<&EncoderBus::resolve>(this));
@@ -132,12 +140,10 @@ class EncoderBus {
       level = level && lv->read();
     }
     if (enabled > 1 && !open_) {
-      log_.push_back(Contention{ObservationPoint::EncoderPins, kernel_.now(), Time::max(), true});
-      open_index_ = log_.size() - 1;
-      open_ = true;
+      open_ = log_.begin(ObservationPoint::EncoderPins, true);
     } else if (enabled <= 1 && open_) {
-      log_[open_index_].end = kernel_.now();
-      open_ = false;
+      log_.end(*open_);
+      open_.reset();
     }
     drive_en_.write(enabled > 0);
     drive_level_.write(enabled > 0 && level);
@@ -146,11 +152,9 @@ class EncoderBus {
  private:
   Signal& drive_en_;
   Signal& drive_level_;
-  std::vector<Contention>& log_;
-  sim::Kernel& kernel_;
+  ContentionLog log_;
   std::vector<std::pair<Signal*, Signal*>> taps_;
-  bool open_ = false;
-  std::size_t open_index_ = 0;
+  std::optional<std::uint64_t> open_;  // the contention going on between encoders
 };
 
 // One encoder's transceiver on the bus.
@@ -165,7 +169,7 @@ struct EncoderTap {
 };
 
 struct Line::Impl {
-  Impl(sim::Kernel& k, const LineParams& p, std::vector<Contention>& log)
+  Impl(sim::Kernel& k, const LineParams& p, ContentionLog log)
       : failsafe(p.failsafe_level),
         // Idle: CLOCK driven HIGH by the master, DATA driven LOW by the encoder (docs/model.md §11).
         m_clock_out(k, "m_clock_out", true), m_data_out(k, "m_data_out", false),
@@ -189,15 +193,15 @@ struct Line::Impl {
         e_tap_level(k, "e_tap_level_0", false), e_tap_en(k, "e_tap_en_0", true),
         e_level_driver(k, e_data_out, e_tap_level, p.encoder.driver_delay),
         e_en_driver(k, e_data_enable, e_tap_en, p.encoder.enable_delay, p.encoder.disable_delay),
-        bus(e_drive_en, e_drive_level, log, k),
+        bus(e_drive_en, e_drive_level, log),
         m_level_cable(k, m_drive_level, m_level_at_e, p.cable_delay()),
         m_en_cable(k, m_drive_en, m_en_at_e, p.cable_delay()),
         e_level_cable(k, e_drive_level, e_level_at_m, p.cable_delay()),
         e_en_cable(k, e_drive_en, e_en_at_m, p.cable_delay()),
         master_pin(ObservationPoint::MasterPins, m_drive_en, m_drive_level, e_en_at_m, e_level_at_m, m_data_line,
-                   m_driven, log, k, failsafe),
+                   m_driven, log, failsafe),
         encoder_pin(ObservationPoint::EncoderPins, e_drive_en, e_drive_level, m_en_at_e, m_level_at_e,
-                    e_data_line, e_driven, log, k, failsafe),
+                    e_data_line, e_driven, log, failsafe),
         m_clock_fault(k, m_clock_line, m_clock), e_clock_fault(k, e_clock_line, e_clock),
         m_data_fault(k, m_data_line, m_data), e_data_fault(k, e_data_line, e_data),
         m_receiver(k, m_data, m_data_in, p.master.receiver_delay),
@@ -228,10 +232,34 @@ struct Line::Impl {
 
 Line::Line(sim::Kernel& kernel, const LineParams& params) : kernel_(kernel), params_(params) {
   params_.validate();
-  impl_ = std::make_unique<Impl>(kernel_, params_, contentions_);
+  impl_ = std::make_unique<Impl>(kernel_, params_, ContentionLog(*this));
 }
 
 Line::~Line() = default;
+
+void Line::on_contention(ContentionListener listener) { contention_listeners_.push_back(std::move(listener)); }
+
+std::uint64_t Line::begin_contention(ObservationPoint where, bool between_encoders) {
+  const Contention c{where, kernel_.now(), Time::max(), between_encoders, contentions_seen_++};
+  if (contentions_.size() < contention_log_limit_) contentions_.push_back(c);
+  open_contentions_.push_back(c);
+  for (const auto& listener : contention_listeners_) listener(c);
+  return c.sequence;
+}
+
+void Line::end_contention(std::uint64_t sequence) {
+  const auto open = std::find_if(open_contentions_.begin(), open_contentions_.end(),
+                                 [&](const Contention& c) { return c.sequence == sequence; });
+  if (open == open_contentions_.end()) return;
+  Contention c = *open;
+  open_contentions_.erase(open);
+  c.end = kernel_.now();
+  // The log holds contentions in the order they began.
+  const auto logged = std::lower_bound(contentions_.begin(), contentions_.end(), sequence,
+                                       [](const Contention& l, std::uint64_t s) { return l.sequence < s; });
+  if (logged != contentions_.end() && logged->sequence == sequence) logged->end = c.end;
+  for (const auto& listener : contention_listeners_) listener(c);
+}
 
 Line::MasterSide Line::master() {
   return {impl_->m_clock_out, impl_->m_data_out, impl_->m_data_enable, impl_->m_data_in};

@@ -13,6 +13,8 @@
 // delay) in 60 ns, within one clock period up to 16 MHz (t_z, t_OE, 2.3.2 note 6).
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -42,6 +44,7 @@ struct LineParams {
   bool failsafe_level = true;
 
   static constexpr double kMaxCableLengthM = 300.0;  // 2.1.2: "up to 300 m on request"
+  static constexpr Time kMaxCableDelayPerM = sim::ns(20);
   static constexpr Time kMaxTransceiverDelay = sim::us(1);
 
   Time cable_delay() const;
@@ -60,7 +63,10 @@ struct Contention {
   Time start;
   Time end;  // Time::max() while still going on
   bool between_encoders = false;
+  std::uint64_t sequence = 0;  // 0, 1, 2 ... in the order the line's contentions began
 };
+// Told of each contention twice: as it begins (end Time::max()) and as it ends.
+using ContentionListener = std::function<void(const Contention&)>;
 
 class PinFault;
 
@@ -121,15 +127,35 @@ class Line {
   void set_driver_disable_delay(ObservationPoint end, Time delay);
   static constexpr Time kMaxLateRelease = sim::us(100);
 
+  // Contentions as they happen: each listener is told of every contention as it begins and as it
+  // ends (Contention::sequence pairs the two), however long the run. Listeners are kept for the
+  // line's life and must outlive its run.
+  void on_contention(ContentionListener listener);
+  // The log: the first contention_log_limit() contentions of the run, each with its end once it
+  // has ended (later ones are told to the listeners only), so that a run that collides in every
+  // frame keeps its memory bounded.
   const std::vector<Contention>& contentions() const { return contentions_; }
+  static constexpr std::size_t kContentionLogLimit = 1000;
+  std::size_t contention_log_limit() const { return contention_log_limit_; }
+  // A new limit applies to the contentions that begin from now on (SIZE_MAX: log every one).
+  void set_contention_log_limit(std::size_t limit) { contention_log_limit_ = limit; }
+  // Every contention so far, logged or not.
+  std::uint64_t contentions_seen() const { return contentions_seen_; }
 
  private:
   struct Impl;
+  friend class ContentionLog;
   PinFault& fault(Wire wire, ObservationPoint end);
+  std::uint64_t begin_contention(ObservationPoint where, bool between_encoders);
+  void end_contention(std::uint64_t sequence);
   sim::Kernel& kernel_;
   LineParams params_;
   std::unique_ptr<Impl> impl_;
   std::vector<Contention> contentions_;
+  std::size_t contention_log_limit_ = kContentionLogLimit;
+  std::uint64_t contentions_seen_ = 0;
+  std::vector<Contention> open_contentions_;  // at most one per end and one on the encoders' bus
+  std::vector<ContentionListener> contention_listeners_;
 };
 
 }  // namespace endatsim::line

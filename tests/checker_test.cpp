@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 
 #include "scenario_support.hpp"
@@ -384,4 +385,60 @@ TEST(CheckerContention, MissingTstOnALongCableCollidesInsideTheReadFrames) {
       ASSERT_TRUE(v.frame.has_value());
       EXPECT_GE(*v.frame, 3U);  // frames 0..2 measure t_D at 200 kHz, where the first LOW is long enough
     }
+}
+
+namespace {
+
+// A run of `s` with the master's frame starts (FE1 at its logic) noted.
+struct FrameStarts final : master::MasterObserver {
+  void on_frame_start(const master::FrameResult& f) override { starts.emplace_back(f.start, f.index); }
+  void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
+  void on_frame_end(const master::FrameResult&) override {}
+  std::vector<std::pair<Time, std::uint64_t>> starts;
+};
+
+}  // namespace
+
+// A contention is reported as it ends, against the frame that had begun (FE1 at the master
+// logic) when it began; with a cap of one, the one kept is the first to begin.
+TEST(CheckerContention, IsReportedAgainstTheFrameItBeganIn) {
+  for (const std::size_t cap : {SIZE_MAX, std::size_t{1}}) {
+    auto s = make_scenario(100, MHz(8), true, 4);
+    s.master.t_st = Time::zero();
+    s.checker.max_findings_per_check = cap;
+    Kernel kernel;
+    line::Line line(kernel, s.line);
+    slave::Encoder encoder(kernel, line, s.encoder);
+    master::Master master(kernel, line, s.master);
+    checker::TimingChecker checker(kernel, line, scenarios::declared_encoder(s.encoder), scenarios::declared_master(s.master),
+                                   s.checker);
+    scenarios::MasterDeclarations declarations(checker);
+    FrameStarts frames;
+    master.add_observer(&declarations);
+    master.add_observer(&frames);
+    for (const auto& op : s.script) master.enqueue(op);
+    master.start();
+    kernel.run(s.max_time);
+    checker.finish();
+    const auto& log = line.contentions();
+    ASSERT_GE(log.size(), 4U);  // one in each of the four reads
+    std::size_t reported = 0;
+    for (const auto& v : checker.violations()) {
+      if (v.check != checker::check::kContention) continue;
+      ++reported;
+      const auto c = std::find_if(log.begin(), log.end(), [&](const line::Contention& l) {
+        return l.start == v.time && l.where == v.where;
+      });
+      ASSERT_NE(c, log.end());
+      EXPECT_EQ(v.measured, format_time(c->end - c->start));
+      std::optional<std::uint64_t> began;
+      for (const auto& [start, index] : frames.starts)
+        if (start <= c->start) began = index;
+      EXPECT_EQ(v.frame, began);
+      if (cap == 1) {
+        EXPECT_TRUE(c == log.begin()) << "the first contention is kept";
+      }
+    }
+    EXPECT_EQ(reported, cap == 1 ? 1U : log.size());
+  }
 }

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <utility>
+#include <vector>
+
 #include "endatsim/line/line.hpp"
 
 using namespace endatsim;
@@ -100,6 +103,42 @@ TEST(LineContention, BothDriversOnIsRecordedAtEachEndWithItsTimes) {
   EXPECT_EQ(c[1].where, ObservationPoint::EncoderPins);
   EXPECT_EQ(c[1].start, us(1) + ns(30) + ns(100));
   EXPECT_EQ(c[1].end, us(3) + ns(30) + ns(100));
+}
+
+// Listeners hear each contention as it begins and as it ends, paired by its sequence number; the
+// log keeps only as many as its limit allows.
+TEST(LineContention, ListenersHearEachContentionBeginAndEndTheLogKeepsItsLimit) {
+  Kernel k;
+  line::LineParams p;
+  p.cable_length_m = 20;  // 100 ns one way
+  line::Line l(k, p);     // the encoder drives DATA LOW at idle
+  l.set_contention_log_limit(1);
+  std::vector<std::pair<Time, line::Contention>> heard;
+  l.on_contention([&](const line::Contention& c) { heard.emplace_back(k.now(), c); });
+  Poke on{&l.master().data_enable, true};
+  Poke off{&l.master().data_enable, false};
+  k.schedule(us(1), bind<&Poke::go>(&on));
+  k.schedule(us(3), bind<&Poke::go>(&off));
+  k.run();
+  ASSERT_EQ(heard.size(), 4U);
+  // Master pins: begins at 1.03 us; encoder pins 100 ns later; each ends 2 us after it began.
+  EXPECT_EQ(heard[0].first, us(1) + ns(30));
+  EXPECT_EQ(heard[0].second.sequence, 0U);
+  EXPECT_EQ(heard[0].second.end, Time::max());
+  EXPECT_EQ(heard[1].first, us(1) + ns(130));
+  EXPECT_EQ(heard[1].second.sequence, 1U);
+  EXPECT_EQ(heard[1].second.where, ObservationPoint::EncoderPins);
+  EXPECT_EQ(heard[2].first, us(3) + ns(30));
+  EXPECT_EQ(heard[2].second.sequence, 0U);
+  EXPECT_EQ(heard[2].second.start, us(1) + ns(30));
+  EXPECT_EQ(heard[2].second.end, us(3) + ns(30));
+  EXPECT_EQ(heard[3].second.sequence, 1U);
+  EXPECT_EQ(heard[3].second.end, us(3) + ns(130));
+  EXPECT_EQ(l.contentions_seen(), 2U);
+  ASSERT_EQ(l.contentions().size(), 1U);  // the first one only
+  EXPECT_EQ(l.contentions()[0].sequence, 0U);
+  EXPECT_EQ(l.contentions()[0].end, us(3) + ns(30));
+  EXPECT_EQ(line::Line(k, p).contention_log_limit(), line::Line::kContentionLogLimit);
 }
 
 TEST(LineParams, RejectsOutOfRangeValuesNamingTheLimit) {
