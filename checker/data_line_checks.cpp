@@ -295,6 +295,19 @@ void TimingChecker::note_start_bit_for_t_d() {
 void TimingChecker::on_master_data(std::uint64_t level) {
   if (level == 0) return;
   const Time now = kernel_.now();
+  drop_given_up_start_bits();
+  auto& in_flight = start_bits_in_flight_;
+  if (in_flight.empty() || now < in_flight.front().due - in_flight.front().period / 2) return;
+  const StartBitInFlight start = in_flight.front();
+  const Time t_d = now - start.carried_at;
+  check_data_delay(start, t_d);
+  check_delay_tolerance(start, t_d);
+  in_flight.pop_front();  // after its findings: until then its frame is not settled
+}
+
+// Start bits given up as the comment above says.
+void TimingChecker::drop_given_up_start_bits() {
+  const Time now = kernel_.now();
   auto& in_flight = start_bits_in_flight_;
   const auto due = [&](const StartBitInFlight& s) { return now >= s.due - s.period / 2; };
   const auto given_up = [&](const StartBitInFlight& s) {
@@ -302,12 +315,6 @@ void TimingChecker::on_master_data(std::uint64_t level) {
     return next_due || (s.frame < current_.header.index && now > s.due + s.period / 2);
   };
   while (!in_flight.empty() && given_up(in_flight.front())) in_flight.pop_front();
-  if (in_flight.empty() || !due(in_flight.front())) return;
-  const StartBitInFlight start = in_flight.front();
-  in_flight.pop_front();
-  const Time t_d = now - start.carried_at;
-  check_data_delay(start, t_d);
-  check_delay_tolerance(start, t_d);
 }
 
 // t_D (2.3.2, 2.1.2): from the rising clock edge that carried the start bit to the start bit's

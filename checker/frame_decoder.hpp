@@ -96,6 +96,8 @@ class FrameDecoder {
   // for t_m since its last rising edge, so the encoder has not ended it and more clocks may follow.
   bool cuts_frame(Time end) const { return in_frame_ && !(clock_level_ && end - last_rise_ >= params_.t_m); }
 
+  // Frames begun so far: the index the next frame will have.
+  std::uint64_t frames_begun() const { return frames_; }
   // The frame being clocked, if any (its fields grow as its bits arrive).
   const WireFrame* current() const { return in_frame_ ? &frame_ : nullptr; }
   // Frames that ended since the last call.

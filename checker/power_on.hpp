@@ -45,6 +45,10 @@ class PowerOnSequence {
   // are judged, t3 was not seen.
   std::optional<Judgement> finish();
   bool due() const { return due_; }
+  // The wake-up request cycle waiting for the request after it, which its judgement names.
+  std::optional<std::uint64_t> waiting_request() const {
+    return wake_ ? std::optional<std::uint64_t>(wake_->frame) : std::nullopt;
+  }
 
  private:
   struct Pulse {

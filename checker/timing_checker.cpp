@@ -55,6 +55,7 @@ void TimingChecker::report(Violation v, std::optional<std::uint64_t> contention)
   const std::uint64_t kept = t.errors + t.warnings + t.undecided;
   ++(v.severity == Severity::Error ? t.errors : v.severity == Severity::Warning ? t.warnings : t.undecided);
   conclusion_.count(v.severity, v.verdict);
+  if (listener_) listener_(v);
   if (kept >= params_.max_findings_per_check) {
     ++not_kept_;
     // Contentions are reported as they end, not in the order they began: the row keeps the ones
@@ -320,7 +321,10 @@ void TimingChecker::on_switched_on(bool judge_power_on) {
 }
 
 void TimingChecker::power_on_request(std::uint64_t index, Time start) {
-  if (power_on_.due()) report_power_on(power_on_.request(index, start));
+  if (!power_on_.due()) return;
+  held_frame_ = power_on_.waiting_request();  // the wake-up request cycle the judgement may name
+  report_power_on(power_on_.request(index, start));
+  held_frame_.reset();
 }
 
 void TimingChecker::report_power_on(const std::optional<PowerOnSequence::Judgement>& j) {
@@ -351,6 +355,8 @@ void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
     previous_end_.reset();
     error_handling_frame_.reset();
   }
+  last_declared_ = frame.index;
+  declared_running_ = true;
   power_on_request(frame.index, frame.start + clock_path());
   if (frame.measurement && !last_frame_was_measurement_) check_measurement_procedure(frame);
   if (frame.measurement) {
@@ -437,8 +443,10 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
       check_recovery(current_);
     }
     // 2.3.3: a frame that carries a mode command is a request.
-    if (wires_only_ && current_.rising.size() == protocol::frame_position::kLastModeBit)
+    if (wires_only_ && current_.rising.size() == protocol::frame_position::kLastModeBit) {
       power_on_request(current_.header.index, current_.fe1);
+      wire_request_seen_ = true;
+    }
     return;
   }
   if (wires_only_) {
@@ -806,6 +814,7 @@ void TimingChecker::check_recovery(const PinFrame& next) {
 }
 
 void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
+  last_declared_ = std::max(last_declared_.value_or(0), frame.index);
   if (frame.index != sampled_frame_) {  // a new frame or a new continuous-clock word
     sampled_frame_ = frame.index;
     sampling_reported_ = false;
@@ -860,10 +869,12 @@ void TimingChecker::on_sample(const DeclaredFrame& frame, unsigned clock) {
 }
 
 void TimingChecker::on_frame_end(const DeclaredFrame& frame) {
+  last_declared_ = std::max(last_declared_.value_or(0), frame.index);  // a continuous clock's last word
   if (frame.error_handling) error_handling_frame_ = frame.index;
   if (frame.start_bit_clock != 0) master_found_start_bit_ = frame.index;
   if (frame.ok) settings_.on_frame(frame.command, frame.payload, frame.supplement);
   check_busy_time({frame.index, frame.start, frame.end, frame.command, frame.supplement, frame.ok, frame.busy, frame.f_c});
+  declared_running_ = false;
 }
 
 // 2.3.2 t_ac maximum 12 ms with EnDat 2.2 commands: the access runs after the command supplement
@@ -957,6 +968,7 @@ void TimingChecker::begin_capture(Time start, bool at_rest) {
 }
 
 void TimingChecker::finish() {
+  frozen_mark_ = settled_frames();  // what finish() reports was all still open
   if (wires_only_) {
     const Time end = std::max(kernel_.now(), capture_end_);
     if (capture_ && in_frame_ && decoder_.cuts_frame(end)) frame_cut_by_end_ = current_.header.index;
@@ -993,6 +1005,7 @@ void TimingChecker::finish() {
   violations_ = std::move(sorted);
   contention_of_ = std::move(sorted_of);
   find_latest_contention_kept();
+  frozen_mark_.reset();
   finished_ = true;
 }
 
@@ -1066,8 +1079,39 @@ void TimingChecker::settle_contentions(bool finishing) {
                                                       : "master and encoder drove DATA at the same time"},
                        it->frame ? "inside a frame" : "between frames"},
              c.sequence);
-    it = contentions_.erase(it);
+    it = contentions_.erase(it);  // after reporting: until then its frame is not settled
   }
+}
+
+std::uint64_t TimingChecker::settled_frames() const {
+  if (finished_) return UINT64_MAX;
+  if (frozen_mark_) return *frozen_mark_;
+  std::uint64_t mark = UINT64_MAX;
+  const auto below = [&](std::uint64_t frame) { mark = std::min(mark, frame); };
+  if (wires_only_ || (!mode_decided_ && !last_declared_)) {
+    // Frames found on the wires: the one being clocked at the encoder pins is judged when the
+    // next begins; the next has the decoder's next index.
+    below(in_frame_ ? current_.header.index : decoder_.frames_begun());
+    // A live run: a master may declare its frames after its power-on pulse (on_frame_start) and
+    // number them from 0.
+    if (!capture_ && !wire_request_seen_) below(0);
+  } else {
+    // The master's frames: the one it is running (samples, its end), the next, and those
+    // declared but not yet judged at the encoder pins (evaluate(), when the next FE1 arrives).
+    if (last_declared_) below(declared_running_ ? *last_declared_ : *last_declared_ + 1);
+    else below(0);
+    if (in_frame_) below(current_.header.index);
+    if (!pending_.empty()) below(pending_.front().second.index);
+  }
+  // A contention that begins from now on belongs to the latest frame begun, or a later one.
+  if (contentions_reported())
+    for (const auto& start : frame_starts_) below(start.second);
+  for (const PendingContention& p : contentions_)
+    if (p.frame) below(*p.frame);
+  for (const StartBitInFlight& s : start_bits_in_flight_) below(s.frame);  // t_D, at the master logic
+  if (const auto wake = power_on_.waiting_request()) below(*wake);
+  if (held_frame_) below(*held_frame_);
+  return mark;
 }
 
 }  // namespace endatsim::checker

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -186,6 +187,29 @@ class TimingChecker final {
 
   // Evaluates what is still open (last frame, running contention). Call once after the run.
   void finish();
+
+  // Findings as they are made, for outputs written while the run goes on. The listener is called
+  // from inside the checker for every finding at the moment it is reported, whether or not it is
+  // kept in violations() (CheckerParams::max_findings_per_check bounds only those), in the order
+  // reported: not in time order, since many rows are judged after their frame (below). One
+  // listener; setting another replaces it, an empty one removes it. It must not call back into
+  // the checker other than through its const members.
+  using FindingListener = std::function<void(const Violation&)>;
+  void set_finding_listener(FindingListener listener) { listener_ = std::move(listener); }
+
+  // The watermark of attributed findings: no finding reported from now on names a frame
+  // (Finding::frame) below this index, so an output may close every frame below it. Findings
+  // often come after their frame: a frame is judged at the encoder pins when the next FE1
+  // arrives there, a start bit's t_D when it reaches the master logic, a compensated frame's
+  // delay measurements when it is judged, a power-on wake-up request cycle when the next request
+  // comes (or at finish()), a contention when it ends (with a master's declarations; judged from
+  // the wires, once no frame found later can have begun before it); a contention that begins
+  // between frames counts against the frame before. Never decreases; UINT64_MAX after finish().
+  // Frame indices are the master's declarations' (strictly increasing, each declared at its FE1),
+  // or the wire decoder's: in a live run judged from the wires the mark stays at 0 until a frame
+  // carries a mode command, since a master that declares its frames may still do so after its
+  // power-on pulse, which the wires show as a frame (on_frame_start).
+  std::uint64_t settled_frames() const;
   // True when no master declared its frames: they were found on the wires at the encoder pins
   // (frame_decoder.hpp), and only the rows that need nothing but wires were judged.
   bool judged_from_wires() const { return wires_only_; }
@@ -293,7 +317,7 @@ class TimingChecker final {
   void check_measurement_procedure(const DeclaredFrame& frame);
   bool measures_delay(const FrameHeader& h) const;
   void check_measurement_spread(const PinFrame& f);
-  // Counts the finding for its row and the verdicts, and keeps it unless its
+  // Counts the finding for its row and the verdicts, tells the listener, and keeps it unless its
   // check already has CheckerParams::max_findings_per_check.
   void report(Finding f, std::string_view field = {});
   void report(Violation v, std::optional<std::uint64_t> contention);
@@ -305,6 +329,7 @@ class TimingChecker final {
   bool contentions_reported() const {
     return params_.driver_enables_observable && params_.master_enable_observable;
   }
+  void drop_given_up_start_bits();
   // Reports `f` if `d` fails, as undecided if it is undecided at the resolution; true if reported.
   bool report_unless_passed(Decision d, Finding f, std::string_view field = {});
   // The same, and notes the measured value against the limit for the row's worst case.
@@ -363,7 +388,17 @@ class TimingChecker final {
     std::optional<std::uint64_t> frame;
   };
   std::deque<PendingContention> contentions_;  // in the order they began
+  // The frames a finding may still name: the master's declarations (the latest one, and
+  // whether it is still running at the master), a frame whose findings are being reported after
+  // its state was let go (power-on), and whether a frame found on the wires carried a mode
+  // command.
+  std::optional<std::uint64_t> last_declared_;
+  bool declared_running_ = false;
+  std::optional<std::uint64_t> held_frame_;
+  bool wire_request_seen_ = false;
+  std::optional<std::uint64_t> frozen_mark_;  // settled_frames() while finish() reports
   bool finished_ = false;
+  FindingListener listener_;
   // Per kept violation, how finish() orders it among findings of the same time: the others in
   // the order reported, then contentions in the order they began (as when all contentions were
   // reported by finish()).

@@ -1,10 +1,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <functional>
+#include <memory>
 
 #include "scenario_support.hpp"
 #include "endatsim/scenarios/declarations.hpp"
+#include "endatsim/scenarios/events.hpp"
+#include "endatsim/scenarios/loader.hpp"
 #include "test_support.hpp"
 
 using namespace endatsim;
@@ -387,58 +392,208 @@ TEST(CheckerContention, MissingTstOnALongCableCollidesInsideTheReadFrames) {
     }
 }
 
+// ---- Findings as they are made: the listener, the watermark of settled frames, contentions
+// reported as they end.
+
 namespace {
 
-// A run of `s` with the master's frame starts (FE1 at its logic) noted.
-struct FrameStarts final : master::MasterObserver {
-  void on_frame_start(const master::FrameResult& f) override { starts.emplace_back(f.start, f.index); }
+namespace fs = std::filesystem;
+
+// A scenario run as scenarios::run_scenario runs it, with the checker's finding listener attached:
+// each finding heard with the simulated time and the checker's settled_frames() at that moment.
+// `declared`: the master declares its frames; without, the checker finds them on the wires, in
+// a live run or (`capture`) as a capture that starts at rest.
+struct ListenedRun final : master::MasterObserver {
+  struct Heard {
+    Time at;
+    std::uint64_t mark;
+    checker::Violation v;
+  };
+
+  explicit ListenedRun(const scenarios::Scenario& s, bool declared = true, bool capture = false)
+      : scenario(s),
+        params(with_seed(s)),
+        line(kernel, s.line),
+        encoder(kernel, line, s.encoder),
+        master(kernel, line, params),
+        checker(kernel, line, scenarios::declared_encoder(s.encoder), scenarios::declared_master(params), s.checker),
+        declarations(checker) {
+    for (const auto& p : s.bus) bus.push_back(std::make_unique<slave::Encoder>(kernel, line.add_encoder(), p));
+    if (declared) master.add_observer(&declarations);
+    master.add_observer(this);
+    if (capture) checker.begin_capture(kernel.now(), true);
+    checker.set_finding_listener([this](const checker::Violation& v) {
+      heard.push_back({kernel.now(), watch_mark(), v});
+    });
+  }
+
+  void run() {
+    for (const auto& op : scenario.script) master.enqueue(op);
+    scenarios::EventDriver events(kernel, line, encoder, &master, checker, scenario.events, params.seed,
+                                  sim::period_of(params.f_c));
+    master.start();
+    kernel.run(scenario.max_time);
+    checker.finish();
+  }
+
+  // The mark as it stands, noting whether it ever went down.
+  std::uint64_t watch_mark() {
+    const std::uint64_t mark = checker.settled_frames();
+    mark_decreased = mark_decreased || mark < last_mark;
+    last_mark = mark;
+    return mark;
+  }
+  void on_frame_start(const master::FrameResult& f) override {
+    starts.emplace_back(f.start, f.index);
+    watch_mark();
+  }
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
-  void on_frame_end(const master::FrameResult&) override {}
-  std::vector<std::pair<Time, std::uint64_t>> starts;
+  void on_frame_end(const master::FrameResult&) override {
+    watch_mark();
+  }
+
+  static master::MasterParams with_seed(const scenarios::Scenario& s) {
+    master::MasterParams p = s.master;
+    p.seed = s.seed;
+    return p;
+  }
+
+  scenarios::Scenario scenario;
+  master::MasterParams params;
+  Kernel kernel;
+  line::Line line;
+  slave::Encoder encoder;
+  std::vector<std::unique_ptr<slave::Encoder>> bus;
+  master::Master master;
+  checker::TimingChecker checker;
+  scenarios::MasterDeclarations declarations;
+  std::vector<Heard> heard;
+  std::vector<std::pair<Time, std::uint64_t>> starts;  // FE1 at the master logic, frame index
+  bool mark_decreased = false;
+  std::uint64_t last_mark = 0;
 };
+
+std::string describe(const checker::Violation& v) {
+  return v.check + " at " + format_time(v.time) + " frame " + (v.frame ? std::to_string(*v.frame) : "-") + ": " +
+         v.message;
+}
+
+std::vector<fs::path> scenario_files() {
+  std::vector<fs::path> out;
+  for (const char* folder : {"bundled", "field", "safety"})
+    for (const auto& e : fs::directory_iterator(fs::path(ENDATSIM_SOURCE_DIR) / "scenarios" / folder))
+      if (e.path().extension() == ".json") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Without t_ST on 100 m at 8 MHz the master drives DATA into the encoder's release in every read
+// frame (CheckerContention above).
+scenarios::Scenario colliding_reads(unsigned reads) {
+  auto s = make_scenario(100, MHz(8), true, reads);
+  s.master.t_st = Time::zero();
+  return s;
+}
 
 }  // namespace
 
-// A contention is reported as it ends, against the frame that had begun (FE1 at the master
-// logic) when it began; with a cap of one, the one kept is the first to begin.
-TEST(CheckerContention, IsReportedAgainstTheFrameItBeganIn) {
-  for (const std::size_t cap : {SIZE_MAX, std::size_t{1}}) {
-    auto s = make_scenario(100, MHz(8), true, 4);
-    s.master.t_st = Time::zero();
-    s.checker.max_findings_per_check = cap;
-    Kernel kernel;
-    line::Line line(kernel, s.line);
-    slave::Encoder encoder(kernel, line, s.encoder);
-    master::Master master(kernel, line, s.master);
-    checker::TimingChecker checker(kernel, line, scenarios::declared_encoder(s.encoder), scenarios::declared_master(s.master),
-                                   s.checker);
-    scenarios::MasterDeclarations declarations(checker);
-    FrameStarts frames;
-    master.add_observer(&declarations);
-    master.add_observer(&frames);
-    for (const auto& op : s.script) master.enqueue(op);
-    master.start();
-    kernel.run(s.max_time);
-    checker.finish();
-    const auto& log = line.contentions();
-    ASSERT_GE(log.size(), 4U);  // one in each of the four reads
-    std::size_t reported = 0;
-    for (const auto& v : checker.violations()) {
-      if (v.check != checker::check::kContention) continue;
-      ++reported;
-      const auto c = std::find_if(log.begin(), log.end(), [&](const line::Contention& l) {
-        return l.start == v.time && l.where == v.where;
-      });
-      ASSERT_NE(c, log.end());
-      EXPECT_EQ(v.measured, format_time(c->end - c->start));
-      std::optional<std::uint64_t> began;
-      for (const auto& [start, index] : frames.starts)
-        if (start <= c->start) began = index;
-      EXPECT_EQ(v.frame, began);
-      if (cap == 1) {
-        EXPECT_TRUE(c == log.begin()) << "the first contention is kept";
+TEST(CheckerFindingListener, HearsEveryFindingAlsoThoseBeyondTheCap) {
+  auto s = make_scenario(1, MHz(4), false, 5);  // f_c and t_HI in every frame
+  s.master.t_st = Time::zero();
+  const auto all = scenarios::run_scenario(s);
+  ASSERT_GE(all.violations.size(), 10U);
+  s.checker.max_findings_per_check = 1;
+  ListenedRun capped(s);
+  capped.run();
+  // Every finding of the uncapped run is heard, once, though only one per check is kept.
+  ASSERT_EQ(capped.heard.size(), all.violations.size());
+  EXPECT_EQ(capped.heard.size(), capped.checker.violations().size() + capped.checker.findings_not_kept());
+  std::vector<std::string> heard, expected;
+  for (const auto& h : capped.heard) heard.push_back(describe(h.v));
+  for (const auto& v : all.violations) expected.push_back(describe(v));
+  std::sort(heard.begin(), heard.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(heard, expected);
+  for (const auto& v : capped.checker.violations())
+    EXPECT_NE(std::find(expected.begin(), expected.end(), describe(v)), expected.end()) << describe(v);
+  EXPECT_LT(capped.checker.violations().size(), all.violations.size());
+}
+
+// Each bundled, field and safety scenario, with the master's declarations and judged from the
+// wires alone (live, and as a capture): no finding names a frame below the mark as it stood when
+// the finding came, and the mark never goes down.
+class CheckerSettledFrames : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(CheckerSettledFrames, NoFindingArrivesForASettledFrame) {
+  const auto scenario = scenarios::load_scenario_file(GetParam().string());
+  for (const auto& [declared, capture] : {std::pair{true, false}, std::pair{false, false}, std::pair{false, true}}) {
+    SCOPED_TRACE(declared ? "declared" : capture ? "from the wires, a capture" : "from the wires, live");
+    ListenedRun run(scenario, declared, capture);
+    run.run();
+    for (const auto& h : run.heard) {
+      if (h.v.frame) {
+        EXPECT_GE(*h.v.frame, h.mark) << describe(h.v) << " heard at " << format_time(h.at);
       }
     }
-    EXPECT_EQ(reported, cap == 1 ? 1U : log.size());
+    EXPECT_FALSE(run.mark_decreased);
+    EXPECT_EQ(run.checker.settled_frames(), UINT64_MAX);
+    EXPECT_EQ(run.heard.size(), run.checker.violations().size() + run.checker.findings_not_kept());
+    if (!declared) continue;
+    // The run is run_scenario's: the same findings in the same order.
+    const auto r = scenarios::run_scenario(scenario);
+    ASSERT_EQ(run.checker.violations().size(), r.violations.size());
+    for (std::size_t i = 0; i < r.violations.size(); ++i)
+      EXPECT_EQ(describe(run.checker.violations()[i]), describe(r.violations[i]));
   }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, CheckerSettledFrames, ::testing::ValuesIn(scenario_files()),
+                         [](const auto& param_info) {
+                           std::string name = param_info.param.parent_path().filename().string() + "_" +
+                                              param_info.param.stem().string();
+                           std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+                           return name;
+                         });
+
+// A contention is reported as it ends, against the frame that had begun (FE1 at the master
+// logic) when it began; with a cap of one, the one kept is the first to begin.
+TEST(CheckerContention, IsReportedAsItEndsAgainstTheFrameItBeganIn) {
+  auto s = colliding_reads(4);
+  ListenedRun run(s);
+  run.run();
+  const auto& log = run.line.contentions();
+  std::size_t heard = 0;
+  for (const auto& h : run.heard) {
+    if (h.v.check != checker::check::kContention) continue;
+    ++heard;
+    const auto c = std::find_if(log.begin(), log.end(), [&](const line::Contention& l) {
+      return l.start == h.v.time && l.where == h.v.where;
+    });
+    ASSERT_NE(c, log.end()) << describe(h.v);
+    EXPECT_EQ(h.at, c->end) << describe(h.v);
+    std::optional<std::uint64_t> began;
+    for (const auto& [start, index] : run.starts)
+      if (start <= c->start) began = index;
+    EXPECT_EQ(h.v.frame, began) << describe(h.v);
+    EXPECT_GE(h.v.frame.value_or(0), 3U);  // frames 0..2 measure t_D at 200 kHz, where the first LOW is long enough
+  }
+  EXPECT_EQ(heard, log.size());
+  EXPECT_GE(heard, 4U);  // one in each of the four reads
+  // Among findings of the same time contentions still come last, in the order they began.
+  const auto& v = run.checker.violations();
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    if (v[i].time == v[i - 1].time && v[i - 1].check == checker::check::kContention) {
+      EXPECT_EQ(v[i].check, checker::check::kContention);
+    }
+  }
+
+  s.checker.max_findings_per_check = 1;
+  ListenedRun capped(s);
+  capped.run();
+  std::vector<checker::Violation> kept;
+  for (const auto& k : capped.checker.violations())
+    if (k.check == checker::check::kContention) kept.push_back(k);
+  ASSERT_EQ(kept.size(), 1U);
+  EXPECT_EQ(kept[0].time, log.front().start);
+  EXPECT_EQ(kept[0].where, log.front().where);
 }
