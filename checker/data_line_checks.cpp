@@ -284,6 +284,7 @@ void TimingChecker::note_start_bit_for_t_d() {
                                    master_rising_[clock - 1], current_.header.index + word_, clock,
                                    current_.header.compensated, current_.header.t_d_used,
                                    sim::period_of(current_.header.f_c), word_ == 0 && measures_delay(current_.header)});
+  drop_given_up_start_bits();
 }
 
 // The start bit's edge is the first rising edge at the master logic from half a slot before it is
@@ -305,7 +306,9 @@ void TimingChecker::on_master_data(std::uint64_t level) {
   in_flight.pop_front();  // after its findings: until then its frame is not settled
 }
 
-// Start bits given up as the comment above says.
+// Start bits given up as the comment above says. Whether one is given up only changes from no
+// to yes as time passes and frames begin, so they are dropped as soon as they are, also when
+// DATA never rises at the master logic again (a fault there): the queue stays a frame's worth.
 void TimingChecker::drop_given_up_start_bits() {
   const Time now = kernel_.now();
   auto& in_flight = start_bits_in_flight_;
@@ -418,6 +421,10 @@ void TimingChecker::check_start_delay(const PinFrame& f) {
 
 void TimingChecker::on_master_driven(std::uint64_t driven) {
   master_driven_.emplace_back(kernel_.now(), driven != 0);
+  // A sample sees the pins one receiver delay before it, never before now's: a change with a
+  // later one at or before that instant decides no sample to come (check_master_sample).
+  const Time seen = kernel_.now() - line_.params().master.receiver_delay;
+  while (master_driven_.size() > 1 && master_driven_[1].first <= seen) master_driven_.pop_front();
 }
 
 // The encoder takes the mode bits on RE3..RE8 (2.3); DATA must be driven at its pins then.

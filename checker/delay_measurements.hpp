@@ -45,6 +45,8 @@ class DelayMeasurements {
   // the capture's (0: exact).
   std::optional<Judgement> compensated(sim::Time period, sim::Time resolution);
   bool any() const { return ever_; }
+  // Measurements kept: those of the latest run of measurement frames.
+  std::size_t kept() const { return run_.size(); }
 
  private:
   struct Measurement {

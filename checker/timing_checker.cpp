@@ -405,7 +405,7 @@ void TimingChecker::on_frame_start(const DeclaredFrame& frame) {
   const FrameHeader h{frame.index,          frame.measurement, frame.compensated, command.version,
                       command.payload_bits, answer,            command.supplement, continuous,
                       frame.f_c,            frame.t_d_used};
-  pending_.emplace_back(master_falling_edges_ + 1, h);
+  if (!fe1_lost_) pending_.emplace_back(master_falling_edges_ + 1, h);
   master_rising_.clear();
   sampling_reported_ = false;
 }
@@ -469,6 +469,11 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
     in_frame_ = true;
     start_data_line_checks();
     check_recovery(current_);
+  } else if (!pending_.empty() && pending_.front().first < encoder_falling_edges_) {
+    // The encoder pins have counted past the next declared FE1 (a clock glitch there): it is never
+    // found, nor any declared frame after it.
+    fe1_lost_ = true;
+    pending_.clear();
   }
   if (in_frame_) current_.falling.push_back(now);
 }
@@ -1112,6 +1117,18 @@ std::uint64_t TimingChecker::settled_frames() const {
   if (const auto wake = power_on_.waiting_request()) below(*wake);
   if (held_frame_) below(*held_frame_);
   return mark;
+}
+
+TimingChecker::Backlog TimingChecker::backlog() const {
+  return {.frames_not_at_encoder = pending_.size(),
+          .frame_starts = frame_starts_.size(),
+          .contentions = contentions_.size(),
+          .start_bits_in_flight = start_bits_in_flight_.size(),
+          .master_rising_edges = master_rising_.size(),
+          .master_driven_changes = master_driven_.size(),
+          .encoder_edges = current_.rising.size() + current_.falling.size(),
+          .delay_measurements = delay_measurements_.kept(),
+          .findings_kept = violations_.size()};
 }
 
 }  // namespace endatsim::checker

@@ -210,6 +210,26 @@ class TimingChecker final {
   // carries a mode command, since a master that declares its frames may still do so after its
   // power-on pulse, which the wires show as a frame (on_frame_start).
   std::uint64_t settled_frames() const;
+
+  // What the checker holds for findings still to come, the memory of a long run: each count is
+  // bounded by a frame's worth (its clock edges, words, start bits and contentions), a run of
+  // delay-measurement frames, or the findings kept (max_findings_per_check per row), however
+  // many frames the run has. Only a CLOCK that the encoder pins do not show as the master sent
+  // it stretches "a frame": while the pin is stuck, declared frames wait for their FE1 there, and
+  // after an extra falling edge (a glitch) no declared FE1 is found there again, so the frame
+  // at the encoder pins lasts to the end of the run.
+  struct Backlog {
+    std::size_t frames_not_at_encoder = 0;  // declared frames whose FE1 is on its way to the encoder
+    std::size_t frame_starts = 0;           // FE1s that contentions may still be attributed to
+    std::size_t contentions = 0;            // contentions begun and not yet reported
+    std::size_t start_bits_in_flight = 0;
+    std::size_t master_rising_edges = 0;    // of the current frame, at the master logic
+    std::size_t master_driven_changes = 0;  // of DATA driven at the master pins, this frame
+    std::size_t encoder_edges = 0;          // rising and falling, of the frame at the encoder pins
+    std::size_t delay_measurements = 0;     // the current run of measurement frames
+    std::size_t findings_kept = 0;          // violations()
+  };
+  Backlog backlog() const;
   // True when no master declared its frames: they were found on the wires at the encoder pins
   // (frame_decoder.hpp), and only the rows that need nothing but wires were judged.
   bool judged_from_wires() const { return wires_only_; }
@@ -368,8 +388,9 @@ class TimingChecker final {
   bool busy_reported_ = false;
   std::optional<std::uint64_t> awaiting_not_busy_;
   bool awaiting_known_ = false;  // a 2.2 access has been seen: later accesses are judged  // the 2.2 memory access no Busy = 0 has followed yet
-  // Changes of "DATA driven" at the master pins during the current frame, to judge samples.
-  std::vector<std::pair<Time, bool>> master_driven_;
+  // Changes of "DATA driven" at the master pins during the current frame, to judge samples: the
+  // latest one at or before the master's sampling instants can see, and any later.
+  std::deque<std::pair<Time, bool>> master_driven_;
   bool floating_reported_ = false;
   std::vector<Time> master_rising_;  // rising edges of the current frame at the master logic
   bool sampling_reported_ = false;
@@ -398,6 +419,9 @@ class TimingChecker final {
   bool wire_request_seen_ = false;
   std::optional<std::uint64_t> frozen_mark_;  // settled_frames() while finish() reports
   bool finished_ = false;
+  // The encoder pins counted more falling edges than the next declared frame's FE1 needs (a clock
+  // glitch at the encoder): no declared frame will begin there any more.
+  bool fe1_lost_ = false;
   FindingListener listener_;
   // Per kept violation, how finish() orders it among findings of the same time: the others in
   // the order reported, then contentions in the order they began (as when all contentions were

@@ -393,7 +393,7 @@ TEST(CheckerContention, MissingTstOnALongCableCollidesInsideTheReadFrames) {
 }
 
 // ---- Findings as they are made: the listener, the watermark of settled frames, contentions
-// reported as they end.
+// reported as they end, and the checker's memory in a long run.
 
 namespace {
 
@@ -450,6 +450,8 @@ struct ListenedRun final : master::MasterObserver {
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
   void on_frame_end(const master::FrameResult&) override {
     watch_mark();
+    backlogs.push_back(checker.backlog());
+    logged.push_back(line.contentions().size());
   }
 
   static master::MasterParams with_seed(const scenarios::Scenario& s) {
@@ -469,6 +471,8 @@ struct ListenedRun final : master::MasterObserver {
   scenarios::MasterDeclarations declarations;
   std::vector<Heard> heard;
   std::vector<std::pair<Time, std::uint64_t>> starts;  // FE1 at the master logic, frame index
+  std::vector<checker::TimingChecker::Backlog> backlogs;  // at each frame's end
+  std::vector<std::size_t> logged;                        // the line's contention log, at each frame's end
   bool mark_decreased = false;
   std::uint64_t last_mark = 0;
 };
@@ -596,4 +600,41 @@ TEST(CheckerContention, IsReportedAsItEndsAgainstTheFrameItBeganIn) {
   ASSERT_EQ(kept.size(), 1U);
   EXPECT_EQ(kept[0].time, log.front().start);
   EXPECT_EQ(kept[0].where, log.front().where);
+}
+
+// A contention in every frame of a long run: what the line logs and what the checker holds stay
+// as they were after the first frames.
+TEST(CheckerContention, ALongRunThatCollidesInEveryFrameKeepsItsMemoryBounded) {
+  constexpr unsigned kReads = 20000;
+  auto s = colliding_reads(kReads);
+  s.max_time = ms(kReads / 5);  // 100 us a read
+  s.checker.max_findings_per_check = 3;
+  ListenedRun run(s);
+  run.run();
+  ASSERT_GT(run.backlogs.size(), kReads);
+  std::size_t contentions = 0;
+  for (const auto& h : run.heard) contentions += h.v.check == checker::check::kContention;
+  EXPECT_GE(contentions, kReads);
+  EXPECT_GE(run.line.contentions_seen(), contentions);
+  EXPECT_EQ(run.line.contentions().size(), line::Line::kContentionLogLimit);
+  EXPECT_EQ(run.logged.back(), line::Line::kContentionLogLimit);
+  using Backlog = checker::TimingChecker::Backlog;
+  const auto most = [&](std::size_t frames, std::size_t Backlog::*field) {
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < frames; ++i) m = std::max(m, run.backlogs[i].*field);
+    return m;
+  };
+  constexpr std::size_t kEarly = 20;
+  for (std::size_t Backlog::*field :
+       {&Backlog::frames_not_at_encoder, &Backlog::frame_starts, &Backlog::contentions, &Backlog::start_bits_in_flight,
+        &Backlog::master_rising_edges, &Backlog::master_driven_changes, &Backlog::encoder_edges,
+        &Backlog::delay_measurements})
+    EXPECT_EQ(most(run.backlogs.size(), field), most(kEarly, field));
+  const Backlog& last = run.backlogs.back();
+  EXPECT_LE(last.frames_not_at_encoder, 1U);
+  EXPECT_LE(last.frame_starts, 1U);
+  EXPECT_LE(last.contentions, 2U);
+  EXPECT_LE(last.start_bits_in_flight, 1U);
+  EXPECT_LE(last.master_driven_changes, 2U);
+  EXPECT_LE(last.findings_kept, 3U * checker::check::all().size());  // each row's first three
 }
