@@ -310,8 +310,8 @@ void Master::encoder_power_interrupted() {
 }
 
 void Master::note_failures() {
-  if (frames_.back().measurement) return;
-  const auto o = frames_.back().outcome;
+  if (frame_.measurement) return;
+  const auto o = frame_.outcome;
   const bool failed = o == FrameOutcome::CrcError || o == FrameOutcome::NoStartBit || o == FrameOutcome::Type1Error ||
                       o == FrameOutcome::EchoMismatch || o == FrameOutcome::TooFewClocks;
   failures_in_a_row_ = failed ? failures_in_a_row_ + 1 : 0;
@@ -323,9 +323,9 @@ void Master::note_failures() {
 }
 
 bool Master::retry_frame() {
-  const auto o = frames_.back().outcome;
+  const auto o = frame_.outcome;
   const bool failed = o != FrameOutcome::Ok && o != FrameOutcome::Type2Error;
-  if (current_->kind != Operation::Kind::ReadPosition || frames_.back().measurement || !failed ||
+  if (current_->kind != Operation::Kind::ReadPosition || frame_.measurement || !failed ||
       retries_left_ == 0) {
     retries_left_ = params_.careful.retries;
     return false;
@@ -341,8 +341,8 @@ bool Master::retry_frame() {
 // 2.3.2 t_b: a 2.1 memory or parameter frame waits t_b_wait after the previous frame's end.
 Time Master::time_between_cycles_left() const {
   const auto& c = protocol::info(current_->command);
-  if (measuring_ || frames_.empty() || c.version != protocol::EndatVersion::V2_1 || c.payload_bits == 0) return Time::zero();
-  return std::max(Time::zero(), frames_.back().end + params_.t_b_wait - kernel_.now());
+  if (measuring_ || frame_count_ == 0 || c.version != protocol::EndatVersion::V2_1 || c.payload_bits == 0) return Time::zero();
+  return std::max(Time::zero(), frame_.end + params_.t_b_wait - kernel_.now());
 }
 
 void Master::interrupt_for_measurement() {
@@ -403,8 +403,8 @@ void Master::push_status_reads(const Operation& base) {
 void Master::operation_frame_done() {
   if (current_->kind == Operation::Kind::AwaitNotBusy) {
     // 2.5.1 / 2.6.1: poll additional data 1 until the busy bit is reset.
-    const auto& ai = frames_.back().additional_data;
-    const bool ok = frames_.back().outcome == FrameOutcome::Ok;
+    const auto& ai = frame_.additional_data;
+    const bool ok = frame_.outcome == FrameOutcome::Ok;
     const auto is_1 = [](const AdditionalDatum& d) { return !protocol::is_additional_data_2(d.information()); };
     const bool ready = ok && std::any_of(ai.begin(), ai.end(), [&](const AdditionalDatum& d) { return is_1(d) && !d.busy(); });
     const bool unreadable = ok && std::none_of(ai.begin(), ai.end(), is_1);
@@ -414,7 +414,7 @@ void Master::operation_frame_done() {
       frames_left_ = 1;
     } else if (frames_left_ == 1) ++busy_timeouts_;
   }
-  if (current_->kind == Operation::Kind::StartupPositions && startup_position_read(frames_.back())) frames_left_ = 1;
+  if (current_->kind == Operation::Kind::StartupPositions && startup_position_read(frame_)) frames_left_ = 1;
   note_failures();
   if (retry_frame()) return;
   if (--frames_left_ > 0) {
@@ -447,7 +447,7 @@ void Master::start_frame(std::uint64_t) {
   }
   const bool measurement = measuring_;
   frame_ = FrameResult{};
-  frame_.index = frames_.size();
+  frame_.index = frame_count_;
   frame_.operation = current_->script_index;
   frame_.start = kernel_.now();
   frame_.measurement = measurement;
@@ -744,6 +744,13 @@ void Master::note_selection() {
   selection_mrs_[which] = mrs;
 }
 
+void Master::record(const FrameResult& f) {
+  ++frame_count_;
+  if (frames_.size() < kept_frames_) frames_.push_back(f);
+  recent_starts_.push_back(f.start);
+  while (recent_starts_.size() > std::max<std::size_t>(params_.measurement.count, 1)) recent_starts_.pop_front();
+}
+
 void Master::word_received(FrameOutcome outcome) {
   if (words_left_ == 0) {
     end_reception(outcome, true);
@@ -753,10 +760,11 @@ void Master::word_received(FrameOutcome outcome) {
   // starts with its start bit, without a new mode command.
   frame_.outcome = outcome;
   frame_.end = kernel_.now();
-  frames_.push_back(frame_);
+  record(frame_);
+  for (auto* o : observers_) o->on_result(frame_);
   --words_left_;
   ++frame_.word;
-  frame_.index = frames_.size();
+  frame_.index = frame_count_;
   frame_.start_bit_clock = 0;
   rx_ = Rx::Polling;
   seen_low_ = false;
@@ -795,15 +803,16 @@ void Master::maybe_complete_frame() {
     frame_.delay_count_time = counter_tick() * *captured_count_;
     counts_.push_back(*captured_count_);
   }
-  frames_.push_back(frame_);
   if (!frame_.measurement) {
     note_parameter(frame_);
     note_diagnosis(frame_);
-    note_safety(frames_.back());
+    note_safety(frame_);  // sets error_detected: what the master made of F1 and F2
     note_startup(frame_);
     note_checksum_word(frame_);
   }
+  record(frame_);
   for (auto* o : observers_) o->on_frame_end(frame_);
+  for (auto* o : observers_) o->on_result(frame_);
   operation_frame_done();
 }
 
@@ -827,7 +836,7 @@ void Master::finish_measurement_round() {
   const auto& m = params_.measurement;
   const Time tick = counter_tick();
   DelayMeasurementResult r;
-  r.start = frames_.size() >= m.count ? frames_[frames_.size() - m.count].start : kernel_.now();
+  r.start = recent_starts_.size() >= m.count && m.count != 0 ? recent_starts_.front() : kernel_.now();
   r.rounds = rounds_;
   r.counts = counts_;
   r.counter_period = tick;

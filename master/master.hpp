@@ -203,6 +203,10 @@ class MasterObserver {
   // The master samples DATA for bit slot `clock` (the bit the encoder sent after RE_clock).
   virtual void on_sample(const FrameResult& frame, unsigned clock, bool value, bool in_data) = 0;
   virtual void on_frame_end(const FrameResult& frame) = 0;
+  // A result recorded: each frame as it ends (after on_frame_end), and each further word of a
+  // continuous clock (2.3.1) as its CRC arrives, which ends no frame. For outputs written while
+  // the run goes.
+  virtual void on_result(const FrameResult&) {}
 };
 
 struct Operation {
@@ -286,7 +290,11 @@ class Master {
   bool finished() const { return finished_; }
 
   const MasterParams& params() const { return params_; }
+  // The first frames recorded (every one unless keep_frames() said fewer): a long run streams
+  // its results through MasterObserver::on_result instead of keeping them.
   const std::vector<FrameResult>& frames() const { return frames_; }
+  void keep_frames(std::size_t n) { kept_frames_ = n; }
+  std::uint64_t frame_count() const { return frame_count_; }  // every frame and word recorded
   const std::vector<DelayMeasurementResult>& measurements() const { return measurements_; }
   std::optional<Time> t_d() const { return t_d_; }
   std::uint64_t cycle_overruns() const { return cycle_overruns_; }
@@ -498,7 +506,11 @@ class Master {
   unsigned rounds_ = 0;
   std::optional<Time> t_d_;
 
+  void record(const FrameResult& f);
   std::vector<FrameResult> frames_;
+  std::size_t kept_frames_ = SIZE_MAX;
+  std::uint64_t frame_count_ = 0;
+  std::deque<Time> recent_starts_;  // of the last measurement.count frames (a measurement round's start)
   std::vector<DelayMeasurementResult> measurements_;
 };
 

@@ -341,7 +341,9 @@ void Encoder::begin_frame() {
   } else {
     frozen_position_.reset();
   }
+  if (frames_.size() >= 2 * kept_frames_) frames_.erase(frames_.begin(), frames_.end() - static_cast<std::ptrdiff_t>(kept_frames_ - 1));
   frames_.push_back(f);
+  ++frame_count_;
   latch_errors();
   frames_.back().error_present = error_present();
   release();
@@ -582,7 +584,7 @@ void Encoder::answer_position() {
   if (unsettled_left_ > 0) {  // a fault: a value from before the position settled (seeded by the frame)
     --unsettled_left_;
     const std::uint64_t mask = (std::uint64_t{1} << position_bits_) - 1;
-    std::uint64_t z = (frames_.size() + 1) * 0x9E3779B97F4A7C15ULL;
+    std::uint64_t z = (frame_count_ + 1) * 0x9E3779B97F4A7C15ULL;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
     f.position = (z ^ (z >> 31)) & mask;
   }

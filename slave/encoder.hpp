@@ -213,7 +213,11 @@ class Encoder {
   Encoder& operator=(const Encoder&) = delete;
 
   const EncoderParams& params() const { return params_; }
+  // The frames this encoder saw, oldest first: every one, or with keep_frames(n) only the last
+  // n to 2n (a long run matches each master frame to a recent one and keeps its memory bounded).
   const std::vector<EncoderFrame>& frames() const { return frames_; }
+  void keep_frames(std::size_t n) { kept_frames_ = std::max<std::size_t>(n, 1); }
+  std::uint64_t frame_count() const { return frame_count_; }
   std::uint64_t ignored_clock_edges() const { return ignored_edges_; }
   bool idle() const { return state_ == State::Idle; }
   bool started() const { return !offline_; }
@@ -397,6 +401,8 @@ class Encoder {
   Time reference_search_from_{0};               // since when crossings count (switch-on, reset)
 
   std::vector<EncoderFrame> frames_;
+  std::size_t kept_frames_ = SIZE_MAX / 2;
+  std::uint64_t frame_count_ = 0;
   std::uint64_t ignored_edges_ = 0;
 };
 
