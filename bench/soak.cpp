@@ -5,6 +5,10 @@
 //
 //   endatsim_soak                              2,000,000 frames in 20 chunks of 100,000
 //   endatsim_soak --benchmark_filter=200k     the same with 2 chunks (a quick look)
+//   endatsim_soak --benchmark_filter=Streamed  one run of 1,000,000 frames with its results file,
+//                                             log and JSON lines written as it goes (what
+//                                             `endatsim run --json --log --log-json` does): the
+//                                             resident memory at every 100,000th frame
 //
 // Each iteration runs one chunk: a scenario drawn from a seeded generator (chunk i uses seed i,
 // so a run is reproducible). Counters: frames and frame outcomes in all, median and slowest
@@ -26,7 +30,9 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "endatsim/scenarios/junit.hpp"
 #include "endatsim/scenarios/runner.hpp"
+#include "endatsim/scenarios/streamed_outputs.hpp"
 
 namespace {
 
@@ -189,6 +195,80 @@ void BM_Soak_RandomFaults(benchmark::State& state) {
 }
 BENCHMARK(BM_Soak_RandomFaults)->Name("Soak_2M_frames")->Iterations(20)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_Soak_RandomFaults)->Name("Soak_200k_frames")->Iterations(2)->Unit(benchmark::kSecond)->UseRealTime();
+
+// Resident memory at every 100,000th frame of a run, as the frames are written out.
+class RssProbe final : public scenarios::RunSink {
+ public:
+  void begin(const scenarios::ScenarioResult&) override {}
+  void frame(const scenarios::ScenarioResult&, const master::FrameResult& f, std::span<const endatsim::checker::Violation>) override {
+    if (f.index % 100'000 == 99'999) samples.push_back(rss_mib());
+  }
+  void end(const scenarios::ScenarioResult&) override {}
+  std::vector<double> samples;
+};
+
+// One position loop of 1,000,000 reads at 8 MHz, every 25 us, with additional data 1 and 2 and
+// a warning on every frame (t_ST shorter than the 2 us of D297403 2.3.2 note 8): every frame and
+// finding goes to the outputs, which keep 1000 of each in memory.
+void BM_Streamed_1M_frames(benchmark::State& state) {
+  constexpr unsigned kFrames = 1'000'000;
+  scenarios::Scenario s;
+  s.name = "streamed_1m";
+  s.seed = 1;
+  s.max_time = sim::ms(30'000);
+  s.line.cable_length_m = 10;
+  s.encoder.version = endatsim::protocol::EndatVersion::V2_2;
+  s.encoder.t_m_short = sim::us(2);
+  s.master.f_c = sim::MHz(8);
+  s.master.t_st = sim::us(1);
+  master::Operation select1, select2, read;
+  select1.command = select2.command = master::ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+  select1.address = endatsim::protocol::selection_mrs(endatsim::protocol::Information::Temperature1);
+  select2.address = endatsim::protocol::selection_mrs(endatsim::protocol::Information::OperatingStatusErrorSources);
+  read.command = master::ModeCommand::EncoderSendPositionValuesWithAdditionalData;
+  read.count = kFrames;
+  read.cycle = sim::us(25);
+  s.script = {select1, select2, read};
+  const std::string base = "/tmp/endatsim_soak_" + std::to_string(::getpid());
+  double peak = 0, growth = 0, first = 0, last = 0;
+  std::uint64_t frames = 0;
+  for (auto _ : state) {
+    RssProbe probe;
+    {
+      std::ofstream json(base + ".json"), log(base + ".log"), jsonl(base + ".jsonl");
+      scenarios::ResultsJsonWriter json_writer(json, "soak");
+      scenarios::TransactionLogWriter log_writer(log, scenarios::TransactionLogWriter::Format::Text);
+      scenarios::TransactionLogWriter jsonl_writer(jsonl, scenarios::TransactionLogWriter::Format::JsonLines);
+      scenarios::RunOptions options;
+      options.kept = 1000;
+      options.sinks = {&json_writer, &log_writer, &jsonl_writer, &probe};
+      options.limits.kernel_events = UINT64_MAX;
+      options.limits.script_frames = UINT64_MAX;
+      scenarios::ScenarioResult r = scenarios::run_scenario(s, options);
+      json_writer.finish(r.passed(), r.incomplete, {});
+      frames = r.tally.frames();
+      std::ofstream junit(base + ".xml");
+      r.frames = {};
+      junit << scenarios::junit_xml({r}, "soak", {}, scenarios::JunitCases::Scenario);
+    }
+    if (probe.samples.size() < 2) {
+      state.SkipWithError("fewer than 200,000 frames ran");
+      break;
+    }
+    first = probe.samples.front();
+    last = probe.samples.back();
+    growth = last - first;
+    peak = peak_rss_mib();
+  }
+  for (const char* ext : {".json", ".log", ".jsonl", ".xml"}) std::remove((base + ext).c_str());
+  state.counters["frames"] = static_cast<double>(frames);
+  state.counters["rss_at_100k_mib"] = first;
+  state.counters["rss_at_1m_mib"] = last;
+  state.counters["rss_growth_mib"] = growth;
+  state.counters["peak_rss_mib"] = peak;
+  if (frames < kFrames) state.SkipWithError("the script did not run to its end");
+}
+BENCHMARK(BM_Streamed_1M_frames)->Name("Streamed_1M_frames")->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace
 

@@ -37,7 +37,7 @@ void write_summary(std::ostream& out, const BenchResult& r, bool verbose) {
   if (!r.incomplete.empty()) out << "  INCOMPLETE: " << r.incomplete << "\n";
   if (verbose)
     for (const auto& f : r.frames) out << "  " << scenarios::frame_log_line(f);
-  scenarios::write_violations(out, r.violations, verbose);
+  scenarios::write_violations(out, r.violations, r.conformance, verbose);
   scenarios::write_verdict(out, r.conclusion, r.violations);
   scenarios::write_relaxations(out, r.conformance);
   if (verbose) scenarios::write_conformance(out, r.conformance);

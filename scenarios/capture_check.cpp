@@ -416,7 +416,7 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
     if (r.frames_decoded > r.frames.size())
       out << "  " << r.frames_decoded - r.frames.size() << " further frame(s) decoded, not listed (--log lists all)\n";
   }
-  write_violations(out, r.violations, verbose);
+  write_violations(out, r.violations, r.conformance, verbose);
   if (r.findings_not_kept != 0)
     out << "  " << r.findings_not_kept << " further finding(s) beyond the first " << kMaxFindingsPerCheck
         << " of a check are counted in the conformance table, not listed\n";

@@ -101,6 +101,13 @@ std::string expectation_cases(const std::vector<ScenarioResult>& results, const 
 
 }  // namespace
 
+// Findings of every check, kept or not.
+std::uint64_t total_findings(const ScenarioResult& r) {
+  std::uint64_t n = 0;
+  for (const auto& [check, count] : finding_counts(r.conformance)) n += count;
+  return n;
+}
+
 std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name,
                       const std::vector<NotRun>& not_run, JunitCases cases) {
   if (cases == JunitCases::Expectation) return expectation_cases(results, suite_name, not_run);
@@ -117,8 +124,8 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
     x += "      <properties>\n";
     x += "        <property name=\"seed\" value=\"" + std::to_string(r.seed) + "\"/>\n";
     x += "        <property name=\"simulated\" value=\"" + xml_escape(sim::format_time(r.simulated)) + "\"/>\n";
-    x += "        <property name=\"frames\" value=\"" + std::to_string(r.frames.size()) + "\"/>\n";
-    x += "        <property name=\"violations\" value=\"" + std::to_string(r.violations.size()) + "\"/>\n";
+    x += "        <property name=\"frames\" value=\"" + std::to_string(r.tally.results) + "\"/>\n";
+    x += "        <property name=\"violations\" value=\"" + std::to_string(total_findings(r)) + "\"/>\n";
     x += relaxed_properties(r.conformance, "        ");
     x += "      </properties>\n";
     if (!r.incomplete.empty()) {

@@ -277,11 +277,15 @@ void write_verdict(std::ostream& out, const checker::Conclusion& c, const std::v
   out << "\n";
 }
 
-void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations, bool verbose) {
+void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations,
+                      const std::vector<checker::RowConformance>& rows, bool verbose) {
   std::map<std::string, std::vector<const checker::Violation*>> by_check;
   for (const auto& v : violations) by_check[v.check].push_back(&v);
+  const auto counts = finding_counts(rows);
   for (const auto& [check, list] : by_check) {
-    out << "  violation " << check << " x" << list.size() << " [" << list.front()->spec << "]\n";
+    const auto it = counts.find(check);
+    const std::uint64_t n = it == counts.end() ? list.size() : std::max<std::uint64_t>(it->second, list.size());
+    out << "  violation " << check << " x" << n << " [" << list.front()->spec << "]\n";
     const std::size_t limit = verbose ? list.size() : 3;
     for (std::size_t i = 0; i < list.size() && i < limit; ++i) {
       const auto& v = *list[i];
@@ -294,6 +298,7 @@ void write_violations(std::ostream& out, const std::vector<checker::Violation>& 
       if (v.verdict != checker::Verdict::Both) out << " [" << checker::to_string(v.verdict) << " only]";
       out << "\n";
     }
+    if (verbose && n > list.size()) out << "    ... " << n - list.size() << " more, counted but not kept (--examples)\n";
   }
 }
 
@@ -317,20 +322,16 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     out << "  field symptom: " << r.field->symptom << "\n  cause: " << r.field->cause << "\n  spec: " << r.field->spec
         << "\n  asserts: " << r.field->asserts << "\n";
   }
-  std::map<std::string, unsigned> outcomes;
-  unsigned measurement_frames = 0;
-  for (const auto& f : r.frames) {
-    if (f.measurement) ++measurement_frames;
-    else ++outcomes[std::string(master::to_string(f.outcome))];
-  }
-  out << "  simulated " << format_time(r.simulated) << ", " << r.events << " events; frames: "
-      << (r.frames.size() - measurement_frames) << " (";
+  std::map<std::string, std::uint64_t> outcomes;  // by name
+  for (const master::FrameOutcome o : master::kFrameOutcomes)
+    if (r.tally.outcome(o) != 0) outcomes[std::string(master::to_string(o))] = r.tally.outcome(o);
+  out << "  simulated " << format_time(r.simulated) << ", " << r.events << " events; frames: " << r.tally.frames() << " (";
   bool first = true;
   for (const auto& [name, n] : outcomes) {
     out << (first ? "" : ", ") << name << " " << n;
     first = false;
   }
-  out << "), delay-measurement frames: " << measurement_frames << "\n";
+  out << "), delay-measurement frames: " << r.tally.measurement_frames << "\n";
   for (const auto& m : r.measurements) {
     out << "  t_D measurement (round " << m.rounds << "): ";
     if (m.accepted) out << "accepted, t_D = " << format_time(m.t_d);
@@ -339,28 +340,19 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     for (auto c : m.counts) out << " " << c;
     out << " x " << format_time(m.counter_period) << "; true round trip " << format_time(r.true_round_trip) << "\n";
   }
-  std::size_t shown = 0;
-  for (const auto& f : r.frames) {
-    if (!verbose && (f.measurement || f.outcome == master::FrameOutcome::Ok)) continue;
-    if (!verbose && ++shown > 5) break;
-    out << frame_line(r, f) << "\n";
-  }
+  for (const auto& f : verbose ? r.frames : r.tally.failed) out << frame_line(r, f) << "\n";
+  if (verbose && r.tally.results > r.frames.size())
+    out << "  ... " << r.tally.results - r.frames.size() << " more frames, not kept (--log lists every one)\n";
   write_startup(out, r.startup);
   write_careful_master(out, r);
   write_safety(out, r, verbose);
   write_diagnosis(out, r, verbose);
-  if (!verbose) {
-    for (const auto& f : r.frames) {
-      if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
-          protocol::info(f.command).answer != protocol::AnswerFormat::Position)
-        continue;
-      out << "  first position read: " << f.position << " (frame #" << f.index << ")\n";
-      break;
-    }
-  }
+  if (!verbose && r.tally.first_position)
+    out << "  first position read: " << r.tally.first_position->position << " (frame #" << r.tally.first_position->index
+        << ")\n";
   write_master_warnings(out, r);
-  write_violations(out, r.violations, verbose);
-  if (!r.violations.empty() || verbose) write_verdict(out, checker::conclude(r.violations), r.violations);
+  write_violations(out, r.violations, r.conformance, verbose);
+  if (!r.violations.empty() || verbose) write_verdict(out, r.conclusion, r.violations);
   write_relaxations(out, r.conformance);
   if (verbose) write_conformance(out, r.conformance);
   for (const auto& e : r.expectations)
@@ -416,7 +408,52 @@ nlohmann::json diagnosis_json(const master::DiagnosisReport& d) {
 
 }  // namespace
 
-nlohmann::json to_json(const ScenarioResult& r) {
+nlohmann::json frame_json(const ScenarioResult& r, const master::FrameResult& f) {
+  using nlohmann::json;
+  json jf{{"index", f.index},
+          {"word", f.word},
+          {"start_ps", f.start.count()},
+          {"end_ps", f.end.count()},
+          {"command", protocol::info(f.command).key},
+          {"mode_bits", f.mode_bits},
+          {"f_c_hz", f.f_c},
+          {"measurement", f.measurement},
+          {"compensated", f.compensated},
+          {"t_d_used_ps", f.t_d_used.count()},
+          {"outcome", master::to_string(f.outcome)},
+          {"clocks", f.clocks},
+          {"start_bit_clock", f.start_bit_clock}};
+  if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
+    jf["position"] = f.position;
+    if (r.multiturn_bits > 0) {
+      const auto [rev, st] = revolution_and_singleturn(r, f.position);
+      jf["revolution"] = rev;
+      jf["singleturn"] = st;
+    }
+    jf["error1"] = f.error1;
+    jf["error2"] = f.error2;
+    jf["error_detected"] = f.error_detected;
+    jf["crc_received"] = f.crc_received;
+    jf["crc_expected"] = f.crc_expected;
+  }
+  // Each additional datum with its own CRC: a frame can fail on one while the position's agrees.
+  if (!f.additional_data.empty()) {
+    json ad = json::array();
+    for (const auto& d : f.additional_data)
+      ad.push_back({{"information", protocol::info(d.information()).key},
+                    {"additional_data", protocol::is_additional_data_2(d.information()) ? 2 : 1},
+                    {"status", d.status},
+                    {"data", d.data},
+                    {"busy", d.busy()},
+                    {"crc_received", d.crc_received},
+                    {"crc_expected", d.crc_expected},
+                    {"crc_ok", d.crc_ok}});
+    jf["additional_data"] = ad;
+  }
+  return jf;
+}
+
+nlohmann::json result_json_without_frames(const ScenarioResult& r) {
   using nlohmann::json;
   json j;
   j["name"] = r.name;
@@ -433,51 +470,6 @@ nlohmann::json to_json(const ScenarioResult& r) {
   j["simulated_ps"] = r.simulated.count();
   j["events"] = r.events;
   j["true_round_trip_ps"] = r.true_round_trip.count();
-  json frames = json::array();
-  for (const auto& f : r.frames) {
-    json jf{{"index", f.index},
-            {"word", f.word},
-            {"start_ps", f.start.count()},
-            {"end_ps", f.end.count()},
-            {"command", protocol::info(f.command).key},
-            {"mode_bits", f.mode_bits},
-            {"f_c_hz", f.f_c},
-            {"measurement", f.measurement},
-            {"compensated", f.compensated},
-            {"t_d_used_ps", f.t_d_used.count()},
-            {"outcome", master::to_string(f.outcome)},
-            {"clocks", f.clocks},
-            {"start_bit_clock", f.start_bit_clock}};
-    if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
-      jf["position"] = f.position;
-      if (r.multiturn_bits > 0) {
-        const auto [rev, st] = revolution_and_singleturn(r, f.position);
-        jf["revolution"] = rev;
-        jf["singleturn"] = st;
-      }
-      jf["error1"] = f.error1;
-      jf["error2"] = f.error2;
-      jf["error_detected"] = f.error_detected;
-      jf["crc_received"] = f.crc_received;
-      jf["crc_expected"] = f.crc_expected;
-    }
-    // Each additional datum with its own CRC: a frame can fail on one while the position's agrees.
-    if (!f.additional_data.empty()) {
-      json ad = json::array();
-      for (const auto& d : f.additional_data)
-        ad.push_back({{"information", protocol::info(d.information()).key},
-                      {"additional_data", protocol::is_additional_data_2(d.information()) ? 2 : 1},
-                      {"status", d.status},
-                      {"data", d.data},
-                      {"busy", d.busy()},
-                      {"crc_received", d.crc_received},
-                      {"crc_expected", d.crc_expected},
-                      {"crc_ok", d.crc_ok}});
-      jf["additional_data"] = ad;
-    }
-    frames.push_back(jf);
-  }
-  j["frames"] = frames;
   json ms = json::array();
   for (const auto& m : r.measurements) {
     json jm{{"accepted", m.accepted}, {"rounds", m.rounds}, {"counts", m.counts},
@@ -533,11 +525,23 @@ nlohmann::json to_json(const ScenarioResult& r) {
   }
   if (r.diagnosis) j["diagnosis"] = diagnosis_json(*r.diagnosis);
   j["violations"] = violations_json(r.violations);
-  j["verdict"] = verdict_json(checker::conclude(r.violations));
+  // Findings counted in the conformance table beyond the ones listed (RunOptions::kept).
+  std::uint64_t counted = 0;
+  for (const auto& [check, n] : finding_counts(r.conformance)) counted += n;
+  if (counted > r.violations.size()) j["violations_not_kept"] = counted - r.violations.size();
+  j["verdict"] = verdict_json(r.conclusion);
   j["conformance"] = conformance_json(r.conformance);
   json es = json::array();
   for (const auto& e : r.expectations) es.push_back({{"name", e.name}, {"passed", e.passed}, {"detail", e.detail}});
   j["expectations"] = es;
+  return j;
+}
+
+nlohmann::json to_json(const ScenarioResult& r) {
+  nlohmann::json j = result_json_without_frames(r);
+  nlohmann::json frames = nlohmann::json::array();
+  for (const auto& f : r.frames) frames.push_back(frame_json(r, f));
+  j["frames"] = frames;
   return j;
 }
 

@@ -11,8 +11,10 @@ namespace endatsim::scenarios {
 // value, limit and spec section, and each expectation's verdict.
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose);
 
-// The violations grouped by check, the first three of each (all with `verbose`).
-void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations, bool verbose);
+// The violations grouped by check, each with its count from the conformance table (which counts
+// the findings not kept too), the first three of each (all kept with `verbose`).
+void write_violations(std::ostream& out, const std::vector<checker::Violation>& violations,
+                      const std::vector<checker::RowConformance>& rows, bool verbose);
 
 // The violations as the stable JSON format has them; the two verdicts (spec envelope, this encoder).
 nlohmann::json violations_json(const std::vector<checker::Violation>& violations);
@@ -29,7 +31,11 @@ void write_relaxations(std::ostream& out, const std::vector<checker::RowConforma
 void write_conformance(std::ostream& out, const std::vector<checker::RowConformance>& rows);
 nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows);
 
-// The stable result format (documented in docs/command-line.md and schema/results.schema.json).
+// The stable result format (documented in docs/command-line.md and schema/results.schema.json),
+// with the frames the result kept.
 nlohmann::json to_json(const ScenarioResult& r);
+// Its parts: one frame, and everything but the frames (the results file streams them).
+nlohmann::json frame_json(const ScenarioResult& r, const master::FrameResult& f);
+nlohmann::json result_json_without_frames(const ScenarioResult& r);
 
 }  // namespace endatsim::scenarios

@@ -17,91 +17,36 @@ namespace endatsim::scenarios {
 namespace {
 
 std::uint64_t count_outcome(const ScenarioResult& r, std::string_view name) {
-  return static_cast<std::uint64_t>(std::count_if(r.frames.begin(), r.frames.end(), [&](const master::FrameResult& f) {
-    return !f.measurement && master::to_string(f.outcome) == name;
-  }));
+  for (const master::FrameOutcome o : master::kFrameOutcomes)
+    if (master::to_string(o) == name) return r.tally.outcome(o);
+  return 0;
 }
-
-std::vector<Time> clock_paths(const Scenario& s) {
-  const auto path = [](const line::LineParams& lp) {
-    return lp.master.driver_delay + lp.cable_delay() + lp.encoder.receiver_delay;
-  };
-  std::vector<Time> paths{path(s.line)};
-  for (const auto& e : s.events) {
-    if (e.kind != Event::Kind::SetCable) continue;
-    line::LineParams lp = s.line;
-    lp.cable_length_m = e.cable_length_m;
-    lp.cable_delay_per_m = e.cable_delay_per_m;
-    paths.push_back(path(lp));
-  }
-  return paths;
-}
-
-// The encoder frame that began with the master's FE1: FE1 reaches the encoder logic after
-// the master's clock driver, the cable and the encoder's receiver; the cable is the scenario's
-// or one that an event put in. Looked up by start instant, so that matching a run's frames
-// takes time in proportion to their number.
-class EncoderFrameIndex {
- public:
-  EncoderFrameIndex(const Scenario& s, const std::vector<slave::EncoderFrame>& frames) : frames_(frames), paths_(clock_paths(s)) {
-    by_start_.reserve(frames.size());
-    for (std::size_t i = 0; i < frames.size(); ++i) by_start_.emplace(frames[i].start.count(), i);  // the first of an instant
-  }
-  // Of several cables that would fit, the encoder frame that came first.
-  const slave::EncoderFrame* find(const master::FrameResult& f) const {
-    std::optional<std::size_t> first;
-    for (const Time path : paths_)
-      if (const auto it = by_start_.find((f.start + path).count()); it != by_start_.end())
-        first = std::min(first.value_or(it->second), it->second);
-    return first ? &frames_[*first] : nullptr;
-  }
-
- private:
-  const std::vector<slave::EncoderFrame>& frames_;
-  std::vector<Time> paths_;
-  std::unordered_map<std::int64_t, std::size_t> by_start_;
-};
 
 }  // namespace
 
 PositionComparison compare_positions_with_encoder(const Scenario& s, const ScenarioResult& r) {
-  const EncoderFrameIndex encoder_frames(s, r.encoder_frames);
-  std::string detail;
-  std::uint64_t compared = 0;
+  const std::vector<Time> paths = clock_paths(s);
+  PositionComparator comparator;
   for (const auto& f : r.frames) {
     if (f.measurement || f.outcome != master::FrameOutcome::Ok ||
         protocol::info(f.command).answer != protocol::AnswerFormat::Position)
       continue;
-    const auto* ef = encoder_frames.find(f);
-    ++compared;
-    // Word k > 0 of a continuous clock was latched at the falling edge after the HIGH bit.
-    const bool latched = ef != nullptr && (f.word == 0 || f.word <= ef->continuous_positions.size());
-    const std::uint64_t truth = !latched ? 0 : f.word == 0 ? ef->position : ef->continuous_positions[f.word - 1];
-    if (!latched) detail = "frame " + std::to_string(f.index) + ": the encoder latched no such word";
-    else if (truth != f.position)
-      detail = "frame " + std::to_string(f.index) + ": read " + std::to_string(f.position) + ", encoder latched " +
-               std::to_string(truth);
-    if (!detail.empty()) break;
+    // The encoder frames up to this one's start: encoder_frame_of looks back from the newest.
+    const auto upto = std::upper_bound(r.encoder_frames.begin(), r.encoder_frames.end(), f.start + *std::max_element(paths.begin(), paths.end()),
+                                       [](Time t, const slave::EncoderFrame& ef) { return t < ef.start; });
+    comparator.add(f, encoder_frame_of(f, paths, std::span(r.encoder_frames.begin(), upto)));
   }
-  if (detail.empty() && compared == 0) detail = "no frame was read without error";
-  if (!detail.empty()) return {false, detail};
-  return {true, std::to_string(compared) + " positions equal the latched ones"};
+  return {comparator.match(), comparator.detail()};
 }
 
 namespace {
 
 void judge_positions(const Scenario& s, ScenarioResult& r) {
   const auto& e = s.expect;
-  if (e.positions_match_encoder.value_or(false)) {
-    auto c = compare_positions_with_encoder(s, r);
-    r.expectations.push_back({"positions_match_encoder", c.match, std::move(c.detail)});
-  }
+  if (e.positions_match_encoder.value_or(false) && r.positions_match)
+    r.expectations.push_back({"positions_match_encoder", r.positions_match->match, r.positions_match->detail});
   if (e.positions) {
-    std::vector<std::uint64_t> read;
-    for (const auto& f : r.frames)
-      if (!f.measurement && f.outcome == master::FrameOutcome::Ok &&
-          protocol::info(f.command).answer == protocol::AnswerFormat::Position)
-        read.push_back(f.position);
+    const auto& read = r.positions_read;  // as many as expected and one more, if there were
     const bool ok = read == *e.positions;
     std::string detail = ok ? "all " + std::to_string(read.size()) + " as expected" : "read";
     if (!ok)
@@ -143,9 +88,8 @@ std::string hex(std::uint64_t v, int digits) {
 
 // One operation's "expect", against the last frame the operation sent.
 void judge_operation(std::size_t index, const FrameExpectation& e, ScenarioResult& r) {
-  const master::FrameResult* f = nullptr;
-  for (const auto& x : r.frames)
-    if (x.operation == index) f = &x;
+  const auto it = r.operation_frames.find(index);
+  const master::FrameResult* f = it == r.operation_frames.end() ? nullptr : &it->second;
   const std::string name = "script/" + std::to_string(index) + "/expect";
   if (f == nullptr) {
     r.expectations.push_back({name, false, "the operation sent no frame"});
@@ -221,20 +165,6 @@ void judge_startup(const StartupExpectation& e, ScenarioResult& r) {
   word("warnings", e.warnings, got.warnings);
   word("word13", e.word13, got.word13);
   word("word37", e.word37, got.word37);
-}
-
-// Frames the master took as good (no error message as it evaluates them) while the encoder had an
-// error active, and the truth behind the released position.
-void compare_safety_with_encoder(const Scenario& s, ScenarioResult& r) {
-  const EncoderFrameIndex encoder_frames(s, r.encoder_frames);
-  for (const auto& f : r.frames) {
-    if (f.measurement || f.outcome != master::FrameOutcome::Ok || f.word != 0 ||
-        protocol::info(f.command).answer != protocol::AnswerFormat::Position)
-      continue;
-    const auto* ef = encoder_frames.find(f);
-    if (ef != nullptr && ef->error_present && !f.error_detected) ++r.undetected_errors;
-    if (r.safety.release_frame == f.index && ef != nullptr) r.release_position_correct = ef->true_position == f.position;
-  }
 }
 
 // Counts per kind (safety findings by function, diagnosis notes by kind) against their
@@ -326,7 +256,7 @@ void judge(const Scenario& s, ScenarioResult& r) {
   }
   judge_positions(s, r);
   judge_delay(s, r);
-  judge_violations(s.expect, r.violations, r.expectations);
+  judge_violations(s.expect, finding_counts(r.conformance), r.expectations);
   for (std::size_t i = 0; i < s.operation_expectations.size(); ++i)
     if (s.operation_expectations[i]) judge_operation(i, *s.operation_expectations[i], r);
   judge_memory(s, r);
@@ -388,7 +318,7 @@ class Watch {
   void check() {
     if (progress != nullptr) {
       progress->simulated_ps.store(kernel_.now().count(), std::memory_order_relaxed);
-      progress->frames.store(master_.frames().size(), std::memory_order_relaxed);
+      progress->frames.store(master_.frame_count(), std::memory_order_relaxed);
     }
     if (const int signal = interrupt_signal(); signal != 0) {
       interrupted = signal;
@@ -430,6 +360,18 @@ void judge_violations(const Expectations& expect, const std::vector<checker::Vio
                       std::vector<ExpectationResult>& out) {
   std::map<std::string, std::uint64_t> counts;
   for (const auto& v : violations) ++counts[v.check];
+  judge_violations(expect, counts, out);
+}
+
+std::map<std::string, std::uint64_t> finding_counts(const std::vector<checker::RowConformance>& rows) {
+  std::map<std::string, std::uint64_t> counts;
+  for (const auto& row : rows)
+    if (const std::uint64_t n = row.violations + row.warnings + row.undecided; n != 0) counts[row.check] = n;
+  return counts;
+}
+
+void judge_violations(const Expectations& expect, std::map<std::string, std::uint64_t> counts,
+                      std::vector<ExpectationResult>& out) {
   for (const auto& [name, m] : expect.violations) {
     if (name == kAnyOtherCheck) continue;  // judged below
     const auto n = counts[name];
@@ -464,6 +406,18 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   const Time max_time = limits.max_time ? std::min(*limits.max_time, scenario.max_time) : scenario.max_time;
   master::MasterParams master_params = scenario.master;
   master_params.seed = options.seed.value_or(scenario.seed);
+  checker::CheckerParams checker_params = scenario.checker;
+  checker_params.max_findings_per_check = std::min(checker_params.max_findings_per_check, options.kept);
+
+  ScenarioResult r;
+  r.file = scenario.file;
+  r.name = scenario.name;
+  r.description = scenario.description;
+  r.field = scenario.field;
+  r.seed = master_params.seed;
+  r.f_c = master_params.f_c;
+  r.position_bits = scenario.encoder.position_bits;
+  r.multiturn_bits = scenario.encoder.multiturn_bits;
 
   sim::Kernel kernel;
   line::Line line(kernel, scenario.line);
@@ -472,9 +426,19 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   for (const auto& p : scenario.bus) bus.push_back(std::make_unique<slave::Encoder>(kernel, line.add_encoder(), p));
   master::Master master(kernel, line, master_params);
   checker::TimingChecker checker(kernel, line, declared_encoder(scenario.encoder), declared_master(master_params),
-                                 scenario.checker);
+                                 checker_params);
+  if (options.kept != SIZE_MAX) {
+    // The encoder frames a master frame is matched with are among the last few.
+    constexpr std::size_t kEncoderWindow = 64;
+    master.keep_frames(options.kept);
+    encoder.keep_frames(std::max(options.kept, kEncoderWindow));
+    for (const auto& e : bus) e->keep_frames(std::max(options.kept, kEncoderWindow));
+  }
   MasterDeclarations declarations(checker);
   master.add_observer(&declarations);
+  RunRecorder recorder(scenario, master, encoder, checker, r, options.sinks);
+  master.add_observer(&recorder);
+  checker.set_finding_listener([&recorder](const checker::Violation& v) { recorder.on_finding(v); });
 
   std::unique_ptr<sim::VcdWriter> vcd;
   std::unique_ptr<DecodedTrace> decoded;
@@ -489,6 +453,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
     }
     vcd->start();
   }
+  r.conformance = checker.conformance();  // the rows relaxed, for the outputs' heads
+  for (RunSink* sink : options.sinks) sink->begin(r);
 
   for (const auto& op : scenario.script) master.enqueue(op);
   EventDriver events(kernel, line, encoder, &master, checker, scenario.events, master_params.seed,
@@ -504,27 +470,20 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
     watch.reason = "limit max_time reached: " + sim::format_time(max_time) + " simulated, less than the scenario's " +
                    sim::format_time(scenario.max_time) + " (" + kMaxTimeOption + " changes it)";
   checker.finish();
+  recorder.finish();
   if (vcd) vcd->finish();
 
-  ScenarioResult r;
-  r.file = scenario.file;
-  r.name = scenario.name;
-  r.description = scenario.description;
-  r.field = scenario.field;
-  r.seed = master_params.seed;
   r.simulated = kernel.now();
   r.events = kernel.events_processed();
   r.finished = master.finished();
   r.incomplete = watch.reason;
   r.interrupted = watch.interrupted;
   r.true_round_trip = line.round_trip(scenario.encoder.output_delay);
-  r.f_c = master_params.f_c;
-  r.position_bits = scenario.encoder.position_bits;
-  r.multiturn_bits = scenario.encoder.multiturn_bits;
   r.frames = master.frames();
   r.measurements = master.measurements();
   r.encoder_frames = encoder.frames();
   r.violations = checker.violations();
+  r.conclusion = checker.conclusion();
   r.conformance = checker.conformance();
   r.cycle_overruns = master.cycle_overruns();
   r.busy_timeouts = master.busy_timeouts();
@@ -540,8 +499,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
     r.bus_memory.push_back(e->memory().image());
     r.bus_frames.push_back(e->frames());
   }
-  compare_safety_with_encoder(scenario, r);
   judge(scenario, r);
+  for (RunSink* sink : options.sinks) sink->end(r);
   return r;
 }
 

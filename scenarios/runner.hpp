@@ -1,11 +1,13 @@
 #pragma once
 
 #include <atomic>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "endatsim/scenarios/limits.hpp"
+#include "endatsim/scenarios/run_recorder.hpp"
 #include "endatsim/scenarios/scenario.hpp"
 
 namespace endatsim::scenarios {
@@ -26,11 +28,23 @@ struct RunOptions {
   // The VCD also gets a text trace, endat.decoded, with each frame's mode command from its FE1
   // and what the master decoded from its end: for GTKWave (sigrok skips text traces).
   bool vcd_decoded = false;
+  // What the result keeps in memory: the first `kept` frames, the last `kept` to 2 x `kept`
+  // encoder frames and the first `kept` findings of each check (every one is counted). All of
+  // them by default; a long run keeps a few and streams the rest to `sinks`.
+  std::size_t kept = SIZE_MAX;
+  std::vector<RunSink*> sinks;  // outputs written while the run goes (run_recorder.hpp)
 };
 
 struct ExpectationResult {
   std::string name;
   bool passed = false;
+  std::string detail;
+};
+
+// Every good read against the position the encoder latched at its first falling edge (the
+// positions_match_encoder expectation). No good read at all does not match.
+struct PositionComparison {
+  bool match = false;
   std::string detail;
 };
 
@@ -51,11 +65,20 @@ struct ScenarioResult {
   sim::Hertz f_c = 0;
   unsigned position_bits = 0;
   unsigned multiturn_bits = 0;  // > 0: positions split into revolutions (upper bits) and singleturn
+  // Every frame counted; the first RunOptions::kept frames kept (all by default).
+  FrameTally tally;
   std::vector<master::FrameResult> frames;
   std::vector<master::DelayMeasurementResult> measurements;
-  std::vector<slave::EncoderFrame> encoder_frames;
-  std::vector<checker::Violation> violations;
-  std::vector<checker::RowConformance> conformance;  // every row of the timing table
+  std::vector<slave::EncoderFrame> encoder_frames;  // the last ones kept
+  std::vector<checker::Violation> violations;        // the first RunOptions::kept of each check
+  checker::Conclusion conclusion;                    // the verdicts over every finding, kept or not
+  std::vector<checker::RowConformance> conformance;  // every row of the timing table, with its counts
+  // What the expectations need of the frames, gathered as they end.
+  std::optional<PositionComparison> positions_match;  // with positions_match_encoder expected
+  std::vector<std::uint64_t> positions_read;          // with positions expected: as many, and one more
+  std::uint64_t positions_read_count = 0;
+  std::map<std::size_t, master::FrameResult> operation_frames;  // the last of each operation with an expect
+  std::uint64_t late_findings = 0;  // findings for a frame already written out (a checker bug; 0)
   std::uint64_t cycle_overruns = 0;    // frames that started later than their read cycle said
   std::uint64_t busy_timeouts = 0;     // await_not_busy operations that gave up
   std::uint64_t busy_unreadable = 0;   // await_not_busy whose polls carried no additional data 1
@@ -76,19 +99,18 @@ struct ScenarioResult {
   bool passed() const;
 };
 
-// Every good read against the position the encoder latched at its first falling edge (the
-// positions_match_encoder expectation). No good read at all does not match.
-struct PositionComparison {
-  bool match = false;
-  std::string detail;
-};
+// Over the frames and encoder frames a result kept (all of them, by default).
 PositionComparison compare_positions_with_encoder(const Scenario& scenario, const ScenarioResult& r);
 
 // expect.violations against the findings: each listed check as often as it says; any other
 // check never (its findings as a count), or, with "*" (kAnyOtherCheck) listed, all the others
-// together as often as "*" says.
+// together as often as "*" says. `counts`: findings per check, kept or not (finding_counts).
+void judge_violations(const Expectations& expect, std::map<std::string, std::uint64_t> counts,
+                      std::vector<ExpectationResult>& out);
 void judge_violations(const Expectations& expect, const std::vector<checker::Violation>& violations,
                       std::vector<ExpectationResult>& out);
+// Findings per check from the conformance table, which counts every one.
+std::map<std::string, std::uint64_t> finding_counts(const std::vector<checker::RowConformance>& rows);
 
 // Runs the scenario to the end of its script and judges its expectations. Throws ScenarioError
 // before running when the scenario exceeds options.limits (resolve_limits).

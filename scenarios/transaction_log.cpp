@@ -2,6 +2,10 @@
 
 #include <bitset>
 #include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "endatsim/scenarios/streamed_outputs.hpp"
 
 namespace endatsim::scenarios {
 namespace {
@@ -52,7 +56,7 @@ std::string decoded(const master::AdditionalDatum& d) {
 
 }  // namespace
 
-ordered_json transaction_of(const master::FrameResult& f, const std::vector<checker::Violation>& violations) {
+ordered_json transaction_of(const master::FrameResult& f, std::span<const checker::Violation> violations) {
   ordered_json t;
   t["time_ps"] = f.start.count();
   t["time"] = sim::format_time(f.start);
@@ -162,22 +166,28 @@ std::string transaction_line(const ordered_json& t) {
   return s;
 }
 
-std::string transaction_log_text(const ScenarioResult& r) {
-  std::string s = "# " + r.name + " (" + r.file + ", seed " + std::to_string(r.seed) + "): " +
-                  std::to_string(r.frames.size()) + " frames\n";
-  for (const auto& c : r.conformance)
-    if (!c.relaxed_by.empty()) s += "# relaxed by option: " + c.check + " (" + c.relaxed_by + ")\n";
-  for (const auto& t : transactions(r.frames, r.violations)) s += transaction_line(t) + "\n";
-  return s;
+namespace {
+
+// The log of the frames a result kept, as TransactionLogWriter writes it while a run goes.
+std::string kept_log(const ScenarioResult& r, TransactionLogWriter::Format format) {
+  std::map<std::uint64_t, std::vector<checker::Violation>> by_frame;  // in the order of their time
+  for (const auto& v : r.violations)
+    if (v.frame) by_frame[*v.frame].push_back(v);
+  std::ostringstream out;
+  TransactionLogWriter writer(out, format);
+  writer.begin(r);
+  for (const auto& f : r.frames) {
+    const auto it = by_frame.find(f.index);
+    writer.frame(r, f, it == by_frame.end() ? std::span<const checker::Violation>{} : std::span(it->second));
+  }
+  writer.end(r);
+  return out.str();
 }
 
-std::string transaction_log_jsonl(const ScenarioResult& r) {
-  std::string s;
-  for (auto t : transactions(r.frames, r.violations)) {
-    t["scenario"] = r.name;
-    s += t.dump() + "\n";
-  }
-  return s;
-}
+}  // namespace
+
+std::string transaction_log_text(const ScenarioResult& r) { return kept_log(r, TransactionLogWriter::Format::Text); }
+
+std::string transaction_log_jsonl(const ScenarioResult& r) { return kept_log(r, TransactionLogWriter::Format::JsonLines); }
 
 }  // namespace endatsim::scenarios

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,7 @@ namespace endatsim::scenarios {
 // {"time_ps", "time", "frame", "word", "command", "mode_bits", "sent": {...}, "received": {...},
 //  "crc_ok": bool|null, "additional": {...}, "outcome", "violations": [{"check", "severity",
 //  "field", "message"}]}
-nlohmann::ordered_json transaction_of(const master::FrameResult& frame, const std::vector<checker::Violation>& violations);
+nlohmann::ordered_json transaction_of(const master::FrameResult& frame, std::span<const checker::Violation> violations);
 
 // Records of every frame in order.
 std::vector<nlohmann::ordered_json> transactions(const std::vector<master::FrameResult>& frames,
@@ -28,8 +29,10 @@ std::vector<nlohmann::ordered_json> transactions(const std::vector<master::Frame
 
 // One line per record, columns aligned for reading.
 std::string transaction_line(const nlohmann::ordered_json& record);
+// The log of the frames a result kept (all, unless RunOptions::kept said fewer), as
+// TransactionLogWriter (streamed_outputs.hpp) writes it while a run goes: "# NAME (FILE, seed
+// N)", a line per frame, "# N frames"; JSON lines: one compact object per line.
 std::string transaction_log_text(const ScenarioResult& r);
-// JSON lines: one compact object per line.
 std::string transaction_log_jsonl(const ScenarioResult& r);
 
 // For testbenches that embed the models: attach to a master (add_observer) to collect the

@@ -208,7 +208,8 @@ TEST(Hostile, AHundredThousandReadsEndAtTheRecordsLimitWithBoundedMemory) {
   s["script"] = {{{"op", "read_position"}, {"count", 100'000}}};
   const auto file = write(dir / "reads.json", s.dump());
   const auto json = dir / "out.json", junit = dir / "out.xml";
-  const auto r = run("run " + file + " --quiet --json " + json + " --junit " + junit, dir);
+  // --examples keeps every frame and finding in memory: the records limit is what stops it.
+  const auto r = run("run " + file + " --quiet --examples 1000000 --json " + json + " --junit " + junit, dir);
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_TRUE(contains(r.err, "limit records reached")) << r.err;
   EXPECT_TRUE(contains(r.err, "--max-records or limits.records changes it")) << r.err;
@@ -228,6 +229,28 @@ TEST(Hostile, AHundredThousandReadsEndAtTheRecordsLimitWithBoundedMemory) {
   const auto low = run("run " + write(dir / "low.json", s.dump()) + " --quiet", dir);
   EXPECT_EQ(low.status, 3);
   EXPECT_TRUE(contains(low.err, "at most 100 (")) << low.err;
+}
+
+TEST(Hostile, SixtyThousandReadsRunToTheirEndWithEveryFrameWrittenAndFewKept) {
+  TempDir dir;
+  auto s = base("reads");
+  s["script"] = {{{"op", "read_position"}, {"count", 60'000}}};
+  const auto file = write(dir / "reads.json", s.dump());
+  const auto json = dir / "out.json", log = dir / "out.log";
+  const auto r = run("run " + file + " --quiet --max-kernel-events 200000000 --examples 10 --json " + json + " --log " + log, dir);
+  EXPECT_EQ(r.status, 1) << r.err;  // its f_c and sampling_window findings are not expected
+  EXPECT_FALSE(contains(r.out, "INCOMPLETE")) << r.out;
+  EXPECT_TRUE(contains(r.out, "frames: 60000 (ok 60000)")) << r.out;
+  EXPECT_TRUE(contains(r.out, "violation f_c x60000")) << r.out;
+  const auto j = nlohmann::json::parse(slurp(json));
+  const auto& scenario = j["scenarios"][0];
+  EXPECT_EQ(scenario["frames"].size(), 60'000U);
+  EXPECT_EQ(scenario["violations"].size(), 20U);  // ten of each check
+  EXPECT_EQ(scenario["violations_not_kept"], 2 * 60'000 - 20);
+  EXPECT_TRUE(contains(slurp(log), "\n# 60000 frames\n"));
+  EXPECT_LT(peak_child_mib(), 256);
+  EXPECT_EQ(run("run " + file + " --examples 0", dir).status, 2);
+  EXPECT_EQ(run("run " + file + " --examples ten", dir).status, 2);
 }
 
 TEST(Hostile, SweepPointsThatReachALimitAreNotCleanAndMarkedIncomplete) {

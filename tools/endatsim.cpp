@@ -36,6 +36,7 @@
 #include "endatsim/scenarios/output_file.hpp"
 #include "endatsim/scenarios/scenarios.hpp"
 #include "endatsim/scenarios/sweep.hpp"
+#include "endatsim/scenarios/streamed_outputs.hpp"
 #include "endatsim/scenarios/transaction_log.hpp"
 #include "exit_status.hpp"
 
@@ -55,7 +56,7 @@ int interrupted_status(int signal) { return 128 + signal; }
 
 const char* const kRunUsage =
     "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH [--junit-cases scenario|expectation]]\n"
-    "                    [--log PATH] [--log-json PATH]\n"
+    "                    [--log PATH] [--log-json PATH] [--examples N]\n"
     "                    [--seed N] [--verbose|--quiet] [--color auto|always|never]\n"
     "                    [--max-time TIME] [--max-kernel-events N] [--max-script-frames N] [--max-events N] [--max-records N]\n";
 const char* const kSweepUsage =
@@ -94,6 +95,10 @@ const char* const kRunHelp =
     "(one output at most; the summary then goes to stderr). A folder as FILE stands for every\n"
     "scenario (*.json) under it; --vcd PATH is a folder (NAME.vcd each) for several scenarios and\n"
     "whenever PATH exists as one or ends in /.\n"
+    "Outputs are written while a scenario runs, and memory does not grow with its length: every\n"
+    "frame goes to --json, --log and --log-json, every finding is counted (the conformance table,\n"
+    "--junit), and the summary, --json's violations and --gtkw keep the first --examples N frames\n"
+    "and findings of each check (default 1000).\n"
     "\n"
     "\n"
     "Limits: every run is bounded. --max-time caps each scenario's max_time; --max-kernel-events\n"
@@ -227,6 +232,8 @@ po::options_description options_of(Command c) {
           "scenario (default): a JUnit test case per scenario; expectation: one per group of its expectations")(
           "log", po::value<std::string>(), "write the decoded transaction log (text; - for stdout)")(
           "log-json", po::value<std::string>(), "write the transaction log as JSON lines (- for stdout)")(
+          "examples", po::value<std::string>(),
+          "frames and findings of each check kept for the summary and --json's violations (default 1000; all are counted)")(
           "seed", po::value<std::string>(), "override every scenario's seed (0 .. 2^64-1)")(
           "color", po::value<std::string>(), "auto (default: only on a terminal, not with NO_COLOR), always, never");
       add_limit_options(o);
@@ -362,24 +369,6 @@ std::string colorize(const std::string& text) {
   return out;
 }
 
-// A log destination: "-" is stdout, otherwise a file opened once for all scenarios (before any
-// runs) and put in place when the run ends.
-class LogSink {
- public:
-  explicit LogSink(const std::optional<std::string>& path) {
-    if (path) file_.emplace(*path);
-  }
-  void write(const std::string& text) {
-    if (file_) file_->stream() << text;
-  }
-  void commit() {
-    if (file_) file_->commit();
-  }
-
- private:
-  std::optional<StreamedFile> file_;
-};
-
 struct Options {
   std::vector<std::string> files;
   std::optional<std::string> vcd;
@@ -389,6 +378,7 @@ struct Options {
   std::optional<std::string> log_json;
   std::optional<std::uint64_t> seed;
   bool gtkw = false;
+  std::size_t examples = 1000;  // frames and findings per check kept in memory
   scenarios::JunitCases junit_cases = scenarios::JunitCases::Scenario;
   bool verbose = false;
   bool quiet = false;
@@ -478,14 +468,22 @@ int run(const Options& o) {
   const SummaryStream summary_out(outputs);
   const bool color = use_color(o.color, summary_out.fd());
   // Every file output opened before anything runs; each replaces its file only when complete.
-  std::optional<StreamedFile> json_file, junit_file;
+  std::optional<StreamedFile> json_file, junit_file, log_file, log_json_file;
   if (o.json) json_file.emplace(*o.json);
   if (o.junit) junit_file.emplace(*o.junit);
-  LogSink log(o.log), log_json(o.log_json);
+  if (o.log) log_file.emplace(*o.log);
+  if (o.log_json) log_json_file.emplace(*o.log_json);
+  // Written while each scenario runs.
+  std::optional<scenarios::ResultsJsonWriter> json_writer;
+  std::optional<scenarios::TransactionLogWriter> log_writer, log_json_writer;
+  std::vector<scenarios::RunSink*> sinks;
+  if (json_file) sinks.push_back(&json_writer.emplace(json_file->stream(), ENDATSIM_VERSION));
+  if (log_file) sinks.push_back(&log_writer.emplace(log_file->stream(), scenarios::TransactionLogWriter::Format::Text));
+  if (log_json_file)
+    sinks.push_back(&log_json_writer.emplace(log_json_file->stream(), scenarios::TransactionLogWriter::Format::JsonLines));
   // Progress only where someone watches it: not in logs, pipes or CI.
   const bool progress = !o.quiet && isatty(STDERR_FILENO) != 0;
-  nlohmann::json all = nlohmann::json::array();
-  std::vector<scenarios::ScenarioResult> results;
+  std::vector<scenarios::ScenarioResult> results;  // for --junit, without their frames
   std::vector<scenarios::NotRun> not_run;
   bool passed = true;
   std::string incomplete;  // the first reason a run ended early
@@ -500,6 +498,8 @@ int run(const Options& o) {
     scenarios::RunOptions ro;
     ro.seed = o.seed;
     ro.limits = o.limits;
+    ro.kept = o.examples;
+    ro.sinks = sinks;
     if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", vcd_folder);
     ro.vcd_decoded = o.gtkw;  // the text trace is for GTKWave
     auto result = progress ? run_with_progress(s, ro, i + 1, loaded.size()) : scenarios::run_scenario(s, ro);
@@ -515,34 +515,30 @@ int run(const Options& o) {
       scenarios::write_summary(summary, result, o.verbose);
       summary_out.stream << (color ? colorize(summary.str()) : summary.str()) << std::flush;
     }
-    if (o.log) log.write(scenarios::transaction_log_text(result));
-    if (o.log_json) log_json.write(scenarios::transaction_log_jsonl(result));
-    if (o.json) all.push_back(scenarios::to_json(result));  // only for an output that was asked for
-    if (o.junit) results.push_back(std::move(result));
+    if (o.junit) {
+      result.frames = {};
+      result.encoder_frames = {};
+      result.bus_frames = {};
+      results.push_back(std::move(result));
+    }
   }
   if (interrupted != 0 && incomplete.empty()) incomplete = "interrupted by " + scenarios::signal_name(interrupted);
-  if (!incomplete.empty()) {
-    log.write("# incomplete: " + incomplete + "\n");
-    for (const auto& n : not_run) log.write("# " + n.file + ": " + n.reason + "\n");
+  if (!incomplete.empty() && log_file) {
+    log_file->stream() << "# incomplete: " << incomplete << "\n";
+    for (const auto& n : not_run) log_file->stream() << "# " << n.file << ": " << n.reason << "\n";
   }
   if (junit_file) {
     junit_file->stream() << scenarios::junit_xml(results, "endatsim", not_run, o.junit_cases);
     junit_file->commit();
   }
   if (json_file) {
-    nlohmann::json j{{"endatsim", ENDATSIM_VERSION}, {"passed", passed && incomplete.empty()}, {"scenarios", all}};
-    if (!incomplete.empty()) {
-      j["complete"] = false;
-      j["incomplete"] = incomplete;
-      nlohmann::json files = nlohmann::json::array();
-      for (const auto& n : not_run) files.push_back(n.file);
-      if (!not_run.empty()) j["not_run"] = files;
-    }
-    json_file->stream() << scenarios::json_file_text(j);
+    std::vector<std::string> files;
+    for (const auto& n : not_run) files.push_back(n.file);
+    json_writer->finish(passed && incomplete.empty(), incomplete, files);
     json_file->commit();
   }
-  log.commit();
-  log_json.commit();
+  if (log_file) log_file->commit();
+  if (log_json_file) log_json_file->commit();
   if (!o.quiet) {
     const std::string verdict = !incomplete.empty() ? "incomplete: " + incomplete
                                 : passed            ? "all scenarios passed"
@@ -720,6 +716,15 @@ int run_command(const po::variables_map& vm) {
   o.log = string_option(vm, "log");
   o.log_json = string_option(vm, "log-json");
   o.gtkw = vm.count("gtkw") != 0;
+  if (const auto examples = string_option(vm, "examples")) {
+    const auto n = parse_uint(*examples);
+    if (!n || *n == 0 || *n > 1'000'000) {
+      std::cerr << "endatsim run: --examples expects a whole number from 1 to 1000000, got '" << scenarios::trimmed(*examples)
+                << "'\n";
+      return kBadInput;
+    }
+    o.examples = *n;
+  }
   if (const auto cases = string_option(vm, "junit-cases")) {
     if (*cases != "scenario" && *cases != "expectation") {
       std::cerr << "endatsim run: --junit-cases expects scenario or expectation, got '" << scenarios::trimmed(*cases) << "'\n";

@@ -58,7 +58,8 @@ TEST(Junit, EscapesMarkupAndDropsControlCharacters) {
 TEST(TransactionLog, OneRecordPerFrameWithCrcAndViolations) {
   const auto r = run_bundled("endat22_2mhz_100m_uncompensated");
   const std::string text = scenarios::transaction_log_text(r);
-  EXPECT_EQ(count(text, "\n"), r.frames.size() + 1);  // a header line, then one line per frame
+  EXPECT_EQ(count(text, "\n"), r.frames.size() + 2);  // a header line, one line per frame, the count
+  EXPECT_TRUE(text.ends_with("\n# " + std::to_string(r.frames.size()) + " frames\n")) << text;
   const auto first = text.substr(text.find('\n') + 1, text.find('\n', text.find('\n') + 1) - text.find('\n') - 1);
   EXPECT_NE(first.find("encoder_send_position_values_with_additional_data"), std::string::npos) << first;
   EXPECT_NE(first.find("sent: mode_bits=111000 f_c=2 MHz"), std::string::npos) << first;

@@ -1,0 +1,120 @@
+// Results written while a run goes (run_recorder.hpp, streamed_outputs.hpp): for every bundled,
+// field and safety scenario, the streamed log, JSON lines and results object equal what the
+// complete result gives, whatever RunOptions::kept holds back; a run that keeps little still
+// judges every expectation, counts every frame and finding, and keeps no more than it may.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/report.hpp"
+#include "endatsim/scenarios/streamed_outputs.hpp"
+#include "endatsim/scenarios/transaction_log.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace scenarios = endatsim::scenarios;
+namespace master = endatsim::master;
+
+std::vector<fs::path> scenario_files() {
+  std::vector<fs::path> v;
+  for (const char* folder : {"bundled", "field", "safety"})
+    for (const auto& e : fs::directory_iterator(fs::path(ENDATSIM_SOURCE_DIR) / "scenarios" / folder))
+      if (e.path().extension() == ".json") v.push_back(e.path());
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// One run with every output streamed.
+struct Streamed {
+  scenarios::ScenarioResult result;
+  std::string log, jsonl, json;
+};
+
+Streamed run_streamed(const scenarios::Scenario& s, std::size_t kept) {
+  std::ostringstream log, jsonl, json;
+  scenarios::TransactionLogWriter text(log, scenarios::TransactionLogWriter::Format::Text);
+  scenarios::TransactionLogWriter lines(jsonl, scenarios::TransactionLogWriter::Format::JsonLines);
+  scenarios::ResultsJsonWriter results(json, "test");
+  scenarios::RunOptions options;
+  options.kept = kept;
+  options.sinks = {&text, &lines, &results};
+  Streamed out{scenarios::run_scenario(s, options), {}, {}, {}};
+  results.finish(out.result.passed(), "", {});
+  out.log = log.str();
+  out.jsonl = jsonl.str();
+  out.json = json.str();
+  return out;
+}
+
+std::vector<std::string> expectation_lines(const scenarios::ScenarioResult& r) {
+  std::vector<std::string> v;
+  for (const auto& e : r.expectations) v.push_back(e.name + (e.passed ? " ok: " : " FAIL: ") + e.detail);
+  return v;
+}
+
+class Streaming : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(Streaming, OutputsEqualTheCompleteResultsAndDoNotDependOnWhatIsKept) {
+  const auto s = scenarios::load_scenario_file(GetParam().string());
+  const Streamed all = run_streamed(s, SIZE_MAX);
+  const auto& r = all.result;
+  EXPECT_EQ(r.late_findings, 0U) << "a finding came after its frame was written out";
+  EXPECT_EQ(all.log, scenarios::transaction_log_text(r));
+  EXPECT_EQ(all.jsonl, scenarios::transaction_log_jsonl(r));
+  const auto parsed = nlohmann::json::parse(all.json);
+  ASSERT_EQ(parsed["scenarios"].size(), 1U);
+  EXPECT_EQ(parsed["scenarios"][0], scenarios::to_json(r)) << "the streamed results object differs";
+  EXPECT_EQ(r.tally.results, r.frames.size());
+
+  // Keeping three frames and three findings per check (the summary shows three): the same files, byte for byte (but for the
+  // count of findings not kept), the same verdicts.
+  const Streamed few = run_streamed(s, 3);
+  EXPECT_EQ(few.result.late_findings, 0U);
+  EXPECT_EQ(few.log, all.log);
+  EXPECT_EQ(few.jsonl, all.jsonl);
+  auto few_json = nlohmann::json::parse(few.json);
+  auto& scenario = few_json["scenarios"][0];
+  EXPECT_EQ(scenario["frames"], parsed["scenarios"][0]["frames"]);
+  EXPECT_EQ(scenario["expectations"], parsed["scenarios"][0]["expectations"]);
+  EXPECT_EQ(scenario["conformance"], parsed["scenarios"][0]["conformance"]);
+  EXPECT_EQ(scenario["verdict"], parsed["scenarios"][0]["verdict"]);
+  EXPECT_EQ(expectation_lines(few.result), expectation_lines(r));
+  EXPECT_EQ(few.result.passed(), r.passed());
+  EXPECT_LE(few.result.frames.size(), 3U);
+  EXPECT_LE(few.result.encoder_frames.size(), 128U);
+  std::map<std::string, std::size_t> per_check;
+  for (const auto& v : few.result.violations) EXPECT_LE(++per_check[v.check], 3U) << v.check;
+  const std::uint64_t counted = r.violations.size();
+  EXPECT_EQ(few.result.violations.size() + scenario.value("violations_not_kept", std::uint64_t{0}), counted);
+  std::ostringstream a, b;
+  scenarios::write_summary(a, r, false);
+  scenarios::write_summary(b, few.result, false);
+  EXPECT_EQ(b.str(), a.str()) << "the summary depends on what was kept";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, Streaming, ::testing::ValuesIn(scenario_files()), [](const auto& param_info) {
+  std::string name = param_info.param.parent_path().filename().string() + "_" + param_info.param.stem().string();
+  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  return name;
+});
+
+TEST(ResultsJsonWriter, ResultsFileOfNoScenarioAndOfAnIncompleteRunIsValidJson) {
+  std::ostringstream out;
+  scenarios::ResultsJsonWriter writer(out, "1.2.3");
+  writer.finish(false, "interrupted by SIGINT", {"a.json", "b.json"});
+  const auto j = nlohmann::json::parse(out.str());
+  EXPECT_EQ(j["endatsim"], "1.2.3");
+  EXPECT_TRUE(j["scenarios"].empty());
+  EXPECT_EQ(j["complete"], false);
+  EXPECT_EQ(j["not_run"], nlohmann::json::array({"a.json", "b.json"}));
+  EXPECT_EQ(out.str().find("\"scenarios\": []"), out.str().find("\"scenarios\""));
+}
+
+}  // namespace
