@@ -5,7 +5,7 @@
 //
 //   endatsim_soak                              2,000,000 frames in 20 chunks of 100,000
 //   endatsim_soak --benchmark_filter=200k     the same with 2 chunks (a quick look)
-//   endatsim_soak --benchmark_filter=Streamed  one run of 1,000,000 frames with its results file,
+//   endatsim_soak --benchmark_filter=Streamed  one run of 1,000,000 frames (16 MHz, 16 kHz) with its results file,
 //                                             log and JSON lines written as it goes (what
 //                                             `endatsim run --json --log --log-json` does): the
 //                                             resident memory at every 100,000th frame
@@ -31,6 +31,7 @@
 #include <unistd.h>
 
 #include "endatsim/scenarios/junit.hpp"
+#include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/runner.hpp"
 #include "endatsim/scenarios/streamed_outputs.hpp"
 
@@ -207,28 +208,14 @@ class RssProbe final : public scenarios::RunSink {
   std::vector<double> samples;
 };
 
-// One position loop of 1,000,000 reads at 8 MHz, every 25 us, with additional data 1 and 2 and
-// a warning on every frame (t_ST shorter than the 2 us of D297403 2.3.2 note 8): every frame and
-// finding goes to the outputs, which keep 1000 of each in memory.
+// The position loop of bench/scenarios/additional_data_loop_1s.json (EnDat 2.2 at 16 MHz over
+// 10 m, additional data 2 and 1 every 62.5 us, an f_c warning on every frame) for 1,000,000
+// reads: every frame and finding goes to the outputs, which keep 1000 of each in memory.
 void BM_Streamed_1M_frames(benchmark::State& state) {
   constexpr unsigned kFrames = 1'000'000;
-  scenarios::Scenario s;
-  s.name = "streamed_1m";
-  s.seed = 1;
-  s.max_time = sim::ms(30'000);
-  s.line.cable_length_m = 10;
-  s.encoder.version = endatsim::protocol::EndatVersion::V2_2;
-  s.encoder.t_m_short = sim::us(2);
-  s.master.f_c = sim::MHz(8);
-  s.master.t_st = sim::us(1);
-  master::Operation select1, select2, read;
-  select1.command = select2.command = master::ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-  select1.address = endatsim::protocol::selection_mrs(endatsim::protocol::Information::Temperature1);
-  select2.address = endatsim::protocol::selection_mrs(endatsim::protocol::Information::OperatingStatusErrorSources);
-  read.command = master::ModeCommand::EncoderSendPositionValuesWithAdditionalData;
-  read.count = kFrames;
-  read.cycle = sim::us(25);
-  s.script = {select1, select2, read};
+  scenarios::Scenario s = scenarios::load_scenario_file(ENDATSIM_SOURCE_DIR "/bench/scenarios/additional_data_loop_1s.json");
+  s.script.back().count = kFrames;
+  s.max_time = sim::ms(62'600);
   const std::string base = "/tmp/endatsim_soak_" + std::to_string(::getpid());
   double peak = 0, growth = 0, first = 0, last = 0;
   std::uint64_t frames = 0;
