@@ -482,15 +482,6 @@ std::string describe(const checker::Violation& v) {
          v.message;
 }
 
-std::vector<fs::path> scenario_files() {
-  std::vector<fs::path> out;
-  for (const char* folder : {"bundled", "field", "safety"})
-    for (const auto& e : fs::directory_iterator(fs::path(ENDATSIM_SOURCE_DIR) / "scenarios" / folder))
-      if (e.path().extension() == ".json") out.push_back(e.path());
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 // Without t_ST on 100 m at 8 MHz the master drives DATA into the encoder's release in every read
 // frame (CheckerContention above).
 scenarios::Scenario colliding_reads(unsigned reads) {
@@ -551,7 +542,7 @@ TEST_P(CheckerSettledFrames, NoFindingArrivesForASettledFrame) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenarios, CheckerSettledFrames, ::testing::ValuesIn(scenario_files()),
+INSTANTIATE_TEST_SUITE_P(Scenarios, CheckerSettledFrames, ::testing::ValuesIn(test_support::scenario_files()),
                          [](const auto& param_info) {
                            std::string name = param_info.param.parent_path().filename().string() + "_" +
                                               param_info.param.stem().string();

@@ -14,19 +14,12 @@
 #include "endatsim/scenarios/scenarios.hpp"
 #include "endatsim/scenarios/vcd_reader.hpp"
 
+#include "scenario_support.hpp"
+
 namespace {
 
 using namespace endatsim;
 namespace fs = std::filesystem;
-
-std::vector<fs::path> all_scenarios() {
-  std::vector<fs::path> out;
-  for (const char* folder : {"bundled", "field", "safety"})
-    for (const auto& e : fs::directory_iterator(fs::path(ENDATSIM_SOURCE_DIR) / "scenarios" / folder))
-      if (e.path().extension() == ".json") out.push_back(e.path());
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 checker::DecoderParams declared(const scenarios::Scenario& s) {
   checker::DecoderParams p;
@@ -129,7 +122,7 @@ TEST_P(DecoderRoundTrip, EveryCleanFrameOfTheMasterIsDecodedFromTheWires) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenarios, DecoderRoundTrip, ::testing::ValuesIn(all_scenarios()), [](const auto& param_info) {
+INSTANTIATE_TEST_SUITE_P(Scenarios, DecoderRoundTrip, ::testing::ValuesIn(test_support::scenario_files()), [](const auto& param_info) {
   std::string name = param_info.param.parent_path().filename().string() + "_" + param_info.param.stem().string();
   std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
   return name;

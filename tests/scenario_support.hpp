@@ -2,10 +2,25 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <vector>
+
 #include "endatsim/scenarios/runner.hpp"
 #include "endatsim/scenarios/vcd_reader.hpp"
 
 namespace endatsim::test_support {
+
+// Every bundled, field and safety scenario file, in path order (the parameters of the suites
+// that run them all).
+inline std::vector<std::filesystem::path> scenario_files() {
+  std::vector<std::filesystem::path> out;
+  for (const char* folder : {"bundled", "field", "safety"})
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(ENDATSIM_SOURCE_DIR) / "scenarios" / folder))
+      if (e.path().extension() == ".json") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
 
 // A scenario built in code: an EnDat 2.2 encoder at position 104462 on `cable_m` of cable,
 // a master at f_c, optional delay compensation (measured first), `reads` position reads.

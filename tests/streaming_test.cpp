@@ -16,20 +16,13 @@
 #include "endatsim/scenarios/streamed_outputs.hpp"
 #include "endatsim/scenarios/transaction_log.hpp"
 
+#include "scenario_support.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 namespace scenarios = endatsim::scenarios;
 namespace master = endatsim::master;
-
-std::vector<fs::path> scenario_files() {
-  std::vector<fs::path> v;
-  for (const char* folder : {"bundled", "field", "safety"})
-    for (const auto& e : fs::directory_iterator(fs::path(ENDATSIM_SOURCE_DIR) / "scenarios" / folder))
-      if (e.path().extension() == ".json") v.push_back(e.path());
-  std::sort(v.begin(), v.end());
-  return v;
-}
 
 // One run with every output streamed.
 struct Streamed {
@@ -99,7 +92,7 @@ TEST_P(Streaming, OutputsEqualTheCompleteResultsAndDoNotDependOnWhatIsKept) {
   EXPECT_EQ(b.str(), a.str()) << "the summary depends on what was kept";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenarios, Streaming, ::testing::ValuesIn(scenario_files()), [](const auto& param_info) {
+INSTANTIATE_TEST_SUITE_P(Scenarios, Streaming, ::testing::ValuesIn(endatsim::test_support::scenario_files()), [](const auto& param_info) {
   std::string name = param_info.param.parent_path().filename().string() + "_" + param_info.param.stem().string();
   std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
   return name;
