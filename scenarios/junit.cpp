@@ -44,6 +44,15 @@ std::string classname(const std::string& suite_name, const std::string& file) {
 
 }  // namespace
 
+std::string junit_head(const std::string& suite_name, std::size_t tests, std::size_t failures, std::size_t errors) {
+  const std::string counts = "\" tests=\"" + std::to_string(tests) + "\" failures=\"" + std::to_string(failures) +
+                             "\" errors=\"" + std::to_string(errors) + "\"";
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"" + xml_escape(suite_name) + counts + ">\n" +
+         "  <testsuite name=\"" + xml_escape(suite_name) + counts + " skipped=\"0\">\n";
+}
+
+std::string junit_tail() { return "  </testsuite>\n</testsuites>\n"; }
+
 namespace {
 
 // "outcomes.ok" belongs to the group "outcomes"; "positions_match_encoder" is a group of its own.
@@ -77,10 +86,7 @@ std::string expectation_cases(const std::vector<ScenarioResult>& results, const 
   for (const auto& n : not_run) cases.push_back({classname(suite_name, n.file) + "." + n.name, "run", n.file, "", "", n.reason});
   std::size_t failures = 0, errors = 0;
   for (const auto& c : cases) (c.error.empty() ? failures : errors) += c.failure.empty() && c.error.empty() ? 0 : 1;
-  const std::string counts = "\" tests=\"" + std::to_string(cases.size()) + "\" failures=\"" + std::to_string(failures) +
-                             "\" errors=\"" + std::to_string(errors) + "\"";
-  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"" + xml_escape(suite_name) + counts + ">\n";
-  x += "  <testsuite name=\"" + xml_escape(suite_name) + counts + " skipped=\"0\">\n";
+  std::string x = junit_head(suite_name, cases.size(), failures, errors);
   for (const auto& c : cases) {
     x += "    <testcase classname=\"" + xml_escape(c.classname) + "\" name=\"" + xml_escape(c.name) + "\" file=\"" +
          xml_escape(c.file) + "\"";
@@ -96,7 +102,7 @@ std::string expectation_cases(const std::vector<ScenarioResult>& results, const 
       x += "      <failure type=\"expectation\" message=\"" + xml_escape(c.failure) + "\">" + xml_escape(c.text) + "</failure>\n";
     x += "    </testcase>\n";
   }
-  return x + "  </testsuite>\n</testsuites>\n";
+  return x + junit_tail();
 }
 
 }  // namespace
@@ -113,11 +119,7 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
   if (cases == JunitCases::Expectation) return expectation_cases(results, suite_name, not_run);
   std::size_t failures = 0, errors = not_run.size();
   for (const auto& r : results) (r.incomplete.empty() ? failures : errors) += r.passed() ? 0 : 1;
-  const std::string tests = std::to_string(results.size() + not_run.size());
-  const std::string counts = "\" failures=\"" + std::to_string(failures) + "\" errors=\"" + std::to_string(errors) + "\"";
-  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  x += "<testsuites name=\"" + xml_escape(suite_name) + "\" tests=\"" + tests + counts + ">\n";
-  x += "  <testsuite name=\"" + xml_escape(suite_name) + "\" tests=\"" + tests + counts + " skipped=\"0\">\n";
+  std::string x = junit_head(suite_name, results.size() + not_run.size(), failures, errors);
   for (const auto& r : results) {
     x += "    <testcase classname=\"" + xml_escape(classname(suite_name, r.file)) + "\" name=\"" + xml_escape(r.name) +
          "\" file=\"" + xml_escape(r.file) + "\" assertions=\"" + std::to_string(r.expectations.size()) + "\">\n";
@@ -146,8 +148,7 @@ std::string junit_xml(const std::vector<ScenarioResult>& results, const std::str
     x += "    <testcase classname=\"" + xml_escape(classname(suite_name, n.file)) + "\" name=\"" + xml_escape(n.name) +
          "\" file=\"" + xml_escape(n.file) + "\">\n      <error type=\"not run\" message=\"" + xml_escape(n.reason) +
          "\"/>\n    </testcase>\n";
-  x += "  </testsuite>\n</testsuites>\n";
-  return x;
+  return x + junit_tail();
 }
 
 std::string junit_xml(const std::vector<CaptureCheckResult>& captures, const std::vector<CaptureReadError>& unreadable) {

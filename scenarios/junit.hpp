@@ -25,6 +25,11 @@ enum class JunitCases : std::uint8_t { Scenario, Expectation };
 std::string junit_xml(const std::vector<ScenarioResult>& results, const std::string& suite_name = "endatsim",
                       const std::vector<NotRun>& not_run = {}, JunitCases cases = JunitCases::Scenario);
 
+// The document around a run's test cases (one <testsuites> holding one <testsuite>): what
+// junit_xml writes before the first and after the last, for `endatsim merge` to write the same.
+std::string junit_head(const std::string& suite_name, std::size_t tests, std::size_t failures, std::size_t errors);
+std::string junit_tail();
+
 // `endatsim check`: one <testsuite> per capture, one <testcase> per row of the timing table; a
 // row with violations or undecided findings fails, a row not applicable or not observable in
 // that capture is skipped with the reason.

@@ -74,6 +74,12 @@ void TransactionLogWriter::end(const ScenarioResult& r) {
   out_ << "# " << r.tally.results << " frames\n";
 }
 
+void TransactionLogWriter::write_incomplete(std::ostream& out, const std::string& incomplete,
+                                            const std::vector<NotRun>& not_run) {
+  out << "# incomplete: " << incomplete << "\n";
+  for (const auto& n : not_run) out << "# " << n.file << ": " << n.reason << "\n";
+}
+
 ResultsJsonWriter::ResultsJsonWriter(std::ostream& out, const std::string& version) : out_(out) {
   out_ << "{\n" << member("endatsim", version, 2) << ",\n  \"scenarios\": [";
 }
@@ -93,7 +99,14 @@ void ResultsJsonWriter::end(const ScenarioResult& r) {
   ++scenarios_;
 }
 
-void ResultsJsonWriter::finish(bool passed, const std::string& incomplete, const std::vector<std::string>& not_run) {
+void ResultsJsonWriter::copy_scenario(const std::function<void(std::ostream&)>& object) {
+  out_ << (scenarios_ == 0 ? "\n" : ",\n");
+  object(out_);
+  ++scenarios_;
+}
+
+void ResultsJsonWriter::finish(bool passed, const std::string& incomplete, const std::vector<std::string>& not_run,
+                               const json* shard) {
   out_ << (scenarios_ == 0 ? "]" : "\n  ]");
   json rest{{"passed", passed}};
   if (!incomplete.empty()) {
@@ -101,6 +114,7 @@ void ResultsJsonWriter::finish(bool passed, const std::string& incomplete, const
     rest["incomplete"] = incomplete;
     if (!not_run.empty()) rest["not_run"] = not_run;
   }
+  if (shard != nullptr) rest["shard"] = *shard;
   for (const auto& [key, value] : rest.items()) out_ << ",\n" << member(key, value, 2);
   out_ << "\n}\n";
 }

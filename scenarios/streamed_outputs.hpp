@@ -3,10 +3,13 @@
 // so a run of millions of frames writes them with the memory of a few.
 #pragma once
 
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "endatsim/scenarios/junit.hpp"
 #include "endatsim/scenarios/run_recorder.hpp"
 #include "endatsim/scenarios/runner.hpp"
 
@@ -23,6 +26,8 @@ class TransactionLogWriter final : public RunSink {
   void frame(const ScenarioResult& header, const master::FrameResult& frame,
              std::span<const checker::Violation> findings) override;
   void end(const ScenarioResult& result) override;
+  // The text log's last lines for a run that ended early: why, then each file not run.
+  static void write_incomplete(std::ostream& out, const std::string& incomplete, const std::vector<NotRun>& not_run);
 
  private:
   std::ostream& out_;
@@ -40,9 +45,13 @@ class ResultsJsonWriter final : public RunSink {
   void frame(const ScenarioResult& header, const master::FrameResult& frame,
              std::span<const checker::Violation> findings) override;
   void end(const ScenarioResult& result) override;
+  // A scenario's object as another writer wrote it (`endatsim merge`): `object` writes it from
+  // its opening "    {" to its closing "    }", without the comma or newline after.
+  void copy_scenario(const std::function<void(std::ostream&)>& object);
   // Closes the document: whether every scenario passed, and why the run is incomplete ("" if
-  // it is not) with the files not run.
-  void finish(bool passed, const std::string& incomplete, const std::vector<std::string>& not_run);
+  // it is not) with the files not run; a shard's partial (`run --shard`) also gets "shard".
+  void finish(bool passed, const std::string& incomplete, const std::vector<std::string>& not_run,
+              const nlohmann::json* shard = nullptr);
 
  private:
   std::ostream& out_;

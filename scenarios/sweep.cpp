@@ -210,6 +210,10 @@ std::vector<json> values_at(const std::vector<GridAxis>& grid, std::size_t index
   return values;
 }
 
+}  // namespace
+
+std::vector<json> grid_point_values(const std::vector<GridAxis>& grid, std::size_t index) { return values_at(grid, index); }
+
 std::size_t grid_size(const std::vector<GridAxis>& grid) {
   std::size_t n = 1;
   for (const auto& axis : grid) {
@@ -220,6 +224,8 @@ std::size_t grid_size(const std::vector<GridAxis>& grid) {
   }
   return n;
 }
+
+namespace {
 
 std::string describe_point(const std::vector<GridAxis>& grid, const std::vector<json>& values) {
   std::string text;
@@ -279,22 +285,23 @@ void for_each_point(std::size_t n, unsigned jobs, const Work& work) {
     if (e) std::rethrow_exception(e);
 }
 
+// The points [first, first + count) of the grid's n.
 std::vector<SweepPoint> run_points(const json& base, const std::string& file, const std::vector<GridAxis>& grid,
-                                   const SweepOptions& options) {
+                                   std::size_t first, std::size_t count, const SweepOptions& options) {
   const std::size_t n = grid_size(grid);
-  std::vector<SweepPoint> points(n);
+  std::vector<SweepPoint> points(count);
   std::mutex progress_mutex;
   std::size_t done = 0;
   RunOptions run_options;
   run_options.limits = options.limits;
-  for_each_point(n, options.jobs, [&](std::size_t i) {
-    const Scenario scenario = load_point(base, file, grid, i, n);
+  for_each_point(count, options.jobs, [&](std::size_t i) {
+    const Scenario scenario = load_point(base, file, grid, first + i, n);
     const ScenarioResult r = run_scenario(scenario, run_options);
     points[i] = summarize(scenario, r);
     points[i].incomplete = r.incomplete;
     if (!options.progress) return;
     const std::lock_guard lock(progress_mutex);
-    options.progress(++done, n);
+    options.progress(++done, count);
   });
   return points;
 }
@@ -382,11 +389,15 @@ void check_grid(const json& base, const std::string& file, const std::vector<Gri
 Sweep run_sweep(const json& base, const std::string& file, const std::vector<GridAxis>& grid, const SweepOptions& options) {
   check_grid(base, file, grid);
   const std::size_t n = grid_size(grid);
+  const auto [first, end] = options.points.value_or(std::pair<std::size_t, std::size_t>{0, n});
+  if (first > end || end > n) throw std::logic_error("run_sweep: points outside the grid");
   // Load every point before running any, so that bad input stops the sweep at once; on the
-  // sweep's threads, each keeping only the point it loads. The sweep is named after point 0
-  // (one thread loads it; the name is read after they have joined).
+  // sweep's threads, each keeping only the point it loads. The sweep is named after point 0,
+  // which a shard without it loads for the name alone (the name is read after they have joined).
   std::string name;
-  for_each_point(n, options.jobs, [&](std::size_t i) {
+  if (first != 0 && n != 0) name = load_point(base, file, grid, 0, n).name;
+  for_each_point(end - first, options.jobs, [&](std::size_t k) {
+    const std::size_t i = first + k;
     const Scenario s = load_point(base, file, grid, i, n);
     if (i == 0) name = s.name;
     try {
@@ -398,9 +409,9 @@ Sweep run_sweep(const json& base, const std::string& file, const std::vector<Gri
   });
   Sweep sweep{file, name, grid, {}};
   if ((sweep.interrupted = interrupt_signal()) != 0) return sweep;
-  sweep.points = run_points(base, file, grid, options);
+  sweep.points = run_points(base, file, grid, first, end - first, options);
   sweep.interrupted = interrupt_signal();
-  for (std::size_t i = 0; i < n; ++i) sweep.points[i].values = values_at(grid, i);
+  for (std::size_t i = first; i < end; ++i) sweep.points[i - first].values = values_at(grid, i);
   return sweep;
 }
 

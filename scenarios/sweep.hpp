@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "endatsim/scenarios/runner.hpp"
@@ -58,6 +59,9 @@ struct SweepOptions {
   // at a time.
   std::function<void(std::size_t, std::size_t)> progress;
   Limits limits;  // for every point's run
+  // Only these grid points (`sweep --shard K/N`, shard.hpp): only they are loaded, checked and
+  // run, and Sweep::points holds them alone. None: every point.
+  std::optional<std::pair<std::size_t, std::size_t>> points;
 };
 
 // The scenario file as JSON, after it loaded as a scenario on its own.
@@ -68,6 +72,11 @@ nlohmann::json read_scenario_json(const std::string& path);
 // array or a key of an existing object in `base` (a missing key of an existing object is
 // fine: the loader judges it), or when an axis has no values or the grid is too large.
 void check_grid(const nlohmann::json& base, const std::string& file, const std::vector<GridAxis>& grid);
+
+// The number of points of a grid: the product of its axes' sizes.
+std::size_t grid_size(const std::vector<GridAxis>& grid);
+// The values of point `index` (the last axis varying fastest).
+std::vector<nlohmann::json> grid_point_values(const std::vector<GridAxis>& grid, std::size_t index);
 
 // check_grid, then patches `base` at the grid's pointers for every point and loads it (so the loader validates
 // every value; its errors name the grid point) and checks it against options.limits, then runs all points on

@@ -34,7 +34,9 @@
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/junit.hpp"
 #include "endatsim/scenarios/output_file.hpp"
+#include "endatsim/scenarios/merge.hpp"
 #include "endatsim/scenarios/scenarios.hpp"
+#include "endatsim/scenarios/shard.hpp"
 #include "endatsim/scenarios/sweep.hpp"
 #include "endatsim/scenarios/streamed_outputs.hpp"
 #include "endatsim/scenarios/transaction_log.hpp"
@@ -57,11 +59,14 @@ int interrupted_status(int signal) { return 128 + signal; }
 const char* const kRunUsage =
     "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH [--junit-cases scenario|expectation]]\n"
     "                    [--log PATH] [--log-json PATH] [--examples N]\n"
-    "                    [--seed N] [--verbose|--quiet] [--color auto|always|never]\n"
+    "                    [--seed N] [--shard K/N] [--verbose|--quiet] [--color auto|always|never]\n"
     "                    [--max-time TIME] [--max-kernel-events N] [--max-script-frames N] [--max-events N] [--max-records N]\n";
 const char* const kSweepUsage =
     "usage: endatsim sweep FILE --grid POINTER=V1,V2,...|START:STOP:STEP [--grid ...] [--maximize POINTER]\n"
-    "                      [--csv PATH] [--json PATH] [--svg PATH] [--jobs N] [--verbose|--quiet] [limits as run]\n";
+    "                      [--csv PATH] [--json PATH] [--svg PATH] [--jobs N] [--shard K/N] [--verbose|--quiet] [limits as run]\n";
+const char* const kMergeUsage =
+    "usage: endatsim merge PARTIAL... [--json PATH] [--junit PATH] [--log PATH] [--log-json PATH] [--quiet]\n"
+    "       endatsim merge PARTIAL... [--csv PATH] [--json PATH] [--svg PATH] [--maximize POINTER] [--verbose|--quiet]\n";
 const char* const kValidateUsage = "usage: endatsim validate FILE... [--quiet] [limits as run]\n";
 const char* const kDiagramUsage =
     "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet] [limits as run]\n";
@@ -74,7 +79,7 @@ const char* const kCheckUsage =
     "                      [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
 
 std::string usage() {
-  return std::string(kRunUsage) + kSweepUsage + kValidateUsage + kDiagramUsage + kCheckUsage + kChecksUsage +
+  return std::string(kRunUsage) + kSweepUsage + kMergeUsage + kValidateUsage + kDiagramUsage + kCheckUsage + kChecksUsage +
          "       endatsim --help | --version | COMMAND --help | COMMAND --version\n";
 }
 
@@ -108,6 +113,9 @@ const char* const kRunHelp =
     "key may lower them. A file that asks for more is refused before anything runs (exit 2); a run\n"
     "that reaches a limit ends there, its results marked incomplete (exit 3).\n"
     "SIGINT or SIGTERM stops at the next event boundary: the outputs say incomplete (exit 128 + N).\n"
+    "--shard K/N runs the K-th of N contiguous slices of the scenario files (every shard given the\n"
+    "same FILE... and options) and marks each output as a partial; endatsim merge joins the N\n"
+    "partials into the outputs of the whole run, byte for byte.\n"
     "Output paths are checked before anything runs: not an input, not given twice, not a directory\n"
     "or FIFO, writable; each output replaces its file only when complete.\n"
     "\n"
@@ -128,9 +136,24 @@ const char* const kSweepHelp =
     "POINTER; --svg draws it over the one other numeric key. --verbose lists every point. A\n"
     "progress counter goes to stderr when stderr is a terminal. Every point runs within the limits of\n"
     "run (--max-* options); a point that reaches one is not clean and marked incomplete in --json.\n"
+    "--shard K/N loads and runs only the K-th of N contiguous slices of the grid's points and writes\n"
+    "them to --json as a partial (no --csv, --svg or --maximize); endatsim merge joins the N\n"
+    "partials and writes those outputs, byte for byte as the whole sweep would.\n"
     "Exit status: 0 when the sweep ran, 2 for bad input (the message names the grid point) or usage,\n"
     "3 when a limit ended a point's run, 128 + N when interrupted by signal N (the outputs are removed),\n"
     ENDATSIM_INTERNAL_EXIT;
+
+const char* const kMergeHelp =
+    "merge: joins the partial results that run --shard K/N or sweep --shard K/N wrote, one per\n"
+    "shard, into the outputs of the whole run, byte for byte as an unsharded run writes them.\n"
+    "PARTIAL... are the shards' output files in any order (a folder stands for every file in it):\n"
+    "each says which shard of which run it is. Of a run: its --json, --junit, --log and --log-json\n"
+    "files; each output asked for needs that file of every shard. Of a sweep: its --json files,\n"
+    "from which --csv, --json, --svg and the --maximize table are written as sweep writes them.\n"
+    "Partials of different runs, versions, options or numbers of shards are refused, naming them.\n"
+    "Prints the run's verdict (a sweep: its point count and maximum table).\n"
+    "Exit status: as the whole run's: 0 passed, 1 a scenario failed, 3 a shard's run was incomplete;\n"
+    "2 for a partial that cannot be read or does not fit the others, or usage," ENDATSIM_INTERNAL_EXIT;
 
 const char* const kValidateHelp =
     "validate: loads scenario files without running them, as run would, and prints 'valid FILE'\n"
@@ -190,7 +213,7 @@ const char* const kCheckHelp =
     "interrupted by signal N (the captures not judged are listed as such in --json and --junit),\n"
     ENDATSIM_INTERNAL_EXIT;
 
-enum class Command { Run, Sweep, Validate, Diagram, Check, Checks };
+enum class Command { Run, Sweep, Merge, Validate, Diagram, Check, Checks };
 
 struct CommandInfo {
   Command command;
@@ -202,6 +225,7 @@ struct CommandInfo {
 const CommandInfo kCommands[] = {
     {Command::Run, "run", kRunUsage, kRunHelp},
     {Command::Sweep, "sweep", kSweepUsage, kSweepHelp},
+    {Command::Merge, "merge", kMergeUsage, kMergeHelp},
     {Command::Validate, "validate", kValidateUsage, kValidateHelp},
     {Command::Diagram, "diagram", kDiagramUsage, kDiagramHelp},
     {Command::Check, "check", kCheckUsage, kCheckHelp},
@@ -235,6 +259,7 @@ po::options_description options_of(Command c) {
           "examples", po::value<std::string>(),
           "frames and findings of each check kept for the summary and --json's violations (default 1000; all are counted)")(
           "seed", po::value<std::string>(), "override every scenario's seed (0 .. 2^64-1)")(
+          "shard", po::value<std::string>(), "run the K-th of N slices of the files; outputs are partials for merge")(
           "color", po::value<std::string>(), "auto (default: only on a terminal, not with NO_COLOR), always, never");
       add_limit_options(o);
       break;
@@ -245,8 +270,19 @@ po::options_description options_of(Command c) {
           "csv", po::value<std::string>(), "write one row per grid point to this file")(
           "json", po::value<std::string>(), "write the points as JSON to this file")(
           "svg", po::value<std::string>(), "write a chart of the --maximize table to this file")(
-          "jobs", po::value<std::string>(), "threads (default: the number of cores)");
+          "jobs", po::value<std::string>(), "threads (default: the number of cores)")(
+          "shard", po::value<std::string>(), "run the K-th of N slices of the grid; --json is a partial for merge");
       add_limit_options(o);
+      break;
+    case Command::Merge:
+      o.add_options()("verbose,v", "a sweep: list every grid point")(
+          "json", po::value<std::string>(), "write the whole run's (or sweep's) JSON results to this file")(
+          "junit", po::value<std::string>(), "a run: write its JUnit XML to this file")(
+          "log", po::value<std::string>(), "a run: write its transaction log (text)")(
+          "log-json", po::value<std::string>(), "a run: write its transaction log as JSON lines")(
+          "csv", po::value<std::string>(), "a sweep: write one row per grid point to this file")(
+          "svg", po::value<std::string>(), "a sweep: write a chart of the --maximize table to this file")(
+          "maximize", po::value<std::string>(), "a sweep: print the largest clean value of this grid key per other combination");
       break;
     case Command::Check:
       o.add_options()("verbose,v", "print every decoded frame and every violation")(
@@ -370,7 +406,9 @@ std::string colorize(const std::string& text) {
 }
 
 struct Options {
-  std::vector<std::string> files;
+  std::vector<std::string> all_files;  // as named on the command line
+  std::vector<std::string> files;      // what this process runs: all, or its shard's slice
+  std::optional<scenarios::Shard> shard;
   std::optional<std::string> vcd;
   std::optional<std::string> json;
   std::optional<std::string> junit;
@@ -441,7 +479,7 @@ int run(const Options& o) {
   // --vcd names a folder (NAME.vcd for each scenario) for several scenarios, and whenever it
   // exists as one or ends in "/"; else the file.
   std::error_code ec;
-  const bool vcd_folder = o.vcd && (o.files.size() > 1 || o.vcd->ends_with('/') || std::filesystem::is_directory(*o.vcd, ec));
+  const bool vcd_folder = o.vcd && (o.all_files.size() > 1 || o.vcd->ends_with('/') || std::filesystem::is_directory(*o.vcd, ec));
   std::vector<scenarios::OutputPath> outputs;
   if (o.vcd) outputs.push_back({"--vcd", *o.vcd, vcd_folder});
   if (o.vcd && o.gtkw && *o.vcd == "-")
@@ -452,7 +490,7 @@ int run(const Options& o) {
   if (o.junit) outputs.push_back({"--junit", *o.junit});
   if (o.log) outputs.push_back({"--log", *o.log});
   if (o.log_json) outputs.push_back({"--log-json", *o.log_json});
-  scenarios::check_output_paths(o.files, "a scenario file", outputs);
+  scenarios::check_output_paths(o.all_files, "a scenario file", outputs);
   std::vector<scenarios::Scenario> loaded;
   load_or_clear_outputs("run", outputs, [&] {
     std::set<std::string> names;
@@ -523,22 +561,38 @@ int run(const Options& o) {
     }
   }
   if (interrupted != 0 && incomplete.empty()) incomplete = "interrupted by " + scenarios::signal_name(interrupted);
-  if (!incomplete.empty() && log_file) {
-    log_file->stream() << "# incomplete: " << incomplete << "\n";
-    for (const auto& n : not_run) log_file->stream() << "# " << n.file << ": " << n.reason << "\n";
-  }
+  // A shard's outputs are partials: each ends with what `endatsim merge` needs to join them.
+  std::optional<scenarios::ShardMark> mark;
+  if (o.shard)
+    mark = scenarios::ShardMark{ENDATSIM_VERSION, "run", *o.shard, scenarios::slice_of(*o.shard, o.all_files.size()).begin,
+                                o.files.size(), o.all_files.size(), o.all_files,
+                                scenarios::run_shard_options(o.seed, o.examples, o.limits, o.junit_cases),
+                                passed && incomplete.empty(), incomplete, not_run};
+  if (!incomplete.empty() && log_file) scenarios::TransactionLogWriter::write_incomplete(log_file->stream(), incomplete, not_run);
+  if (mark && log_file) log_file->stream() << scenarios::text_log_mark(*mark);
+  if (mark && log_json_file) log_json_file->stream() << scenarios::json_lines_mark(*mark);
   if (junit_file) {
     junit_file->stream() << scenarios::junit_xml(results, "endatsim", not_run, o.junit_cases);
+    if (mark) junit_file->stream() << scenarios::junit_mark(*mark);
     junit_file->commit();
   }
   if (json_file) {
     std::vector<std::string> files;
     for (const auto& n : not_run) files.push_back(n.file);
-    json_writer->finish(passed && incomplete.empty(), incomplete, files);
+    const auto mark_json = mark ? std::optional(scenarios::to_json(*mark)) : std::nullopt;
+    json_writer->finish(passed && incomplete.empty(), incomplete, files, mark_json ? &*mark_json : nullptr);
     json_file->commit();
   }
   if (log_file) log_file->commit();
   if (log_json_file) log_json_file->commit();
+  if (mark && !o.quiet) {
+    const auto slice = scenarios::slice_of(*o.shard, o.all_files.size());
+    summary_out.stream << "shard " << o.shard->index << "/" << o.shard->count << ": "
+                       << (slice.end == slice.begin ? std::string("no scenario file")
+                                                    : "scenario files " + std::to_string(slice.begin + 1) + " to " +
+                                                          std::to_string(slice.end))
+                       << " of " << o.all_files.size() << "\n";
+  }
   if (!o.quiet) {
     const std::string verdict = !incomplete.empty() ? "incomplete: " + incomplete
                                 : passed            ? "all scenarios passed"
@@ -564,6 +618,7 @@ struct SweepArgs {
   std::optional<std::string> json;
   std::optional<std::string> svg;
   unsigned jobs = 1;
+  std::optional<scenarios::Shard> shard;
   bool quiet = false;
   bool verbose = false;
   scenarios::Limits limits;
@@ -580,11 +635,12 @@ scenarios::SweepOptions sweep_run_options(const SweepArgs& o) {
 }
 
 void write_sweep_outputs(const SweepArgs& o, const scenarios::Sweep& result,
-                         const std::optional<scenarios::MaximumTable>& table) {
+                         const std::optional<scenarios::MaximumTable>& table, const std::optional<scenarios::ShardMark>& mark) {
   if (o.csv) write_file(*o.csv, scenarios::sweep_csv(result));
   if (o.json) {
     auto j = scenarios::sweep_json(result, table ? &*table : nullptr);
     j["endatsim"] = ENDATSIM_VERSION;
+    if (mark) j["shard"] = scenarios::to_json(*mark);
     write_file(*o.json, scenarios::json_file_text(j));
   }
   if (o.svg) write_file(*o.svg, scenarios::maximum_svg(result, *table));
@@ -600,12 +656,47 @@ std::vector<scenarios::OutputPath> sweep_outputs(const SweepArgs& o) {
   return outputs;
 }
 
+// What a sweep (or the merge of its shards) writes once every point ran: the outputs, then the
+// point count and the maximum table on stdout; exit 3 when a point's run ended early.
+int finish_sweep(const SweepArgs& o, const scenarios::Sweep& result, const std::optional<scenarios::ShardMark>& mark) {
+  std::optional<scenarios::MaximumTable> table;
+  if (o.maximize) table = scenarios::maximize(result, *o.maximize);
+  write_sweep_outputs(o, result, table, mark);
+  std::ostream& out = SummaryStream(sweep_outputs(o)).stream;
+  const auto clean = std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return p.clean; });
+  if (o.verbose)
+    for (const auto& p : result.points) {
+      std::string where;
+      for (std::size_t i = 0; i < p.values.size() && i < result.grid.size(); ++i)
+        where += (i == 0 ? "" : " ") + result.grid[i].pointer + "=" + p.values[i].dump();
+      out << (p.clean ? "clean " : "not clean ") << where << "\n";
+    }
+  if (mark && !o.quiet)
+    out << "shard " << mark->shard.index << "/" << mark->shard.count << ": "
+        << (mark->items == 0 ? std::string("no grid point")
+                             : "grid points " + std::to_string(mark->first + 1) + " to " + std::to_string(mark->first + mark->items))
+        << " of " << mark->total << "\n";
+  if (!o.quiet) out << result.points.size() << " points, " << clean << " clean\n";
+  if (table) out << scenarios::maximum_text(result, *table);
+  const auto incomplete =
+      std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return !p.incomplete.empty(); });
+  if (incomplete != 0) {
+    const auto first = std::find_if(result.points.begin(), result.points.end(), [](const auto& p) { return !p.incomplete.empty(); });
+    std::cerr << "endatsim sweep: " << incomplete << " points ended early, the first at grid point "
+              << (first - result.points.begin()) + 1 + static_cast<std::ptrdiff_t>(mark ? mark->first : 0) << ": "
+              << first->incomplete << "\n";
+    return kIncomplete;
+  }
+  return kPass;
+}
+
 int sweep(const SweepArgs& o) {
   const auto outputs = sweep_outputs(o);
   scenarios::check_output_paths({o.file}, "the scenario file", outputs);
-  const auto options = sweep_run_options(o);
+  auto options = sweep_run_options(o);
   scenarios::Sweep result;
   std::vector<scenarios::GridAxis> grid;
+  std::optional<scenarios::ShardMark> mark;
   load_or_clear_outputs("sweep", outputs, [&] {
     for (const auto& g : o.grid) grid.push_back(scenarios::parse_grid_axis(g));
     const auto base = scenarios::read_scenario_json(o.file);
@@ -615,6 +706,16 @@ int sweep(const SweepArgs& o) {
       const scenarios::Sweep empty{o.file, "", grid, {}};
       const auto table = scenarios::maximize(empty, *o.maximize);
       if (o.svg) (void)scenarios::maximum_svg(empty, table);
+    }
+    if (o.shard) {
+      const std::size_t total = scenarios::grid_size(grid);
+      const auto slice = scenarios::slice_of(*o.shard, total);
+      options.points = std::pair(slice.begin, slice.end);
+      nlohmann::json axes = nlohmann::json::array();
+      for (const auto& axis : grid) axes.push_back({{"pointer", axis.pointer}, {"values", axis.values}});
+      mark = scenarios::ShardMark{ENDATSIM_VERSION, "sweep", *o.shard, slice.begin, slice.end - slice.begin, total,
+                                  {{"file", o.file}, {"grid", axes}}, {{"limits", scenarios::limits_json(o.limits)}},
+                                  true, "", {}};
     }
     result = scenarios::run_sweep(base, o.file, grid, options);  // every point is checked before any runs
   });
@@ -626,29 +727,7 @@ int sweep(const SweepArgs& o) {
     std::cerr << "\n";
     return interrupted_status(result.interrupted);
   }
-  std::optional<scenarios::MaximumTable> table;
-  if (o.maximize) table = scenarios::maximize(result, *o.maximize);
-  write_sweep_outputs(o, result, table);
-  std::ostream& out = SummaryStream(outputs).stream;
-  const auto clean = std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return p.clean; });
-  if (o.verbose)
-    for (const auto& p : result.points) {
-      std::string where;
-      for (std::size_t i = 0; i < p.values.size() && i < grid.size(); ++i)
-        where += (i == 0 ? "" : " ") + grid[i].pointer + "=" + p.values[i].dump();
-      out << (p.clean ? "clean " : "not clean ") << where << "\n";
-    }
-  if (!o.quiet) out << result.points.size() << " points, " << clean << " clean\n";
-  if (table) out << scenarios::maximum_text(result, *table);
-  const auto incomplete =
-      std::count_if(result.points.begin(), result.points.end(), [](const auto& p) { return !p.incomplete.empty(); });
-  if (incomplete != 0) {
-    const auto first = std::find_if(result.points.begin(), result.points.end(), [](const auto& p) { return !p.incomplete.empty(); });
-    std::cerr << "endatsim sweep: " << incomplete << " points ended early, the first at grid point "
-              << (first - result.points.begin()) + 1 << ": " << first->incomplete << "\n";
-    return kIncomplete;
-  }
-  return kPass;
+  return finish_sweep(o, result, mark);
 }
 
 std::optional<unsigned> parse_jobs(const std::string& text) {
@@ -691,6 +770,18 @@ int sweep_command(const po::variables_map& vm) {
   o.quiet = vm.count("quiet") != 0;
   o.verbose = vm.count("verbose") != 0;
   if (!parse_limits(vm, "sweep", o.limits)) return kBadInput;
+  if (const auto shard = string_option("shard")) {
+    o.shard = scenarios::parse_shard(*shard);
+    if (o.csv || o.svg || o.maximize) {
+      std::cerr << "endatsim sweep: --shard writes its points to --json as a partial; endatsim merge writes --csv, --svg "
+                   "and the --maximize table from every shard's\n";
+      return kBadInput;
+    }
+    if (!o.json) {
+      std::cerr << "endatsim sweep: --shard needs --json PATH, the partial that endatsim merge joins with the other shards'\n";
+      return kBadInput;
+    }
+  }
   return sweep(o);
 }
 
@@ -705,10 +796,17 @@ std::vector<std::string> files_of(const po::variables_map& vm) {
 
 int run_command(const po::variables_map& vm) {
   Options o;
-  o.files = scenario_files(files_of(vm));
-  if (o.files.empty()) {
+  o.all_files = scenario_files(files_of(vm));
+  if (o.all_files.empty()) {
     std::cerr << "endatsim run: no scenario file given\n" << kRunUsage;
     return kBadInput;
+  }
+  o.files = o.all_files;
+  if (const auto shard = string_option(vm, "shard")) {
+    o.shard = scenarios::parse_shard(*shard);
+    const auto slice = scenarios::slice_of(*o.shard, o.all_files.size());
+    o.files.assign(o.all_files.begin() + static_cast<std::ptrdiff_t>(slice.begin),
+                   o.all_files.begin() + static_cast<std::ptrdiff_t>(slice.end));
   }
   o.vcd = string_option(vm, "vcd");
   o.json = string_option(vm, "json");
@@ -761,6 +859,126 @@ int run_command(const po::variables_map& vm) {
   o.color = color;
   if (!parse_limits(vm, "run", o.limits)) return kBadInput;
   return run(o);
+}
+
+// Partials named on the command line; a folder stands for every file in it (not below), in path order.
+std::vector<std::string> partial_files(const std::vector<std::string>& args) {
+  std::vector<std::string> files;
+  for (const auto& arg : args) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(arg, ec)) {
+      files.push_back(arg);
+      continue;
+    }
+    std::vector<std::string> found;
+    for (std::filesystem::directory_iterator it(arg, ec), end; !ec && it != end; it.increment(ec))
+      if (it->is_regular_file(ec)) found.push_back(it->path().string());
+    if (ec) throw std::runtime_error(arg + ": cannot read the folder: " + ec.message());
+    if (found.empty()) throw std::runtime_error(arg + ": a folder with no file in it");
+    std::sort(found.begin(), found.end());
+    files.insert(files.end(), found.begin(), found.end());
+  }
+  return files;
+}
+
+int merge_sweep_partials(const po::variables_map& vm, const std::vector<std::string>& files,
+                         const std::map<scenarios::PartialKind, std::vector<scenarios::Partial>>& groups) {
+  for (const char* name : {"junit", "log", "log-json"})
+    if (vm.count(name) != 0) {
+      std::cerr << "endatsim merge: --" << name << " is an output of a run; these partials are a sweep's\n" << kMergeUsage;
+      return kBadInput;
+    }
+  SweepArgs o;
+  o.csv = string_option(vm, "csv");
+  o.json = string_option(vm, "json");
+  o.svg = string_option(vm, "svg");
+  o.maximize = string_option(vm, "maximize");
+  o.quiet = vm.count("quiet") != 0;
+  o.verbose = vm.count("verbose") != 0;
+  if (o.svg && !o.maximize) {
+    std::cerr << "endatsim merge: --svg draws the --maximize table; give --maximize POINTER\n";
+    return kBadInput;
+  }
+  const auto outputs = sweep_outputs(o);
+  scenarios::check_output_paths(files, "a partial", outputs);
+  scenarios::Sweep result;
+  load_or_clear_outputs("merge", outputs, [&] {
+    const auto& shards = groups.at(scenarios::PartialKind::Sweep);
+    scenarios::require_every_shard(shards, "the sweep's --json");
+    result = scenarios::merge_sweep(shards);
+    if (o.maximize) {
+      const auto table = scenarios::maximize(result, *o.maximize);
+      if (o.svg) (void)scenarios::maximum_svg(result, table);
+    }
+  });
+  return finish_sweep(o, result, std::nullopt);
+}
+
+int merge_run_partials(const po::variables_map& vm, const std::vector<std::string>& files,
+                       const std::map<scenarios::PartialKind, std::vector<scenarios::Partial>>& groups) {
+  using scenarios::PartialKind;
+  for (const char* name : {"csv", "svg", "maximize", "verbose"})
+    if (vm.count(name) != 0) {
+      std::cerr << "endatsim merge: --" << name << " is for a sweep's partials; these are a run's\n" << kMergeUsage;
+      return kBadInput;
+    }
+  const std::pair<PartialKind, const char*> kinds[] = {
+      {PartialKind::Results, "json"}, {PartialKind::Junit, "junit"}, {PartialKind::Log, "log"}, {PartialKind::LogJson, "log-json"}};
+  std::vector<scenarios::OutputPath> outputs;
+  for (const auto& [kind, name] : kinds)
+    if (const auto path = string_option(vm, name)) outputs.push_back({std::string("--") + name, *path});
+  scenarios::check_output_paths(files, "a partial", outputs);
+  const bool quiet = vm.count("quiet") != 0;
+  const std::vector<scenarios::Partial>* verdict_from = nullptr;
+  load_or_clear_outputs("merge", outputs, [&] {
+    for (const auto& [kind, name] : kinds) {
+      const auto group = groups.find(kind);
+      if (vm.count(name) != 0) {
+        scenarios::require_every_shard(group == groups.end() ? std::vector<scenarios::Partial>{} : group->second,
+                                       std::string("--") + name);
+      } else if (group != groups.end() && !quiet) {
+        std::cerr << "endatsim merge: " << group->second.size() << " " << scenarios::option_of(kind)
+                  << " partial(s) given without --" << name << "; not merged\n";
+      }
+      if (group != groups.end() && verdict_from == nullptr) {
+        scenarios::require_every_shard(group->second, std::string("--") + name);
+        verdict_from = &group->second;
+      }
+    }
+  });
+  std::optional<StreamedFile> out[4];
+  for (std::size_t i = 0; i < 4; ++i)
+    if (const auto path = string_option(vm, kinds[i].second)) out[i].emplace(*path);
+  if (out[0]) scenarios::merge_results_json(groups.at(PartialKind::Results), out[0]->stream());
+  if (out[1]) scenarios::merge_junit(groups.at(PartialKind::Junit), out[1]->stream());
+  if (out[2]) scenarios::merge_log(groups.at(PartialKind::Log), out[2]->stream());
+  if (out[3]) scenarios::merge_log_json(groups.at(PartialKind::LogJson), out[3]->stream());
+  for (auto& file : out)
+    if (file) file->commit();
+  const auto v = scenarios::run_verdict(*verdict_from);
+  if (!quiet) {
+    std::ostream& summary = SummaryStream(outputs).stream;
+    summary << v.scenarios << " scenario files from " << verdict_from->size() << " shards\n";
+    summary << (!v.incomplete.empty() ? "incomplete: " + v.incomplete
+                : v.passed            ? "all scenarios passed"
+                                      : "some scenarios failed")
+            << "\n";
+  }
+  if (!v.incomplete.empty()) return kIncomplete;
+  return v.passed ? kPass : kFail;
+}
+
+int merge_command(const po::variables_map& vm) {
+  const auto files = partial_files(files_of(vm));
+  if (files.empty()) {
+    std::cerr << "endatsim merge: no partial given\n" << kMergeUsage;
+    return kBadInput;
+  }
+  std::vector<scenarios::Partial> partials;
+  for (const auto& file : files) partials.push_back(scenarios::read_partial(file));
+  const auto groups = scenarios::group_partials(partials, ENDATSIM_VERSION);
+  return partials.front().mark.command == "sweep" ? merge_sweep_partials(vm, files, groups)
+                                                  : merge_run_partials(vm, files, groups);
 }
 
 int validate_command(const po::variables_map& vm) {
@@ -1208,6 +1426,7 @@ int dispatch(int argc, char** argv) {
     switch (info->command) {
       case Command::Run: return run_command(vm);
       case Command::Sweep: return sweep_command(vm);
+      case Command::Merge: return merge_command(vm);
       case Command::Validate: return validate_command(vm);
       case Command::Diagram: return diagram_command(vm);
       case Command::Check: return check_command(vm);
