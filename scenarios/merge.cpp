@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/junit.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/streamed_outputs.hpp"
@@ -23,6 +24,13 @@ using nlohmann::json;
 constexpr std::uintmax_t kWholeFileLimit = 1ULL << 30;
 // The mark's line (its list of scenario files) is read from the end of a log.
 constexpr std::streamoff kMarkLineLimit = 64LL << 20;
+
+// SIGINT or SIGTERM during a merge: it stops, and its outputs are never put in place.
+void stop_if_interrupted(std::size_t line) {
+  if (line % 4096 != 0) return;
+  if (const int signal = interrupt_signal(); signal != 0)
+    throw Interrupted("merge interrupted by " + signal_name(signal) + "; no output written", signal);
+}
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) { throw MergeError(path + ": " + what); }
 
@@ -168,7 +176,7 @@ class ResultsLines {
  private:
   bool next() {
     if (!std::getline(in_, line_)) return false;
-    ++number_;
+    stop_if_interrupted(++number_);
     return true;
   }
   std::string path_;
@@ -464,7 +472,9 @@ void merge_log(const std::vector<Partial>& shards, std::ostream& out) {
     const std::size_t held = 1 + (p.mark.incomplete.empty() ? 0 : 1 + p.mark.not_run.size());
     auto in = open(p.path);
     std::deque<std::string> back;
+    std::size_t number = 0;
     for (std::string line; std::getline(in, line);) {
+      stop_if_interrupted(++number);
       back.push_back(std::move(line));
       if (back.size() <= held) continue;
       out << back.front() << "\n";
@@ -483,6 +493,7 @@ void merge_log_json(const std::vector<Partial>& shards, std::ostream& out) {
     std::size_t number = 0;
     std::string held;
     for (std::string line; std::getline(in, line);) {
+      stop_if_interrupted(number);
       if (number++ != 0) out << held << "\n";
       if (!json::accept(line)) fail(p.path, "line " + std::to_string(number) + ": not a JSON record");
       held = std::move(line);

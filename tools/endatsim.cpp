@@ -881,7 +881,7 @@ std::vector<std::string> partial_files(const std::vector<std::string>& args) {
   return files;
 }
 
-int merge_sweep_partials(const po::variables_map& vm, const std::vector<std::string>& files,
+int merge_sweep_partials(const po::variables_map& vm,
                          const std::map<scenarios::PartialKind, std::vector<scenarios::Partial>>& groups) {
   for (const char* name : {"junit", "log", "log-json"})
     if (vm.count(name) != 0) {
@@ -899,10 +899,8 @@ int merge_sweep_partials(const po::variables_map& vm, const std::vector<std::str
     std::cerr << "endatsim merge: --svg draws the --maximize table; give --maximize POINTER\n";
     return kBadInput;
   }
-  const auto outputs = sweep_outputs(o);
-  scenarios::check_output_paths(files, "a partial", outputs);
   scenarios::Sweep result;
-  load_or_clear_outputs("merge", outputs, [&] {
+  load_or_clear_outputs("merge", sweep_outputs(o), [&] {
     const auto& shards = groups.at(scenarios::PartialKind::Sweep);
     scenarios::require_every_shard(shards, "the sweep's --json");
     result = scenarios::merge_sweep(shards);
@@ -914,7 +912,7 @@ int merge_sweep_partials(const po::variables_map& vm, const std::vector<std::str
   return finish_sweep(o, result, std::nullopt);
 }
 
-int merge_run_partials(const po::variables_map& vm, const std::vector<std::string>& files,
+int merge_run_partials(const po::variables_map& vm, const std::vector<scenarios::OutputPath>& outputs,
                        const std::map<scenarios::PartialKind, std::vector<scenarios::Partial>>& groups) {
   using scenarios::PartialKind;
   for (const char* name : {"csv", "svg", "maximize", "verbose"})
@@ -924,10 +922,6 @@ int merge_run_partials(const po::variables_map& vm, const std::vector<std::strin
     }
   const std::pair<PartialKind, const char*> kinds[] = {
       {PartialKind::Results, "json"}, {PartialKind::Junit, "junit"}, {PartialKind::Log, "log"}, {PartialKind::LogJson, "log-json"}};
-  std::vector<scenarios::OutputPath> outputs;
-  for (const auto& [kind, name] : kinds)
-    if (const auto path = string_option(vm, name)) outputs.push_back({std::string("--") + name, *path});
-  scenarios::check_output_paths(files, "a partial", outputs);
   const bool quiet = vm.count("quiet") != 0;
   const std::vector<scenarios::Partial>* verdict_from = nullptr;
   load_or_clear_outputs("merge", outputs, [&] {
@@ -946,15 +940,17 @@ int merge_run_partials(const po::variables_map& vm, const std::vector<std::strin
       }
     }
   });
-  std::optional<StreamedFile> out[4];
-  for (std::size_t i = 0; i < 4; ++i)
-    if (const auto path = string_option(vm, kinds[i].second)) out[i].emplace(*path);
-  if (out[0]) scenarios::merge_results_json(groups.at(PartialKind::Results), out[0]->stream());
-  if (out[1]) scenarios::merge_junit(groups.at(PartialKind::Junit), out[1]->stream());
-  if (out[2]) scenarios::merge_log(groups.at(PartialKind::Log), out[2]->stream());
-  if (out[3]) scenarios::merge_log_json(groups.at(PartialKind::LogJson), out[3]->stream());
-  for (auto& file : out)
-    if (file) file->commit();
+  load_or_clear_outputs("merge", outputs, [&] {
+    std::optional<StreamedFile> out[4];
+    for (std::size_t i = 0; i < 4; ++i)
+      if (const auto path = string_option(vm, kinds[i].second)) out[i].emplace(*path);
+    if (out[0]) scenarios::merge_results_json(groups.at(PartialKind::Results), out[0]->stream());
+    if (out[1]) scenarios::merge_junit(groups.at(PartialKind::Junit), out[1]->stream());
+    if (out[2]) scenarios::merge_log(groups.at(PartialKind::Log), out[2]->stream());
+    if (out[3]) scenarios::merge_log_json(groups.at(PartialKind::LogJson), out[3]->stream());
+    for (auto& file : out)
+      if (file) file->commit();
+  });
   const auto v = scenarios::run_verdict(*verdict_from);
   if (!quiet) {
     std::ostream& summary = SummaryStream(outputs).stream;
@@ -968,17 +964,35 @@ int merge_run_partials(const po::variables_map& vm, const std::vector<std::strin
   return v.passed ? kPass : kFail;
 }
 
-int merge_command(const po::variables_map& vm) {
+int merge_partials(const po::variables_map& vm) {
   const auto files = partial_files(files_of(vm));
   if (files.empty()) {
     std::cerr << "endatsim merge: no partial given\n" << kMergeUsage;
     return kBadInput;
   }
+  // Every output path is checked before any partial is read; a partial that does not fit removes
+  // what an earlier merge left at them.
+  std::vector<scenarios::OutputPath> outputs;
+  for (const char* name : {"json", "junit", "log", "log-json", "csv", "svg"})
+    if (const auto path = string_option(vm, name)) outputs.push_back({std::string("--") + name, *path});
+  scenarios::check_output_paths(files, "a partial", outputs);
   std::vector<scenarios::Partial> partials;
-  for (const auto& file : files) partials.push_back(scenarios::read_partial(file));
-  const auto groups = scenarios::group_partials(partials, ENDATSIM_VERSION);
-  return partials.front().mark.command == "sweep" ? merge_sweep_partials(vm, files, groups)
-                                                  : merge_run_partials(vm, files, groups);
+  std::map<scenarios::PartialKind, std::vector<scenarios::Partial>> groups;
+  load_or_clear_outputs("merge", outputs, [&] {
+    for (const auto& file : files) partials.push_back(scenarios::read_partial(file));
+    groups = scenarios::group_partials(partials, ENDATSIM_VERSION);
+  });
+  return partials.front().mark.command == "sweep" ? merge_sweep_partials(vm, groups)
+                                                  : merge_run_partials(vm, outputs, groups);
+}
+
+int merge_command(const po::variables_map& vm) {
+  try {
+    return merge_partials(vm);
+  } catch (const scenarios::Interrupted& e) {
+    std::cerr << "endatsim merge: interrupted by " << scenarios::signal_name(e.signal()) << "; no output written\n";
+    return interrupted_status(e.signal());
+  }
 }
 
 int validate_command(const po::variables_map& vm) {

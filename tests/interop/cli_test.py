@@ -35,7 +35,7 @@ def path(name):
 
 
 # --help and --version everywhere, on stdout, exit 0.
-for command in ("run", "sweep", "validate", "diagram"):
+for command in ("run", "sweep", "merge", "validate", "diagram"):
     r = run(command, "--help")
     check(r.returncode == 0 and r.stdout.startswith("usage: endatsim " + command) and r.stderr == "", command + " --help", r)
     r = run(command, "--version")
