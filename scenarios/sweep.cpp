@@ -389,7 +389,9 @@ void check_grid(const json& base, const std::string& file, const std::vector<Gri
 Sweep run_sweep(const json& base, const std::string& file, const std::vector<GridAxis>& grid, const SweepOptions& options) {
   check_grid(base, file, grid);
   const std::size_t n = grid_size(grid);
-  const auto [first, end] = options.points.value_or(std::pair<std::size_t, std::size_t>{0, n});
+  // Not a structured binding: the lambdas below capture them (clang 14 cannot).
+  const std::size_t first = options.points ? options.points->first : 0;
+  const std::size_t end = options.points ? options.points->second : n;
   if (first > end || end > n) throw std::logic_error("run_sweep: points outside the grid");
   // Load every point before running any, so that bad input stops the sweep at once; on the
   // sweep's threads, each keeping only the point it loads. The sweep is named after point 0,
