@@ -87,7 +87,7 @@ void RunRecorder::compare(const master::FrameResult& f) {
     out_.positions_read.push_back(f.position);
   ++out_.positions_read_count;
   const auto* ef = encoder_frame_of(f, paths_, encoder_.frames());
-  if (expect.positions_match_encoder.value_or(false)) positions_.add(f, ef);
+  positions_.add(f, ef);  // for positions_match_encoder, and for a sweep's clean points
   if (f.word != 0 || ef == nullptr) return;
   // Frames the master took as good (no error message as it evaluates them) while the encoder had
   // an error active; the truth behind a released position, once the master says it released.

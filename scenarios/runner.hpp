@@ -74,7 +74,7 @@ struct ScenarioResult {
   checker::Conclusion conclusion;                    // the verdicts over every finding, kept or not
   std::vector<checker::RowConformance> conformance;  // every row of the timing table, with its counts
   // What the expectations need of the frames, gathered as they end.
-  std::optional<PositionComparison> positions_match;  // with positions_match_encoder expected
+  std::optional<PositionComparison> positions_match;  // every good read against the encoder (expectation, sweeps)
   std::vector<std::uint64_t> positions_read;          // with positions expected: as many, and one more
   std::uint64_t positions_read_count = 0;
   std::map<std::size_t, master::FrameResult> operation_frames;  // the last of each operation with an expect

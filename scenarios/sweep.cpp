@@ -294,10 +294,11 @@ std::vector<SweepPoint> run_points(const json& base, const std::string& file, co
   std::size_t done = 0;
   RunOptions run_options;
   run_options.limits = options.limits;
+  run_options.kept = 1;  // every frame and finding is counted; a point is judged from the counts
   for_each_point(count, options.jobs, [&](std::size_t i) {
     const Scenario scenario = load_point(base, file, grid, first + i, n);
     const ScenarioResult r = run_scenario(scenario, run_options);
-    points[i] = summarize(scenario, r);
+    points[i] = summarize(r);
     points[i].incomplete = r.incomplete;
     if (!options.progress) return;
     const std::lock_guard lock(progress_mutex);
@@ -354,21 +355,19 @@ json read_scenario_json(const std::string& path) {
   return json::parse(in);
 }
 
-SweepPoint summarize(const Scenario& scenario, const ScenarioResult& r) {
+SweepPoint summarize(const ScenarioResult& r) {
   SweepPoint p;
-  for (const auto& f : r.frames) {
-    if (f.measurement) continue;
-    if (f.outcome == master::FrameOutcome::Ok) ++p.ok;
-    else if (f.outcome == master::FrameOutcome::CrcError) ++p.crc_error;
-    else ++p.other;
+  // From the run's counters, not its frames: a point keeps a few frames whatever its length.
+  p.ok = r.tally.outcome(master::FrameOutcome::Ok);
+  p.crc_error = r.tally.outcome(master::FrameOutcome::CrcError);
+  p.other = r.tally.frames() - p.ok - p.crc_error;
+  for (const auto& [check, count] : finding_counts(r.conformance)) {
+    p.checks.push_back(check);  // sorted: a map's order
+    p.violations += count;
   }
-  std::set<std::string> checks;
-  for (const auto& v : r.violations) checks.insert(v.check);
-  p.checks.assign(checks.begin(), checks.end());
-  p.violations = r.violations.size();
   p.expectations_passed = r.passed();
-  p.clean = r.finished && p.crc_error == 0 && p.other == 0 && r.violations.empty() &&
-            compare_positions_with_encoder(scenario, r).match;
+  p.clean = r.finished && p.crc_error == 0 && p.other == 0 && p.violations == 0 && r.positions_match &&
+            r.positions_match->match;
   return p;
 }
 

@@ -85,7 +85,9 @@ std::vector<nlohmann::json> grid_point_values(const std::vector<GridAxis>& grid,
 Sweep run_sweep(const nlohmann::json& base, const std::string& file, const std::vector<GridAxis>& grid,
                 const SweepOptions& options = {});
 
-SweepPoint summarize(const Scenario& scenario, const ScenarioResult& r);
+// A point from a run's counters (ScenarioResult::tally, conformance, positions_match), which
+// count every frame and finding however few the run kept (RunOptions::kept).
+SweepPoint summarize(const ScenarioResult& r);
 
 // For each combination of the other axes, the largest value at `pointer` whose point is clean.
 struct MaximumTable {

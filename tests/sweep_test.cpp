@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <sys/wait.h>
 #include <thread>
@@ -11,6 +12,7 @@
 
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/sweep.hpp"
+#include "scenario_support.hpp"
 
 namespace {
 
@@ -468,3 +470,41 @@ TEST(Sweep, SvgKeepsCoincidingLinesApart) {
   EXPECT_NE(b.find("stroke-dasharray=\"10 4\""), std::string::npos) << b;
   EXPECT_NE(svg.find("stroke-dasharray=\"10 4\"/><text"), std::string::npos) << "the legend's second entry is dashed too";
 }
+
+// A sweep judges each point from the run's counters and keeps one frame: the same point as
+// read off every frame and finding of a run that keeps them all.
+class SweepSummary : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(SweepSummary, FromTheCountersEqualsTheSummaryOfEveryFrameKept) {
+  const auto s = scenarios::load_scenario_file(GetParam().string());
+  const auto all = scenarios::run_scenario(s);
+  std::uint64_t ok = 0, crc_error = 0, other = 0;
+  for (const auto& f : all.frames) {
+    if (f.measurement) continue;
+    (f.outcome == master::FrameOutcome::Ok ? ok : f.outcome == master::FrameOutcome::CrcError ? crc_error : other) += 1;
+  }
+  std::set<std::string> checks;
+  for (const auto& v : all.violations) checks.insert(v.check);
+  const bool clean = all.finished && crc_error == 0 && other == 0 && all.violations.empty() &&
+                     scenarios::compare_positions_with_encoder(s, all).match;
+
+  scenarios::RunOptions few;
+  few.kept = 1;
+  const auto p = scenarios::summarize(scenarios::run_scenario(s, few));
+  EXPECT_EQ(p.ok, ok);
+  EXPECT_EQ(p.crc_error, crc_error);
+  EXPECT_EQ(p.other, other);
+  EXPECT_EQ(p.violations, all.violations.size());
+  EXPECT_EQ(p.checks, std::vector<std::string>(checks.begin(), checks.end()));
+  EXPECT_EQ(p.clean, clean);
+  EXPECT_EQ(p.expectations_passed, all.passed());
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, SweepSummary, ::testing::ValuesIn(endatsim::test_support::scenario_files()),
+                         [](const auto& param_info) {
+                           std::string name = param_info.param.parent_path().filename().string() + "_" +
+                                              param_info.param.stem().string();
+                           std::replace_if(name.begin(), name.end(),
+                                           [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+                           return name;
+                         });
