@@ -930,7 +930,7 @@ int merge_run_partials(const po::variables_map& vm, const std::vector<scenarios:
       if (vm.count(name) != 0) {
         scenarios::require_every_shard(group == groups.end() ? std::vector<scenarios::Partial>{} : group->second,
                                        std::string("--") + name);
-      } else if (group != groups.end() && !quiet) {
+      } else if (group != groups.end() && !quiet && !outputs.empty()) {  // without outputs: the verdict alone
         std::cerr << "endatsim merge: " << group->second.size() << " " << scenarios::option_of(kind)
                   << " partial(s) given without --" << name << "; not merged\n";
       }
