@@ -364,9 +364,11 @@ struct SummaryStream {
   int fd() const { return to_stderr ? STDERR_FILENO : STDOUT_FILENO; }
 };
 
-// Scenario files named on the command line, in the order given; a folder stands for every
-// scenario (*.json) anywhere under it, in path order.
-std::vector<std::string> scenario_files(const std::vector<std::string>& args) {
+// Files named on the command line, in the order given; a folder stands for every regular file
+// under it (`recursive`) or in it whose name ends in `extension` ("" for any), in path order.
+// `kind` says what is looked for, for the message when a folder has none.
+std::vector<std::string> files_named(const std::vector<std::string>& args, bool recursive, const std::string& extension,
+                                     const std::string& kind) {
   std::vector<std::string> files;
   for (const auto& arg : args) {
     std::error_code ec;
@@ -375,15 +377,24 @@ std::vector<std::string> scenario_files(const std::vector<std::string>& args) {
       continue;
     }
     std::vector<std::string> found;
-    std::filesystem::recursive_directory_iterator it(arg, ec), end;
-    for (; !ec && it != end; it.increment(ec))
-      if (it->path().extension() == ".json" && it->is_regular_file(ec)) found.push_back(it->path().string());
+    const auto take = [&](const std::filesystem::directory_entry& e) {
+      if ((extension.empty() || e.path().extension() == extension) && e.is_regular_file(ec)) found.push_back(e.path().string());
+    };
+    if (recursive)
+      for (std::filesystem::recursive_directory_iterator it(arg, ec), end; !ec && it != end; it.increment(ec)) take(*it);
+    else
+      for (std::filesystem::directory_iterator it(arg, ec), end; !ec && it != end; it.increment(ec)) take(*it);
     if (ec) throw std::runtime_error(arg + ": cannot read the folder: " + ec.message());
-    if (found.empty()) throw std::runtime_error(arg + ": a folder with no scenario (*.json) in it or below it");
+    if (found.empty()) throw std::runtime_error(arg + ": a folder with no " + kind);
     std::sort(found.begin(), found.end());
     files.insert(files.end(), found.begin(), found.end());
   }
   return files;
+}
+
+// Scenario files: a folder stands for every scenario (*.json) anywhere under it.
+std::vector<std::string> scenario_files(const std::vector<std::string>& args) {
+  return files_named(args, true, ".json", "scenario (*.json) in it or below it");
 }
 
 std::string colorize(const std::string& text) {
@@ -861,24 +872,9 @@ int run_command(const po::variables_map& vm) {
   return run(o);
 }
 
-// Partials named on the command line; a folder stands for every file in it (not below), in path order.
+// Partials: a folder stands for every file in it (not below).
 std::vector<std::string> partial_files(const std::vector<std::string>& args) {
-  std::vector<std::string> files;
-  for (const auto& arg : args) {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(arg, ec)) {
-      files.push_back(arg);
-      continue;
-    }
-    std::vector<std::string> found;
-    for (std::filesystem::directory_iterator it(arg, ec), end; !ec && it != end; it.increment(ec))
-      if (it->is_regular_file(ec)) found.push_back(it->path().string());
-    if (ec) throw std::runtime_error(arg + ": cannot read the folder: " + ec.message());
-    if (found.empty()) throw std::runtime_error(arg + ": a folder with no file in it");
-    std::sort(found.begin(), found.end());
-    files.insert(files.end(), found.begin(), found.end());
-  }
-  return files;
+  return files_named(args, false, "", "file in it");
 }
 
 int merge_sweep_partials(const po::variables_map& vm,
