@@ -204,15 +204,44 @@ void BM_Soak_RandomFaults(benchmark::State& state) {
 BENCHMARK(BM_Soak_RandomFaults)->Name("Soak_2M_frames")->Iterations(20)->Unit(benchmark::kSecond)->UseRealTime();
 BENCHMARK(BM_Soak_RandomFaults)->Name("Soak_200k_frames")->Iterations(2)->Unit(benchmark::kSecond)->UseRealTime();
 
-// Resident memory at every 100,000th frame of a run, as the frames are written out.
+// Resident memory at every `every`-th frame of a run, as the frames are written out.
 class RssProbe final : public scenarios::RunSink {
  public:
+  explicit RssProbe(std::uint64_t every) : every_(every) {}
   void begin(const scenarios::ScenarioResult&) override {}
   void frame(const scenarios::ScenarioResult&, const master::FrameResult& f, std::span<const endatsim::checker::Violation>) override {
-    if (f.index % 100'000 == 99'999) samples.push_back(rss_mib());
+    if (f.index % every_ == every_ - 1) samples.push_back(rss_mib());
   }
   void end(const scenarios::ScenarioResult&) override {}
   std::vector<double> samples;
+
+ private:
+  std::uint64_t every_;
+};
+
+// What `endatsim run --json --log --log-json` writes while a run goes, into the streams given,
+// and the run's options: 1000 frames and findings of each check kept, limits out of the way.
+struct StreamedRun {
+  StreamedRun(std::ostream& json, std::ostream& log, std::ostream& jsonl, RssProbe& probe)
+      : json_writer(json, "soak"), log_writer(log, scenarios::TransactionLogWriter::Format::Text),
+        jsonl_writer(jsonl, scenarios::TransactionLogWriter::Format::JsonLines) {
+    options.kept = 1000;
+    options.sinks = {&json_writer, &log_writer, &jsonl_writer, &probe};
+    options.limits.kernel_events = UINT64_MAX;
+    options.limits.script_frames = UINT64_MAX;
+    options.limits.events = UINT64_MAX;
+  }
+  // Runs `s`, closes the results file and writes the JUnit file to `junit`.
+  scenarios::ScenarioResult run(const scenarios::Scenario& s, std::ostream& junit) {
+    scenarios::ScenarioResult r = scenarios::run_scenario(s, options);
+    json_writer.finish(r.passed(), r.incomplete, {});
+    r.frames = {};
+    junit << scenarios::junit_xml({r}, "soak", {}, scenarios::JunitCases::Scenario);
+    return r;
+  }
+  scenarios::ResultsJsonWriter json_writer;
+  scenarios::TransactionLogWriter log_writer, jsonl_writer;
+  scenarios::RunOptions options;
 };
 
 // The position loop of bench/scenarios/additional_data_loop_1s.json (EnDat 2.2 at 16 MHz over
@@ -227,23 +256,10 @@ void BM_Streamed_1M_frames(benchmark::State& state) {
   double peak = 0, growth = 0, first = 0, last = 0;
   std::uint64_t frames = 0;
   for (auto _ : state) {
-    RssProbe probe;
+    RssProbe probe(100'000);
     {
-      std::ofstream json(base + ".json"), log(base + ".log"), jsonl(base + ".jsonl");
-      scenarios::ResultsJsonWriter json_writer(json, "soak");
-      scenarios::TransactionLogWriter log_writer(log, scenarios::TransactionLogWriter::Format::Text);
-      scenarios::TransactionLogWriter jsonl_writer(jsonl, scenarios::TransactionLogWriter::Format::JsonLines);
-      scenarios::RunOptions options;
-      options.kept = 1000;
-      options.sinks = {&json_writer, &log_writer, &jsonl_writer, &probe};
-      options.limits.kernel_events = UINT64_MAX;
-      options.limits.script_frames = UINT64_MAX;
-      scenarios::ScenarioResult r = scenarios::run_scenario(s, options);
-      json_writer.finish(r.passed(), r.incomplete, {});
-      frames = r.tally.frames();
-      std::ofstream junit(base + ".xml");
-      r.frames = {};
-      junit << scenarios::junit_xml({r}, "soak", {}, scenarios::JunitCases::Scenario);
+      std::ofstream json(base + ".json"), log(base + ".log"), jsonl(base + ".jsonl"), junit(base + ".xml");
+      frames = StreamedRun(json, log, jsonl, probe).run(s, junit).tally.frames();
     }
     if (probe.samples.size() < 2) {
       state.SkipWithError("fewer than 200,000 frames ran");
@@ -349,30 +365,10 @@ void BM_Soak_Flood(benchmark::State& state) {
   std::uint64_t done = 0, findings = 0, bytes = 0;
   std::array<std::uint64_t, 5> outcomes{};
   for (auto _ : state) {
-    class Probe final : public scenarios::RunSink {
-     public:
-      void begin(const scenarios::ScenarioResult&) override {}
-      void frame(const scenarios::ScenarioResult&, const master::FrameResult& f, std::span<const endatsim::checker::Violation>) override {
-        if (f.index % 1'000'000 == 999'999) samples.push_back(rss_mib());
-      }
-      void end(const scenarios::ScenarioResult&) override {}
-      std::vector<double> samples;
-    } probe;
+    RssProbe probe(1'000'000);
     NullBuffer null;
     std::ostream out(&null);
-    scenarios::ResultsJsonWriter json_writer(out, "soak");
-    scenarios::TransactionLogWriter log_writer(out, scenarios::TransactionLogWriter::Format::Text);
-    scenarios::TransactionLogWriter jsonl_writer(out, scenarios::TransactionLogWriter::Format::JsonLines);
-    scenarios::RunOptions options;
-    options.kept = 1000;
-    options.sinks = {&json_writer, &log_writer, &jsonl_writer, &probe};
-    options.limits.kernel_events = UINT64_MAX;
-    options.limits.script_frames = UINT64_MAX;
-    options.limits.events = UINT64_MAX;
-    scenarios::ScenarioResult r = scenarios::run_scenario(s, options);
-    json_writer.finish(r.passed(), r.incomplete, {});
-    r.frames = {};
-    out << scenarios::junit_xml({r}, "soak", {}, scenarios::JunitCases::Scenario);
+    const scenarios::ScenarioResult r = StreamedRun(out, out, out, probe).run(s, out);
     done = r.tally.frames();
     for (const auto& [check, count] : scenarios::finding_counts(r.conformance)) findings += count;
     for (std::size_t o = 0; o < outcomes.size(); ++o) outcomes[o] = r.tally.outcomes[o];

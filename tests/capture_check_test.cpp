@@ -128,13 +128,7 @@ std::vector<fs::path> round_trip_scenarios() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenarios, CaptureRoundTrip, ::testing::ValuesIn(round_trip_scenarios()),
-                         [](const auto& param_info) {
-                           std::string name = param_info.param.parent_path().filename().string() + "_" +
-                                              param_info.param.stem().string();
-                           std::replace_if(name.begin(), name.end(),
-                                           [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-                           return name;
-                         });
+                         [](const auto& param_info) { return endatsim::test_support::scenario_test_name(param_info.param); });
 
 // The capture a logic analyzer sampling every `period` would make of a scenario's encoder pins:
 // each change shows at the first sample at or after it; a pulse shorter than a sample may vanish.

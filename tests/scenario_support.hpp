@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <vector>
 
@@ -20,6 +21,14 @@ inline std::vector<std::filesystem::path> scenario_files() {
       if (e.path().extension() == ".json") out.push_back(e.path());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+// A parameterized test's name from its scenario file: folder and stem, alphanumeric
+// ("field_09_cable_changed_while_running").
+inline std::string scenario_test_name(const std::filesystem::path& file) {
+  std::string name = file.parent_path().filename().string() + "_" + file.stem().string();
+  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  return name;
 }
 
 // A scenario built in code: an EnDat 2.2 encoder at position 104462 on `cable_m` of cable,

@@ -92,11 +92,7 @@ TEST_P(Streaming, OutputsEqualTheCompleteResultsAndDoNotDependOnWhatIsKept) {
   EXPECT_EQ(b.str(), a.str()) << "the summary depends on what was kept";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenarios, Streaming, ::testing::ValuesIn(endatsim::test_support::scenario_files()), [](const auto& param_info) {
-  std::string name = param_info.param.parent_path().filename().string() + "_" + param_info.param.stem().string();
-  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-  return name;
-});
+INSTANTIATE_TEST_SUITE_P(Scenarios, Streaming, ::testing::ValuesIn(endatsim::test_support::scenario_files()), [](const auto& param_info) { return endatsim::test_support::scenario_test_name(param_info.param); });
 
 TEST(ResultsJsonWriter, ResultsFileOfNoScenarioAndOfAnIncompleteRunIsValidJson) {
   std::ostringstream out;

@@ -501,10 +501,4 @@ TEST_P(SweepSummary, FromTheCountersEqualsTheSummaryOfEveryFrameKept) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenarios, SweepSummary, ::testing::ValuesIn(endatsim::test_support::scenario_files()),
-                         [](const auto& param_info) {
-                           std::string name = param_info.param.parent_path().filename().string() + "_" +
-                                              param_info.param.stem().string();
-                           std::replace_if(name.begin(), name.end(),
-                                           [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-                           return name;
-                         });
+                         [](const auto& param_info) { return endatsim::test_support::scenario_test_name(param_info.param); });
