@@ -380,6 +380,9 @@ void BM_Soak_Flood(benchmark::State& state) {
     first = probe.samples.front();
     last = probe.samples.back();
     peak = peak_rss_mib();
+    // Every sample, for a run that fails the bound (its counters are not printed then).
+    for (std::size_t i = 0; i < probe.samples.size(); ++i)
+      std::fprintf(stderr, "frame %zu000000: rss %.3f MiB\n", i + 1, probe.samples[i]);
   }
   state.counters["frames"] = static_cast<double>(done);
   state.counters["findings"] = static_cast<double>(findings);
