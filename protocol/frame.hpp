@@ -78,6 +78,8 @@ std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint
 
 // 2.9: S F1 test value (40 bits, LSB first) CRC = MakeCrcPos over 40 bits (A4.4.2).
 constexpr unsigned kTestValueBits = 40;
+// 2.3.4.4: a touch probe sends 16 bits, the LSB its trigger status.
+constexpr unsigned kTouchProbeBits = 16;
 Layout test_values_layout();
 std::vector<std::uint8_t> encode_test_values(bool error1, std::uint64_t test_value, const CrcConfig& crc = {});
 

@@ -63,6 +63,11 @@ std::span<const std::string_view> warning_bit_names();  // 2^0 frequency collisi
 constexpr std::uint16_t kWarningReferencePointNotReached = 0x0010;  // word 1 bit 4 (3.4.2)
 std::string bits_string(std::uint16_t word, std::span<const std::string_view> names);  // "lighting, position" or "none"
 
+// ---- 3.6.5 operating parameters word 5: instructions --------------------------------------------
+constexpr std::uint16_t kInstructionEnergySaving = 0x0001;      // bit 0: energy-saving mode
+constexpr std::uint16_t kInstructionHighImpedance = 0x0002;     // bit 1: data driver at high-impedance (2.10)
+constexpr std::uint16_t kInstructionNoPositionUpdate = 0x0004;  // bit 2: no updating of position values
+
 // ---- 3.4.4 operating status word 3: function initialization ------------------------------------
 // Each function is a bit pair stored inversely (or a single bit); the value activates it only
 // after "Encoder receive reset" or power-on. A pair stored equally leaves the function at its

@@ -7,4 +7,7 @@ namespace endatsim::sim {
 
 __extension__ typedef __int128 Int128;
 
+// x / d rounded toward minus infinity (d > 0): the step, revolution or range x lies in.
+constexpr Int128 floor_div(Int128 x, Int128 d) { return x >= 0 ? x / d : -((-x + d - 1) / d); }
+
 }  // namespace endatsim::sim

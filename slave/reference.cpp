@@ -10,7 +10,7 @@ namespace {
 namespace pm = protocol::parameters;
 using pm::ReferenceMarks;
 
-__int128 floor_div(__int128 x, __int128 d) { return x >= 0 ? x / d : -((-x + d - 1) / d); }
+using sim::floor_div;
 
 // Marks at m + k * range crossed in (lo, hi].
 __int128 crossings_of(std::uint64_t m, __int128 lo, __int128 hi, __int128 range) {

@@ -1,8 +1,14 @@
-// slave/ — the EnDat encoder as a bit-level state machine that only talks through the line's
-// encoder-side signals (encoder.hpp). It answers "Encoder send position values" (2.1, with
-// continuous clock) and "Encoder send position values with additional data" (2.2, none
-// selected yet); every other mode command is answered as not supported (type I, appendix A2).
-// Encoder profiles (profile.hpp): memory images with their parameters as JSON, profiles/*.json.
+// slave/ — the EnDat encoder (D297403 2, 3) as a bit-level state machine that only talks through
+// the line's encoder-side signals. It answers all mode commands of 2.3 .. 2.10 (EnDat 2.1 and
+// 2.2), with memory areas and write protection, busy, the error handling of appendix A2 and
+// additional data.
+//   encoder_params.hpp   what an encoder is: EncoderParams, and the model's named choices
+//   encoder.hpp          the frame engine on the pins, and the ground truth of each frame
+//   memory.hpp           memory areas, write protection, activation on reset (3)
+//   position_source.hpp  positions, multiturn, reference marks, touch probe (2.3.4)
+//   additional_data.hpp  additional data 1 and 2 and their rolling values (2.3.5)
+//   reference.hpp        reference mark schemes (2.3.4.3); eib.hpp the EIB's factory image
+//   profile.hpp          encoder profiles: memory images with their parameters as JSON
 #pragma once
 
 #include "endatsim/slave/encoder.hpp"
