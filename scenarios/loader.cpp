@@ -1,6 +1,7 @@
 #include "endatsim/scenarios/loader.hpp"
 
 #include "endatsim/input/json_input.hpp"
+#include "endatsim/input/parameter_input.hpp"
 #include "endatsim/input/suggest.hpp"
 #include "endatsim/scenarios/bundled_profiles.hpp"
 #include "endatsim/slave/profile.hpp"
@@ -234,64 +235,8 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
       v->fail_raw(std::string("cannot use the profile: ") + e.what());
     }
   }
-  using slave::EncoderKind;
-  if (auto v = o.opt("kind"))
-    p.kind = v->as_enum<EncoderKind>(
-        {{"singleturn", EncoderKind::Singleturn}, {"multiturn", EncoderKind::Multiturn}, {"linear", EncoderKind::Linear},
-         {"touch_probe", EncoderKind::TouchProbe}, {"eib", EncoderKind::Eib}});
-  if (auto v = o.opt("version"))
-    p.version = v->as_enum<protocol::EndatVersion>({{"2.1", protocol::EndatVersion::V2_1}, {"2.2", protocol::EndatVersion::V2_2}});
-  if (auto v = o.opt("position_bits")) p.position_bits = static_cast<unsigned>(v->as_uint(1, 48));
-  if (auto v = o.opt("multiturn_bits")) p.multiturn_bits = static_cast<unsigned>(v->as_uint(0, 47));
-  if (auto v = o.opt("t_cal")) p.t_cal = v->as_duration(Time::zero(), sim::ms(100));
-  if (auto v = o.opt("t_cal_22")) p.t_cal_22 = v->as_duration(Time::zero(), sim::ms(100));
-  if (auto v = o.opt("t_m")) p.t_m = v->as_duration(sim::us(10), sim::us(30));
-  if (auto v = o.opt("t_m_short")) p.t_m_short = v->as_duration(sim::ns(1250), sim::ns(3750));
-  if (auto v = o.opt("short_t_m_selected")) p.short_t_m_selected = v->as_bool();
-  if (auto v = o.opt("t_r")) p.t_r = v->as_duration(Time::zero(), sim::us(100));
-  if (auto v = o.opt("t_st_max")) p.t_st_max = v->as_duration(protocol::limit::kStartDelayAt16MHz, sim::ms(10));
-  if (auto v = o.opt("t_lo_max")) p.t_lo_max = v->as_duration(protocol::limit::kPulseWidthMin, sim::ms(10));
-  if (auto v = o.opt("startup_time")) p.startup_time = v->as_duration(Time::zero(), sim::ms(10'000));
-  if (auto v = o.opt("reset_time")) p.reset_time = v->as_duration(Time::zero(), sim::ms(1000));
-  if (auto v = o.opt("output_delay")) p.output_delay = v->as_duration(Time::zero(), sim::us(1));
-  if (auto v = o.opt("continuous_low_bits")) p.continuous_low_bits = static_cast<unsigned>(v->as_uint(1, 7));
-  if (auto v = o.opt("driver_enable_edge")) p.driver_enable_edge = static_cast<unsigned>(v->as_uint(9, 10));
-  if (auto v = o.opt("type1_handling"))
-    p.type1 = v->as_enum<slave::Type1Handling>(
-        {{"abort_high", slave::Type1Handling::AbortHigh}, {"no_start_bit", slave::Type1Handling::NoStartBit}});
-  if (auto v = o.opt("error1")) p.error1 = v->as_bool();
-  if (auto v = o.opt("error_message_1_stuck")) p.error_message_1_stuck = v->as_bool();
-  if (auto v = o.opt("error_message_2_stuck")) p.error_message_2_stuck = v->as_bool();
-  if (auto v = o.opt("unsettled_positions")) p.unsettled_positions = static_cast<unsigned>(v->as_uint(0, 1000));
-  if (auto v = o.opt("error_sources")) p.error_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
-  if (auto v = o.opt("warning_sources")) p.warning_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
-  if (auto v = o.opt("t_ac_read")) p.t_ac_read = v->as_duration(Time::zero(), sim::ms(12));
-  if (auto v = o.opt("t_ac_write")) p.t_ac_write = v->as_duration(Time::zero(), sim::ms(12));
-  if (auto v = o.opt("t_ac_placement"))
-    p.t_ac_placement = v->as_enum<slave::MemoryAccessPlacement>(
-        {{"in_frame", slave::MemoryAccessPlacement::InFrame}, {"after_frame", slave::MemoryAccessPlacement::AfterFrame}});
+  input::read_parameters(o, slave::encoder_parameters(), p);
   if (auto v = o.opt("crc")) p.crc = read_crc_config(*v);
-  if (auto v = o.opt("interrupted_nvm_write"))
-    p.interrupted_nvm_write = v->as_enum<slave::InterruptedNvmWrite>(
-        {{"keep_old", slave::InterruptedNvmWrite::KeepOld}, {"torn", slave::InterruptedNvmWrite::Torn}});
-  if (auto v = o.opt("supplement_end_marker_delay"))
-    p.supplement_end_marker_delay = v->as_duration(Time::zero(), sim::us(1));
-  if (auto v = o.opt("supplement_ignore_clocks")) p.supplement_ignore_clocks = static_cast<unsigned>(v->as_uint(0, 16));
-  if (auto v = o.opt("communication_command_permitted")) p.communication_command_permitted = v->as_bool();
-  if (auto v = o.opt("eib_activation"))
-    p.eib_activation = v->as_enum<slave::EibActivation>(
-        {{"reset", slave::EibActivation::Reset}, {"word14_write", slave::EibActivation::Word14Write}});
-  if (auto v = o.opt("eib_activation_checks_checksum")) p.eib_activation_checks_checksum = v->as_bool();
-  if (auto v = o.opt("eib_position_before_commissioning"))
-    p.eib_position_before_commissioning = v->as_enum<slave::EibPositionBeforeCommissioning>(
-        {{"error_bit", slave::EibPositionBeforeCommissioning::ErrorBit},
-         {"not_supported", slave::EibPositionBeforeCommissioning::NotSupported}});
-  if (auto v = o.opt("selected_reference_mark")) p.selected_reference_mark = v->as_uint(0, 65535);
-  if (auto v = o.opt("earliest_start_bit_clock")) p.earliest_start_bit_clock = static_cast<unsigned>(v->as_uint(10, 32));
-  if (auto v = o.opt("asynchronous_time_delay_step"))
-    p.asynchronous_time_delay_step = v->as_duration(Time::zero(), sim::ms(1));
-  if (auto v = o.opt("multiturn_overflow_error_bit"))
-    p.multiturn_overflow_error_bit = static_cast<unsigned>(v->as_uint(0, 15));
   if (auto v = o.opt("reference_marks")) {
     if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > 1024) v->fail("an array of 1 .. 1024 positions");
     p.reference_marks.clear();

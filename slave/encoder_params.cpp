@@ -1,6 +1,9 @@
 #include "endatsim/slave/encoder_params.hpp"
 
+#include <array>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 #include <string>
 
 #include "endatsim/protocol/parameters.hpp"
@@ -23,8 +26,8 @@ std::uint16_t word_of(std::uint64_t value, unsigned index) {  // 16-bit word `in
 }  // namespace
 
 void EncoderParams::validate() const {
-  require(position_bits >= 1 && position_bits <= 48,
-          "encoder position_bits (word 13) must be 1 .. 48, got " + std::to_string(position_bits));
+  for (const auto& row : encoder_parameters())
+    if (const auto why = sim::out_of_range(row, *this, "encoder")) throw std::invalid_argument(*why);
   require(multiturn_bits < position_bits, "encoder multiturn_bits must be less than position_bits (" +
                                               std::to_string(position_bits) + "), got " +
                                               std::to_string(multiturn_bits));
@@ -33,50 +36,13 @@ void EncoderParams::validate() const {
   require(kind != EncoderKind::Multiturn || multiturn_bits > 0, "kind \"multiturn\" needs multiturn_bits > 0");
   require(kind != EncoderKind::TouchProbe || position_bits == protocol::kTouchProbeBits,
           "kind \"touch_probe\" sends 16 bits (2.3.4.4), got position_bits " + std::to_string(position_bits));
-  // 2.3.2 allows at most 1 ms; longer ones are accepted so that an overrun can be shown, and
-  // the checker reports them (t_cal).
-  require(t_cal >= Time::zero() && t_cal <= sim::ms(100),
-          "t_cal must be 0 .. 100 ms (the model's limit), got " + sim::format_time(t_cal));
-  require(!t_cal_22 || (*t_cal_22 >= Time::zero() && *t_cal_22 <= sim::ms(100)),
-          "t_cal_22 must be 0 .. 100 ms (the model's limit), got " + sim::format_time(t_cal_22.value_or(Time::zero())));
-  require(t_m >= sim::us(10) && t_m <= sim::us(30),
-          "t_m must be 10 .. 30 us (2.3.2), got " + sim::format_time(t_m));
-  if (t_m_short)
-    require(*t_m_short >= sim::ns(1250) && *t_m_short <= sim::ns(3750),
-            "t_m_short must be 1.25 .. 3.75 us (2.3.2 note 3), got " + sim::format_time(*t_m_short));
   require(!short_t_m_selected || t_m_short.has_value(), "short_t_m_selected needs t_m_short");
-  require(t_r >= Time::zero() && t_r <= sim::us(100), "t_R must be 0 .. 100 us, got " + sim::format_time(t_r));
-  require(startup_time >= Time::zero() && startup_time <= sim::ms(10'000),
-          "encoder startup_time must be 0 .. 10 s, got " + sim::format_time(startup_time));
-  require(reset_time >= Time::zero() && reset_time <= sim::ms(1000),
-          "encoder reset_time must be 0 .. 1 s, got " + sim::format_time(reset_time));
-  for (auto [name, t] : {std::pair{"t_ac_read", t_ac_read}, {"t_ac_write", t_ac_write}})
-    require(t >= Time::zero() && t <= sim::ms(12),
-            std::string("encoder ") + name + " must be 0 .. 12 ms (2.3.2: t_ac), got " + sim::format_time(t));
-  require(supplement_end_marker_delay >= Time::zero() && supplement_end_marker_delay <= sim::us(1),
-          "encoder supplement_end_marker_delay must be 0 .. 1 us (below the shortest t_m), got " +
-              sim::format_time(supplement_end_marker_delay));
-  require(supplement_ignore_clocks <= 16,
-          "encoder supplement_ignore_clocks must be 0 .. 16, got " + std::to_string(supplement_ignore_clocks));
-  require(output_delay >= Time::zero() && output_delay <= sim::us(1),
-          "encoder output_delay must be 0 .. 1 us, got " + sim::format_time(output_delay));
-  require(asynchronous_time_delay_step >= Time::zero() && asynchronous_time_delay_step <= sim::ms(1),
-          "encoder asynchronous_time_delay_step must be 0 .. 1 ms, got " + sim::format_time(asynchronous_time_delay_step));
-  require(multiturn_overflow_error_bit <= 15, "encoder multiturn_overflow_error_bit must be a word 0 bit, 0 .. 15, got " +
-                                                  std::to_string(multiturn_overflow_error_bit));
-  require(continuous_low_bits >= 1 && continuous_low_bits <= 7,
-          "continuous_low_bits must be 1 .. 7 (2.3.1.1: at most 7 low bits), got " +
-              std::to_string(continuous_low_bits));
-  require(earliest_start_bit_clock > driver_enable_edge && earliest_start_bit_clock <= 32,
+  require(earliest_start_bit_clock > driver_enable_edge,
           "encoder earliest_start_bit_clock must be after the driver is on (driver_enable_edge " +
-              std::to_string(driver_enable_edge) + ") and at most 32, got " + std::to_string(earliest_start_bit_clock));
-  require(driver_enable_edge == position::kTurnaround || driver_enable_edge == position::kTurnaround + 1,
-          "driver_enable_edge must be 9 or 10 (the turnaround clocks), got " + std::to_string(driver_enable_edge));
+              std::to_string(driver_enable_edge) + "), got " + std::to_string(earliest_start_bit_clock));
   require(motion.start < (std::uint64_t{1} << position_bits),
           "motion.start must be below 2^position_bits = " + std::to_string(std::uint64_t{1} << position_bits) +
               ", got " + std::to_string(motion.start));
-  require(unsettled_positions <= 1000,
-          "encoder unsettled_positions must be 0 .. 1000, got " + std::to_string(unsettled_positions));
   require(sensors.position2_offset >= -(std::int64_t{1} << 47) && sensors.position2_offset < (std::int64_t{1} << 47),
           "sensors position2_offset must fit 48 bits (3.9.24)");
   require(sensors.additional_sensors.size() <= 16, "at most 16 additional sensors (4-bit address, 2.3.5.1)");
@@ -185,5 +151,127 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   }
   return img;
 }
+
+// ---- the parameter table -----------------------------------------------------------------------
+
+namespace {
+
+using Row = sim::Parameter<EncoderParams>;
+namespace limit = protocol::limit;
+
+// An enum field whose values are 0, 1, ... in the order of `names`.
+template <auto Field, const auto& Names>
+constexpr sim::ChoiceField<EncoderParams> choice() {
+  using E = std::remove_cvref_t<decltype(std::declval<EncoderParams&>().*Field)>;
+  return {Names, [](const EncoderParams& p) { return static_cast<std::size_t>(p.*Field); },
+          [](EncoderParams& p, std::size_t i) { p.*Field = static_cast<E>(i); }};
+}
+
+constexpr std::array<std::string_view, 5> kKinds{"singleturn", "multiturn", "linear", "touch_probe", "eib"};
+static_assert(static_cast<std::size_t>(EncoderKind::Eib) == kKinds.size() - 1);
+constexpr std::array<std::string_view, 2> kVersions{"2.1", "2.2"};
+static_assert(static_cast<std::size_t>(EndatVersion::V2_2) == 1);
+constexpr std::array<std::string_view, 2> kType1{"abort_high", "no_start_bit"};
+static_assert(static_cast<std::size_t>(Type1Handling::NoStartBit) == 1);
+constexpr std::array<std::string_view, 2> kPlacements{"in_frame", "after_frame"};
+static_assert(static_cast<std::size_t>(MemoryAccessPlacement::AfterFrame) == 1);
+constexpr std::array<std::string_view, 2> kNvm{"keep_old", "torn"};
+static_assert(static_cast<std::size_t>(InterruptedNvmWrite::Torn) == 1);
+constexpr std::array<std::string_view, 2> kActivations{"reset", "word14_write"};
+static_assert(static_cast<std::size_t>(EibActivation::Word14Write) == 1);
+constexpr std::array<std::string_view, 2> kEibPositions{"error_bit", "not_supported"};
+static_assert(static_cast<std::size_t>(EibPositionBeforeCommissioning::NotSupported) == 1);
+
+constexpr std::int64_t ps(Time t) { return t.count(); }
+constexpr std::int64_t kModelTimeMax = ps(sim::ms(100));
+
+const std::array kRows{
+    Row{"kind", choice<&EncoderParams::kind, kKinds>(), 0, 0, "3.5.7",
+        "What the encoder is (word 14). touch_probe sends 16 bits, the LSB its trigger status (2.3.4.4); eib is an "
+        "External Interface Box in factory delivery state, the connected encoder after initial commissioning."},
+    Row{"version", choice<&EncoderParams::version, kVersions>(), 0, 0, "2.1",
+        "The interface version. A 2.1 encoder answers EnDat 2.2 mode commands as not supported (type I)."},
+    Row{"position_bits", &EncoderParams::position_bits, 1, 48, "3.5.6", "Clock pulses for the position value (word 13)."},
+    Row{"multiturn_bits", &EncoderParams::multiturn_bits, 0, 47, "3.5.6",
+        "Upper bits of the position that count revolutions; needs kind \"multiturn\" and fewer than position_bits."},
+    Row{"t_cal", &EncoderParams::t_cal, 0, kModelTimeMax, "2.3.2",
+        "Position calculation time t_cal, FE1 to the start bit. The spec allows at most 1 ms; longer ones run and "
+        "the checker reports them."},
+    Row{"t_cal_22", &EncoderParams::t_cal_22, 0, kModelTimeMax, "2.3.2",
+        "t_cal for EnDat 2.2 mode commands where it differs (absolute linear encoders may); none: t_cal."},
+    Row{"t_m", &EncoderParams::t_m, ps(limit::kRecoveryTimeMin), ps(limit::kRecoveryTimeMax), "2.3.2",
+        "Recovery time I t_m: DATA HIGH after the last bit until the encoder is idle again."},
+    Row{"t_m_short", &EncoderParams::t_m_short, ps(limit::kShortRecoveryTimeMin), ps(limit::kShortRecoveryTimeMax),
+        "2.3.2 note 3", "The short recovery time I for 2.2 mode commands, if the encoder has one (word 3, 3.4.4)."},
+    Row{"short_t_m_selected", &EncoderParams::short_t_m_selected, 0, 0, "3.4.4",
+        "Word 3 selects the short recovery time at power-on; needs t_m_short."},
+    Row{"t_r", &EncoderParams::t_r, 0, ps(sim::us(100)), "2.3.2", "t_R: time before the next query can be received."},
+    Row{"t_st_max", &EncoderParams::t_st_max, ps(limit::kStartDelayAt16MHz), ps(sim::ms(10)), "2.3.2",
+        "t_ST maximum from the encoder's datasheet (\"see encoder specifications\"); judged against this encoder."},
+    Row{"t_lo_max", &EncoderParams::t_lo_max, ps(limit::kPulseWidthMin), ps(sim::ms(10)), "2.3.2",
+        "t_LO maximum from the encoder's datasheet (\"see encoder specifications\"); judged against this encoder."},
+    Row{"startup_time", &EncoderParams::startup_time, 0, ps(sim::ms(10'000)), "2.3.3",
+        "Run-up after switching on (about 1 s), DATA high-impedance and clocks ignored meanwhile; 0: the run starts "
+        "with the encoder up."},
+    Row{"reset_time", &EncoderParams::reset_time, 0, ps(sim::ms(1000)), "2.7",
+        "Restart after \"Encoder receive reset\" (a guess: the spec gives the same reaction as switching on)."},
+    Row{"t_ac_read", &EncoderParams::t_ac_read, 0, ps(limit::kMemoryAccessMax), "2.3.2",
+        "Memory access time t_ac for reads and selections."},
+    Row{"t_ac_write", &EncoderParams::t_ac_write, 0, ps(limit::kMemoryAccessMax), "2.3.2",
+        "Memory access time t_ac for writes."},
+    Row{"t_ac_placement", choice<&EncoderParams::t_ac_placement, kPlacements>(), 0, 0, "2.3.1 note 1",
+        "Where t_ac of a 2.1 parameter frame lies: in_frame (the acknowledgment waits for it) or after_frame (busy "
+        "after the frame); the figure is lost."},
+    Row{"interrupted_nvm_write", choice<&EncoderParams::interrupted_nvm_write, kNvm>(), 0, 0, "3.4.3",
+        "What a word holds when a power interruption cuts its write short: keep_old, or torn (high byte new, low "
+        "byte old); stored write protection bits survive either way."},
+    Row{"supplement_end_marker_delay", &EncoderParams::supplement_end_marker_delay, 0, ps(sim::us(1)), "2.3",
+        "After the master's command supplement, the encoder drives the HIGH end marker this long after its last "
+        "bit (a guess, below the shortest t_m)."},
+    Row{"supplement_ignore_clocks", &EncoderParams::supplement_ignore_clocks, 0, 16, "2.3",
+        "Rising edges the encoder ignores DATA for after handing the line to the master's supplement (a guess)."},
+    Row{"output_delay", &EncoderParams::output_delay, 0, ps(sim::us(1)), "", "Clock input to data output inside the encoder."},
+    Row{"asynchronous_time_delay_step", &EncoderParams::asynchronous_time_delay_step, 0, ps(sim::ms(1)), "2.4.2.3",
+        "With oversampling activated (word 3, 3.4.4), time delay k selects the position sampled k steps of this "
+        "length before the latch (a guess: the spec leaves it to the encoder's specifications)."},
+    Row{"multiturn_overflow_error_bit", &EncoderParams::multiturn_overflow_error_bit, 0, 15, "3.4.4",
+        "The word 0 bit (3.4.1) a latched multiturn overflow sets; the spec names none (a guess)."},
+    Row{"continuous_low_bits", &EncoderParams::continuous_low_bits, 1, 7, "2.3.1.1",
+        "LOW bits between position words with a continuous clock (\"a maximum of 7 Low Bits\")."},
+    Row{"driver_enable_edge", &EncoderParams::driver_enable_edge, position::kTurnaround, position::kTurnaround + 1,
+        "2.3", "The falling edge that turns the encoder's driver on (the turnaround clocks)."},
+    Row{"earliest_start_bit_clock", &EncoderParams::earliest_start_bit_clock, position::kTurnaround + 1, 32, "2.3.2",
+        "The rising edge that may carry the start bit at the earliest (t_cal >= 10.5/f_c gives RE11); after "
+        "driver_enable_edge."},
+    Row{"type1_handling", choice<&EncoderParams::type1, kType1>(), 0, 0, "A2",
+        "What DATA shows after a mode command it cannot take (type I): abort_high, or no_start_bit (DATA stays "
+        "LOW); the figures are lost."},
+    Row{"communication_command_permitted", &EncoderParams::communication_command_permitted, 0, 0, "2.10",
+        "The encoder takes \"Encoder receive communication command\"; false answers A2 cause 4."},
+    Row{"eib_activation", choice<&EncoderParams::eib_activation, kActivations>(), 0, 0, "3.5.7",
+        "What completes an EIB's initial commissioning (a choice): reset (\"Encoder receive reset\" or power-on) "
+        "or word14_write (the write of word 14)."},
+    Row{"eib_activation_checks_checksum", &EncoderParams::eib_activation_checks_checksum, 0, 0, "3.5.26",
+        "The EIB becomes the connected encoder only if word 47 checks."},
+    Row{"eib_position_before_commissioning", choice<&EncoderParams::eib_position_before_commissioning, kEibPositions>(),
+        0, 0, "A2", "A position request to an EIB not yet initiated: error_bit (F1 set, position 0) or not_supported "
+        "(type I)."},
+    Row{"selected_reference_mark", &EncoderParams::selected_reference_mark, 0, 65535, "2.3.4.3",
+        "Equidistant reference marks (word 18, 3.5.10.2): the mark selected by hardware, counted from the first "
+        "(word 19); none: the first mark crossed references."},
+    Row{"error1", &EncoderParams::error1, 0, 0, "2.3.1", "F1 = 1 and F2 = 0 whatever word 0 says (a fault)."},
+    Row{"error_message_1_stuck", &EncoderParams::error_message_1_stuck, 0, 0, "",
+        "A failed error path: F1 stays LOW whatever the errors and forced dynamic sampling (a fault)."},
+    Row{"error_message_2_stuck", &EncoderParams::error_message_2_stuck, 0, 0, "",
+        "A failed error path: F2 stays HIGH, inactive (a fault)."},
+    Row{"unsettled_positions", &EncoderParams::unsettled_positions, 0, 1000, "",
+        "The first this many position answers after switching on or a reset carry an unsettled value (a fault)."},
+    Row{"error_sources", &EncoderParams::error_sources, 0, 0xFFFF, "3.4.1", "Word 0 bits a fault keeps setting."},
+    Row{"warning_sources", &EncoderParams::warning_sources, 0, 0xFFFF, "3.4.2", "Word 1 bits a fault keeps setting."},
+};
+
+}  // namespace
+
+std::span<const sim::Parameter<EncoderParams>> encoder_parameters() { return kRows; }
 
 }  // namespace endatsim::slave

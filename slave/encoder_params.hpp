@@ -8,10 +8,12 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "endatsim/sim/int128.hpp"
+#include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/time.hpp"
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/slave/memory.hpp"
@@ -184,6 +186,12 @@ struct EncoderParams {
   void validate() const;
   std::uint64_t position_at(Time t) const;
 };
+
+// The scalar keys of a scenario's "encoder" object, one row each (sim/parameter.hpp): the loader
+// reads them, EncoderParams::validate() checks their ranges, the schema and docs/parameters.md
+// are generated from them. Structured keys (profile, crc, sensors, motion, reference_marks,
+// memory) are read by the loader itself.
+std::span<const sim::Parameter<EncoderParams>> encoder_parameters();
 
 // A memory image consistent with the parameters: word 13 = position bits, word 39 = t_cal, an
 // OEM area of 64 words in A9 and AB, EnDat 2.2 area for 2.2 encoders, checksums valid.

@@ -30,6 +30,7 @@
 #include "endatsim/scenarios/decoder_tables.hpp"
 #include "endatsim/scenarios/declarations.hpp"
 #include "endatsim/scenarios/diagram.hpp"
+#include "endatsim/scenarios/parameter_docs.hpp"
 #include "endatsim/scenarios/gtkw.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/junit.hpp"
@@ -71,6 +72,7 @@ const char* const kValidateUsage = "usage: endatsim validate FILE... [--quiet] [
 const char* const kDiagramUsage =
     "usage: endatsim diagram FILE --svg PATH [--frame N | --from TIME --to TIME] [--seed N] [--quiet] [limits as run]\n";
 const char* const kChecksUsage = "usage: endatsim checks [--json | --python]\n";
+const char* const kParametersUsage = "usage: endatsim parameters [--schema]\n";
 const char* const kCheckUsage =
     "usage: endatsim check FILE... --clock NAME (--data NAME | --data-out NAME --data-in NAME)\n"
     "                      [--data-enable NAME [--master-data-enable NAME] [--enable-active-low]] [--power NAME]\n"
@@ -79,7 +81,7 @@ const char* const kCheckUsage =
     "                      [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
 
 std::string usage() {
-  return std::string(kRunUsage) + kSweepUsage + kMergeUsage + kValidateUsage + kDiagramUsage + kCheckUsage + kChecksUsage +
+  return std::string(kRunUsage) + kSweepUsage + kMergeUsage + kValidateUsage + kDiagramUsage + kCheckUsage + kChecksUsage + kParametersUsage +
          "       endatsim --help | --version | COMMAND --help | COMMAND --version\n";
 }
 
@@ -183,6 +185,12 @@ const char* const kChecksHelp =
     "same as the Python module tools/sigrok/endat/tables.py, which the sigrok decoder reads.\n"
     "Exit status: 0.\n";
 
+const char* const kParametersHelp =
+    "parameters: prints the scenario parameters defined as rows (key, type, range, default, spec\n"
+    "section, meaning) as Markdown tables; docs/parameters.md is this output. --schema prints,\n"
+    "instead, the JSON Schema properties these rows make, as schema/scenario.schema.json holds them.\n"
+    "Exit status: 0.\n";
+
 const char* const kCheckHelp =
     "check: judges a waveform recorded elsewhere against the timing conditions of spec 2.3.2, from\n"
     "the wires alone: a VCD from any HDL simulator, a sigrok session (.sr) as PulseView and\n"
@@ -213,7 +221,7 @@ const char* const kCheckHelp =
     "interrupted by signal N (the captures not judged are listed as such in --json and --junit),\n"
     ENDATSIM_INTERNAL_EXIT;
 
-enum class Command { Run, Sweep, Merge, Validate, Diagram, Check, Checks };
+enum class Command { Run, Sweep, Merge, Validate, Diagram, Check, Checks, Parameters };
 
 struct CommandInfo {
   Command command;
@@ -230,6 +238,7 @@ const CommandInfo kCommands[] = {
     {Command::Diagram, "diagram", kDiagramUsage, kDiagramHelp},
     {Command::Check, "check", kCheckUsage, kCheckHelp},
     {Command::Checks, "checks", kChecksUsage, kChecksHelp},
+    {Command::Parameters, "parameters", kParametersUsage, kParametersHelp},
 };
 
 void add_limit_options(po::options_description& o) {
@@ -313,6 +322,9 @@ po::options_description options_of(Command c) {
     case Command::Checks:
       o.add_options()("json", "print the decoder tables as JSON")(
           "python", "print the decoder tables as the Python module of the sigrok decoder");
+      break;
+    case Command::Parameters:
+      o.add_options()("schema", "print the JSON Schema properties of the parameters");
       break;
     case Command::Diagram:
       o.add_options()("svg", po::value<std::string>(), "write the diagram to this file (required)")(
@@ -1350,6 +1362,16 @@ int checks_command(const po::variables_map& vm) {
   return kPass;
 }
 
+int parameters_command(const po::variables_map& vm) {
+  if (!files_of(vm).empty()) {
+    std::cerr << "endatsim parameters: takes no file\n" << kParametersUsage;
+    return kBadInput;
+  }
+  if (vm.count("schema") != 0) std::cout << scenarios::encoder_parameter_schema().dump(2) << "\n";
+  else std::cout << scenarios::parameter_tables_markdown();
+  return kPass;
+}
+
 const CommandInfo* find_command(const std::string& name) {
   for (const auto& c : kCommands)
     if (name == c.name) return &c;
@@ -1431,7 +1453,8 @@ int dispatch(int argc, char** argv) {
     std::cout << "endatsim " << ENDATSIM_VERSION << "\n";
     return kPass;
   }
-  if (info->command != Command::Checks && info->command != Command::Validate) scenarios::install_interrupt_handlers();
+  if (info->command != Command::Checks && info->command != Command::Parameters && info->command != Command::Validate)
+    scenarios::install_interrupt_handlers();
   try {
     switch (info->command) {
       case Command::Run: return run_command(vm);
@@ -1441,6 +1464,7 @@ int dispatch(int argc, char** argv) {
       case Command::Diagram: return diagram_command(vm);
       case Command::Check: return check_command(vm);
       case Command::Checks: return checks_command(vm);
+      case Command::Parameters: return parameters_command(vm);
     }
   } catch (...) {
     return report_failure(std::current_exception(), std::cerr);

@@ -1,0 +1,51 @@
+#pragma once
+// Reading a model's parameter rows (sim/parameter.hpp) from a JSON object: each key present is
+// read with the type and range its row gives, and an error names the file, the JSON path and
+// what was expected.
+
+#include <span>
+#include <string>
+#include <type_traits>
+#include <variant>
+
+#include "endatsim/input/json_input.hpp"
+#include "endatsim/sim/parameter.hpp"
+
+namespace endatsim::input {
+
+template <class Params>
+void read_parameter(const Node& v, const sim::Parameter<Params>& row, Params& p) {
+  using sim::ChoiceField;
+  using sim::Time;
+  std::visit(
+      [&](const auto& field) {
+        using F = std::decay_t<decltype(field)>;
+        if constexpr (std::is_same_v<F, Time Params::*> || std::is_same_v<F, std::optional<Time> Params::*>) {
+          p.*field = v.as_duration(Time{row.min}, Time{row.max});
+        } else if constexpr (std::is_same_v<F, unsigned Params::*>) {
+          p.*field = static_cast<unsigned>(v.as_uint(static_cast<std::uint64_t>(row.min), static_cast<std::uint64_t>(row.max)));
+        } else if constexpr (std::is_same_v<F, std::optional<std::uint64_t> Params::*>) {
+          p.*field = v.as_uint(static_cast<std::uint64_t>(row.min), static_cast<std::uint64_t>(row.max));
+        } else if constexpr (std::is_same_v<F, bool Params::*>) {
+          p.*field = v.as_bool();
+        } else if constexpr (std::is_same_v<F, std::uint16_t Params::*>) {
+          p.*field = static_cast<std::uint16_t>(v.as_word(static_cast<std::uint64_t>(row.max)));
+        } else {
+          static_assert(std::is_same_v<F, ChoiceField<Params>>);
+          if (v.raw().is_string())
+            for (std::size_t i = 0; i < field.names.size(); ++i)
+              if (field.names[i] == v.raw().template get_ref<const std::string&>()) return field.set(p, i);
+          v.fail_choice(std::vector<std::string>(field.names.begin(), field.names.end()));
+        }
+      },
+      row.field);
+}
+
+// Every row whose key the object holds, in the rows' order.
+template <class Params>
+void read_parameters(Object& o, std::span<const sim::Parameter<Params>> rows, Params& p) {
+  for (const auto& row : rows)
+    if (auto v = o.opt(std::string(row.key))) read_parameter(*v, row, p);
+}
+
+}  // namespace endatsim::input
