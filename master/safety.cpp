@@ -120,23 +120,25 @@ std::optional<std::uint32_t> Position2Parameters::accuracy_at(double steps_per_s
 
 Position2Parameters position2_parameters(const std::vector<std::uint16_t>& m, const std::vector<std::uint16_t>& e) {
   Position2Parameters p;
-  const auto type = m[14] >> 12;
+  namespace word = protocol::word;
+  const auto type = m[word::kEncoderType] >> 12;
   p.linear = type <= 0x7;  // 3.5.7: types 0 .. 7 are linear (5 the touch probe)
-  p.measuring_steps = static_cast<std::uint32_t>(m[21]) << 16 | m[20];
-  p.max_velocity = m[32];
-  if (m[33] != 0xFFFF || m[34] != 0xFFFF) {
+  p.measuring_steps = static_cast<std::uint32_t>(m[word::kMeasuringSteps + 1]) << 16 | m[word::kMeasuringSteps];
+  p.max_velocity = m[word::kMaxVelocity];
+  if (m[word::kAccuracy] != 0xFFFF || m[word::kAccuracy + 1] != 0xFFFF) {
     // 3.5.19: high byte the conversion factor c_i, low byte the accuracy a_i in LSB.
-    for (unsigned w : {33U, 34U}) p.ranges.push_back({static_cast<std::uint32_t>(m[w] >> 8), m[w] & 0xFFU});
+    for (unsigned w : {word::kAccuracy, word::kAccuracy + 1}) p.ranges.push_back({static_cast<std::uint32_t>(m[w] >> 8), m[w] & 0xFFU});
   } else {
     // 3.5.19: 65535 in both: words 11 .. 14 of the 2.2 area (3.9.11), each value scaled.
-    for (unsigned w : {11U, 13U}) {
+    for (unsigned w : {word::kPosition2Accuracy, word::kPosition2Accuracy + 2}) {
       const auto c = scaled(e[w]), a = scaled(e[w + 1]);
       if (c && a) p.ranges.push_back({*c, *a});
     }
   }
-  p.reversed = (e[16] & 1U) != 0;
-  p.comparison_bits = e[26];
-  const std::uint64_t raw = std::uint64_t{e[33]} << 32 | std::uint64_t{e[32]} << 16 | e[31];
+  p.reversed = (e[word::kPosition2Direction] & 1U) != 0;
+  p.comparison_bits = e[word::kComparisonBits];
+  const unsigned offset = word::kPosition2Offset;  // 3.9.24: 48 bits, the low word first
+  const std::uint64_t raw = std::uint64_t{e[offset + 2]} << 32 | std::uint64_t{e[offset + 1]} << 16 | e[offset];
   p.offset = (raw & 0x8000'0000'0000ULL) != 0 ? static_cast<std::int64_t>(raw | 0xFFFF'0000'0000'0000ULL)
                                                : static_cast<std::int64_t>(raw);
   return p;

@@ -70,7 +70,7 @@ void Encoder::complete_commissioning() {
   for (unsigned n = 4; n < 48; ++n) m[n] = memory_.manufacturer_word(n);
   const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
   const unsigned bits = pm::decode_position_bits(m[word::kPositionFormat]);
-  const bool checksum_ok = !params_.eib_activation_checks_checksum || pm::manufacturer_checksum(m) == m[47];
+  const bool checksum_ok = !params_.eib_activation_checks_checksum || pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum];
   if (type == pm::EncoderType::ExternalInterfaceBox || bits < 1 || bits > 48 || !checksum_ok ||
       (type == pm::EncoderType::TouchProbe && bits != protocol::kTouchProbeBits))
     return;
@@ -318,11 +318,11 @@ bool Encoder::error_message_1() const {
 bool Encoder::error_message_2() const {
   const bool forced = additional_data_.test_port() >= kForcedError2First && additional_data_.test_port() < kForcedError2First + 7;
   return !params_.error_message_2_stuck &&
-         (params_.error1 || forced || eib_not_initiated_ || (error_word() & memory_.endat22_word(6)) != 0);
+         (params_.error1 || forced || eib_not_initiated_ || (error_word() & memory_.endat22_word(word::kErrorMessage2Support)) != 0);
 }
 
 bool Encoder::error_present() const {
-  const auto supported = memory_.manufacturer_word(word::kSupportedErrors) | memory_.endat22_word(6);
+  const auto supported = memory_.manufacturer_word(word::kSupportedErrors) | memory_.endat22_word(word::kErrorMessage2Support);
   return params_.error1 || eib_not_initiated_ || bus_address_error_ || (error_word() & supported) != 0;
 }
 

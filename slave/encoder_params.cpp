@@ -99,7 +99,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   } catch (const std::invalid_argument&) {
     m[word::kCalculationTime] = 0;  // not representable in 13 bits of one unit: "not supported"
   }
-  m[40] = pm::encode_ordering_designation(v22 ? "EnDat22" : "EnDat01");  // 3.5.25
+  m[word::kOrderingDesignation] = pm::encode_ordering_designation(v22 ? "EnDat22" : "EnDat01");  // 3.5.25
   // What the safety comparison of position value 2 needs (3.5.12, 3.5.18, 3.5.19): steps per
   // revolution (rotary) or a 100 nm step (linear, a model default), 12 000 rpm or 120 m/min,
   // and the accuracy ranges of the spec's example (c1 = 40, a1 = 16 LSB) plus c2 = 1, a2 = 64 LSB
@@ -107,11 +107,11 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   const unsigned singleturn = p.position_bits - p.multiturn_bits;
   const auto steps = pm::encode_measuring_steps(
       p.kind == EncoderKind::Linear || singleturn > 31 ? 100 : std::uint32_t{1} << singleturn);
-  m[20] = steps[0];
-  m[21] = steps[1];
-  m[32] = p.kind == EncoderKind::Linear ? 120 : 12000;
-  m[33] = v22 ? 0xFFFF : 0x2810;
-  m[34] = v22 ? 0xFFFF : 0x0140;
+  m[word::kMeasuringSteps] = steps[0];
+  m[word::kMeasuringSteps + 1] = steps[1];
+  m[word::kMaxVelocity] = p.kind == EncoderKind::Linear ? 120 : 12000;
+  m[word::kAccuracy] = v22 ? 0xFFFF : 0x2810;
+  m[word::kAccuracy + 1] = v22 ? 0xFFFF : 0x0140;
   m[word::kSupportedErrors] = 0x007F;
   m[word::kSupportedWarnings] = 0x01FF;
   m[word::kManufacturerChecksum] = word_sum(m, 4, 46);            // 3.5.26
@@ -125,24 +125,23 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     std::vector<std::uint16_t> e(64, 0);
     e[word::kAdditionalData1Support] = 0x001F;  // 3.9.2: all additional data 1
     e[word::kAdditionalData2Support] = 0x009F;  // 3.9.3: all but "position value 2" in additional data 2
-    e[2] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
+    e[word::kAdditionalFunctionsSupport] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
     e[word::kTemperatureScaling] = 0x8000;      // 3.9.6: 0.1 K (default value)
     // 3.9.7: valuation numbers 1 .. 6, system-specific data where the encoder has any.
     e[word::kDiagnosticStatus] = static_cast<std::uint16_t>(
         protocol::diagnosis::kValuationNumberBits | (p.sensors.system_data.empty() ? 0 : protocol::diagnosis::kSystemSpecificDataBit));
-    e[6] = 0x007F;                              // 3.9.8: support of error message 2
+    e[word::kErrorMessage2Support] = 0x007F;                              // 3.9.8: support of error message 2
     e[word::kMaxEncoderTemperature] = 3881;     // 3.9.16's example: 115 degC
     e[word::kMaxClockFrequency] = 16000;        // 3.9.19: kHz
-    e[9] = m[20];                               // 3.9.10: position value 2 in the steps of position value 1
-    e[10] = m[21];
-    e[11] = 40;                                 // 3.9.11: c1 = 40, a1 = 16 LSB; c2 = 1, a2 = 64 LSB
-    e[12] = 16;
-    e[13] = 1;
-    e[14] = 64;
-    e[16] = p.sensors.position2_reversed ? 1 : 0;  // 3.9.13
+    // 3.9.10: position value 2 in the steps of position value 1
+    e[word::kPosition2MeasuringSteps] = m[word::kMeasuringSteps];
+    e[word::kPosition2MeasuringSteps + 1] = m[word::kMeasuringSteps + 1];
+    // 3.9.11: c1 = 40, a1 = 16 LSB; c2 = 1, a2 = 64 LSB
+    for (unsigned k = 0; const unsigned v : {40U, 16U, 1U, 64U}) e[word::kPosition2Accuracy + k++] = static_cast<std::uint16_t>(v);
+    e[word::kPosition2Direction] = p.sensors.position2_reversed ? 1 : 0;  // 3.9.13
     const auto offset = static_cast<std::uint64_t>(p.sensors.position2_offset);
-    for (unsigned k = 0; k < 3; ++k) e[31 + k] = word_of(offset, k);  // 3.9.24
-    if (type == pm::EncoderType::TouchProbe) e[45] = pm::encode_timestamp_unit(pm::TimestampUnit::Us1);  // 3.9.32
+    for (unsigned k = 0; k < 3; ++k) e[word::kPosition2Offset + k] = word_of(offset, k);  // 3.9.24
+    if (type == pm::EncoderType::TouchProbe) e[word::kTimestampUnit] = pm::encode_timestamp_unit(pm::TimestampUnit::Us1);  // 3.9.32
     e[word::kEndat22Checksum] = word_sum(e, 0, 62);
     img.areas[A::ManufacturerEndat22] = e;
     // 3.6.6: the default is word 22 minus a safety reserve; 5 K gives the example's 110 degC.

@@ -127,7 +127,7 @@ void PositionSource::set_probe_deflected(bool deflected, Time now) {
 
 std::uint16_t PositionSource::timestamp(Time frame_start) const {
   if (touch_probe_ && probe_switched_at_) {
-    if (const auto unit = pm::timestamp_unit_duration(pm::decode_timestamp_unit(memory_.endat22_word(45))))
+    if (const auto unit = pm::timestamp_unit_duration(pm::decode_timestamp_unit(memory_.endat22_word(word::kTimestampUnit))))
       return static_cast<std::uint16_t>(*probe_switched_at_ / *unit);
   }
   return static_cast<std::uint16_t>(frame_start / params_.sensors.timestamp_unit);

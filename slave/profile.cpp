@@ -146,12 +146,12 @@ void write_words(std::ostringstream& out, const std::vector<std::uint16_t>& w, c
 // designation; 3.5.10.2 / 3.5.11: equidistant marks in words 18/19 must convert into
 // measuring steps and lie within the range.
 void check_reference_marks(const EncoderProfile& p, const std::vector<std::uint16_t>& m, std::vector<std::string>& problems) {
-  const auto type = pm::decode_encoder_type(m[14]);
+  const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
   if (!pm::is_incremental(type)) return;
-  if (pm::decode_signal_period(m[15], m[16]) == 0)
+  if (pm::decode_signal_period(m[word::kSignalPeriod], m[word::kSignalPeriod + 1]) == 0)
     problems.push_back(manufacturer_path(15) + ": expected the signal period of an incremental encoder in words 15/16 "
                        "(3.5.8, appendix A10), got 0000h");
-  if (pm::reference_marks_of(type, m[18]) != pm::ReferenceMarks::Equidistant) return;
+  if (pm::reference_marks_of(type, m[word::kReferenceMarkDistance]) != pm::ReferenceMarks::Equidistant) return;
   try {
     (void)reference_scheme(Memory(p.memory), {}, std::nullopt, p.position_bits);
   } catch (const std::invalid_argument& e) {
@@ -218,7 +218,7 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
       problems.push_back("/memory: expected area " + std::string(protocol::info(partitioned[i]).key) +
                          ", which word " + std::to_string(word) + " makes available (3.5.5)");
   }
-  const auto type = pm::decode_encoder_type(m[14]);
+  const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
   const bool multiturn_type = type == pm::EncoderType::MultiturnBattery || type == pm::EncoderType::MultiturnGears;
   const bool probe_type = type == pm::EncoderType::TouchProbe;
   const bool eib_type = type == pm::EncoderType::ExternalInterfaceBox;
@@ -227,8 +227,8 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
                        : p.kind == EncoderKind::TouchProbe ? probe_type
                        : p.kind == EncoderKind::Eib        ? eib_type
                                                            : !pm::is_linear(type) && !multiturn_type && !probe_type && !eib_type;
-  expect(type_ok, manufacturer_path(14), "an encoder type of kind " + kind_key(p.kind) + " (3.5.7)", m[14]);
-  expect((m[14] & pm::kNvmBit0) != 0, manufacturer_path(14), "bit 0 = 1 for NVM checking (3.5.7)", m[14]);
+  expect(type_ok, manufacturer_path(14), "an encoder type of kind " + kind_key(p.kind) + " (3.5.7)", m[word::kEncoderType]);
+  expect((m[word::kEncoderType] & pm::kNvmBit0) != 0, manufacturer_path(14), "bit 0 = 1 for NVM checking (3.5.7)", m[word::kEncoderType]);
   if (p.kind == EncoderKind::Eib) {
     // 3.5.7: in factory delivery state an EIB holds word 14, the memory size, ID and serial
     // number and (choice) their checksum; the other words are saved at initial commissioning.
@@ -238,18 +238,18 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
   } else {
     for (unsigned n : {8U, 13U, 30U, 31U})
       expect((m[n] & pm::kNvmBit15) != 0, manufacturer_path(n), "bit 15 = 1 for NVM checking (3.5)", m[n]);
-    expect(pm::decode_position_bits(m[13]) == p.position_bits, manufacturer_path(13),
-           "position_bits " + std::to_string(p.position_bits) + " in bits 0..5 (3.5.6)", m[13]);
-    const auto commands = pm::decode_command_set(m[37]);
-    expect(pm::command_set_consistent(m[37]) && commands.endat22 == (p.version == EndatVersion::V2_2),
+    expect(pm::decode_position_bits(m[word::kPositionFormat]) == p.position_bits, manufacturer_path(13),
+           "position_bits " + std::to_string(p.position_bits) + " in bits 0..5 (3.5.6)", m[word::kPositionFormat]);
+    const auto commands = pm::decode_command_set(m[word::kCommandSet]);
+    expect(pm::command_set_consistent(m[word::kCommandSet]) && commands.endat22 == (p.version == EndatVersion::V2_2),
            manufacturer_path(37), "bit pairs stored inversely, command set " + version_key(p.version) + " (3.5.22)",
-           m[37]);
+           m[word::kCommandSet]);
     check_reference_marks(p, m, problems);
   }
   const std::uint16_t revolutions =
       p.kind == EncoderKind::Multiturn ? pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U)) : 0;
-  expect(m[17] == revolutions, manufacturer_path(17),
-         hex4(revolutions) + "h distinguishable revolutions (3.5.9)", m[17]);
+  expect(m[word::kDistinguishableRevolutions] == revolutions, manufacturer_path(17),
+         hex4(revolutions) + "h distinguishable revolutions (3.5.9)", m[word::kDistinguishableRevolutions]);
   if (p.kind != EncoderKind::Linear) {
     const std::uint64_t steps = pm::steps_per_revolution(m, p.endat22_words()).value_or(0);
     const std::uint64_t expected = std::uint64_t{1} << (p.position_bits - p.multiturn_bits);
@@ -257,47 +257,47 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
       problems.push_back(manufacturer_path(20) + ": expected " + std::to_string(expected) +
                          " measuring steps per revolution in words 20/21 (3.5.12), got " + std::to_string(steps));
   }
-  if (const auto d = pm::decode_ordering_designation(m[40])) {
+  if (const auto d = pm::decode_ordering_designation(m[word::kOrderingDesignation])) {
     const bool printable = (*d)[5] > 0x20 && (*d)[5] < 0x7F && (*d)[6] > 0x20 && (*d)[6] < 0x7F;
     const bool needs22 = (*d)[6] == '2';  // EnDat02 / EnDat22: command set 2.2 (the German brochure, newer edition)
     expect(printable && (!needs22 || p.version == EndatVersion::V2_2), manufacturer_path(40),
-           "\"EnDat\" and two printable characters, x2 only with version 2.2 (3.5.25)", m[40]);
+           "\"EnDat\" and two printable characters, x2 only with version 2.2 (3.5.25)", m[word::kOrderingDesignation]);
   }
-  expect(pm::manufacturer_checksum(m) == m[47], manufacturer_path(47),
-         hex4(pm::manufacturer_checksum(m)) + "h = word 4 + ... + word 46 (3.5.26)", m[47]);
+  expect(pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum], manufacturer_path(47),
+         hex4(pm::manufacturer_checksum(m)) + "h = word 4 + ... + word 46 (3.5.26)", m[word::kManufacturerChecksum]);
   const auto e = p.endat22_words();
   if (p.version == EndatVersion::V2_2 && e.empty())
     problems.push_back("/memory: expected area manufacturer_endat22 for version 2.2 (3.9)");
   if (p.version == EndatVersion::V2_1 && !e.empty())
     problems.push_back(area_path(Area::ManufacturerEndat22) + ": expected no EnDat 2.2 area for version 2.1 (3.9)");
   if (!e.empty())
-    expect(pm::endat22_checksum(e) == e[63], area_path(Area::ManufacturerEndat22) + "/63",
-           hex4(pm::endat22_checksum(e)) + "h = word 0 + ... + word 62 (3.9.37)", e[63]);
+    expect(pm::endat22_checksum(e) == e[word::kEndat22Checksum], area_path(Area::ManufacturerEndat22) + "/63",
+           hex4(pm::endat22_checksum(e)) + "h = word 0 + ... + word 62 (3.9.37)", e[word::kEndat22Checksum]);
   return problems;
 }
 
 std::vector<std::pair<std::string, std::string>> describe_profile(const EncoderProfile& p) {
   const auto m = p.manufacturer_words();
-  const auto type = pm::decode_encoder_type(m[14]);
+  const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
   std::vector<std::pair<std::string, std::string>> d;
   d.emplace_back("encoder type (word 14)", std::string(pm::encoder_type_name(type)));
-  d.emplace_back("position bits (word 13)", std::to_string(pm::decode_position_bits(m[13])));
-  d.emplace_back("measuring step (words 20/21)", pm::measuring_step_string(type, pm::decode_measuring_steps(m[20], m[21])));
-  if (p.kind == EncoderKind::Multiturn) d.emplace_back("distinguishable revolutions (word 17)", std::to_string(m[17]));
+  d.emplace_back("position bits (word 13)", std::to_string(pm::decode_position_bits(m[word::kPositionFormat])));
+  d.emplace_back("measuring step (words 20/21)", pm::measuring_step_string(type, pm::decode_measuring_steps(m[word::kMeasuringSteps], m[word::kMeasuringSteps + 1])));
+  if (p.kind == EncoderKind::Multiturn) d.emplace_back("distinguishable revolutions (word 17)", std::to_string(m[word::kDistinguishableRevolutions]));
   if (pm::is_incremental(type)) {  // 2.3.4.3, 3.5.10, 3.5.11
-    const auto marks = pm::reference_marks_of(type, m[18]);
+    const auto marks = pm::reference_marks_of(type, m[word::kReferenceMarkDistance]);
     std::string text(pm::reference_marks_name(marks));
     const std::string unit = pm::is_linear(type) ? " mm" : " signal periods";
-    if (marks == pm::ReferenceMarks::DistanceCoded) text += ", nominal increment " + std::to_string(m[18]) + unit;
-    if (marks == pm::ReferenceMarks::Equidistant) text += " every " + std::to_string(m[18]) + unit;
+    if (marks == pm::ReferenceMarks::DistanceCoded) text += ", nominal increment " + std::to_string(m[word::kReferenceMarkDistance]) + unit;
+    if (marks == pm::ReferenceMarks::Equidistant) text += " every " + std::to_string(m[word::kReferenceMarkDistance]) + unit;
     d.emplace_back("reference marks (words 14, 18)", text);
   }
   d.emplace_back("ID number (words 24..26)", pm::id_number_string(pm::decode_id_number(m[24], m[25], m[26])));
   d.emplace_back("serial number (words 27..29)",
                  pm::serial_number_string(pm::decode_serial_number(m[27], m[28], m[29])));
-  d.emplace_back("command set (word 37)", pm::command_set_string(m[37]));
+  d.emplace_back("command set (word 37)", pm::command_set_string(m[word::kCommandSet]));
   d.emplace_back("t_cal (word 39)", pm::calculation_time_string(pm::decode_calculation_time(m[39])));
-  d.emplace_back("ordering designation (word 40)", pm::decode_ordering_designation(m[40]).value_or("not supported"));
+  d.emplace_back("ordering designation (word 40)", pm::decode_ordering_designation(m[word::kOrderingDesignation]).value_or("not supported"));
   d.emplace_back("functions (operating status word 3)", pm::function_initialization_string(p.memory.areas.at(Area::OperatingStatus).at(word::kFunctionInitialization)));
   const auto e = p.endat22_words();
   if (!e.empty()) {
@@ -381,19 +381,19 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   m[10] = pm::encode_partition_word(p.oem[2], p.oem[3]);
   m[11] = pm::encode_partition_word(p.compensation[0], p.compensation[1]);
   m[12] = pm::encode_partition_word(p.compensation[2], p.compensation[3]);
-  m[13] = pm::encode_position_bits(p.position_bits);
-  m[14] = pm::encode_encoder_type(p.type);
+  m[word::kPositionFormat] = pm::encode_position_bits(p.position_bits);
+  m[word::kEncoderType] = pm::encode_encoder_type(p.type);
   const auto period = pm::encode_signal_period(p.signal_period);
-  m[15] = period[0];
-  m[16] = period[1];
-  if (p.kind == EncoderKind::Multiturn) m[17] = pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U));
-  m[18] = p.reference_mark_increment;
+  m[word::kSignalPeriod] = period[0];
+  m[word::kSignalPeriod + 1] = period[1];
+  if (p.kind == EncoderKind::Multiturn) m[word::kDistinguishableRevolutions] = pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U));
+  m[word::kReferenceMarkDistance] = p.reference_mark_increment;
   std::uint32_t steps = p.measuring_steps;
   // 2.3.4.4: a touch probe sends a trigger status, not measuring steps.
   if (steps == 0 && p.kind != EncoderKind::Linear && p.kind != EncoderKind::TouchProbe) steps = std::uint32_t{1} << (p.position_bits - p.multiturn_bits);
   const auto s = pm::encode_measuring_steps(steps);
-  m[20] = s[0];
-  m[21] = s[1];
+  m[word::kMeasuringSteps] = s[0];
+  m[word::kMeasuringSteps + 1] = s[1];
   const auto shift = pm::encode_datum_shift48(p.datum_shift);
   m[22] = shift[0];
   m[23] = shift[1];
@@ -408,10 +408,10 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   m[34] = p.accuracy[1];
   m[35] = p.supported_errors;
   m[36] = p.supported_warnings;
-  m[37] = pm::encode_command_set({p.version == EndatVersion::V2_2, false, p.communication_command});
+  m[word::kCommandSet] = pm::encode_command_set({p.version == EndatVersion::V2_2, false, p.communication_command});
   m[39] = pm::encode_calculation_time(p.t_cal);
-  m[40] = p.ordering_designation.empty() ? 0 : pm::encode_ordering_designation(p.ordering_designation);
-  m[47] = pm::manufacturer_checksum(m);
+  m[word::kOrderingDesignation] = p.ordering_designation.empty() ? 0 : pm::encode_ordering_designation(p.ordering_designation);
+  m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);
   auto& areas = profile.memory.areas;
   areas[Area::OperatingStatus] = {0, 0, p.write_protection, p.function_initialization};
   areas[Area::Manufacturer1].assign(m.begin(), m.begin() + 16);
@@ -438,7 +438,7 @@ EncoderProfile build_profile(const ProfileParameters& p) {
     e[25] = pm::encode_max_clock_frequency_khz(p.max_clock_khz);
     e[44] = p.touch_probe_support;
     e[45] = pm::encode_timestamp_unit(p.timestamp_unit);
-    e[63] = pm::endat22_checksum(e);
+    e[word::kEndat22Checksum] = pm::endat22_checksum(e);
     areas[Area::ManufacturerEndat22] = e;
     areas[Area::OperatingParameters2].assign(16, 0);
   }
