@@ -15,8 +15,6 @@ void require(bool ok, const std::string& message) {
 namespace position = protocol::frame_position;
 // The encoder drives DATA from the turnaround (docs/model.md §1).
 constexpr unsigned kFirstPolledClock = position::kTurnaround;
-// 2.1.2: the counter starts at each RE after 10 periods, the earliest start bit's.
-constexpr unsigned kFirstCounterClock = position::kEarliestStartBit;
 
 bool of_startup_routine(Operation::Purpose p) {
   using P = Operation::Purpose;
@@ -25,12 +23,6 @@ bool of_startup_routine(Operation::Purpose p) {
 
 // Sample tags carry the frame's epoch in the upper and the clock slot in the lower 32 bits.
 std::uint64_t sample_tag(std::uint64_t epoch, unsigned clock) { return epoch << 32 | clock; }
-
-// Ticks of a clock with period `tick` and phase `phase` up to time t: floor((t - phase) / tick).
-std::int64_t ticks(Time t, Time phase, Time tick) {
-  const std::int64_t d = (t - phase).count();
-  return d >= 0 ? d / tick.count() : -((-d + tick.count() - 1) / tick.count());
-}
 
 }  // namespace
 
@@ -107,7 +99,8 @@ Master::Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params
       sample_strobe_(kernel, "master_sample", false), frame_active_(kernel, "master_frame", false),
       edge_timer_(kernel, sim::bind<&Master::clock_edge>(this)),
       operation_timer_(kernel, sim::bind<&Master::next_operation>(this)),
-      layout_(protocol::position_frame_layout(protocol::EndatVersion::V2_1, params.position_bits)) {
+      layout_(protocol::position_frame_layout(protocol::EndatVersion::V2_1, params.position_bits)),
+      delay_(params.measurement, params.f_c) {
   params_.validate();
   t_d_ = params_.fixed_t_d;
   position_bits_ = params_.position_bits;
@@ -167,9 +160,7 @@ void Master::next_operation() {
       safety_.startup_reads = 0;
       break;
     case Operation::Kind::MeasureDelay:
-      measuring_ = true;
-      rounds_ = 1;
-      counts_.clear();
+      delay_.begin();
       frames_left_ = params_.measurement.count;
       break;
     case Operation::Kind::AwaitNotBusy:
@@ -341,7 +332,7 @@ bool Master::retry_frame() {
 // 2.3.2 t_b: a 2.1 memory or parameter frame waits t_b_wait after the previous frame's end.
 Time Master::time_between_cycles_left() const {
   const auto& c = protocol::info(current_->command);
-  if (measuring_ || frame_count_ == 0 || c.version != protocol::EndatVersion::V2_1 || c.payload_bits == 0) return Time::zero();
+  if (delay_.active() || frame_count_ == 0 || c.version != protocol::EndatVersion::V2_1 || c.payload_bits == 0) return Time::zero();
   return std::max(Time::zero(), frame_.end + params_.t_b_wait - kernel_.now());
 }
 
@@ -426,7 +417,7 @@ void Master::operation_frame_done() {
     kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
     return;
   }
-  if (measuring_) {
+  if (delay_.active()) {
     finish_measurement_round();
     return;
   }
@@ -437,7 +428,7 @@ void Master::operation_frame_done() {
 
 void Master::start_frame(std::uint64_t) {
   const bool status_read_due = (error_sources_due_ || warnings_due_) && !current_->expanded;
-  if ((remeasure_due_ || reselect_due_ || status_read_due) && !measuring_) {
+  if ((remeasure_due_ || reselect_due_ || status_read_due) && !delay_.active()) {
     interrupt_for_measurement();
     return;
   }
@@ -445,7 +436,7 @@ void Master::start_frame(std::uint64_t) {
     kernel_.schedule(wait, sim::bind<&Master::start_frame>(this));
     return;
   }
-  const bool measurement = measuring_;
+  const bool measurement = delay_.active();
   frame_ = FrameResult{};
   frame_.index = frame_count_;
   frame_.operation = current_->script_index;
@@ -485,12 +476,7 @@ void Master::start_frame(std::uint64_t) {
   words_left_ = measurement ? 0 : current_->continuous_words;
   poll_start_ = kernel_.now();
   ++epoch_;
-  counter_running_ = false;
-  captured_count_.reset();
-  if (measurement && params_.measurement.counter_phase == CounterPhase::FreeRunning) {
-    boost::random::uniform_int_distribution<std::int64_t> phase(0, counter_tick().count() - 1);
-    counter_phase_ = Time{phase(rng_)};
-  }
+  delay_.frame_started(measurement, rng_);
   frame_running_ = true;
 
   frame_active_.write(true);
@@ -548,10 +534,7 @@ void Master::rising_edge() {
   pins_.clock_out.write(true);
   frame_.end = kernel_.now();
   frame_.clocks = clock_;
-  if (measuring_ && clock_ >= kFirstCounterClock && !captured_count_) {
-    counter_start_ = kernel_.now();
-    counter_running_ = true;
-  }
+  delay_.clock_rose(kernel_.now(), clock_);
   const Time timeout = command_->payload_bits != 0 ? params_.memory_access_timeout : params_.start_bit_timeout;
   if (rx_ == Rx::Polling && kernel_.now() - poll_start_ > timeout) {
     end_reception(FrameOutcome::NoStartBit);
@@ -778,7 +761,7 @@ void Master::word_received(FrameOutcome outcome) {
 void Master::end_reception(FrameOutcome outcome, bool answer_complete) {
   rx_ = Rx::Done;
   frame_.outcome = outcome;
-  counter_running_ = false;
+  delay_.stop_counter();
   if (supplement_due_) return;  // clocking goes on through the supplement
   if (last_clock_ == 0 || (last_clock_ > clock_ && !answer_complete)) {
     // Aborted: finish the current clock period and leave CLOCK HIGH (A2: wait t_m).
@@ -799,10 +782,8 @@ void Master::maybe_complete_frame() {
   ready_at_ = frame_.end + (error_handling ? params_.error_wait : params_.t_m_wait) + params_.t_r_wait;
   if (frame_.command == ModeCommand::EncoderReceiveReset && frame_.outcome == FrameOutcome::Ok)
     ready_at_ = std::max(ready_at_, frame_.end + params_.reset_wait);
-  if (frame_.measurement && frame_.outcome == FrameOutcome::Ok && captured_count_) {
-    frame_.delay_count_time = counter_tick() * *captured_count_;
-    counts_.push_back(*captured_count_);
-  }
+  if (frame_.measurement && frame_.outcome == FrameOutcome::Ok)
+    if (const auto count = delay_.take_count()) frame_.delay_count_time = *count;
   if (!frame_.measurement) {
     note_parameter(frame_);
     note_diagnosis(frame_);
@@ -818,60 +799,21 @@ void Master::maybe_complete_frame() {
 
 // ---- propagation-delay measurement (2.1.2) -----------------------------------------------
 
-Time Master::counter_tick() const {
-  return sim::period_of(params_.measurement.f_e != 0 ? params_.measurement.f_e : 8 * params_.f_c);
-}
-
 void Master::on_data_in(std::uint64_t level) {
-  // 2.1.2: "The value of the counter must be saved with every rising clock pulse edge of the start bit."
-  if (!measuring_ || !counter_running_ || captured_count_ || level == 0) return;
-  const Time tick = counter_tick();
-  captured_count_ = params_.measurement.counter_phase == CounterPhase::FreeRunning
-                        ? ticks(kernel_.now(), counter_phase_, tick) - ticks(counter_start_, counter_phase_, tick)
-                        : (kernel_.now() - counter_start_) / tick;
-  counter_running_ = false;
+  if (level != 0) delay_.data_rose(kernel_.now());
 }
 
 void Master::finish_measurement_round() {
   const auto& m = params_.measurement;
-  const Time tick = counter_tick();
-  DelayMeasurementResult r;
-  r.start = recent_starts_.size() >= m.count && m.count != 0 ? recent_starts_.front() : kernel_.now();
-  r.rounds = rounds_;
-  r.counts = counts_;
-  r.counter_period = tick;
-  const auto n = static_cast<std::int64_t>(counts_.size());
-  std::int64_t sum = 0;
-  for (auto c : counts_) sum += c;
-  if (counts_.size() < m.count) {
-    r.reason = "only " + std::to_string(counts_.size()) + " of " + std::to_string(m.count) +
-               " measurement frames gave a start bit with a valid CRC";
-  } else {
-    // 2.1.2: each measured value within 1/8 of the clock period (at the intended f_c) of the mean.
-    const Time eighth = sim::period_of(params_.f_c) / 8;
-    for (std::size_t i = 0; i < counts_.size() && r.reason.empty(); ++i) {
-      const Time deviation = tick * std::abs(n * counts_[i] - sum) / n;
-      if (deviation > eighth)
-        r.reason = "measurement " + std::to_string(i + 1) + " deviates " + sim::format_time(deviation) +
-                   " from the mean (limit T/8 = " + sim::format_time(eighth) + ", 2.1.2)";
-    }
-  }
-  r.accepted = r.reason.empty();
-  if (r.accepted) {
-    const std::int64_t half = m.counter_phase == CounterPhase::EdgeAligned ? tick.count() * n / 2 : 0;
-    r.t_d = Time{(sum * tick.count() + half + n / 2) / n};
-    t_d_ = r.t_d;
-  }
-  measurements_.push_back(r);
-  if (!r.accepted && rounds_ < m.max_rounds) {
-    ++rounds_;
-    counts_.clear();
+  const auto& r = delay_.finish_round(recent_starts_.size() >= m.count && m.count != 0 ? recent_starts_.front()
+                                                                                     : kernel_.now());
+  if (r.accepted) t_d_ = r.t_d;
+  if (delay_.next_round()) {
     frames_left_ = m.count;
     next_due_ = kernel_.now();
     kernel_.schedule(std::max(ready_at_, kernel_.now()) - kernel_.now(), sim::bind<&Master::start_frame>(this));
     return;
   }
-  measuring_ = false;
   next_operation();
 }
 

@@ -15,6 +15,7 @@
 #include <boost/random/mersenne_twister.hpp>
 
 #include "endatsim/line/line.hpp"
+#include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/diagnostics.hpp"
 #include "endatsim/master/safety.hpp"
 #include "endatsim/protocol/protocol.hpp"
@@ -24,20 +25,6 @@ namespace endatsim::master {
 using protocol::ModeCommand;
 using sim::Hertz;
 using sim::Time;
-
-// How the f_e counter relates to the clock edges that restart it. A counter on its own
-// oscillator runs at an arbitrary phase (a seeded random phase per frame here): its counts
-// scatter by one and their mean is unbiased. A counter restarted in phase with the edge
-// truncates: every count is floor(t_D x f_e), and the master adds half a count to centre it.
-enum class CounterPhase : std::uint8_t { FreeRunning, EdgeAligned };
-
-struct DelayMeasurementParams {
-  Hertz f_c = sim::kHz(200);  // 2.1.2: reduced clock 100 .. 200 kHz
-  Hertz f_e = 0;              // counter clock; 0 = 8 x the intended f_c (2.1.2: "at least eight times")
-  unsigned count = 3;         // 2.1.2: at least three measurements, averaged
-  unsigned max_rounds = 3;    // further rounds when a value strays more than T/8 from the mean
-  CounterPhase counter_phase = CounterPhase::FreeRunning;
-};
 
 // How the master finds the start bit while it polls (2.3: "observe the data line to detect the
 // start bit"). Fail-safe receivers read HIGH on the undriven line during the turnaround
@@ -185,16 +172,6 @@ struct FrameResult {
   std::optional<Time> delay_count_time;  // measurement frames: counter value x 1/f_e
 };
 
-struct DelayMeasurementResult {
-  Time start{0};
-  bool accepted = false;
-  unsigned rounds = 0;
-  std::vector<std::int64_t> counts;  // of the accepted (or last) round
-  Time counter_period{0};
-  Time t_d{0};                       // mean, as used for compensation
-  std::string reason;                // why it was rejected
-};
-
 // What monitors and reports can observe of the master's intentions.
 class MasterObserver {
  public:
@@ -295,7 +272,7 @@ class Master {
   const std::vector<FrameResult>& frames() const { return frames_; }
   void keep_frames(std::size_t n) { kept_frames_ = n; }
   std::uint64_t frame_count() const { return frame_count_; }  // every frame and word recorded
-  const std::vector<DelayMeasurementResult>& measurements() const { return measurements_; }
+  const std::vector<DelayMeasurementResult>& measurements() const { return delay_.results(); }
   std::optional<Time> t_d() const { return t_d_; }
   std::uint64_t cycle_overruns() const { return cycle_overruns_; }
   std::uint64_t busy_timeouts() const { return busy_timeouts_; }
@@ -396,7 +373,6 @@ class Master {
   void release_supplement();
   void note_selection();
   unsigned answer_width() const;
-  Time counter_tick() const;
   void finish_measurement_round();
   Time jittered(Time nominal);
 
@@ -496,22 +472,14 @@ class Master {
   std::vector<std::uint8_t> rx_bits_;
   std::uint64_t epoch_ = 0;
 
-  // Propagation-delay measurement (2.1.2).
-  bool measuring_ = false;
-  Time counter_start_{0};
-  Time counter_phase_{0};
-  bool counter_running_ = false;
-  std::optional<std::int64_t> captured_count_;
-  std::vector<std::int64_t> counts_;
-  unsigned rounds_ = 0;
-  std::optional<Time> t_d_;
+  DelayMeasurement delay_;   // 2.1.2
+  std::optional<Time> t_d_;  // what compensation uses: measured, or params.fixed_t_d
 
   void record(const FrameResult& f);
   std::vector<FrameResult> frames_;
   std::size_t kept_frames_ = SIZE_MAX;
   std::uint64_t frame_count_ = 0;
   std::deque<Time> recent_starts_;  // of the last measurement.count frames (a measurement round's start)
-  std::vector<DelayMeasurementResult> measurements_;
 };
 
 }  // namespace endatsim::master
