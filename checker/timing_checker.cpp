@@ -12,6 +12,25 @@
 #include "endatsim/protocol/memory_area.hpp"
 
 namespace endatsim::checker {
+
+namespace {
+const std::array kCheckerRows{
+    sim::Parameter<CheckerParams>{"sample_setup", &CheckerParams::sample_setup, 0, sim::us(1).count(), "2.3",
+                                  "The master's sampling flip-flop: DATA stable this long before the instant."},
+    sim::Parameter<CheckerParams>{"sample_hold", &CheckerParams::sample_hold, 0, sim::us(1).count(), "2.3",
+                                  "... and this long after it."},
+    sim::Parameter<CheckerParams>{"t_z_per_frame_period", &CheckerParams::t_z_per_frame_period, 0, 0, "2.3.2 note 6",
+                                  "t_z and t_OE \"max T = 1/f_c min\" read as one period of the frame's own clock; false: "
+                                  "the period at the lowest f_c, 10 us."},
+    sim::Parameter<CheckerParams>{"t_st_reduced_for_cable", &CheckerParams::t_st_reduced_for_cable, 0, 0, "2.3.2 note 8",
+                                  "Accept a t_ST scaled by the cable's share of the t_D bound (\"can be reduced with a "
+                                  "shorter cable\"), named in every t_st finding."},
+    sim::Parameter<CheckerParams>{"f_c_tolerance_ppm", &CheckerParams::f_c_tolerance_ppm, 0, 100'000, "2.3.2",
+                                  "f_c limits are applied with this allowance for the oscillator; 0 checks them exactly."},
+};
+}  // namespace
+
+std::span<const sim::Parameter<CheckerParams>> checker_parameters() { return kCheckerRows; }
 namespace {
 
 using sim::format_frequency;

@@ -135,6 +135,10 @@ struct CheckerParams {
   std::optional<line::ObservationPoint> recorded_at;
 };
 
+// The keys of a scenario's "checker" object, one row each (sim/parameter.hpp); the other fields
+// are set by the command that judges (a capture's resolution, its connector).
+std::span<const sim::Parameter<CheckerParams>> checker_parameters();
+
 // The rows that a named option loosens under `params`, each with the option and what it accepts
 // (RowConformance::relaxed_by): every report of a run or capture names them.
 struct Relaxation {

@@ -15,23 +15,32 @@ namespace endatsim::input {
 
 template <class Params>
 void read_parameter(const Node& v, const sim::Parameter<Params>& row, Params& p) {
-  using sim::ChoiceField;
   using sim::Time;
+  const auto lo = static_cast<std::uint64_t>(row.min), hi = static_cast<std::uint64_t>(row.max);
   std::visit(
       [&](const auto& field) {
         using F = std::decay_t<decltype(field)>;
         if constexpr (std::is_same_v<F, Time Params::*> || std::is_same_v<F, std::optional<Time> Params::*>) {
           p.*field = v.as_duration(Time{row.min}, Time{row.max});
+        } else if constexpr (std::is_same_v<F, sim::FrequencyField<Params>>) {
+          p.*field.field = v.as_frequency(row.min, row.max);
+        } else if constexpr (std::is_same_v<F, sim::NumberField<Params>>) {
+          p.*field.field = v.as_number(static_cast<double>(row.min), static_cast<double>(row.max), std::string(field.unit));
         } else if constexpr (std::is_same_v<F, unsigned Params::*>) {
-          p.*field = static_cast<unsigned>(v.as_uint(static_cast<std::uint64_t>(row.min), static_cast<std::uint64_t>(row.max)));
-        } else if constexpr (std::is_same_v<F, std::optional<std::uint64_t> Params::*>) {
-          p.*field = v.as_uint(static_cast<std::uint64_t>(row.min), static_cast<std::uint64_t>(row.max));
+          p.*field = static_cast<unsigned>(v.as_uint(lo, hi));
+        } else if constexpr (std::is_same_v<F, std::optional<std::uint64_t> Params::*> ||
+                             std::is_same_v<F, std::uint64_t Params::*>) {
+          p.*field = v.as_uint(lo, hi);
+        } else if constexpr (std::is_same_v<F, std::int64_t Params::*>) {
+          p.*field = v.as_int(row.min, row.max);
         } else if constexpr (std::is_same_v<F, bool Params::*>) {
           p.*field = v.as_bool();
         } else if constexpr (std::is_same_v<F, std::uint16_t Params::*>) {
-          p.*field = static_cast<std::uint16_t>(v.as_word(static_cast<std::uint64_t>(row.max)));
+          p.*field = static_cast<std::uint16_t>(v.as_word(hi));
+        } else if constexpr (std::is_same_v<F, std::uint8_t Params::*>) {
+          p.*field = static_cast<std::uint8_t>(v.as_word(hi));
         } else {
-          static_assert(std::is_same_v<F, ChoiceField<Params>>);
+          static_assert(std::is_same_v<F, sim::ChoiceField<Params>>);
           if (v.raw().is_string())
             for (std::size_t i = 0; i < field.names.size(); ++i)
               if (field.names[i] == v.raw().template get_ref<const std::string&>()) return field.set(p, i);
@@ -41,11 +50,13 @@ void read_parameter(const Node& v, const sim::Parameter<Params>& row, Params& p)
       row.field);
 }
 
-// Every row whose key the object holds, in the rows' order.
+// Every row whose key the object holds, in the rows' order; a required key must be there.
 template <class Params>
 void read_parameters(Object& o, std::span<const sim::Parameter<Params>> rows, Params& p) {
-  for (const auto& row : rows)
-    if (auto v = o.opt(std::string(row.key))) read_parameter(*v, row, p);
+  for (const auto& row : rows) {
+    if (row.required) read_parameter(o.req(std::string(row.key)), row, p);
+    else if (auto v = o.opt(std::string(row.key))) read_parameter(*v, row, p);
+  }
 }
 
 }  // namespace endatsim::input

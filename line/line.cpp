@@ -1,5 +1,6 @@
 #include "endatsim/line/line.hpp"
 
+#include <array>
 #include <cmath>
 #include <algorithm>
 #include <deque>
@@ -15,19 +16,47 @@ Time LineParams::cable_delay() const {
   return Time{std::llround(cable_length_m * static_cast<double>(cable_delay_per_m.count()))};
 }
 
+namespace {
+
+constexpr std::array<std::string_view, 2> kFailsafeLevels{"high", "low"};
+
+const std::array kLine{
+    sim::Parameter<LineParams>{"cable_length_m",
+                               sim::NumberField<LineParams>{&LineParams::cable_length_m, " m"}, 0,
+                               static_cast<std::int64_t>(LineParams::kMaxCableLengthM), "2.1.2",
+                               "The cable's length (up to 300 m on request).", true},
+    sim::Parameter<LineParams>{"cable_delay_per_m", &LineParams::cable_delay_per_m, 0,
+                               LineParams::kMaxCableDelayPerM.count(), "2.3.2 note 2",
+                               "One-way propagation delay per metre (the 0.01 us/m of t_D is the round trip)."},
+    sim::Parameter<LineParams>{"failsafe_level",
+                               sim::ChoiceField<LineParams>{kFailsafeLevels,
+                                                            [](const LineParams& p) -> std::size_t { return p.failsafe_level ? 0 : 1; },
+                                                            [](LineParams& p, std::size_t i) { p.failsafe_level = i == 0; }},
+                               0, 0, "", "What a receiver reads on undriven DATA (true fail-safe receivers: high)."},
+};
+
+const std::array kTransceiver{
+    sim::Parameter<TransceiverParams>{"driver_delay", &TransceiverParams::driver_delay, 0,
+                                      LineParams::kMaxTransceiverDelay.count(), "", "Logic input to the level on the pins."},
+    sim::Parameter<TransceiverParams>{"enable_delay", &TransceiverParams::enable_delay, 0,
+                                      LineParams::kMaxTransceiverDelay.count(), "", "Driver enable to the pins driven."},
+    sim::Parameter<TransceiverParams>{"disable_delay", &TransceiverParams::disable_delay, 0,
+                                      LineParams::kMaxTransceiverDelay.count(), "",
+                                      "Driver disable to the pins released (high impedance)."},
+    sim::Parameter<TransceiverParams>{"receiver_delay", &TransceiverParams::receiver_delay, 0,
+                                      LineParams::kMaxTransceiverDelay.count(), "", "The level on the pins to the logic output."},
+};
+
+}  // namespace
+
+std::span<const sim::Parameter<LineParams>> line_parameters() { return kLine; }
+std::span<const sim::Parameter<TransceiverParams>> transceiver_parameters() { return kTransceiver; }
+
 void LineParams::validate() const {
-  if (!std::isfinite(cable_length_m) || cable_length_m < 0.0 || cable_length_m > kMaxCableLengthM)
-    throw std::invalid_argument("cable length must be 0 .. " + std::to_string(static_cast<int>(kMaxCableLengthM)) +
-                                " m (spec 2.1.2: up to 300 m on request), got " + std::to_string(cable_length_m) + " m");
-  if (cable_delay_per_m < Time::zero() || cable_delay_per_m > kMaxCableDelayPerM)
-    throw std::invalid_argument("cable delay per metre must be 0 .. 20 ns/m, got " +
-                                sim::format_time(cable_delay_per_m));
-  for (const auto* t : {&master, &encoder}) {
-    for (Time d : {t->driver_delay, t->enable_delay, t->disable_delay, t->receiver_delay}) {
-      if (d < Time::zero() || d > kMaxTransceiverDelay)
-        throw std::invalid_argument("transceiver delays must be 0 .. 1 us, got " + sim::format_time(d));
-    }
-  }
+  if (auto why = sim::first_out_of_range(line_parameters(), *this, "line")) throw std::invalid_argument(*why);
+  for (const auto& [name, t] : {std::pair{"master_transceiver", &master}, {"encoder_transceiver", &encoder}})
+    if (auto why = sim::first_out_of_range(transceiver_parameters(), *t, std::string("line ") + name))
+      throw std::invalid_argument(*why);
 }
 
 std::string_view to_string(ObservationPoint p) {

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/sim.hpp"
 
 namespace endatsim::line {
@@ -51,6 +52,12 @@ struct LineParams {
   // Throws std::invalid_argument naming the parameter and its limit.
   void validate() const;
 };
+
+// The scalar keys of "line" and of its transceiver objects, one row each (sim/parameter.hpp):
+// the loader reads them, validate() checks their ranges, the schema and docs/parameters.md come
+// from them.
+std::span<const sim::Parameter<LineParams>> line_parameters();
+std::span<const sim::Parameter<TransceiverParams>> transceiver_parameters();
 
 enum class ObservationPoint : std::uint8_t { MasterPins, EncoderPins };
 enum class Wire : std::uint8_t { Clock, Data };

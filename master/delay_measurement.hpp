@@ -12,6 +12,7 @@
 
 #include <boost/random/mersenne_twister.hpp>
 
+#include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/time.hpp"
 
 namespace endatsim::master {
@@ -32,6 +33,9 @@ struct DelayMeasurementParams {
   unsigned max_rounds = 3;    // further rounds when a value strays more than T/8 from the mean
   CounterPhase counter_phase = CounterPhase::FreeRunning;
 };
+
+// The keys of "master.delay_measurement", one row each (sim/parameter.hpp).
+std::span<const sim::Parameter<DelayMeasurementParams>> delay_measurement_parameters();
 
 struct DelayMeasurementResult {
   Time start{0};

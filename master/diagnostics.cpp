@@ -53,14 +53,8 @@ void DiagnosticsParams::validate() const {
   if ((configuration & ~allowed) != 0)
     throw std::invalid_argument("master diagnostics configuration may set only bits 0 .. 5 (valuation numbers) and 15 "
                                 "(system-specific data) of operating parameters word 3 (3.6.3), got " + hex(configuration));
-  if (additional_sensors > 16)
-    throw std::invalid_argument("master diagnostics additional_sensors must be 0 .. 16 (a 4-bit address, 2.3.5.1), got " +
-                                std::to_string(additional_sensors));
-  if (warnings_interval < Time::zero() || warnings_interval > sim::ms(60'000))
-    throw std::invalid_argument("master diagnostics warnings_interval must be 0 .. 60 s, got " + sim::format_time(warnings_interval));
-  if (reserve_limit > 255)
-    throw std::invalid_argument("master diagnostics reserve_limit must be 0 .. 255 (an 8-bit valuation number, A3), got " +
-                                std::to_string(reserve_limit));
+  if (auto why = sim::first_out_of_range(diagnostics_parameters(), *this, "master diagnostics"))
+    throw std::invalid_argument(*why);
 }
 
 void DiagnosisReading::add(unsigned value, Time at) {

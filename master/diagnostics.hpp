@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/time.hpp"
 
 namespace endatsim::master {
@@ -42,6 +43,9 @@ struct DiagnosticsParams {
   // Throws std::invalid_argument naming the parameter and its limit.
   void validate() const;
 };
+
+// The scalar keys of "master.diagnostics", one row each (sim/parameter.hpp).
+std::span<const sim::Parameter<DiagnosticsParams>> diagnostics_parameters();
 
 enum class DiagnosisNoteKind : std::uint8_t {
   FunctionReserveLow,         // a valuation number below DiagnosticsParams::reserve_limit

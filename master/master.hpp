@@ -14,6 +14,7 @@
 
 #include <boost/random/mersenne_twister.hpp>
 
+#include "endatsim/sim/parameter.hpp"
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/diagnostics.hpp"
@@ -114,6 +115,13 @@ struct MasterParams {
   // Throws std::invalid_argument naming the parameter and its limit.
   void validate() const;
 };
+
+// The scalar keys of "master" and of its objects "power_on" and "careful", one row each
+// (sim/parameter.hpp); validate() checks their ranges, the loader reads them, the schema and
+// docs/parameters.md come from them.
+std::span<const sim::Parameter<MasterParams>> master_parameters();
+std::span<const sim::Parameter<MasterParams::PowerOnSequence>> power_on_parameters();
+std::span<const sim::Parameter<CarefulMaster>> careful_parameters();
 
 // Type2Error: a 2.1 parameter frame whose echo came back inverted (A2 type II). EchoMismatch:
 // one whose echo differs from what was sent otherwise (CarefulMaster::verify_echo).

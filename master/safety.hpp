@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "endatsim/sim/parameter.hpp"
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/sim/time.hpp"
 
@@ -72,6 +73,9 @@ struct SafetyParams {
   // Throws std::invalid_argument naming the parameter and its limit.
   void validate() const;
 };
+
+// The scalar keys of "master.safety", one row each (sim/parameter.hpp).
+std::span<const sim::Parameter<SafetyParams>> safety_parameters();
 
 struct SafetyFinding {
   SafetyFunction function = SafetyFunction::ErrorMessages;

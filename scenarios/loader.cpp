@@ -77,22 +77,19 @@ void validated(const Node& n, F&& validate) {
   }
 }
 
-void read_transceiver(const Node& n, line::TransceiverParams& t) {
+// An object whose keys are all parameter rows (sim/parameter.hpp).
+template <class Params>
+void read_object(const Node& n, std::span<const sim::Parameter<Params>> rows, Params& p) {
   Object o(n);
-  const Time max = line::LineParams::kMaxTransceiverDelay;
-  if (auto v = o.opt("driver_delay")) t.driver_delay = v->as_duration(Time::zero(), max);
-  if (auto v = o.opt("enable_delay")) t.enable_delay = v->as_duration(Time::zero(), max);
-  if (auto v = o.opt("disable_delay")) t.disable_delay = v->as_duration(Time::zero(), max);
-  if (auto v = o.opt("receiver_delay")) t.receiver_delay = v->as_duration(Time::zero(), max);
+  input::read_parameters(o, rows, p);
   o.done();
 }
 
+void read_transceiver(const Node& n, line::TransceiverParams& t) { read_object(n, line::transceiver_parameters(), t); }
+
 void read_line(const Node& n, line::LineParams& p) {
   Object o(n);
-  p.cable_length_m = o.req("cable_length_m").as_number(0.0, line::LineParams::kMaxCableLengthM, " m");
-  if (auto v = o.opt("cable_delay_per_m")) p.cable_delay_per_m = v->as_duration(Time::zero(), sim::ns(20));
-  if (auto v = o.opt("failsafe_level"))
-    p.failsafe_level = v->as_enum<bool>({{"high", true}, {"low", false}});
+  input::read_parameters(o, line::line_parameters(), p);
   if (auto v = o.opt("master_transceiver")) read_transceiver(*v, p.master);
   if (auto v = o.opt("encoder_transceiver")) read_transceiver(*v, p.encoder);
   o.done();
@@ -262,20 +259,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
 
 void read_safety(const Node& n, master::SafetyParams& p) {
   Object o(n);
-  for (const auto& [key, flag] : {std::pair{"error_messages", &p.error_messages}, {"read_error_sources", &p.read_error_sources},
-                                  {"position_value_2", &p.position_value_2},
-                                  {"forced_dynamic_sampling", &p.forced_dynamic_sampling}, {"crc_self_test", &p.crc_self_test},
-                                  {"startup_positions", &p.startup_positions}, {"checksums", &p.checksums},
-                                  {"acknowledgements", &p.acknowledgements}, {"following_error", &p.following_error},
-                                  {"command_set", &p.command_set}})
-    if (auto v = o.opt(key)) *flag = v->as_bool();
-  if (auto v = o.opt("forced_error1_port")) p.forced_error1_port = static_cast<std::uint8_t>(v->as_word(0xFF));
-  if (auto v = o.opt("forced_error2_port")) p.forced_error2_port = static_cast<std::uint8_t>(v->as_word(0xFF));
-  if (auto v = o.opt("forced_sampling_deadline")) p.forced_sampling_deadline = v->as_duration(sim::ps(1), sim::ms(100));
-  if (auto v = o.opt("startup_repetitions")) p.startup_repetitions = static_cast<unsigned>(v->as_uint(2, 100));
-  if (auto v = o.opt("startup_max_reads")) p.startup_max_reads = static_cast<unsigned>(v->as_uint(2, 10'000));
-  if (auto v = o.opt("startup_tolerance")) p.startup_tolerance = v->as_uint(0, (std::uint64_t{1} << 48) - 1);
-  if (auto v = o.opt("following_error_limit")) p.following_error_limit = v->as_uint(1, (std::uint64_t{1} << 48) - 1);
+  input::read_parameters(o, master::safety_parameters(), p);
   if (auto v = o.opt("setpoint")) {
     Object m(*v);
     if (auto s = m.opt("start")) p.setpoint.start = s->as_uint(0, (std::uint64_t{1} << 48) - 1);
@@ -288,7 +272,7 @@ void read_safety(const Node& n, master::SafetyParams& p) {
 
 void read_diagnostics(const Node& n, master::DiagnosticsParams& p) {
   Object o(n);
-  if (auto v = o.opt("enabled")) p.enabled = v->as_bool();
+  input::read_parameters(o, master::diagnostics_parameters(), p);
   if (auto v = o.opt("valuation_numbers")) {
     if (!v->raw().is_array()) v->fail("an array of valuation numbers 1 .. 6 to activate (3.6.3)");
     p.configuration &= protocol::diagnosis::kSystemSpecificDataBit;
@@ -299,50 +283,16 @@ void read_diagnostics(const Node& n, master::DiagnosticsParams& p) {
   if (auto v = o.opt("system_specific_data"))
     p.configuration = static_cast<std::uint16_t>((p.configuration & ~protocol::diagnosis::kSystemSpecificDataBit) |
                                                  (v->as_bool() ? protocol::diagnosis::kSystemSpecificDataBit : 0));
-  if (auto v = o.opt("temperatures")) p.temperatures = v->as_bool();
-  if (auto v = o.opt("additional_sensors")) p.additional_sensors = static_cast<unsigned>(v->as_uint(0, 16));
-  if (auto v = o.opt("reserve_limit")) p.reserve_limit = static_cast<unsigned>(v->as_uint(0, 255));
-  if (auto v = o.opt("read_warnings")) p.read_warnings = v->as_bool();
-  if (auto v = o.opt("warnings_interval")) p.warnings_interval = v->as_duration(Time::zero(), sim::ms(60'000));
   o.done();
   validated(n, [&] { p.validate(); });
 }
 
 void read_master(const Node& n, master::MasterParams& p) {
   Object o(n);
-  p.f_c = o.req("f_c").as_frequency(master::MasterParams::kMinFc, master::MasterParams::kMaxFc);
+  input::read_parameters(o, master::master_parameters(), p);
   if (auto v = o.opt("duty_cycle"))
     p.high_permille = static_cast<unsigned>(std::lround(v->as_number(0.1, 0.9, "") * 1000.0));
-  if (auto v = o.opt("t_st")) p.t_st = v->as_duration(Time::zero(), sim::ms(1));
-  if (auto v = o.opt("jitter")) p.jitter = v->as_duration(Time::zero(), sim::us(100));
-  if (auto v = o.opt("delay_compensation")) p.delay_compensation = v->as_bool();
-  if (auto v = o.opt("fixed_t_d")) p.fixed_t_d = v->as_duration(Time::zero(), sim::us(10));
-  if (auto v = o.opt("position_bits")) p.position_bits = static_cast<unsigned>(v->as_uint(1, 48));
-  if (auto v = o.opt("extra_clock_after_last_bit")) p.extra_clock_after_last_bit = v->as_bool();
-  if (auto v = o.opt("t_m_wait")) p.t_m_wait = v->as_duration(Time::zero(), sim::ms(100));
-  if (auto v = o.opt("t_r_wait")) p.t_r_wait = v->as_duration(Time::zero(), sim::ms(100));
-  if (auto v = o.opt("error_wait")) p.error_wait = v->as_duration(Time::zero(), sim::ms(100));
-  if (auto v = o.opt("reset_wait")) p.reset_wait = v->as_duration(Time::zero(), sim::ms(100));
-  if (auto v = o.opt("t_b_wait")) p.t_b_wait = v->as_duration(Time::zero(), sim::ms(100));
-  if (auto v = o.opt("adopt_word13")) p.adopt_word13 = v->as_bool();
-  if (auto v = o.opt("startup_f_c")) p.startup_f_c = v->as_frequency(master::MasterParams::kMinFc, master::MasterParams::kMaxFc);
-  if (auto v = o.opt("power_on")) {
-    Object m(*v);
-    if (auto s = m.opt("t1_t2")) p.power_on.t1_t2 = s->as_duration(Time::zero(), sim::ms(10'000));
-    if (auto s = m.opt("pulse")) p.power_on.pulse = s->as_duration(sim::ps(1), sim::ms(1));
-    if (auto s = m.opt("t3")) p.power_on.t3 = s->as_duration(Time::zero(), sim::ms(10'000));
-    m.done();
-  }
-  if (auto v = o.opt("start_bit_timeout")) p.start_bit_timeout = v->as_duration(sim::ps(1), sim::ms(100));
-  if (auto v = o.opt("type1_detect_samples")) p.type1_detect_samples = static_cast<unsigned>(v->as_uint(1, 64));
-  if (auto v = o.opt("memory_access_timeout")) p.memory_access_timeout = v->as_duration(sim::ps(1), sim::ms(100));
-  if (auto v = o.opt("supplement_lead_bits")) p.supplement_lead_bits = static_cast<unsigned>(v->as_uint(1, 32));
-  if (auto v = o.opt("supplement_driven_lead_bits"))
-    p.supplement_driven_lead_bits = static_cast<unsigned>(v->as_uint(1, 32));
-  if (auto v = o.opt("start_bit_detection"))
-    p.start_bit_detection = v->as_enum<master::StartBitDetection>(
-        {{"wait_low_then_high", master::StartBitDetection::WaitLowThenHigh},
-         {"first_high", master::StartBitDetection::FirstHigh}});
+  if (auto v = o.opt("power_on")) read_object(*v, master::power_on_parameters(), p.power_on);
   if (auto v = o.opt("crc")) {
     Object c(*v);
     read_crc_generator(c, p.crc.generator);
@@ -353,42 +303,13 @@ void read_master(const Node& n, master::MasterParams& p) {
   }
   if (auto v = o.opt("safety")) read_safety(*v, p.safety);
   if (auto v = o.opt("diagnostics")) read_diagnostics(*v, p.diagnostics);
-  if (auto v = o.opt("careful")) {
-    Object c(*v);
-    auto& k = p.careful;
-    if (auto s = c.opt("retries")) k.retries = static_cast<unsigned>(s->as_uint(0, 10));
-    if (auto s = c.opt("verify_echo")) k.verify_echo = s->as_bool();
-    if (auto s = c.opt("remeasure_after_line_change")) k.remeasure_after_line_change = s->as_bool();
-    if (auto s = c.opt("remeasure_after_power_interruption")) k.remeasure_after_power_interruption = s->as_bool();
-    if (auto s = c.opt("remeasure_after_crc_errors"))
-      k.remeasure_after_crc_errors = static_cast<unsigned>(s->as_uint(0, 1000));
-    if (auto s = c.opt("reselect_after_power_interruption")) k.reselect_after_power_interruption = s->as_bool();
-    c.done();
-  }
-  if (auto v = o.opt("delay_measurement")) {
-    Object m(*v);
-    if (auto s = m.opt("f_c")) p.measurement.f_c = s->as_frequency(sim::kHz(10), master::MasterParams::kMaxFc);
-    if (auto s = m.opt("f_e")) p.measurement.f_e = s->as_frequency(sim::MHz(1), sim::MHz(2000));
-    if (auto s = m.opt("count")) p.measurement.count = static_cast<unsigned>(s->as_uint(1, 100));
-    if (auto s = m.opt("max_rounds")) p.measurement.max_rounds = static_cast<unsigned>(s->as_uint(1, 100));
-    if (auto s = m.opt("counter_phase"))
-      p.measurement.counter_phase = s->as_enum<master::CounterPhase>(
-          {{"free_running", master::CounterPhase::FreeRunning}, {"edge_aligned", master::CounterPhase::EdgeAligned}});
-    m.done();
-  }
+  if (auto v = o.opt("careful")) read_object(*v, master::careful_parameters(), p.careful);
+  if (auto v = o.opt("delay_measurement")) read_object(*v, master::delay_measurement_parameters(), p.measurement);
   o.done();
   validated(n, [&] { p.validate(); });
 }
 
-void read_checker(const Node& n, checker::CheckerParams& p) {
-  Object o(n);
-  if (auto v = o.opt("sample_setup")) p.sample_setup = v->as_duration(Time::zero(), sim::us(1));
-  if (auto v = o.opt("sample_hold")) p.sample_hold = v->as_duration(Time::zero(), sim::us(1));
-  if (auto v = o.opt("t_z_per_frame_period")) p.t_z_per_frame_period = v->as_bool();
-  if (auto v = o.opt("t_st_reduced_for_cable")) p.t_st_reduced_for_cable = v->as_bool();
-  if (auto v = o.opt("f_c_tolerance_ppm")) p.f_c_tolerance_ppm = static_cast<std::int64_t>(v->as_uint(0, 100'000));
-  o.done();
-}
+void read_checker(const Node& n, checker::CheckerParams& p) { read_object(n, checker::checker_parameters(), p); }
 
 protocol::ModeCommand read_command(const Node& n) {
   const std::string key = n.as_string();

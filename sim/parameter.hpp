@@ -25,46 +25,75 @@ struct ChoiceField {
   void (*set)(Params&, std::size_t);
 };
 
+// A frequency (Hertz is an integer type, so it is told apart from a count by this wrapper).
+template <class Params>
+struct FrequencyField {
+  Hertz Params::*field;
+};
+
+// A plain number with a unit, such as a cable length in metres.
+template <class Params>
+struct NumberField {
+  double Params::*field;
+  std::string_view unit;  // as a message writes it after the number: " m"
+};
+
 template <class Params>
 struct Parameter {
-  // Durations (min/max in ps), counts, flags, 16-bit words (max only), choices.
-  using Field = std::variant<Time Params::*, std::optional<Time> Params::*, unsigned Params::*,
-                             std::optional<std::uint64_t> Params::*, bool Params::*, std::uint16_t Params::*,
-                             ChoiceField<Params>>;
+  // Durations and frequencies (min/max in ps or Hz), numbers, counts, flags, words (max only),
+  // choices.
+  using Field =
+      std::variant<Time Params::*, std::optional<Time> Params::*, FrequencyField<Params>, NumberField<Params>,
+                   unsigned Params::*, std::optional<std::uint64_t> Params::*, std::uint64_t Params::*,
+                   std::int64_t Params::*, bool Params::*, std::uint16_t Params::*, std::uint8_t Params::*,
+                   ChoiceField<Params>>;
   std::string_view key;
   Field field;
   std::int64_t min = 0, max = 0;
   std::string_view section;  // where D297403 gives the range or meaning; "" for the model's own choice
   std::string_view help;
+  bool required = false;     // the key must be given (no default applies)
 };
 
-enum class ParameterType : std::uint8_t { Duration, Count, Flag, Word, Choice };
+enum class ParameterType : std::uint8_t { Duration, Frequency, Number, Count, Flag, Word, Choice };
 
 template <class Params>
 ParameterType type_of(const Parameter<Params>& p) {
   switch (p.field.index()) {
     case 0:
     case 1: return ParameterType::Duration;
-    case 2:
-    case 3: return ParameterType::Count;
-    case 4: return ParameterType::Flag;
-    case 5: return ParameterType::Word;
+    case 2: return ParameterType::Frequency;
+    case 3: return ParameterType::Number;
+    case 4:
+    case 5:
+    case 6:
+    case 7: return ParameterType::Count;
+    case 8: return ParameterType::Flag;
+    case 9:
+    case 10: return ParameterType::Word;
     default: return ParameterType::Choice;
   }
 }
 
-// "10 .. 30 us", "1 .. 48", "0 .. 65535", "\"a\" | \"b\"", "true | false".
+namespace parameter_detail {
+// "10 .. 30 us", "0 .. 100 ms", "200 ns .. 10 ms": one unit where both share it.
+inline std::string span_text(const std::string& lo, const std::string& hi, bool lo_zero) {
+  const auto unit = [](const std::string& t) { return t.substr(t.rfind(' ') + 1); };
+  if (lo_zero) return "0 .. " + hi;
+  if (unit(lo) == unit(hi)) return lo.substr(0, lo.rfind(' ')) + " .. " + hi;
+  return lo + " .. " + hi;
+}
+}  // namespace parameter_detail
+
+// "10 .. 30 us", "100 kHz .. 16 MHz", "1 .. 48", "0 .. 65535", "\"a\" | \"b\"", "true | false".
 template <class Params>
 std::string range_text(const Parameter<Params>& p) {
+  using parameter_detail::span_text;
   switch (type_of(p)) {
-    case ParameterType::Duration: {
-      // "10 .. 30 us", "0 .. 100 ms", "200 ns .. 10 ms": one unit where both share it
-      const std::string lo = format_time(Time{p.min}), hi = format_time(Time{p.max});
-      const auto unit = [](const std::string& t) { return t.substr(t.rfind(' ') + 1); };
-      if (p.min == 0) return "0 .. " + hi;
-      if (unit(lo) == unit(hi)) return lo.substr(0, lo.rfind(' ')) + " .. " + hi;
-      return lo + " .. " + hi;
-    }
+    case ParameterType::Duration: return span_text(format_time(Time{p.min}), format_time(Time{p.max}), p.min == 0);
+    case ParameterType::Frequency: return span_text(format_frequency(p.min), format_frequency(p.max), p.min == 0);
+    case ParameterType::Number:
+      return std::to_string(p.min) + " .. " + std::to_string(p.max) + std::string(std::get<NumberField<Params>>(p.field).unit);
     case ParameterType::Count: return std::to_string(p.min) + " .. " + std::to_string(p.max);
     case ParameterType::Flag: return "true | false";
     case ParameterType::Word: return "0 .. " + std::to_string(p.max);
@@ -75,6 +104,36 @@ std::string range_text(const Parameter<Params>& p) {
   return s;
 }
 
+namespace parameter_detail {
+// The field's value as a number for the range check; none for an unset optional, a flag, a word
+// or a choice (their type bounds them).
+template <class Params>
+std::optional<long double> numeric(const Parameter<Params>& p, const Params& params) {
+  struct Visitor {
+    const Params& params;
+    std::optional<long double> operator()(Time Params::*f) const { return (params.*f).count(); }
+    std::optional<long double> operator()(std::optional<Time> Params::*f) const {
+      if (!(params.*f)) return std::nullopt;
+      return (params.*f)->count();
+    }
+    std::optional<long double> operator()(const FrequencyField<Params>& f) const { return params.*f.field; }
+    std::optional<long double> operator()(const NumberField<Params>& f) const { return params.*f.field; }
+    std::optional<long double> operator()(unsigned Params::*f) const { return params.*f; }
+    std::optional<long double> operator()(std::optional<std::uint64_t> Params::*f) const {
+      if (!(params.*f)) return std::nullopt;
+      return static_cast<long double>(*(params.*f));
+    }
+    std::optional<long double> operator()(std::uint64_t Params::*f) const { return static_cast<long double>(params.*f); }
+    std::optional<long double> operator()(std::int64_t Params::*f) const { return static_cast<long double>(params.*f); }
+    std::optional<long double> operator()(bool Params::*) const { return std::nullopt; }
+    std::optional<long double> operator()(std::uint16_t Params::*) const { return std::nullopt; }
+    std::optional<long double> operator()(std::uint8_t Params::*) const { return std::nullopt; }
+    std::optional<long double> operator()(const ChoiceField<Params>&) const { return std::nullopt; }
+  };
+  return std::visit(Visitor{params}, p.field);
+}
+}  // namespace parameter_detail
+
 // The field's value in `params` as a scenario writes it; "none" for an unset optional.
 template <class Params>
 std::string value_text(const Parameter<Params>& p, const Params& params) {
@@ -84,34 +143,45 @@ std::string value_text(const Parameter<Params>& p, const Params& params) {
     std::string operator()(std::optional<Time> Params::*f) const {
       return (params.*f) ? format_time(*(params.*f)) : "none";
     }
+    std::string operator()(const FrequencyField<Params>& f) const { return format_frequency(params.*f.field); }
+    std::string operator()(const NumberField<Params>& f) const {
+      std::string s = std::to_string(params.*f.field);
+      s.erase(s.find_last_not_of('0') + 1);  // 10.000000 -> 10.
+      if (!s.empty() && s.back() == '.') s.pop_back();
+      return s + std::string(f.unit);
+    }
     std::string operator()(unsigned Params::*f) const { return std::to_string(params.*f); }
     std::string operator()(std::optional<std::uint64_t> Params::*f) const {
       return (params.*f) ? std::to_string(*(params.*f)) : "none";
     }
+    std::string operator()(std::uint64_t Params::*f) const { return std::to_string(params.*f); }
+    std::string operator()(std::int64_t Params::*f) const { return std::to_string(params.*f); }
     std::string operator()(bool Params::*f) const { return params.*f ? "true" : "false"; }
     std::string operator()(std::uint16_t Params::*f) const { return std::to_string(params.*f); }
+    std::string operator()(std::uint8_t Params::*f) const { return std::to_string(params.*f); }
     std::string operator()(const ChoiceField<Params>& c) const { return "\"" + std::string(c.names[c.get(params)]) + "\""; }
   };
   return std::visit(Visitor{params}, p.field);
 }
 
-// Why the field's value in `params` lies outside the row's range, or none: "t_m must be
-// 10 us .. 30 us (2.3.2), got 5 us". `owner` names the model ("encoder").
+// Why the field's value in `params` lies outside the row's range, or none: "encoder t_m must be
+// 10 .. 30 us (2.3.2), got 5 us". `owner` names the model and object ("encoder", "master careful").
 template <class Params>
 std::optional<std::string> out_of_range(const Parameter<Params>& p, const Params& params, std::string_view owner) {
-  bool inside = true;
-  if (const auto* f = std::get_if<Time Params::*>(&p.field)) {
-    inside = (params.**f).count() >= p.min && (params.**f).count() <= p.max;
-  } else if (const auto* g = std::get_if<std::optional<Time> Params::*>(&p.field)) {
-    inside = !(params.**g) || ((params.**g)->count() >= p.min && (params.**g)->count() <= p.max);
-  } else if (const auto* u = std::get_if<unsigned Params::*>(&p.field)) {
-    inside = static_cast<std::int64_t>(params.**u) >= p.min && static_cast<std::int64_t>(params.**u) <= p.max;
-  } else if (const auto* o = std::get_if<std::optional<std::uint64_t> Params::*>(&p.field)) {
-    inside = !(params.**o) || (*(params.**o) >= static_cast<std::uint64_t>(p.min) && *(params.**o) <= static_cast<std::uint64_t>(p.max));
-  }
-  if (inside) return std::nullopt;
+  const auto v = parameter_detail::numeric(p, params);
+  // A NaN compares false both ways: outside.
+  if (!v || (*v >= static_cast<long double>(p.min) && *v <= static_cast<long double>(p.max))) return std::nullopt;
   return std::string(owner) + " " + std::string(p.key) + " must be " + range_text(p) +
          (p.section.empty() ? std::string() : " (" + std::string(p.section) + ")") + ", got " + value_text(p, params);
+}
+
+// The first row of `rows` whose value lies outside its range, as out_of_range() words it.
+template <class Params>
+std::optional<std::string> first_out_of_range(std::span<const Parameter<Params>> rows, const Params& params,
+                                              std::string_view owner) {
+  for (const auto& row : rows)
+    if (auto why = out_of_range(row, params, owner)) return why;
+  return std::nullopt;
 }
 
 }  // namespace endatsim::sim

@@ -26,8 +26,7 @@ std::uint16_t word_of(std::uint64_t value, unsigned index) {  // 16-bit word `in
 }  // namespace
 
 void EncoderParams::validate() const {
-  for (const auto& row : encoder_parameters())
-    if (const auto why = sim::out_of_range(row, *this, "encoder")) throw std::invalid_argument(*why);
+  if (const auto why = sim::first_out_of_range(encoder_parameters(), *this, "encoder")) throw std::invalid_argument(*why);
   require(multiturn_bits < position_bits, "encoder multiturn_bits must be less than position_bits (" +
                                               std::to_string(position_bits) + "), got " +
                                               std::to_string(multiturn_bits));

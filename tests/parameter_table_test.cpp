@@ -1,6 +1,6 @@
-// The encoder's parameter rows (slave::encoder_parameters(), sim/parameter.hpp): the loader and
-// the model take each key exactly within its range, the spec's ranges are the spec's numbers, and
-// the schema and docs/parameters.md are what the rows generate.
+// The models' parameter rows (sim/parameter.hpp): the loader and the models take each key exactly
+// within its range, the spec's ranges are the spec's numbers, and the schema and
+// docs/parameters.md are what the rows generate.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -9,7 +9,10 @@
 #include <sstream>
 #include <string>
 
+#include "endatsim/checker/timing_checker.hpp"
 #include "endatsim/input/parameter_input.hpp"
+#include "endatsim/line/line.hpp"
+#include "endatsim/master/master.hpp"
 #include "endatsim/scenarios/parameter_docs.hpp"
 #include "endatsim/slave/encoder_params.hpp"
 
@@ -41,25 +44,6 @@ slave::EncoderParams read(const Row& r, const json& value) {
   return p;
 }
 
-// A JSON value just inside (offset 0) or just outside (offset -1 below min, +1 above max).
-json at(const Row& r, std::int64_t v) {
-  if (sim::type_of(r) == ParameterType::Duration) return std::to_string(v) + " ps";
-  return v;
-}
-
-TEST(EncoderParameterTable, OneRowPerKeyEachWithHelpAndDefaultInsideItsRange) {
-  std::set<std::string_view> keys;
-  const slave::EncoderParams defaults;
-  for (const auto& r : slave::encoder_parameters()) {
-    EXPECT_TRUE(keys.insert(r.key).second) << "two rows for " << r.key;
-    EXPECT_FALSE(r.help.empty()) << r.key;
-    EXPECT_LE(r.min, r.max) << r.key;
-    EXPECT_FALSE(sim::out_of_range(r, defaults, "encoder").has_value()) << r.key;
-  }
-  EXPECT_NO_THROW(defaults.validate());
-}
-
-// D297403 2.3.2: t_m 10 .. 30 us, the short t_m 1.25 .. 3.75 us (note 3), t_ac 0 .. 12 ms.
 TEST(EncoderParameterTable, SpecRangesAreTheSpecsNumbers) {
   EXPECT_EQ(row("t_m").min, sim::us(10).count());
   EXPECT_EQ(row("t_m").max, sim::us(30).count());
@@ -70,31 +54,11 @@ TEST(EncoderParameterTable, SpecRangesAreTheSpecsNumbers) {
   EXPECT_EQ(row("position_bits").max, 48);
   EXPECT_EQ(row("continuous_low_bits").max, 7);  // 2.3.1.1: "a maximum of 7 Low Bits"
   EXPECT_EQ(sim::range_text(row("t_m")), "10 .. 30 us");
+  // 2.1.2: the delay measurement's clock and three measurements; 300 m of cable on request.
+  EXPECT_EQ(master::DelayMeasurementParams{}.count, 3U);
+  EXPECT_EQ(line::line_parameters()[0].max, 300);
 }
 
-// Every duration and count: the loader takes the bounds and refuses one step beyond, naming the
-// key's path; the model's own check agrees.
-TEST(EncoderParameterTable, LoaderAndModelTakeEachNumberAtItsBoundsAndRefuseOneStepBeyond) {
-  for (const auto& r : slave::encoder_parameters()) {
-    const auto type = sim::type_of(r);
-    if (type != ParameterType::Duration && type != ParameterType::Count) continue;
-    SCOPED_TRACE(std::string(r.key));
-    for (const auto bound : {r.min, r.max}) {
-      const auto p = read(r, at(r, bound));
-      EXPECT_FALSE(sim::out_of_range(r, p, "encoder").has_value());
-    }
-    for (const auto beyond : {r.min - 1, r.max + 1}) {
-      try {
-        (void)read(r, at(r, beyond));
-        ADD_FAILURE() << "took " << beyond;
-      } catch (const input::InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("encoder." + std::string(r.key)), std::string::npos) << e.what();
-      }
-    }
-  }
-}
-
-// The model refuses a value the loader would never give it, naming the key and the range.
 TEST(EncoderParameterTable, ValidateNamesTheKeyAndTheRange) {
   slave::EncoderParams p;
   p.t_m = sim::ns(9999);
@@ -125,19 +89,105 @@ TEST(EncoderParameterTable, ChoicesWordsAndFlagsReadAsNamed) {
   EXPECT_THROW((void)read(row("error1"), "yes"), input::InputError);
 }
 
-TEST(EncoderParameterTable, SchemaHoldsTheGeneratedProperties) {
-  const auto schema = json::parse(slurp("schema/scenario.schema.json"));
-  const auto& properties = schema["$defs"]["encoder"]["properties"];
-  const auto generated = scenarios::encoder_parameter_schema();
-  ASSERT_EQ(generated.size(), slave::encoder_parameters().size());
-  for (const auto& [key, property] : generated.items()) {
-    ASSERT_TRUE(properties.contains(key)) << key;
-    EXPECT_EQ(properties[key], property)
-        << key << ": schema/scenario.schema.json is out of date: regenerate with `endatsim parameters --schema`";
+// Each object's rows: unique keys with help, defaults inside their ranges, and every duration,
+// frequency, number and count taken by the loader at its bounds and refused one step beyond,
+// with the key's path in the message.
+template <class Params>
+void check_rows(std::span<const sim::Parameter<Params>> rows, const Params& defaults, const std::string& object) {
+  std::set<std::string_view> keys;
+  for (const auto& r : rows) {
+    SCOPED_TRACE(object + "." + std::string(r.key));
+    EXPECT_TRUE(keys.insert(r.key).second) << "two rows";
+    EXPECT_FALSE(r.help.empty());
+    EXPECT_LE(r.min, r.max);
+    EXPECT_FALSE(sim::out_of_range(r, defaults, object).has_value());
+    const auto type = sim::type_of(r);
+    if (type == ParameterType::Flag || type == ParameterType::Word || type == ParameterType::Choice) continue;
+    const auto value = [&](std::int64_t v) -> json {
+      if (type == ParameterType::Duration) return std::to_string(v) + " ps";
+      if (type == ParameterType::Frequency) return std::to_string(v) + " Hz";
+      return v;
+    };
+    const std::string file = "test.json";
+    const auto read_at = [&](std::int64_t v) {
+      Params p = defaults;
+      const json j = value(v);
+      input::read_parameter(input::Node(j, object + "." + std::string(r.key), file), r, p);
+      return p;
+    };
+    for (const auto bound : {r.min, r.max}) EXPECT_FALSE(sim::out_of_range(r, read_at(bound), object).has_value());
+    for (const auto beyond : {r.min - 1, r.max + 1}) {
+      try {
+        (void)read_at(beyond);
+        ADD_FAILURE() << "took " << beyond;
+      } catch (const input::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(object + "." + std::string(r.key)), std::string::npos) << e.what();
+      }
+    }
   }
 }
 
-TEST(EncoderParameterTable, DocsParametersIsTheGeneratedTable) {
+TEST(ParameterTables, EveryObjectsNumbersAreTakenAtTheirBoundsAndRefusedOneStepBeyond) {
+  check_rows(line::line_parameters(), line::LineParams{}, "line");
+  check_rows(line::transceiver_parameters(), line::LineParams{}.encoder, "line.encoder_transceiver");
+  check_rows(slave::encoder_parameters(), slave::EncoderParams{}, "encoder");
+  check_rows(master::master_parameters(), master::MasterParams{}, "master");
+  check_rows(master::power_on_parameters(), master::MasterParams::PowerOnSequence{}, "master.power_on");
+  check_rows(master::delay_measurement_parameters(), master::DelayMeasurementParams{}, "master.delay_measurement");
+  check_rows(master::careful_parameters(), master::CarefulMaster{}, "master.careful");
+  check_rows(master::safety_parameters(), master::SafetyParams{}, "master.safety");
+  check_rows(master::diagnostics_parameters(), master::DiagnosticsParams{}, "master.diagnostics");
+  check_rows(checker::checker_parameters(), checker::CheckerParams{}, "checker");
+}
+
+// The models refuse what the loader would never give them, naming object, key and range.
+TEST(ParameterTables, ValidateNamesObjectKeyAndRange) {
+  master::MasterParams m;
+  m.careful.retries = 11;
+  try {
+    m.validate();
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "master careful retries must be 0 .. 10, got 11");
+  }
+  m = {};
+  m.f_c = sim::MHz(17);
+  EXPECT_THROW(m.validate(), std::invalid_argument);
+  line::LineParams l;
+  l.cable_length_m = 300.5;
+  try {
+    l.validate();
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "line cable_length_m must be 0 .. 300 m (2.1.2), got 300.5 m");
+  }
+  l = {};
+  l.encoder.receiver_delay = sim::ns(1001);
+  EXPECT_THROW(l.validate(), std::invalid_argument);
+}
+
+// Every object with parameter rows: the schema holds exactly the properties the rows generate,
+// and requires exactly the rows that are required.
+TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
+  const auto schema = json::parse(slurp("schema/scenario.schema.json"));
+  const auto generated = scenarios::parameter_schema();
+  ASSERT_EQ(generated.size(), 10U);
+  for (const auto& [pointer, part] : generated.items()) {
+    SCOPED_TRACE(pointer);
+    const json::json_pointer at(pointer);
+    ASSERT_TRUE(schema.contains(at));
+    for (const auto& [key, property] : part["properties"].items()) {
+      ASSERT_TRUE(schema[at].contains(key)) << key;
+      EXPECT_EQ(schema[at][key], property)
+          << key << ": schema/scenario.schema.json is out of date: regenerate with "
+          << "`endatsim parameters --schema | tools/update_schema.py schema/scenario.schema.json`";
+    }
+    const auto required = schema[at.parent_pointer()].value("required", json::array());
+    EXPECT_EQ(required, part["required"]);
+  }
+}
+
+TEST(ParameterTables, DocsParametersIsTheGeneratedTable) {
   const std::string doc = slurp("docs/parameters.md");
   const std::string table = scenarios::parameter_tables_markdown();
   ASSERT_GE(doc.size(), table.size());

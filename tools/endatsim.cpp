@@ -1367,7 +1367,7 @@ int parameters_command(const po::variables_map& vm) {
     std::cerr << "endatsim parameters: takes no file\n" << kParametersUsage;
     return kBadInput;
   }
-  if (vm.count("schema") != 0) std::cout << scenarios::encoder_parameter_schema().dump(2) << "\n";
+  if (vm.count("schema") != 0) std::cout << scenarios::parameter_schema().dump(2) << "\n";
   else std::cout << scenarios::parameter_tables_markdown();
   return kPass;
 }
