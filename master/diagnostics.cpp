@@ -75,31 +75,6 @@ std::size_t DiagnosisReport::count(DiagnosisNoteKind k) const {
 
 // ---- parameters read ------------------------------------------------------------------------
 
-std::optional<std::uint16_t> Master::parameter(std::uint8_t mrs, std::uint8_t address) const {
-  const auto it = parameters_read_.find(static_cast<std::uint16_t>(mrs << 8 | address));
-  if (it == parameters_read_.end()) return std::nullopt;
-  return it->second;
-}
-
-// 2.4.1: "Selection of memory area" points the 2.1 parameter frames that follow at an area.
-void Master::note_parameter(const FrameResult& f) {
-  if (f.outcome != FrameOutcome::Ok || !f.payload) return;
-  const auto address = static_cast<std::uint8_t>(*f.payload >> 16);
-  switch (f.command) {
-    case MC::SelectionOfMemoryArea: area_mrs_ = address; break;
-    case MC::EncoderSendParameters: parameters_read_[static_cast<std::uint16_t>(area_mrs_ << 8 | address)] = f.echo_parameter; break;
-    case MC::EncoderReceiveParameters:
-      parameters_read_[static_cast<std::uint16_t>(area_mrs_ << 8 | address)] = static_cast<std::uint16_t>(*f.payload & 0xFFFF);
-      break;
-    default: break;
-  }
-}
-
-std::optional<std::uint16_t> Master::endat22_word(unsigned w) const {
-  if (w >= endat22_lsb_.size() || !endat22_lsb_[w] || !endat22_msb_[w]) return std::nullopt;
-  return static_cast<std::uint16_t>(*endat22_msb_[w] << 8 | *endat22_lsb_[w]);
-}
-
 // ---- additional data 1 in turn ----------------------------------------------------------------
 
 // 2.3.5.1: one information per frame. The diagnosis (one interrogation per activated valuation
@@ -194,10 +169,10 @@ void Master::activate_diagnosis() {
   r.supported_warnings = parameter(a5, kSupportedWarnings);
   r.configuration = parameter(a7, kConfiguration);
   r.warning_threshold = parameter(a7, kWarningThreshold);
-  r.additional_data_1_support = endat22_word(kAdditionalData1Support);
-  r.temperature_scaling = endat22_word(kTemperatureScaling);
-  r.diagnostic_status = endat22_word(kDiagnosticStatus);
-  r.max_temperature = endat22_word(kMaxTemperature);
+  r.additional_data_1_support = book_.endat22_word(kAdditionalData1Support);
+  r.temperature_scaling = book_.endat22_word(kTemperatureScaling);
+  r.diagnostic_status = book_.endat22_word(kDiagnosticStatus);
+  r.max_temperature = book_.endat22_word(kMaxTemperature);
   const auto word37 = parameter(a5, kCommandSet);
   if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
     diagnose(K::Setup, nullptr, "setup", true, "the encoder has no EnDat 2.2 command set (word 37): no diagnosis through additional data");

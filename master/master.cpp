@@ -756,7 +756,7 @@ void Master::maybe_complete_frame() {
   if (frame_.measurement && frame_.outcome == FrameOutcome::Ok)
     if (const auto count = delay_.take_count()) frame_.delay_count_time = *count;
   if (!frame_.measurement) {
-    note_parameter(frame_);
+    book_.note(frame_);
     note_diagnosis(frame_);
     note_safety(frame_);  // sets error_detected: what the master made of F1 and F2
     note_startup(frame_);

@@ -18,6 +18,8 @@
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/diagnostics.hpp"
+#include "endatsim/master/frame_result.hpp"
+#include "endatsim/master/parameter_book.hpp"
 #include "endatsim/master/safety.hpp"
 #include "endatsim/protocol/protocol.hpp"
 
@@ -122,63 +124,6 @@ struct MasterParams {
 std::span<const sim::Parameter<MasterParams>> master_parameters();
 std::span<const sim::Parameter<MasterParams::PowerOnSequence>> power_on_parameters();
 std::span<const sim::Parameter<CarefulMaster>> careful_parameters();
-
-// Type2Error: a 2.1 parameter frame whose echo came back inverted (A2 type II). EchoMismatch:
-// one whose echo differs from what was sent otherwise (CarefulMaster::verify_echo).
-// TooFewClocks: the master's clock pulses ended before the answer it expected was complete (the
-// start bit came later than the pulses it gives allow); no CRC was judged.
-enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error, Type2Error, EchoMismatch, TooFewClocks };
-inline constexpr std::array kFrameOutcomes{FrameOutcome::Ok,         FrameOutcome::CrcError,   FrameOutcome::NoStartBit,
-                                           FrameOutcome::Type1Error, FrameOutcome::Type2Error, FrameOutcome::EchoMismatch,
-                                           FrameOutcome::TooFewClocks};
-std::string_view to_string(FrameOutcome o);
-
-// One additional datum as received (2.3.5).
-struct AdditionalDatum {
-  std::uint8_t status = 0;  // WRN RM Busy I4..I0
-  std::uint16_t data = 0;   // bytes 1 and 2
-  std::uint8_t crc_received = 0;
-  std::uint8_t crc_expected = 0;  // over status and data (appendix A4)
-  bool crc_ok = false;            // the CRCs agree and the datum's leading bit is LOW
-  protocol::Information information() const {
-    return static_cast<protocol::Information>(status & protocol::AdditionalDataStatus::kInformation);
-  }
-  bool busy() const { return (status & protocol::AdditionalDataStatus::kBusy) != 0; }
-};
-
-struct FrameResult {
-  std::uint64_t index = 0;
-  std::size_t operation = 0;  // index of the operation in the order enqueued (Operation::script_index)
-  unsigned word = 0;        // 0: the word after the mode command; k: the k-th continuous-clock word
-  Time start{0};            // FE1 at the master logic
-  Time end{0};              // last rising edge
-  ModeCommand command = ModeCommand::EncoderSendPositionValues;
-  std::uint8_t mode_bits = 0;  // as sent
-  std::optional<std::uint32_t> payload;     // 8 + 16 bits sent after the mode bits (2.1 parameter frames)
-  std::optional<std::uint32_t> supplement;  // 8 + 16 bits sent as the 2.2 command supplement
-  unsigned answer_bits = 0;                 // the answer the master expects: S .. CRC and additional data
-  unsigned position_bits = 0;               // as the master clocks them (configured, or word 13)
-  Hertz f_c = 0;
-  bool measurement = false;     // part of a propagation-delay measurement
-  bool compensated = false;
-  Time t_d_used{0};
-  FrameOutcome outcome = FrameOutcome::NoStartBit;
-  bool error1 = false;
-  bool error2 = true;
-  // An error message as the master evaluates it: F1, and with SafetyParams::error_messages also
-  // F2 of 2.2 frames (2.3.1: two independent error messages).
-  bool error_detected = false;
-  std::uint64_t position = 0;
-  std::uint64_t test_value = 0;        // "Encoder send test values"
-  std::uint8_t echo_address = 0;       // parameter frames: address / MRS code / port as answered
-  std::uint16_t echo_parameter = 0;    // ... and the 16 bits (the parameter read)
-  std::vector<AdditionalDatum> additional_data;  // in wire order: additional data 2 first
-  std::uint8_t crc_received = 0;
-  std::uint8_t crc_expected = 0;
-  unsigned start_bit_clock = 0;  // as the master counted it
-  unsigned clocks = 0;
-  std::optional<Time> delay_count_time;  // measurement frames: counter value x 1/f_e
-};
 
 // What monitors and reports can observe of the master's intentions.
 class MasterObserver {
@@ -295,7 +240,7 @@ class Master {
   const SafetyReport& safety() const { return safety_; }
   const DiagnosisReport& diagnosis() const { return diagnosis_; }
   // A parameter word as last read or written with 2.1 frames (area by MRS code, 2.4.1).
-  std::optional<std::uint16_t> parameter(std::uint8_t mrs, std::uint8_t address) const;
+  std::optional<std::uint16_t> parameter(std::uint8_t mrs, std::uint8_t address) const { return book_.parameter(mrs, address); }
   // What the installation tells the master (the runner's events): another cable, and the
   // encoder's supply back after an interruption (CarefulMaster says what the master does then).
   void line_changed();
@@ -361,8 +306,6 @@ class Master {
   // Additional data 1 in turn (diagnostics.cpp).
   std::vector<protocol::Information> additional_data_1_schedule() const;
   void roll_additional_data_1();
-  void note_parameter(const FrameResult& f);
-  std::optional<std::uint16_t> endat22_word(unsigned w) const;
   // Diagnosis (diagnostics.cpp).
   void expand_diagnosis_setup();
   void activate_diagnosis();
@@ -422,7 +365,6 @@ class Master {
   bool error_state_ = false, disagree_state_ = false, lag_state_ = false;
   std::optional<Time> forced_sent_at_;
   bool forcing_ = false;
-  std::vector<std::optional<std::uint16_t>> endat22_lsb_, endat22_msb_;
   std::optional<std::pair<std::uint64_t, Time>> last_good_;  // position and FE1 of the last good read (velocity)
   struct Position2Read {
     std::uint64_t position1 = 0;
@@ -441,8 +383,7 @@ class Master {
   std::optional<Written> acknowledgement_due_;
   // Diagnosis.
   DiagnosisReport diagnosis_;
-  std::map<std::uint16_t, std::uint16_t> parameters_read_;  // MRS << 8 | address -> value
-  std::uint8_t area_mrs_ = 0;        // the 2.1 memory area selected last
+  ParameterBook book_;               // the encoder's memory as read (2.4 .. 2.6)
   std::size_t ai1_slot_ = 0;         // where additional data 1 is in its schedule
   bool warning_bit_ = false;
   bool warnings_due_ = false;

@@ -180,8 +180,7 @@ void Master::expand_safety_startup() {
 // additional data 1 as address | LSB (I = 5) and address | MSB (I = 6) once Busy is reset. An
 // encoder whose word 37 (read just before) lacks the 2.2 command set has no such area.
 void Master::expand_endat22_read() {
-  endat22_lsb_.assign(64, std::nullopt);
-  endat22_msb_.assign(64, std::nullopt);
+  book_.begin_endat22_read();
   const std::uint64_t words = current_->endat22_words;
   const auto word37 = parameter(mrs_of(protocol::MemoryArea::Manufacturer3), protocol::word::manufacturer_address(protocol::word::kCommandSet));
   if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
@@ -422,22 +421,15 @@ void Master::collect_words(const FrameResult& f) {
   if (purpose != P::Endat22Lsb && purpose != P::Endat22Msb) return;
   if (f.outcome != FrameOutcome::Ok || f.additional_data.empty()) return;
   const unsigned w = current_->manufacturer_word;
-  for (const auto& d : f.additional_data) {
-    if (!d.crc_ok || d.busy() || (d.data >> 8) != w) continue;
-    if (purpose == P::Endat22Lsb && d.information() == I::MemoryParameterLsb) endat22_lsb_.at(w) = d.data & 0xFF;
-    if (purpose == P::Endat22Msb && d.information() == I::MemoryParameterMsb) endat22_msb_.at(w) = d.data & 0xFF;
-  }
+  book_.note_endat22_byte(f, w, purpose == P::Endat22Msb);
   if (w == 63 && purpose == P::Endat22Msb) finish_checksums(true);
 }
 
 // 3.5.26 / 3.9.37: word 47 = sum of words 4 .. 46, word 63 = sum of words 0 .. 62, overflow ignored.
 void Master::finish_checksums(bool endat22) {
-  std::vector<std::uint16_t> e(64, 0);
-  bool complete = endat22;
-  for (unsigned w = 0; w < 64; ++w) {
-    complete = complete && endat22_lsb_[w] && endat22_msb_[w];
-    e[w] = static_cast<std::uint16_t>(endat22_msb_[w].value_or(0) << 8 | endat22_lsb_[w].value_or(0));
-  }
+  bool all_read = false;
+  const std::vector<std::uint16_t> e = book_.endat22_words(all_read);
+  const bool complete = endat22 && all_read;
   std::uint16_t sum = 0;
   for (unsigned w = 0; w < 63; ++w) sum = static_cast<std::uint16_t>(sum + e[w]);
   if (endat22) {
