@@ -28,12 +28,15 @@ std::string hex(std::uint16_t v) {
   return s;
 }
 
-// Words the setup reads from the EnDat 2.2 area (3.9.2, 3.9.6, 3.9.7, 3.9.16).
-constexpr unsigned kAdditionalData1Support = 0, kTemperatureScaling = 4, kDiagnosticStatus = 5, kMaxTemperature = 22;
+namespace word = protocol::word;
+// Words the setup reads from the EnDat 2.2 area (3.9.2, 3.9.6, 3.9.7, 3.9.16) ...
+constexpr unsigned kAdditionalData1Support = word::kAdditionalData1Support, kTemperatureScaling = word::kTemperatureScaling,
+                   kDiagnosticStatus = word::kDiagnosticStatus, kMaxTemperature = word::kMaxEncoderTemperature;
 // ... and with 2.1 frames: word 36 (supported warnings) and 37 (command set) in A5, operating
 // parameters words 3 and 6 (3.6.3, 3.6.6).
-constexpr std::uint8_t kSupportedWarnings = 36 - 32, kCommandSet = 37 - 32, kConfiguration = 3, kWarningThreshold = 6;
-constexpr std::uint16_t kTemperatureExceeded = 0x0002;  // 3.4.2 warning 2^1
+constexpr std::uint8_t kSupportedWarnings = word::manufacturer_address(word::kSupportedWarnings),
+                       kCommandSet = word::manufacturer_address(word::kCommandSet),
+                       kConfiguration = word::kDiagnosticsConfiguration, kWarningThreshold = word::kTemperatureWarningThreshold;
 
 }  // namespace
 
@@ -85,8 +88,8 @@ std::vector<I> Master::additional_data_1_schedule() const {
   std::vector<I> diagnosis;
   const DiagnosticsParams& d = params_.diagnostics;
   if (d.enabled) {
-    const std::uint16_t support = diagnosis_.additional_data_1_support.value_or(0x001F);  // 3.9.2
-    const std::uint16_t active = diagnosis_.configuration.value_or(d.configuration);
+    const std::uint16_t support = diagnosis_.report().additional_data_1_support.value_or(0x001F);  // 3.9.2
+    const std::uint16_t active = diagnosis_.report().configuration.value_or(d.configuration);
     const unsigned numbers = static_cast<unsigned>(std::popcount(static_cast<unsigned>(active & dg::kValuationNumberBits)));
     diagnosis.insert(diagnosis.end(), std::max(numbers, 1U), I::Diagnosis);
     if (d.temperatures && (support & 0x0004) != 0) diagnosis.push_back(I::Temperature1);
@@ -154,17 +157,14 @@ void Master::expand_diagnosis_setup() {
       std::uint64_t{1} << kAdditionalData1Support | std::uint64_t{1} << kTemperatureScaling |
       std::uint64_t{1} << kDiagnosticStatus | std::uint64_t{1} << kMaxTemperature;
   plan.add(Operation::Kind::DiagnosisActivate);
-  diagnosis_ = DiagnosisReport{};
-  conditions_.clear();
-  warning_bit_ = false;
-  warnings_read_at_.reset();
+  diagnosis_.restart();
   run_first(plan);
 }
 
 // 3.6: "changes to the values do not become valid until the mode command 'Encoder receive
 // reset' is transmitted"; the reset also ends the selection of additional data (2.7).
 void Master::activate_diagnosis() {
-  DiagnosisReport& r = diagnosis_;
+  DiagnosisReport& r = diagnosis_.report();
   const std::uint8_t a5 = mrs_of(protocol::MemoryArea::Manufacturer3), a7 = mrs_of(protocol::MemoryArea::OperatingParameters);
   r.supported_warnings = parameter(a5, kSupportedWarnings);
   r.configuration = parameter(a7, kConfiguration);
@@ -175,16 +175,20 @@ void Master::activate_diagnosis() {
   r.max_temperature = book_.endat22_word(kMaxTemperature);
   const auto word37 = parameter(a5, kCommandSet);
   if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
-    diagnose(K::Setup, nullptr, "setup", true, "the encoder has no EnDat 2.2 command set (word 37): no diagnosis through additional data");
+    diagnosis_.note(K::Setup, nullptr, "setup", true,
+                    "the encoder has no EnDat 2.2 command set (word 37): no diagnosis through additional data", kernel_.now());
     return;
   }
   Sequence plan = sequence();
   if (!r.configuration || !r.diagnostic_status || !r.additional_data_1_support) {
-    diagnose(K::Setup, nullptr, "setup", true, "the diagnostic status (3.9.7) or the configuration (3.6.3) could not be read");
+    diagnosis_.note(K::Setup, nullptr, "setup", true,
+                    "the diagnostic status (3.9.7) or the configuration (3.6.3) could not be read", kernel_.now());
   } else {
     if (r.temperature_scaling && !dg::temperature_scaling(*r.temperature_scaling))
-      diagnose(K::Setup, nullptr, "scaling", true, "temperature scaling word 4 = " + hex(*r.temperature_scaling) +
-                                                       " is not the 0.1 K the spec defines (3.9.6); temperatures shown as 0.1 K");
+      diagnosis_.note(K::Setup, nullptr, "scaling", true,
+                      "temperature scaling word 4 = " + hex(*r.temperature_scaling) +
+                          " is not the 0.1 K the spec defines (3.9.6); temperatures shown as 0.1 K",
+                      kernel_.now());
     // 3.9.7: word 5 has the bits of word 3 for what is supported.
     const auto wanted = static_cast<std::uint16_t>(params_.diagnostics.configuration & *r.diagnostic_status);
     if (wanted != *r.configuration) {
@@ -202,37 +206,47 @@ void Master::activate_diagnosis() {
 
 // ---- what the frames carry ----------------------------------------------------------------------
 
-void Master::diagnose(DiagnosisNoteKind kind, const FrameResult* f, std::string key, bool condition, const std::string& message) {
+void DiagnosisMonitor::restart() {
+  report_ = DiagnosisReport{};
+  conditions_.clear();
+  warning_bit_ = false;
+  warnings_read_at_.reset();
+}
+
+void DiagnosisMonitor::note(DiagnosisNoteKind kind, const FrameResult* f, const std::string& key, bool condition,
+                            const std::string& message, Time now) {
   bool& in_force = conditions_[key];
   const bool new_condition = condition && !in_force;
   in_force = condition;
   if (!new_condition) return;
   DiagnosisNote n;
   n.kind = kind;
-  n.at = f != nullptr ? f->end : kernel_.now();
+  n.at = f != nullptr ? f->end : now;
   if (f != nullptr) n.frame = f->index;
   n.message = message;
-  diagnosis_.notes.push_back(std::move(n));
+  report_.notes.push_back(std::move(n));
 }
 
-void Master::note_diagnosis(const FrameResult& f) {
-  if (!params_.diagnostics.enabled) return;
-  if (current_->purpose == P::DiagnosisConfiguration) {
-    if (f.outcome == FrameOutcome::Ok) diagnosis_.configuration = static_cast<std::uint16_t>(*f.payload & 0xFFFF);
+void DiagnosisMonitor::on_frame(const FrameResult& f, DiagnosisFrame kind) {
+  if (!params_.enabled) return;
+  if (kind == DiagnosisFrame::ConfigurationWrite) {
+    if (f.outcome == FrameOutcome::Ok) report_.configuration = static_cast<std::uint16_t>(*f.payload & 0xFFFF);
     else
-      diagnose(K::Setup, &f, "configuration", true,
-               "operating parameters word 3 could not be written (" + std::string(to_string(f.outcome)) + "); " +
-                   hex(diagnosis_.configuration.value_or(0)) + " stays in force");
+      note(K::Setup, &f, "configuration", true,
+           "operating parameters word 3 could not be written (" + std::string(to_string(f.outcome)) + "); " +
+               hex(report_.configuration.value_or(0)) + " stays in force",
+           f.end);
     return;
   }
   if (f.outcome != FrameOutcome::Ok) return;
-  if (current_->purpose == P::DiagnosisWarnings) {
+  if (kind == DiagnosisFrame::WarningsRead) {
     warnings_read_at_ = f.end;
-    diagnosis_.warnings = f.echo_parameter;
+    report_.warnings = f.echo_parameter;
     const bool any = f.echo_parameter != 0;
-    diagnose(K::Warning, &f, "word 1 " + hex(f.echo_parameter), any,
-             "word 1 = " + hex(f.echo_parameter) + ": " +
-                 protocol::parameters::bits_string(f.echo_parameter, protocol::parameters::warning_bit_names()));
+    note(K::Warning, &f, "word 1 " + hex(f.echo_parameter), any,
+         "word 1 = " + hex(f.echo_parameter) + ": " +
+             protocol::parameters::bits_string(f.echo_parameter, protocol::parameters::warning_bit_names()),
+         f.end);
     return;
   }
   bool warning_bit = false;
@@ -241,40 +255,40 @@ void Master::note_diagnosis(const FrameResult& f) {
     if (!d.crc_ok) continue;
     seen = true;
     warning_bit = warning_bit || (d.status & protocol::AdditionalDataStatus::kWarning) != 0;
-    note_diagnosis_datum(f, d);
+    note_datum(f, d);
   }
   if (seen) note_warning_bit(f, warning_bit);
 }
 
 // 3.4.2: "query the group bit for warnings (WRN)"; word 1 says which, when WRN appears and at
 // regular intervals while it stays (a further warning leaves WRN as it is).
-void Master::note_warning_bit(const FrameResult& f, bool warning_bit) {
-  const DiagnosticsParams& d = params_.diagnostics;
-  if (warning_bit && !diagnosis_.warning_bit_at) {
-    diagnosis_.warning_bit_at = f.end;
-    diagnosis_.warning_bit_frame = f.index;
+void DiagnosisMonitor::note_warning_bit(const FrameResult& f, bool warning_bit) {
+  if (warning_bit && !report_.warning_bit_at) {
+    report_.warning_bit_at = f.end;
+    report_.warning_bit_frame = f.index;
   }
-  const bool again = warnings_read_at_ && d.warnings_interval > Time::zero() && f.end - *warnings_read_at_ >= d.warnings_interval;
-  if (warning_bit && (!warning_bit_ || again)) warnings_due_ = d.read_warnings;
+  const bool again = warnings_read_at_ && params_.warnings_interval > Time::zero() &&
+                     f.end - *warnings_read_at_ >= params_.warnings_interval;
+  if (warning_bit && (!warning_bit_ || again)) warnings_due_ = params_.read_warnings;
   warning_bit_ = warning_bit;
 }
 
-void Master::note_diagnosis_datum(const FrameResult& f, const AdditionalDatum& d) {
-  DiagnosisReport& r = diagnosis_;
+void DiagnosisMonitor::note_datum(const FrameResult& f, const AdditionalDatum& d) {
+  DiagnosisReport& r = report_;
   switch (d.information()) {
     case I::Diagnosis: {
       const unsigned address = d.data >> 8, value = d.data & 0xFF;
       const auto a = dg::decode_diagnosis_address(address);
-      const std::uint16_t active = r.configuration.value_or(params_.diagnostics.configuration);
+      const std::uint16_t active = r.configuration.value_or(params_.configuration);
       if (!a || a->bit >= dg::kValuationNumbers || ((active >> a->bit) & 1U) == 0) {
         ++r.ignored_addresses;  // A3: "the subsequent electronics must ignore undefined addresses"
         return;
       }
       r.valuation_numbers[address].add(value, f.end);
-      diagnose(K::FunctionReserveLow, &f, "valuation number at " + std::to_string(address),
-               value < params_.diagnostics.reserve_limit,
-               "valuation number " + std::to_string(a->bit + 1) + " (address " + std::to_string(address) + ") = " +
-                   std::to_string(value) + ", below the reserve limit " + std::to_string(params_.diagnostics.reserve_limit));
+      note(K::FunctionReserveLow, &f, "valuation number at " + std::to_string(address), value < params_.reserve_limit,
+           "valuation number " + std::to_string(a->bit + 1) + " (address " + std::to_string(address) + ") = " +
+               std::to_string(value) + ", below the reserve limit " + std::to_string(params_.reserve_limit),
+           f.end);
       return;
     }
     case I::Temperature1:
@@ -296,19 +310,22 @@ void Master::note_diagnosis_datum(const FrameResult& f, const AdditionalDatum& d
 // 3.6.6: only the internal sensor (temperature 2) triggers the warning at word 6; it is also held
 // against the maximum permissible encoder temperature (3.9.16, 0: none). Temperature 1 and the
 // additional sensors measure the motor (2.3.5.1): no encoder limit applies to them.
-void Master::note_temperature(const FrameResult& f, unsigned tenth_kelvin) {
-  const DiagnosisReport& r = diagnosis_;
+void DiagnosisMonitor::note_temperature(const FrameResult& f, unsigned tenth_kelvin) {
+  const DiagnosisReport& r = report_;
   const std::string what = "temperature 2 " + dg::temperature_string(tenth_kelvin);
   if (r.warning_threshold && *r.warning_threshold != 0) {
-    const bool supported = (r.supported_warnings.value_or(kTemperatureExceeded) & kTemperatureExceeded) != 0;
-    diagnose(K::TemperatureAboveThreshold, &f, "threshold", tenth_kelvin > *r.warning_threshold,
-             what + " above the warning threshold " + dg::temperature_string(*r.warning_threshold) +
-                 " (operating parameters word 6)" + (supported ? "" : "; word 36 says the encoder has no such warning"));
+    const auto exceeded = protocol::parameters::kWarningTemperatureExceeded;
+    const bool supported = (r.supported_warnings.value_or(exceeded) & exceeded) != 0;
+    note(K::TemperatureAboveThreshold, &f, "threshold", tenth_kelvin > *r.warning_threshold,
+         what + " above the warning threshold " + dg::temperature_string(*r.warning_threshold) +
+             " (operating parameters word 6)" + (supported ? "" : "; word 36 says the encoder has no such warning"),
+         f.end);
   }
   if (r.max_temperature && *r.max_temperature != 0)
-    diagnose(K::TemperatureAboveMaximum, &f, "maximum", tenth_kelvin > *r.max_temperature,
-             what + " above the maximum permissible encoder temperature " + dg::temperature_string(*r.max_temperature) +
-                 " (word 22)");
+    note(K::TemperatureAboveMaximum, &f, "maximum", tenth_kelvin > *r.max_temperature,
+         what + " above the maximum permissible encoder temperature " + dg::temperature_string(*r.max_temperature) +
+             " (word 22)",
+         f.end);
 }
 
 }  // namespace endatsim::master

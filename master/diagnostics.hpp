@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "endatsim/master/frame_result.hpp"
 #include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/time.hpp"
 
@@ -91,6 +92,47 @@ struct DiagnosisReport {
   std::optional<std::uint16_t> warnings;  // word 1 as last read (3.4.2)
   std::vector<DiagnosisNote> notes;
   std::size_t count(DiagnosisNoteKind k) const;
+};
+
+// What a frame was for, as far as the diagnosis cares: a cyclic read (its additional data), the
+// write of operating parameters word 3 (3.6.3), or the read of word 1 after WRN (3.4.2).
+enum class DiagnosisFrame : std::uint8_t { Cyclic, ConfigurationWrite, WarningsRead };
+
+// The diagnosis as the frames bring it in: it fills the report from additional data 1 (A3
+// valuation numbers, temperatures, additional sensors) and the reads of word 1, notes each
+// condition once when it arises (a low function reserve, a temperature above its limit, a
+// warning), and says when word 1 is due to be read. The master schedules the frames; this part
+// only watches what they return.
+class DiagnosisMonitor {
+ public:
+  explicit DiagnosisMonitor(const DiagnosticsParams& params) : params_(params) {}
+
+  // The setup starts over: an empty report, no condition in force, WRN not seen.
+  void restart();
+  DiagnosisReport& report() { return report_; }
+  const DiagnosisReport& report() const { return report_; }
+
+  void on_frame(const FrameResult& f, DiagnosisFrame kind);
+  // A note for `key` when `condition` arises (not again while it holds); at the frame's end, or
+  // at `now` without a frame.
+  void note(DiagnosisNoteKind kind, const FrameResult* f, const std::string& key, bool condition,
+            const std::string& message, Time now);
+
+  // 3.4.2: word 1 is to be read (WRN appeared, or stayed for warnings_interval).
+  bool warnings_due() const { return warnings_due_; }
+  void clear_warnings_due() { warnings_due_ = false; }
+
+ private:
+  void note_warning_bit(const FrameResult& f, bool warning_bit);
+  void note_datum(const FrameResult& f, const AdditionalDatum& d);
+  void note_temperature(const FrameResult& f, unsigned tenth_kelvin);
+
+  const DiagnosticsParams& params_;
+  DiagnosisReport report_;
+  std::map<std::string, bool> conditions_;  // notes in force, by subject (noted once)
+  bool warning_bit_ = false;
+  bool warnings_due_ = false;
+  std::optional<Time> warnings_read_at_;    // the last read of word 1 after WRN
 };
 
 }  // namespace endatsim::master

@@ -21,6 +21,13 @@ bool of_startup_routine(Operation::Purpose p) {
   return p == P::Step || p == P::Errors || p == P::Warnings || p == P::Word13 || p == P::Word37;
 }
 
+DiagnosisFrame diagnosis_frame(Operation::Purpose p) {
+  using P = Operation::Purpose;
+  return p == P::DiagnosisConfiguration ? DiagnosisFrame::ConfigurationWrite
+         : p == P::DiagnosisWarnings    ? DiagnosisFrame::WarningsRead
+                                        : DiagnosisFrame::Cyclic;
+}
+
 // Sample tags carry the frame's epoch in the upper and the clock slot in the lower 32 bits.
 std::uint64_t sample_tag(std::uint64_t epoch, unsigned clock) { return epoch << 32 | clock; }
 
@@ -87,7 +94,7 @@ void Master::start() {
 
 void Master::next_operation() {
   // Reads of words 0 / 1 that waited for the end of an expanded sequence come before the end.
-  if (operations_.empty() && (error_sources_due_ || warnings_due_) && current_) push_status_reads(*current_);
+  if (operations_.empty() && (error_sources_due_ || diagnosis_.warnings_due()) && current_) push_status_reads(*current_);
   if (operations_.empty()) {
     current_.reset();
     finished_ = true;
@@ -341,7 +348,7 @@ void Master::interrupt_for_measurement() {
 // 3.4.1 / 3.4.2: words 0 and 1 of the operating status say which error or warning it was.
 void Master::push_status_reads(const Operation& base) {
   for (const auto& [due, address, purpose] : {std::tuple{error_sources_due_, 0, Operation::Purpose::ErrorSources},
-                                              {warnings_due_, 1, Operation::Purpose::DiagnosisWarnings}}) {
+                                              {diagnosis_.warnings_due(), 1, Operation::Purpose::DiagnosisWarnings}}) {
     if (!due) continue;
     Operation read = base;
     read.kind = Operation::Kind::ReadPosition;
@@ -359,7 +366,8 @@ void Master::push_status_reads(const Operation& base) {
     read.purpose = Operation::Purpose::None;
     operations_.push_front(read);
   }
-  error_sources_due_ = warnings_due_ = false;
+  error_sources_due_ = false;
+  diagnosis_.clear_warnings_due();
 }
 
 void Master::operation_frame_done() {
@@ -398,7 +406,7 @@ void Master::operation_frame_done() {
 // ---- one frame ----------------------------------------------------------------------------
 
 void Master::start_frame(std::uint64_t) {
-  const bool status_read_due = (error_sources_due_ || warnings_due_) && !current_->expanded;
+  const bool status_read_due = (error_sources_due_ || diagnosis_.warnings_due()) && !current_->expanded;
   if ((remeasure_due_ || reselect_due_ || status_read_due) && !delay_.active()) {
     interrupt_for_measurement();
     return;
@@ -757,7 +765,7 @@ void Master::maybe_complete_frame() {
     if (const auto count = delay_.take_count()) frame_.delay_count_time = *count;
   if (!frame_.measurement) {
     book_.note(frame_);
-    note_diagnosis(frame_);
+    diagnosis_.on_frame(frame_, diagnosis_frame(current_->purpose));
     note_safety(frame_);  // sets error_detected: what the master made of F1 and F2
     note_startup(frame_);
     note_checksum_word(frame_);

@@ -238,7 +238,7 @@ class Master {
   std::uint64_t retries() const { return retries_done_; }
   std::uint64_t remeasurements() const { return remeasurements_; }
   const SafetyReport& safety() const { return safety_; }
-  const DiagnosisReport& diagnosis() const { return diagnosis_; }
+  const DiagnosisReport& diagnosis() const { return diagnosis_.report(); }
   // A parameter word as last read or written with 2.1 frames (area by MRS code, 2.4.1).
   std::optional<std::uint16_t> parameter(std::uint8_t mrs, std::uint8_t address) const { return book_.parameter(mrs, address); }
   // What the installation tells the master (the runner's events): another cable, and the
@@ -309,12 +309,7 @@ class Master {
   // Diagnosis (diagnostics.cpp).
   void expand_diagnosis_setup();
   void activate_diagnosis();
-  void note_diagnosis(const FrameResult& f);
-  void note_warning_bit(const FrameResult& f, bool warning_bit);
   void push_status_reads(const Operation& base);
-  void note_diagnosis_datum(const FrameResult& f, const AdditionalDatum& d);
-  void note_temperature(const FrameResult& f, unsigned tenth_kelvin);
-  void diagnose(DiagnosisNoteKind kind, const FrameResult* f, std::string key, bool condition, const std::string& message);
   Time time_between_cycles_left() const;
   std::uint8_t expected_crc_pos(unsigned bits, bool error1, bool error2, bool v22, std::uint64_t position) const;
   FrameOutcome check_echo(FrameOutcome outcome) const;
@@ -382,13 +377,9 @@ class Master {
   };
   std::optional<Written> acknowledgement_due_;
   // Diagnosis.
-  DiagnosisReport diagnosis_;
+  DiagnosisMonitor diagnosis_{params_.diagnostics};
   ParameterBook book_;               // the encoder's memory as read (2.4 .. 2.6)
   std::size_t ai1_slot_ = 0;         // where additional data 1 is in its schedule
-  bool warning_bit_ = false;
-  bool warnings_due_ = false;
-  std::optional<Time> warnings_read_at_;  // the last read of word 1 after WRN
-  std::map<std::string, bool> conditions_;  // diagnosis notes in force, by subject (noted once)
   unsigned startup_agreeing_ = 0;
   std::uint64_t startup_previous_ = 0;
   Time startup_previous_at_{0};

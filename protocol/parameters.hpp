@@ -66,6 +66,8 @@ constexpr std::uint32_t join32(std::uint16_t low, std::uint16_t high) {
 // Index = bit. Bits 7 .. 15 are "currently not assigned" and show as "bit 7" ... in strings.
 std::span<const std::string_view> error_bit_names();    // 2^0 lighting .. 2^6 battery
 std::span<const std::string_view> warning_bit_names();  // 2^0 frequency collision .. 2^8 diagnostics
+constexpr std::uint16_t kWarningTemperatureExceeded = 0x0002;       // word 1 bit 1 (3.4.2)
+constexpr std::uint16_t kWarningCyclicOperation = 0x0020;           // word 1 bit 5 (3.4.2)
 constexpr std::uint16_t kWarningReferencePointNotReached = 0x0010;  // word 1 bit 4 (3.4.2)
 std::string bits_string(std::uint16_t word, std::span<const std::string_view> names);  // "lighting, position" or "none"
 

@@ -22,6 +22,7 @@ constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  //
 using protocol::parameters::kInstructionHighImpedance;
 
 using protocol::parameters::EncoderFunction;
+namespace pm = protocol::parameters;
 
 }  // namespace
 
@@ -52,7 +53,6 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
 // (2.3.4.3), a touch probe (2.3.4.4), or an EIB that is not yet initiated (A2 cause 5), whose
 // manufacturer areas stay open for initial commissioning meanwhile.
 void Encoder::adopt_encoder_type(unsigned position_bits) {
-  namespace pm = protocol::parameters;
   const auto type = pm::decode_encoder_type(memory_.manufacturer_word(word::kEncoderType));
   eib_not_initiated_ = type == pm::EncoderType::ExternalInterfaceBox;
   memory_.set_initial_commissioning(eib_not_initiated_);
@@ -65,7 +65,6 @@ void Encoder::adopt_encoder_type(unsigned position_bits) {
 // with eib_activation_checks_checksum, word 47 checks (3.5.26). Otherwise it stays not initiated.
 // Relative positions count from here, as after switching on (2.3.4.3).
 void Encoder::complete_commissioning() {
-  namespace pm = protocol::parameters;
   std::vector<std::uint16_t> m(48, 0);
   for (unsigned n = 4; n < 48; ++n) m[n] = memory_.manufacturer_word(n);
   const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
@@ -734,7 +733,7 @@ void Encoder::interrupt_nvm_write() {
 // 3.4.2: word 1 bit 5 reports cyclic mode while word 3 activates it.
 void Encoder::latch_errors() {
   const bool cyclic = function_activated(EncoderFunction::CyclicOperation);
-  const auto warnings = params_.warning_sources | (cyclic ? 0x0020 : 0) | (temperature_exceeded() ? kTemperatureExceeded : 0);
+  const auto warnings = params_.warning_sources | (cyclic ? pm::kWarningCyclicOperation : 0) | (temperature_exceeded() ? pm::kWarningTemperatureExceeded : 0);
   memory_.latch_errors(params_.error_sources, static_cast<std::uint16_t>(warnings));
 }
 
@@ -743,7 +742,7 @@ void Encoder::latch_errors() {
 // where word 36 says the warning is supported. "Exceeded" is read as strictly above.
 bool Encoder::temperature_exceeded() const {
   const std::uint16_t threshold = memory_.active_operating_parameters()[word::kTemperatureWarningThreshold];
-  const bool supported = (memory_.manufacturer_word(word::kSupportedWarnings) & kTemperatureExceeded) != 0 &&
+  const bool supported = (memory_.manufacturer_word(word::kSupportedWarnings) & pm::kWarningTemperatureExceeded) != 0 &&
                          (memory_.endat22_word(word::kAdditionalData1Support) & kTemperatureSensor2Support) != 0;
   return supported && threshold != 0 && params_.sensors.temperature2 > threshold;
 }

@@ -27,8 +27,8 @@ struct MemoryImage {
 // Word numbers (protocol/parameters.hpp).
 namespace word = protocol::word;
 
-// 3.4.2 warning 2^1 "temperature exceeded"; 3.9.2 word 0 bit 3 "temperature sensor 2 (on board)".
-constexpr std::uint16_t kTemperatureExceeded = 0x0002, kTemperatureSensor2Support = 0x0008;
+// 3.9.2 word 0 bit 3 "temperature sensor 2 (on board)".
+constexpr std::uint16_t kTemperatureSensor2Support = 0x0008;
 
 // 3.4.3: bits of word 2.
 constexpr unsigned kProtectSection2Block0 = 6, kProtectSection2BlocksFrom3 = 9;
