@@ -94,7 +94,8 @@ void Master::start() {
 
 void Master::next_operation() {
   // Reads of words 0 / 1 that waited for the end of an expanded sequence come before the end.
-  if (operations_.empty() && (error_sources_due_ || diagnosis_.warnings_due()) && current_) push_status_reads(*current_);
+  if (operations_.empty() && (safety_.error_sources_due() || diagnosis_.warnings_due()) && current_)
+    push_status_reads(*current_);
   if (operations_.empty()) {
     current_.reset();
     finished_ = true;
@@ -135,7 +136,7 @@ void Master::next_operation() {
     case Operation::Kind::StartupPositions:
       frames_left_ = params_.safety.startup_positions ? params_.safety.startup_max_reads : 1;
       startup_agreeing_ = 0;
-      safety_.startup_reads = 0;
+      safety_.report().startup_reads = 0;
       break;
     case Operation::Kind::MeasureDelay:
       delay_.begin();
@@ -347,7 +348,7 @@ void Master::interrupt_for_measurement() {
 
 // 3.4.1 / 3.4.2: words 0 and 1 of the operating status say which error or warning it was.
 void Master::push_status_reads(const Operation& base) {
-  for (const auto& [due, address, purpose] : {std::tuple{error_sources_due_, 0, Operation::Purpose::ErrorSources},
+  for (const auto& [due, address, purpose] : {std::tuple{safety_.error_sources_due(), 0, Operation::Purpose::ErrorSources},
                                               {diagnosis_.warnings_due(), 1, Operation::Purpose::DiagnosisWarnings}}) {
     if (!due) continue;
     Operation read = base;
@@ -366,7 +367,7 @@ void Master::push_status_reads(const Operation& base) {
     read.purpose = Operation::Purpose::None;
     operations_.push_front(read);
   }
-  error_sources_due_ = false;
+  safety_.clear_error_sources_due();
   diagnosis_.clear_warnings_due();
 }
 
@@ -406,7 +407,7 @@ void Master::operation_frame_done() {
 // ---- one frame ----------------------------------------------------------------------------
 
 void Master::start_frame(std::uint64_t) {
-  const bool status_read_due = (error_sources_due_ || diagnosis_.warnings_due()) && !current_->expanded;
+  const bool status_read_due = (safety_.error_sources_due() || diagnosis_.warnings_due()) && !current_->expanded;
   if ((remeasure_due_ || reselect_due_ || status_read_due) && !delay_.active()) {
     interrupt_for_measurement();
     return;

@@ -1,8 +1,13 @@
-// master/ — the subsequent electronics (spec 2.1–2.3): clock generation (f_c, duty cycle,
-// t_ST, seeded jitter; CLOCK idles HIGH), mode commands on falling edges, start-bit polling,
-// CRC checks, recovery waits, and propagation-delay measurement and compensation (2.1.2).
-// It only talks through the line's master-side signals. What it does for safety-oriented designs
-// is in safety.hpp, the diagnosis it collects for a service engineer in diagnostics.hpp.
+// master/ — the subsequent electronics (D297403 2.1 .. 2.3). Master is the frame engine and the
+// operation scheduler: clock generation (f_c, duty cycle, t_ST, seeded jitter; CLOCK idles
+// HIGH), mode commands on falling edges, start-bit polling, CRC checks, recovery waits, and the
+// expansion of a script's operations into frames. It only talks through the line's master-side
+// signals, and hands what the frames bring to its parts:
+//   delay_measurement.hpp  the propagation-delay measurement and its verdict (2.1.2)
+//   parameter_book.hpp     the encoder's memory as read (2.4 .. 2.6)
+//   safety.hpp             the safety functions' checks of every frame (SafetyMonitor)
+//   diagnostics.hpp        the diagnosis for a service engineer (DiagnosisMonitor, A3)
+//   frame_result.hpp       what a frame gave; operation.hpp what the master is asked to do
 #pragma once
 
 #include <array>
@@ -19,6 +24,7 @@
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/diagnostics.hpp"
 #include "endatsim/master/frame_result.hpp"
+#include "endatsim/master/operation.hpp"
 #include "endatsim/master/parameter_book.hpp"
 #include "endatsim/master/safety.hpp"
 #include "endatsim/protocol/protocol.hpp"
@@ -139,54 +145,6 @@ class MasterObserver {
   virtual void on_result(const FrameResult&) {}
 };
 
-struct Operation {
-  // ReadPosition sends `command` (any mode command, with `address`/`parameter` as the 2.1
-  // payload or the 2.2 supplement); AwaitNotBusy sends "Encoder send position values with
-  // additional data" until additional data 1 shows Busy = 0 (2.5.1, 2.6.1), at most `count` times.
-  // PowerOnSequence drives CLOCK as 2.3.3 asks after switching on; StartupRoutine is the German
-  // brochure's switch-on routine with EnDat 2.1 commands only (reset, wait 50 ms, read and clear
-  // alarms and warnings, read words 13 and 37; docs/model.md §8).
-  // VerifyChecksum reads the encoder manufacturer's words 4 .. 47 with 2.1 frames and compares
-  // word 47 with their sum (3.5.26).
-  // SafetyStartup runs the switched-on safety checks before the axis is released (safety.hpp):
-  // CrcSelfTest (no frames), the checksums, forced dynamic sampling and StartupPositions, which
-  // reads `command` until the position values agree. ReadEndat22Area reads the words of the 2.2
-  // area in `endat22_words` through additional data 1.
-  // DiagnosisSetup reads what the diagnosis needs; DiagnosisActivate then writes word 3 of the
-  // operating parameters and resets the encoder if it differs (diagnostics.hpp).
-  enum class Kind : std::uint8_t {
-    MeasureDelay, ReadPosition, Wait, AwaitNotBusy, PowerOnSequence, StartupRoutine, VerifyChecksum,
-    SafetyStartup, CrcSelfTest, ReadEndat22Area, StartupPositions, DiagnosisSetup, DiagnosisActivate
-  };
-  // What a frame of the start-up routine, the checksum check or a safety check is for.
-  enum class Purpose : std::uint8_t {
-    None, Step, Errors, Warnings, Word13, Word37, ChecksumWord,
-    ErrorSources, Endat22Lsb, Endat22Msb, ForcedTest, ForcedError1, ForcedError2, ForcedOff, DiagnosisWarnings,
-    DiagnosisConfiguration, CommandSet
-  };
-  Kind kind = Kind::ReadPosition;
-  std::optional<Time> at;  // absolute start; otherwise when the previous operation has finished
-  ModeCommand command = ModeCommand::EncoderSendPositionValues;
-  std::optional<std::uint8_t> mode_bits;  // send these six bits instead (a disturbed mode command)
-  unsigned count = 1;
-  Time cycle{0};
-  Time duration{0};
-  // 2.3.1: with "Encoder send position values" the clock may run on through further words
-  // (continuous clock); this many words follow the first one in each frame.
-  unsigned continuous_words = 0;
-  std::uint8_t address = 0;     // address, MRS code or port address
-  std::uint16_t parameter = 0;  // parameter, instruction or block address (low byte)
-  int clock_adjust = 0;         // clock pulses more (+) or fewer (-) than the frame needs (a fault)
-  Purpose purpose = Purpose::None;
-  unsigned manufacturer_word = 0;  // Purpose::ChecksumWord: which of words 4 .. 47; Endat22*: of 0 .. 63
-  std::uint64_t endat22_words = ~std::uint64_t{0};  // ReadEndat22Area: bit w = word w
-  std::size_t script_index = 0;  // set by enqueue(); the frames' FrameResult::operation
-  // Part of a sequence the master expanded (a memory read, a setup): the reads of words 0 and 1
-  // after an error message or WRN wait until it is over, lest their memory area selection
-  // (2.4.1) come between its selection and its reads.
-  bool expanded = false;
-};
-
 // What VerifyChecksum found (3.5.26).
 struct ChecksumCheck {
   bool complete = false;  // every word was read
@@ -237,7 +195,7 @@ class Master {
   const std::optional<ChecksumCheck>& checksum() const { return checksum_; }
   std::uint64_t retries() const { return retries_done_; }
   std::uint64_t remeasurements() const { return remeasurements_; }
-  const SafetyReport& safety() const { return safety_; }
+  const SafetyReport& safety() const { return safety_.report(); }
   const DiagnosisReport& diagnosis() const { return diagnosis_.report(); }
   // A parameter word as last read or written with 2.1 frames (area by MRS code, 2.4.1).
   std::optional<std::uint16_t> parameter(std::uint8_t mrs, std::uint8_t address) const { return book_.parameter(mrs, address); }
@@ -293,16 +251,9 @@ class Master {
   void run_crc_self_test();
   bool crc_passes(std::uint8_t received, std::uint8_t expected) const;
   void note_safety(FrameResult& f);
-  void check_error_messages(FrameResult& f);
-  void check_forced_sampling(const FrameResult& f);
-  void check_command_set(const FrameResult& f);
-  void check_following_error(const FrameResult& f);
-  void check_acknowledgement(const FrameResult& f);
-  void check_position_value_2(const FrameResult& f);
   void collect_words(const FrameResult& f);
   void finish_checksums(bool endat22);
   bool startup_position_read(const FrameResult& f);
-  void find(SafetyFunction function, const FrameResult* f, std::string message);
   // Additional data 1 in turn (diagnostics.cpp).
   std::vector<protocol::Information> additional_data_1_schedule() const;
   void roll_additional_data_1();
@@ -354,28 +305,7 @@ class Master {
   bool remeasure_due_ = false;
   std::uint64_t remeasurements_ = 0;
   std::uint8_t selection_mrs_[2] = {0, 0};  // the MRS codes behind selected_
-  // Safety functions.
-  SafetyReport safety_;
-  bool error_sources_due_ = false;
-  bool error_state_ = false, disagree_state_ = false, lag_state_ = false;
-  std::optional<Time> forced_sent_at_;
-  bool forcing_ = false;
-  std::optional<std::pair<std::uint64_t, Time>> last_good_;  // position and FE1 of the last good read (velocity)
-  struct Position2Read {
-    std::uint64_t position1 = 0;
-    Time at{0};
-    std::uint64_t frame = 0;
-    double velocity = 0;
-    std::uint64_t value = 0;
-    unsigned words = 0;
-  };
-  std::optional<Position2Read> position2_;
-  std::optional<Position2Parameters> position2_parameters_;
-  struct Written {
-    std::uint8_t address = 0;
-    std::uint16_t value = 0;
-  };
-  std::optional<Written> acknowledgement_due_;
+  SafetyMonitor safety_{params_.safety};
   // Diagnosis.
   DiagnosisMonitor diagnosis_{params_.diagnostics};
   ParameterBook book_;               // the encoder's memory as read (2.4 .. 2.6)

@@ -172,7 +172,7 @@ void Master::expand_safety_startup() {
   kind(Operation::Kind::StartupPositions);
   if (s.position_value_2)  // 2.3.5.1: additional data 1 = position value 2, word 1 (it latches words 2, 3)
     frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::PositionValue2Word1), P::None);
-  safety_.axis_released = false;
+  safety_.report().axis_released = false;
   run_first(plan);
 }
 
@@ -226,14 +226,13 @@ void Master::run_crc_self_test() {
     const bool good = crc_passes(v.crc, computed);
     const bool bad_rejected = !crc_passes(static_cast<std::uint8_t>(v.crc ^ 0x01), computed);
     if (good && bad_rejected) continue;
-    find(SafetyFunction::CrcSelfTest, nullptr,
-         std::to_string(v.bits) + "-bit sequence of known CRC " + std::to_string(v.crc) + ": " +
+    safety_.find(SafetyFunction::CrcSelfTest, kernel_.now(), std::to_string(v.bits) + "-bit sequence of known CRC " + std::to_string(v.crc) + ": " +
              (!good ? "rejected (the evaluation computes " + std::to_string(computed) + ")"
                     : "a CRC with one bit inverted was accepted"));
   }
   const bool norm_ok = crc_passes(10, protocol::make_crc_norm(0xB9, 0x1234, params_.crc.generator)) &&
                        !crc_passes(11, protocol::make_crc_norm(0xB9, 0x1234, params_.crc.generator));
-  if (!norm_ok) find(SafetyFunction::CrcSelfTest, nullptr, "parameter CRC of B9h / 1234h (known 10) evaluated wrong");
+  if (!norm_ok) safety_.find(SafetyFunction::CrcSelfTest, kernel_.now(), "parameter CRC of B9h / 1234h (known 10) evaluated wrong");
 }
 
 bool Master::crc_passes(std::uint8_t received, std::uint8_t expected) const {
@@ -245,7 +244,7 @@ bool Master::crc_passes(std::uint8_t received, std::uint8_t expected) const {
 // releases it with its first value.
 bool Master::startup_position_read(const FrameResult& f) {
   const SafetyParams& s = params_.safety;
-  ++safety_.startup_reads;
+  ++safety_.report().startup_reads;
   if (f.outcome != FrameOutcome::Ok || f.error_detected) {
     startup_agreeing_ = 0;
   } else if (const double moved = static_cast<double>(s.setpoint.counts_per_s) *
@@ -254,7 +253,7 @@ bool Master::startup_position_read(const FrameResult& f) {
              std::abs(static_cast<double>(ring_distance(f.position, startup_previous_, position_bits_)) - moved) >
                  static_cast<double>(s.startup_tolerance)) {
     if (startup_agreeing_ != 0)
-      find(SafetyFunction::StartupPositions, &f,
+      safety_.find(SafetyFunction::StartupPositions, f,
            "position " + std::to_string(f.position) + " differs from the previous " + std::to_string(startup_previous_) +
                " by more than " + std::to_string(s.startup_tolerance) + " LSB");
     startup_agreeing_ = 1;
@@ -268,42 +267,43 @@ bool Master::startup_position_read(const FrameResult& f) {
     static constexpr SafetyFunction kBlocking[] = {SafetyFunction::CrcSelfTest, SafetyFunction::Checksums,
                                                    SafetyFunction::ForcedDynamicSampling, SafetyFunction::CommandSet};
     const bool blocked = std::any_of(std::begin(kBlocking), std::end(kBlocking),
-                                     [this](SafetyFunction x) { return safety_.count(x) != 0; });
-    safety_.axis_released = !blocked;
+                                     [this](SafetyFunction x) { return safety_.report().count(x) != 0; });
+    safety_.report().axis_released = !blocked;
     if (!blocked) {
-      safety_.released_at = f.end;
-      safety_.release_frame = f.index;
-      safety_.release_position = f.position;
+      safety_.report().released_at = f.end;
+      safety_.report().release_frame = f.index;
+      safety_.report().release_position = f.position;
     }
     return true;
   }
   if (frames_left_ == 1)
-    find(SafetyFunction::StartupPositions, &f,
-         "no " + std::to_string(needed) + " agreeing position values in " + std::to_string(safety_.startup_reads) +
+    safety_.find(SafetyFunction::StartupPositions, f,
+         "no " + std::to_string(needed) + " agreeing position values in " + std::to_string(safety_.report().startup_reads) +
              " reads: the axis stays blocked");
   return false;
 }
 
 // ---- the checks of every frame ---------------------------------------------------------------
 
-void Master::find(SafetyFunction function, const FrameResult* f, std::string message) {
-  SafetyFinding x;
-  x.function = function;
-  x.at = f != nullptr ? f->end : kernel_.now();
-  if (f != nullptr) x.frame = f->index;
-  x.message = std::move(message);
-  safety_.findings.push_back(std::move(x));
+void SafetyMonitor::find(SafetyFunction function, const FrameResult& f, std::string message) {
+  report_.findings.push_back(SafetyFinding{function, f.end, f.index, std::move(message)});
 }
 
-void Master::note_safety(FrameResult& f) {
+void SafetyMonitor::find(SafetyFunction function, Time now, std::string message) {
+  report_.findings.push_back(SafetyFinding{function, now, std::nullopt, std::move(message)});
+}
+
+void SafetyMonitor::on_frame(FrameResult& f, Operation::Purpose purpose, unsigned position_bits) {
+  purpose_ = purpose;
+  position_bits_ = position_bits;
+  if (purpose == P::ErrorSources && f.outcome == FrameOutcome::Ok) report_.error_sources = f.echo_parameter;
   const bool position_answer = protocol::info(f.command).answer == protocol::AnswerFormat::Position;
-  collect_words(f);
   check_acknowledgement(f);
   check_command_set(f);
   if (!position_answer || f.outcome != FrameOutcome::Ok) return;
   check_error_messages(f);
   check_forced_sampling(f);
-  if (current_->purpose == P::None || current_->purpose == P::Endat22Msb) {
+  if (purpose == P::None || purpose == P::Endat22Msb) {
     check_following_error(f);
     check_position_value_2(f);
   }
@@ -312,23 +312,23 @@ void Master::note_safety(FrameResult& f) {
 
 // 2.3.1: F1 is high-active, F2 low-active and sent only with 2.2 mode commands; a master that
 // evaluates both catches an error whose one path has failed, and sees when they disagree.
-void Master::check_error_messages(FrameResult& f) {
+void SafetyMonitor::check_error_messages(FrameResult& f) {
   const bool v22 = protocol::info(f.command).version == protocol::EndatVersion::V2_2;
-  const bool use_f2 = params_.safety.error_messages && v22;
+  const bool use_f2 = params_.error_messages && v22;
   f.error_detected = f.error1 || (use_f2 && !f.error2);
   for (const auto& d : f.additional_data)
-    if (d.crc_ok && d.information() == I::OperatingStatusErrorSources) safety_.operating_status_error_sources = d.data;
-  if (forcing_ || current_->purpose == P::ForcedTest) return;  // 3.5.3: forced on purpose
-  if (!params_.safety.error_messages) return;
+    if (d.crc_ok && d.information() == I::OperatingStatusErrorSources) report_.operating_status_error_sources = d.data;
+  if (forcing_ || purpose_ == P::ForcedTest) return;  // 3.5.3: forced on purpose
+  if (!params_.error_messages) return;
   const bool disagree = use_f2 && f.error1 == f.error2;
   if (disagree && !disagree_state_)
-    find(SafetyFunction::ErrorMessages, &f,
+    find(SafetyFunction::ErrorMessages, f,
          std::string("error messages disagree: F1 ") + (f.error1 ? "active" : "inactive") + ", F2 " +
              (f.error2 ? "inactive" : "active") + " (one error path has failed)");
   if (f.error_detected && !error_state_) {
-    find(SafetyFunction::ErrorMessages, &f,
+    find(SafetyFunction::ErrorMessages, f,
          std::string("error message: F1 = ") + (f.error1 ? "1" : "0") + (v22 ? std::string(", F2 = ") + (f.error2 ? "1" : "0") : ""));
-    error_sources_due_ = params_.safety.read_error_sources;
+    error_sources_due_ = params_.read_error_sources;
   }
   disagree_state_ = disagree;
   error_state_ = f.error_detected;
@@ -336,21 +336,21 @@ void Master::check_error_messages(FrameResult& f) {
 
 // 2.3 and 3.5.22: word 37 declares the communication command with bits 4 and 5 stored inversely;
 // an encoder that supports it, or whose word 37 did not come back, is not released.
-void Master::check_command_set(const FrameResult& f) {
-  if (current_->purpose != P::CommandSet) return;
+void SafetyMonitor::check_command_set(const FrameResult& f) {
+  if (purpose_ != P::CommandSet) return;
   if (f.outcome != FrameOutcome::Ok) {
-    find(SafetyFunction::CommandSet, &f, "word 37 (3.5.22) could not be read: the axis stays blocked");
+    find(SafetyFunction::CommandSet, f, "word 37 (3.5.22) could not be read: the axis stays blocked");
     return;
   }
   if (protocol::parameters::decode_command_set(f.echo_parameter).communication_command)
-    find(SafetyFunction::CommandSet, &f,
+    find(SafetyFunction::CommandSet, f,
          "word 37 = " + protocol::parameters::command_set_string(f.echo_parameter) +
              ": an encoder supporting \"Encoder receive communication command\" must not be used for safety-oriented "
              "applications (2.3); the axis stays blocked");
 }
 
-void Master::check_forced_sampling(const FrameResult& f) {
-  const P purpose = current_->purpose;
+void SafetyMonitor::check_forced_sampling(const FrameResult& f) {
+  const P purpose = purpose_;
   if (purpose == P::ForcedTest) {
     forced_sent_at_ = f.end;
     forcing_ = (f.supplement.value_or(0) >> 16) != 0;
@@ -358,8 +358,8 @@ void Master::check_forced_sampling(const FrameResult& f) {
   }
   if (purpose != P::ForcedError1 && purpose != P::ForcedError2 && purpose != P::ForcedOff) return;
   const Time after = forced_sent_at_ ? f.start - *forced_sent_at_ : Time::zero();
-  const Time deadline = params_.safety.forced_sampling_deadline;
-  const auto fail = [&](const std::string& what) { find(SafetyFunction::ForcedDynamicSampling, &f, what); };
+  const Time deadline = params_.forced_sampling_deadline;
+  const auto fail = [&](const std::string& what) { find(SafetyFunction::ForcedDynamicSampling, f, what); };
   if (after > deadline)
     fail("the query came " + sim::format_time(after) + " after the test command, later than " + sim::format_time(deadline));
   if (purpose == P::ForcedError1 && !f.error1)
@@ -370,27 +370,27 @@ void Master::check_forced_sampling(const FrameResult& f) {
     fail("an error message stayed active after forced sampling was switched off (port 0)");
 }
 
-void Master::check_following_error(const FrameResult& f) {
-  if (!params_.safety.following_error) return;
-  const std::uint64_t setpoint = params_.safety.setpoint.at(f.start, position_bits_);
+void SafetyMonitor::check_following_error(const FrameResult& f) {
+  if (!params_.following_error) return;
+  const std::uint64_t setpoint = params_.setpoint.at(f.start, position_bits_);
   const std::int64_t lag = ring_distance(f.position, setpoint, position_bits_);
-  const bool beyond = magnitude(lag) > params_.safety.following_error_limit;
+  const bool beyond = magnitude(lag) > params_.following_error_limit;
   if (beyond && !lag_state_)
-    find(SafetyFunction::FollowingError, &f,
+    find(SafetyFunction::FollowingError, f,
          "following error " + std::to_string(lag) + " LSB (position " + std::to_string(f.position) + ", set-point " +
-             std::to_string(setpoint) + ", limit " + std::to_string(params_.safety.following_error_limit) + ")");
+             std::to_string(setpoint) + ", limit " + std::to_string(params_.following_error_limit) + ")");
   lag_state_ = beyond;
 }
 
 // 2.6 (echo) and 2.6.1 (I = 5 / 6 after Busy): the encoder acknowledges what it wrote.
-void Master::check_acknowledgement(const FrameResult& f) {
-  if (!params_.safety.acknowledgements) return;
+void SafetyMonitor::check_acknowledgement(const FrameResult& f) {
+  if (!params_.acknowledgements) return;
   const auto sent_address = static_cast<std::uint8_t>(f.payload.value_or(0) >> 16);
   const auto sent_value = static_cast<std::uint16_t>(f.payload.value_or(0));
   if (f.command == MC::EncoderReceiveParameters &&
       (f.outcome == FrameOutcome::Ok || f.outcome == FrameOutcome::EchoMismatch) &&
       (f.echo_address != sent_address || f.echo_parameter != sent_value))
-    find(SafetyFunction::Acknowledgements, &f,
+    find(SafetyFunction::Acknowledgements, f,
          "2.1 write of " + std::to_string(sent_value) + " to address " + std::to_string(sent_address) +
              " acknowledged as " + std::to_string(f.echo_parameter) + " at " + std::to_string(f.echo_address));
   // The write frame's own additional data come before its supplement: the acknowledgment follows.
@@ -405,7 +405,7 @@ void Master::check_acknowledgement(const FrameResult& f) {
     const auto want = static_cast<std::uint8_t>(lsb ? acknowledgement_due_->value : acknowledgement_due_->value >> 8);
     const auto address = static_cast<std::uint8_t>(d.data >> 8), byte = static_cast<std::uint8_t>(d.data);
     if (address != acknowledgement_due_->address || byte != want)
-      find(SafetyFunction::Acknowledgements, &f,
+      find(SafetyFunction::Acknowledgements, f,
            std::string("2.2 write acknowledged (I = ") + (lsb ? "5" : "6") + ") as address " + std::to_string(address) +
                ", byte " + std::to_string(byte) + "; written: address " + std::to_string(acknowledgement_due_->address) +
                ", byte " + std::to_string(want));
@@ -413,11 +413,16 @@ void Master::check_acknowledgement(const FrameResult& f) {
   }
 }
 
+// The safety functions judge every frame (SafetyMonitor) after the words the start-up reads are in.
+void Master::note_safety(FrameResult& f) {
+  collect_words(f);
+  safety_.on_frame(f, current_->purpose, position_bits_);
+}
+
 // The words the safety start-up reads: the 2.1 manufacturer words come through VerifyChecksum,
 // those of the 2.2 area through additional data 1.
 void Master::collect_words(const FrameResult& f) {
   const P purpose = current_->purpose;
-  if (purpose == P::ErrorSources && f.outcome == FrameOutcome::Ok) safety_.error_sources = f.echo_parameter;
   if (purpose != P::Endat22Lsb && purpose != P::Endat22Msb) return;
   if (f.outcome != FrameOutcome::Ok || f.additional_data.empty()) return;
   const unsigned w = current_->manufacturer_word;
@@ -433,36 +438,34 @@ void Master::finish_checksums(bool endat22) {
   std::uint16_t sum = 0;
   for (unsigned w = 0; w < 63; ++w) sum = static_cast<std::uint16_t>(sum + e[w]);
   if (endat22) {
-    safety_.checksum63_stored = e[63];
-    safety_.checksum63_computed = sum;
+    safety_.report().checksum63_stored = e[63];
+    safety_.report().checksum63_computed = sum;
   }
   if (checksum_) {
-    safety_.checksum47_stored = checksum_->stored;
-    safety_.checksum47_computed = checksum_->computed;
+    safety_.report().checksum47_stored = checksum_->stored;
+    safety_.report().checksum47_computed = checksum_->computed;
   }
   const bool ok47 = checksum_ && checksum_->ok();
   if (params_.safety.checksums) {
     if (!ok47)
-      find(SafetyFunction::Checksums, nullptr,
-           checksum_ && checksum_->complete ? "word 47 " + std::to_string(checksum_->stored) + " but words 4 .. 46 sum to " +
+      safety_.find(SafetyFunction::Checksums, kernel_.now(), checksum_ && checksum_->complete ? "word 47 " + std::to_string(checksum_->stored) + " but words 4 .. 46 sum to " +
                                                   std::to_string(checksum_->computed) + " (3.5.26)"
                                             : "the words 4 .. 47 could not all be read");
-    if (endat22 && !complete) find(SafetyFunction::Checksums, nullptr, "the words of the EnDat 2.2 area could not all be read");
+    if (endat22 && !complete) safety_.find(SafetyFunction::Checksums, kernel_.now(), "the words of the EnDat 2.2 area could not all be read");
     else if (endat22 && e[63] != sum)
-      find(SafetyFunction::Checksums, nullptr,
-           "word 63 of the EnDat 2.2 area " + std::to_string(e[63]) + " but words 0 .. 62 sum to " + std::to_string(sum) +
+      safety_.find(SafetyFunction::Checksums, kernel_.now(), "word 63 of the EnDat 2.2 area " + std::to_string(e[63]) + " but words 0 .. 62 sum to " + std::to_string(sum) +
                " (3.9.37)");
   }
   if (params_.safety.position_value_2) {
     if (complete && checksum_ && checksum_->complete)
-      position2_parameters_ = position2_parameters(checksum_words_, e);
+      safety_.set_position2_parameters(position2_parameters(checksum_words_, e));
     else
-      find(SafetyFunction::PositionValue2, nullptr, "the encoder's parameters for the comparison could not be read");
+      safety_.find(SafetyFunction::PositionValue2, kernel_.now(), "the encoder's parameters for the comparison could not be read");
   }
 }
 
-void Master::check_position_value_2(const FrameResult& f) {
-  if (!params_.safety.position_value_2 || !position2_parameters_) return;
+void SafetyMonitor::check_position_value_2(const FrameResult& f) {
+  if (!params_.position_value_2 || !position2_parameters_) return;
   for (const auto& d : f.additional_data) {
     if (!d.crc_ok || d.information() < I::PositionValue2Word1 || d.information() > I::PositionValue2Word3) continue;
     const unsigned k = static_cast<unsigned>(d.information()) - static_cast<unsigned>(I::PositionValue2Word1);
@@ -487,10 +490,10 @@ void Master::check_position_value_2(const FrameResult& f) {
   const Position2Parameters& p = *position2_parameters_;
   const auto accuracy = p.accuracy_at(r.velocity);
   if (!accuracy) {
-    ++safety_.comparisons_out_of_range;
+    ++report_.comparisons_out_of_range;
     return;
   }
-  ++safety_.position_comparisons;
+  ++report_.position_comparisons;
   // 3.9.24: position value 2 = position value 1 + offset (3.9.13: or minus it, reversed).
   const std::uint64_t expected = p.reversed ? static_cast<std::uint64_t>(p.offset) - r.position1
                                             : r.position1 + static_cast<std::uint64_t>(p.offset);
@@ -501,7 +504,7 @@ void Master::check_position_value_2(const FrameResult& f) {
   if (p.comparison_bits > 0 && p.comparison_bits < position_bits_)
     tolerance = std::max<std::uint64_t>(tolerance, std::uint64_t{1} << (position_bits_ - p.comparison_bits));
   if (magnitude(deviation) > tolerance)
-    find(SafetyFunction::PositionValue2, &f,
+    find(SafetyFunction::PositionValue2, f,
          "position value 2 " + std::to_string(r.value) + " deviates " + std::to_string(deviation) +
              " LSB from position value 1 " + std::to_string(r.position1) + " (frame #" + std::to_string(r.frame) +
              "), more than the stored accuracy " + std::to_string(tolerance) + " LSB at " +

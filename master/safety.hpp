@@ -13,8 +13,10 @@
 #include <string_view>
 #include <vector>
 
-#include "endatsim/sim/parameter.hpp"
+#include "endatsim/master/frame_result.hpp"
+#include "endatsim/master/operation.hpp"
 #include "endatsim/protocol/protocol.hpp"
+#include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/time.hpp"
 
 namespace endatsim::master {
@@ -120,6 +122,62 @@ struct SafetyReport {
   std::optional<std::uint16_t> operating_status_error_sources;  // additional data 2 (2.3.5.3)
   std::optional<std::uint16_t> checksum47_stored, checksum47_computed, checksum63_stored, checksum63_computed;
   std::size_t count(SafetyFunction f) const;
+};
+
+// The safety functions' checks of every frame: error messages 1 and 2 (2.3.1), forced dynamic
+// sampling as the start-up forces it (3.5.3), the command set (2.3, 3.5.22), the acknowledgment
+// of writes (2.6, 2.6.1), the following error and the comparison of position value 2 (3.9.11,
+// 3.9.20, 3.9.24). It keeps the report and says when word 0 is due to be read; the master
+// schedules the frames and runs the start-up's own steps (CRC self-test, checksums, release).
+class SafetyMonitor {
+ public:
+  explicit SafetyMonitor(const SafetyParams& params) : params_(params) {}
+
+  SafetyReport& report() { return report_; }
+  const SafetyReport& report() const { return report_; }
+  // A frame ended; `purpose` is its operation's, `position_bits` what the master clocks. Sets
+  // f.error_detected: what the master made of F1 and F2.
+  void on_frame(FrameResult& f, Operation::Purpose purpose, unsigned position_bits);
+  void find(SafetyFunction function, const FrameResult& f, std::string message);
+  void find(SafetyFunction function, Time now, std::string message);  // not tied to a frame
+  // 3.4.1: word 0 is to be read (an error message appeared).
+  bool error_sources_due() const { return error_sources_due_; }
+  void clear_error_sources_due() { error_sources_due_ = false; }
+  // What the comparison of position value 2 needs, once the start-up has read it.
+  void set_position2_parameters(const Position2Parameters& p) { position2_parameters_ = p; }
+
+ private:
+  void check_error_messages(FrameResult& f);
+  void check_command_set(const FrameResult& f);
+  void check_forced_sampling(const FrameResult& f);
+  void check_following_error(const FrameResult& f);
+  void check_acknowledgement(const FrameResult& f);
+  void check_position_value_2(const FrameResult& f);
+
+  const SafetyParams& params_;
+  SafetyReport report_;
+  Operation::Purpose purpose_ = Operation::Purpose::None;  // of the frame being judged
+  unsigned position_bits_ = 0;
+  bool error_sources_due_ = false;
+  bool error_state_ = false, disagree_state_ = false, lag_state_ = false;
+  std::optional<Time> forced_sent_at_;
+  bool forcing_ = false;
+  std::optional<std::pair<std::uint64_t, Time>> last_good_;  // position and FE1 of the last good read (velocity)
+  struct Position2Read {
+    std::uint64_t position1 = 0;
+    Time at{0};
+    std::uint64_t frame = 0;
+    double velocity = 0;
+    std::uint64_t value = 0;
+    unsigned words = 0;
+  };
+  std::optional<Position2Read> position2_;
+  std::optional<Position2Parameters> position2_parameters_;
+  struct Written {
+    std::uint8_t address = 0;
+    std::uint16_t value = 0;
+  };
+  std::optional<Written> acknowledgement_due_;
 };
 
 // The bit sequences of known result the CRC self-test feeds to the master's CRC evaluation: the
