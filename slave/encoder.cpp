@@ -211,6 +211,9 @@ void Encoder::on_rising_edge() {
         emit_answer_bit();
       }
       break;
+    case State::HandoverLevel:
+      hand_over_for_supplement();
+      break;
     case State::SupplementHunt:
       // docs/model.md §4: the line floats (fail-safe HIGH) until the master drives its lead
       // bits, so the encoder waits for a LOW before it takes a HIGH as the start bit. Right
@@ -464,16 +467,25 @@ void Encoder::emit_answer_bit() {
     return;
   }
   if (command_->supplement) {
-    // docs/model.md §4: the encoder hands DATA to the master for the command supplement.
-    release();
-    state_ = State::SupplementHunt;
-    release_clock_ = clock_;
-    seen_low_ = false;
+    if (params_.supplement_handover == SupplementHandover::EndLevel) {
+      drive(true);  // 2.3: the level after the CRC says that no additional data follows
+      state_ = State::HandoverLevel;
+      return;
+    }
+    hand_over_for_supplement();
     return;
   }
   // docs/model.md §2: after the last CRC bit DATA goes HIGH and stays HIGH for t_m.
   drive(true);
   state_ = State::EndOfData;
+}
+
+// docs/model.md §4: the encoder hands DATA to the master for the command supplement.
+void Encoder::hand_over_for_supplement() {
+  release();
+  state_ = State::SupplementHunt;
+  release_clock_ = clock_;
+  seen_low_ = false;
 }
 
 void Encoder::load_continuous_word() {

@@ -87,7 +87,8 @@ class Encoder {
 
  private:
   enum class State : std::uint8_t {
-    Idle, Header, Payload, Answer, EndOfData, ContinuousGap, Type1, SupplementHunt, Supplement, SupplementDone
+    Idle, Header, Payload, Answer, EndOfData, ContinuousGap, Type1, HandoverLevel, SupplementHunt, Supplement,
+    SupplementDone
   };
   // A memory operation decided during a frame and carried out when it completes.
   struct Pending {
@@ -131,6 +132,7 @@ class Encoder {
   void latch_bus_address_error();
   void written(const Selection& s, std::uint8_t address);
   void clock_after_supplement();
+  void hand_over_for_supplement();
   bool error_message_2() const;
   bool error_present() const;
   bool drives_bus() const;

@@ -178,6 +178,8 @@ static_assert(static_cast<std::size_t>(InterruptedNvmWrite::Torn) == 1);
 constexpr std::array<std::string_view, 2> kActivations{"reset", "word14_write"};
 static_assert(static_cast<std::size_t>(EibActivation::Word14Write) == 1);
 constexpr std::array<std::string_view, 2> kEibPositions{"error_bit", "not_supported"};
+constexpr std::array<std::string_view, 2> kHandovers{"release", "end_level"};
+static_assert(static_cast<std::size_t>(SupplementHandover::EndLevel) == 1);
 static_assert(static_cast<std::size_t>(EibPositionBeforeCommissioning::NotSupported) == 1);
 
 constexpr std::int64_t ps(Time t) { return t.count(); }
@@ -228,6 +230,10 @@ const std::array kRows{
         "bit (a guess, below the shortest t_m)."},
     Row{"supplement_ignore_clocks", &EncoderParams::supplement_ignore_clocks, 0, 16, "2.3",
         "Rising edges the encoder ignores DATA for after handing the line to the master's supplement (a guess)."},
+    Row{"supplement_handover", choice<&EncoderParams::supplement_handover, kHandovers>(), 0, 0, "2.3",
+        "After the answer of a 2.2 command with a command supplement: release DATA at once for the master's "
+        "supplement, or end_level: first drive the level that says nothing follows (HIGH) for one clock, then "
+        "release; the figures are lost."},
     Row{"output_delay", &EncoderParams::output_delay, 0, ps(sim::us(1)), "", "Clock input to data output inside the encoder."},
     Row{"asynchronous_time_delay_step", &EncoderParams::asynchronous_time_delay_step, 0, ps(sim::ms(1)), "2.4.2.3",
         "With oversampling activated (word 3, 3.4.4), time delay k selects the position sampled k steps of this "

@@ -60,6 +60,14 @@ enum class EibActivation : std::uint8_t { Reset, Word14Write };
 // run. NotSupported: the mode command is answered as not supported (type I, cause 1).
 enum class EibPositionBeforeCommissioning : std::uint8_t { ErrorBit, NotSupported };
 
+// What DATA shows after the answer of a 2.2 mode command with a command supplement (2.3: "following
+// transfer of the data and the CRC, it can then be decided whether and to what extent additional
+// data follows by determining the logic level on the data line"; the figures of 2.4.2 ff. are
+// lost, docs/model.md §4). Release: the encoder releases DATA after its last bit, for the
+// master's supplement. EndLevel: it first drives the level that ends its answer (HIGH: nothing
+// follows) for one clock period, as after any other answer, then releases.
+enum class SupplementHandover : std::uint8_t { Release, EndLevel };
+
 // Position source: fixed (counts_per_s = 0) or constant velocity, wrapping at 2^position_bits.
 struct MotionProfile {
   std::uint64_t start = 0;
@@ -135,6 +143,7 @@ struct EncoderParams {
   // ... and before it, ignores DATA for this many rising edges after handing the line over,
   // while its own last bit fades (guess; the master's lead bits must be more).
   unsigned supplement_ignore_clocks = 3;
+  SupplementHandover supplement_handover = SupplementHandover::Release;
   Time output_delay = sim::ns(20);             // clock input -> data output inside the encoder
   // 2.4.2.3 / 3.4.4 (guess: "the exact evaluation of the oversampling is described in the
   // specifications"): with oversampling activated, "time delay k" selects the position sampled

@@ -319,3 +319,60 @@ TEST(EncoderBusAddress, ErrorBitOneHoldsUntilWordFourIsZeroAndThePowerCycles) {
   b.encoder.power_interruption(us(100));
   EXPECT_EQ(f1_of_a_frame_at(us(1000)), "1") << "a power cycle with an address in word 4 keeps it";
 }
+
+namespace {
+
+// The times the encoder's DATA driver enable (its logic side) switches off.
+struct EnableLog {
+  explicit EnableLog(sim::Kernel& k, line::Line& line) : k_(k), enable_(line.encoder().data_enable) {
+    enable_.on_change(sim::bind<&EnableLog::on_change>(this));
+  }
+  void on_change(std::uint64_t level) {
+    if (level == 0) off.push_back(k_.now());
+  }
+  sim::Kernel& k_;
+  sim::Signal& enable_;
+  std::vector<Time> off;
+};
+
+// FE1's release and the release after the answer of "Encoder send position values and selection
+// of memory area" (8 bits, 2.2: S F1 F2, 8 bits, CRC on RE11 .. RE26), with its slot levels.
+struct Handover {
+  std::vector<Time> off;
+  std::vector<Time> rising;
+  std::string slots;
+};
+
+Handover handover(slave::SupplementHandover h) {
+  auto p = encoder_params(protocol::EndatVersion::V2_2, 8, 0xA5);
+  p.supplement_handover = h;
+  Bench b(p);
+  EnableLog log(b.k, b.line);
+  const auto bits = protocol::info(protocol::ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea).bits;
+  ScriptedClock clock(b.k, b.line, us(1), 30, bits);
+  b.k.run();
+  return {log.off, clock.rising(), b.sampler.slots(26, 28)};
+}
+
+}  // namespace
+
+// 2.3 ("following transfer of the data and the CRC, it can then be decided whether and to what
+// extent additional data follows by determining the logic level on the data line") with the
+// command supplement of 2.4.2: by default the encoder releases DATA on the rising edge after its
+// last CRC bit, for the master's supplement; with supplement_handover end_level it drives the
+// HIGH that ends its answer for one clock period first and releases on the next rising edge.
+TEST(EncoderSupplementHandover, EndLevelDrivesHighForOneClockBeforeReleasing) {
+  const auto release = handover(slave::SupplementHandover::Release);
+  const auto end_level = handover(slave::SupplementHandover::EndLevel);
+  ASSERT_EQ(release.off.size(), 2U);  // FE1, then the handover
+  ASSERT_EQ(end_level.off.size(), 2U);
+  // RE_k as the master drives it; the encoder sees it after the line's delays (well within half a period).
+  const auto re = [&](unsigned k) { return release.rising.at(k - 1); };
+  EXPECT_GT(release.off[1], re(27));
+  EXPECT_LT(release.off[1], re(27) + ns(500));
+  EXPECT_GT(end_level.off[1], re(28));
+  EXPECT_LT(end_level.off[1], re(28) + ns(500));
+  EXPECT_EQ(end_level.off[1] - release.off[1], us(1));
+  // The slot after the last CRC bit reads HIGH either way (fail-safe HIGH when released, docs/model.md §11).
+  EXPECT_EQ(end_level.slots.substr(1, 1), "1");
+}

@@ -453,3 +453,26 @@ TEST(MasterReports, TheJsonResultsCarryTheCrcOfEachAdditionalDatum) {
   EXPECT_TRUE(good.at("crc_ok").get<bool>());
   EXPECT_EQ(good.at("crc_received"), good.at("crc_expected"));
 }
+
+// The master's supplement goes through with either handover after the encoder's answer (2.3,
+// 2.4.2; supplement_handover): what it sends is what the encoder takes, the read comes back, and
+// the checker finds nothing.
+TEST(MasterParameterAccess, TheSupplementGoesThroughWithEitherHandover) {
+  for (const auto h : {slave::SupplementHandover::Release, slave::SupplementHandover::EndLevel}) {
+    auto s = scenario(30, MHz(4), true,
+                      {op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0x45),
+                       op(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, 0xA1), await_not_busy(),
+                       op(MC::EncoderSendPositionValuesAndSendParameter, 0x0D), await_not_busy()});
+    s.encoder.supplement_handover = h;
+    const auto r = scenarios::run_scenario(s);
+    ASSERT_TRUE(r.finished);
+    std::vector<std::uint32_t> sent, taken;
+    for (const auto& f : r.frames)
+      if (f.supplement) sent.push_back(*f.supplement);
+    for (const auto& f : r.encoder_frames)
+      if (f.supplement) taken.push_back(*f.supplement);
+    EXPECT_EQ(taken, sent);
+    EXPECT_EQ(last_of(r, 5).additional_data.at(0).data, 0x0D19);
+    EXPECT_TRUE(r.violations.empty()) << violations(r);
+  }
+}
