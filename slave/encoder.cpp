@@ -445,7 +445,7 @@ void Encoder::answer_parameter_frame() {
   state_ = State::Answer;
   first_answer_clock_ = params_.earliest_start_bit_clock + protocol::kPayloadBits;
   if (!error && pending_.kind == Pending::Kind::Write)
-    note_nvm_write(pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
+    nvm_.begin(memory_, pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
   const bool in_frame = params_.t_ac_placement == MemoryAccessPlacement::InFrame;
   answer_not_before_ = kernel_.now() + (in_frame && !error ? t_ac : Time::zero());
   if (!in_frame && !error && memory_access) busy_until_ = std::max(busy_until_, kernel_.now() + t_ac);
@@ -540,7 +540,7 @@ void Encoder::process_supplement() {
       in_progress_ = {error ? Pending::Kind::None : Pending::Kind::Write, selection_area_, address, parameter};
       memory_error_ = error.has_value();
       start_memory_access(params_.t_ac_write);
-      if (!error) note_nvm_write(selection_area_, address, parameter, busy_until_);
+      if (!error) nvm_.begin(memory_, selection_area_, address, parameter, busy_until_);
       break;
     }
     case MC::EncoderSendPositionValuesAndSendParameter: {  // 2.5.1
@@ -578,7 +578,7 @@ void Encoder::on_memory_access_done() {
       return;
     case Pending::Kind::Write:
       memory_.write(in_progress_.selection, in_progress_.address, in_progress_.value);
-      if (nvm_write_) nvm_write_->applied = true;
+      nvm_.applied();
       written(in_progress_.selection, in_progress_.address);
       break;
     default:
@@ -629,7 +629,7 @@ void Encoder::finish_frame() {
   ready_at_ = kernel_.now() + params_.t_r;
   if (f.too_many_clocks && pending_.kind != Pending::Kind::None) {
     f.error = ErrorCause::MrsFrameDisrupted;  // the access is discarded
-    nvm_write_.reset();
+    nvm_.discard();
     return;
   }
   switch (pending_.kind) {
@@ -638,7 +638,7 @@ void Encoder::finish_frame() {
       break;
     case Pending::Kind::Write:
       memory_.write(pending_.selection, pending_.address, pending_.value);
-      if (nvm_write_) nvm_write_->applied = true;
+      nvm_.applied();
       written(pending_.selection, pending_.address);
       break;
     case Pending::Kind::Reset:
@@ -694,7 +694,7 @@ void Encoder::set_t_cal(Time t_cal) {
 
 void Encoder::power_interruption(Time duration) {
   require(duration > Time::zero() && duration <= kMaxFaultTime, "a power interruption lasts 0 .. 10 s");
-  interrupt_nvm_write();
+  nvm_.interrupt(memory_, kernel_.now(), params_.interrupted_nvm_write == InterruptedNvmWrite::Torn);
   state_ = State::Idle;
   recovery_timer_.cancel();
   end_marker_timer_.cancel();
@@ -720,27 +720,6 @@ void Encoder::set_stuck_error_messages(bool error1_stuck, bool error2_stuck) {
 void Encoder::slip(std::int64_t steps) { positions_.slip(steps); }
 
 void Encoder::set_position2_fault(std::int64_t deviation) { params_.sensors.position2_fault = deviation; }
-
-void Encoder::note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at) {
-  const auto old = memory_.read(s, address);
-  if (!old) return;
-  nvm_write_ = NvmWrite{s, address, old.value, value, done_at, false};
-}
-
-// A write cut short keeps the old word or is torn (InterruptedNvmWrite); one whose t_ac had
-// run out is programmed even if its frame had not ended yet.
-void Encoder::interrupt_nvm_write() {
-  if (!nvm_write_) return;
-  const NvmWrite w = *nvm_write_;
-  nvm_write_.reset();
-  if (kernel_.now() >= w.done_at) {
-    if (!w.applied) memory_.force(w.selection, w.address, w.new_value);
-    return;
-  }
-  const bool torn = params_.interrupted_nvm_write == InterruptedNvmWrite::Torn;
-  memory_.force(w.selection, w.address,
-                torn ? static_cast<std::uint16_t>((w.new_value & 0xFF00) | (w.old_value & 0x00FF)) : w.old_value);
-}
 
 // 3.4.2: word 1 bit 5 reports cyclic mode while word 3 activates it.
 void Encoder::latch_errors() {

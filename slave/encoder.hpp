@@ -120,8 +120,6 @@ class Encoder {
   void adopt_encoder_type(unsigned position_bits);
   void complete_commissioning();
   std::optional<protocol::ErrorCause> not_initiated(std::optional<MemoryArea> area) const;
-  void note_nvm_write(const Selection& s, std::uint8_t address, std::uint16_t value, Time done_at);
-  void interrupt_nvm_write();
   void latch_errors();
   bool temperature_exceeded() const;
   bool function_activated(protocol::parameters::EncoderFunction f) const;
@@ -182,15 +180,7 @@ class Encoder {
   std::uint8_t test_port_21_ = 0;               // 2.8: port for "Encoder send test values"
   bool memory_error_ = false;
   bool transmission_incomplete_ = false;        // A2 cause 3, for the next acknowledgment
-  // The word the NVM is programming (what a power interruption leaves).
-  struct NvmWrite {
-    Selection selection;
-    std::uint8_t address = 0;
-    std::uint16_t old_value = 0, new_value = 0;
-    Time done_at{0};
-    bool applied = false;
-  };
-  std::optional<NvmWrite> nvm_write_;
+  NvmProgramming nvm_;                          // the word being programmed (power interruption)
   bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command
   std::optional<bool> bus_selection_after_frame_;
   bool offline_ = false;                        // running up after power-on or reset (2.3.3)

@@ -274,4 +274,23 @@ void Memory::activate_on_reset() {
     image_.areas[Area::OperatingParameters2] = operating_parameters2_defaults_;
 }
 
+void NvmProgramming::begin(const Memory& memory, const Selection& s, std::uint8_t address, std::uint16_t value,
+                           sim::Time done_at) {
+  const auto old = memory.read(s, address);
+  if (!old) return;
+  write_ = Write{s, address, old.value, value, done_at, false};
+}
+
+void NvmProgramming::interrupt(Memory& memory, sim::Time now, bool torn) {
+  if (!write_) return;
+  const Write w = *write_;
+  write_.reset();
+  if (now >= w.done_at) {
+    if (!w.applied) memory.force(w.selection, w.address, w.new_value);
+    return;
+  }
+  memory.force(w.selection, w.address,
+               torn ? static_cast<std::uint16_t>((w.new_value & 0xFF00) | (w.old_value & 0x00FF)) : w.old_value);
+}
+
 }  // namespace endatsim::slave

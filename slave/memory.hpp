@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "endatsim/protocol/protocol.hpp"
+#include "endatsim/sim/time.hpp"
 
 namespace endatsim::slave {
 
@@ -101,6 +102,31 @@ class Memory {
   std::vector<std::uint16_t> active_operating_;
   bool commissioning_ = false;
   std::uint8_t clear_on_reset_ = 0;  // bit n: word n (0 errors, 1 warnings) written 0000h, cleared by the next reset
+};
+
+// The word the NVM is programming, for what a power interruption leaves of it (a fault the spec
+// says nothing of; EncoderParams::interrupted_nvm_write chooses). Write protection bits already
+// stored survive either way (3.4.3: irreversible): only the word being written changes.
+class NvmProgramming {
+ public:
+  // A write of `value` to the word that will be programmed at `done_at`; a word that cannot be
+  // read is not tracked.
+  void begin(const Memory& memory, const Selection& s, std::uint8_t address, std::uint16_t value, sim::Time done_at);
+  void applied() { if (write_) write_->applied = true; }  // the write reached the memory
+  void discard() { write_.reset(); }                      // the access was discarded
+  // The supply fails at `now`: a write whose time had come is programmed even if its frame had
+  // not ended; one cut short keeps the old word, or with `torn` only its high byte is new.
+  void interrupt(Memory& memory, sim::Time now, bool torn);
+
+ private:
+  struct Write {
+    Selection selection;
+    std::uint8_t address = 0;
+    std::uint16_t old_value = 0, new_value = 0;
+    sim::Time done_at{0};
+    bool applied = false;
+  };
+  std::optional<Write> write_;
 };
 
 }  // namespace endatsim::slave
