@@ -18,7 +18,6 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09;  // 3.5.3 (guess, see docs/model-reference.md)
 using protocol::parameters::kInstructionHighImpedance;
 
 using protocol::parameters::EncoderFunction;
@@ -33,6 +32,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
     : kernel_(kernel), pins_(pins), params_(params),
       memory_((params.validate(), params.memory.value_or(default_memory_image(params)))),
       positions_(params_, memory_), additional_data_(params_, memory_, positions_),
+      errors_(params_, memory_, positions_, additional_data_),
       data_logic_(kernel, "encoder_data_logic", false), enable_logic_(kernel, "encoder_enable_logic", true),
       data_out_delay_(kernel, data_logic_, pins_.data_out, params.output_delay),
       enable_out_delay_(kernel, enable_logic_, pins_.data_enable, params.output_delay),
@@ -44,7 +44,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
   adopt_encoder_type(params_.position_bits);
   unsettled_left_ = params_.unsettled_positions;
   positions_.apply_function_initialization(kernel_.now());
-  latch_bus_address_error();
+  errors_.note_bus_address();
   enable();  // idle: DATA driven LOW, unless word 5 puts the driver at high impedance (2.10)
   if (params_.startup_time > Time::zero()) go_offline(params_.startup_time);
 }
@@ -143,8 +143,8 @@ void Encoder::begin_frame() {
   if (frames_.size() >= 2 * kept_frames_) frames_.erase(frames_.begin(), frames_.end() - static_cast<std::ptrdiff_t>(kept_frames_ - 1));
   frames_.push_back(f);
   ++frame_count_;
-  latch_errors();
-  frames_.back().error_present = error_present();
+  errors_.latch();
+  frames_.back().error_present = errors_.error_present();
   release();
 }
 
@@ -294,7 +294,7 @@ void Encoder::abort_type1(ErrorCause cause) {
 // write completes with its acknowledgment, a 2.2 one when Busy is reset (3.10).
 void Encoder::written(const Selection& s, std::uint8_t address) {
   note_commissioning_write(s, address);
-  latch_bus_address_error();
+  errors_.note_bus_address();
   // 3.10.5: bit 0 = 1 and bit 1 = 0 reset RM of an incremental encoder and set the warning
   // "reference point not reached"; "this does not influence position value and position value 2":
   // the reference found stays in use. A reference mark crossed from then on sets RM again.
@@ -304,30 +304,6 @@ void Encoder::written(const Selection& s, std::uint8_t address) {
     positions_.reset_reference_mark(kernel_.now());
 }
 
-// Word 0 as the error messages see it: the stored bits and an unlatched multiturn overflow.
-std::uint16_t Encoder::error_word() const {
-  const auto overflow = positions_.multiturn_overflow() ? 1U << params_.multiturn_overflow_error_bit : 0U;
-  return static_cast<std::uint16_t>(memory_.operating_status(word::kErrors) | overflow);
-}
-
-bool Encoder::error_message_1() const {
-  const bool forced = additional_data_.test_port() >= kForcedError1First && additional_data_.test_port() < kForcedError1First + 7;
-  return !params_.error_message_1_stuck &&
-         (params_.error1 || forced || eib_not_initiated_ || bus_address_error_ ||
-          (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0);
-}
-
-bool Encoder::error_message_2() const {
-  const bool forced = additional_data_.test_port() >= kForcedError2First && additional_data_.test_port() < kForcedError2First + 7;
-  return !params_.error_message_2_stuck &&
-         (params_.error1 || forced || eib_not_initiated_ || (error_word() & memory_.endat22_word(word::kErrorMessage2Support)) != 0);
-}
-
-bool Encoder::error_present() const {
-  const auto supported = memory_.manufacturer_word(word::kSupportedErrors) | memory_.endat22_word(word::kErrorMessage2Support);
-  return params_.error1 || eib_not_initiated_ || bus_address_error_ || (error_word() & supported) != 0;
-}
-
 void Encoder::answer_position() {
   EncoderFrame& f = frames_.back();
   state_ = State::Answer;
@@ -335,7 +311,7 @@ void Encoder::answer_position() {
   answer_not_before_ = f.start + params_.t_cal_for(command_->version);  // 2.3.2: t_cal runs from FE1
   if (command_->answer == protocol::AnswerFormat::TestValues) {
     const auto it = params_.sensors.test_values.find(test_port_21_);
-    answer_ = protocol::encode_test_values(error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second,
+    answer_ = protocol::encode_test_values(errors_.error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second,
                                            params_.crc);
     return;
   }
@@ -348,7 +324,7 @@ void Encoder::answer_position() {
   }
   // 2.3.1: F2 is low-active; it is only sent with 2.2 mode commands.
   answer_ = protocol::encode_position_frame(command_->version, positions_.position_bits(),
-                                            {error_message_1(), !error_message_2(), f.position}, params_.crc);
+                                            {errors_.error_message_1(), !errors_.error_message_2(), f.position}, params_.crc);
   if (command_->version == EndatVersion::V2_2)
     additional_data_.append(answer_, f.additional_data_status, f.start, f.true_position, busy());
 }
@@ -491,7 +467,7 @@ void Encoder::hand_over_for_supplement() {
 void Encoder::load_continuous_word() {
   EncoderFrame& f = frames_.back();
   answer_ = protocol::encode_position_frame(EndatVersion::V2_1, positions_.position_bits(),
-                                            {error_message_1(), true, f.continuous_positions.back()}, params_.crc);
+                                            {errors_.error_message_1(), true, f.continuous_positions.back()}, params_.crc);
   next_bit_ = 0;
   state_ = State::Answer;
 }
@@ -701,8 +677,7 @@ void Encoder::power_interruption(Time duration) {
   pending_ = {};
   restart_state();  // 2.7: a reset is "the same reaction as switching the power off and on"
   // 3.6.4: only switching the power off and on, with word 4 at 0000h, clears error bit 1.
-  bus_address_error_ = false;
-  latch_bus_address_error();
+  errors_.power_cycled();
   go_offline(duration + params_.startup_time);
 }
 
@@ -720,23 +695,6 @@ void Encoder::set_stuck_error_messages(bool error1_stuck, bool error2_stuck) {
 void Encoder::slip(std::int64_t steps) { positions_.slip(steps); }
 
 void Encoder::set_position2_fault(std::int64_t deviation) { params_.sensors.position2_fault = deviation; }
-
-// 3.4.2: word 1 bit 5 reports cyclic mode while word 3 activates it.
-void Encoder::latch_errors() {
-  const bool cyclic = function_activated(EncoderFunction::CyclicOperation);
-  const auto warnings = params_.warning_sources | (cyclic ? pm::kWarningCyclicOperation : 0) | (temperature_exceeded() ? pm::kWarningTemperatureExceeded : 0);
-  memory_.latch_errors(params_.error_sources, static_cast<std::uint16_t>(warnings));
-}
-
-// 3.4.2 / 3.6.6: warning 2^1 is "only triggered by the internal temperature sensor" (temperature
-// 2, on board: 3.9.2 word 0 bit 3) above the threshold of operating parameters word 6 (0: none),
-// where word 36 says the warning is supported. "Exceeded" is read as strictly above.
-bool Encoder::temperature_exceeded() const {
-  const std::uint16_t threshold = memory_.active_operating_parameters()[word::kTemperatureWarningThreshold];
-  const bool supported = (memory_.manufacturer_word(word::kSupportedWarnings) & pm::kWarningTemperatureExceeded) != 0 &&
-                         (memory_.endat22_word(word::kAdditionalData1Support) & kTemperatureSensor2Support) != 0;
-  return supported && threshold != 0 && params_.sensors.temperature2 > threshold;
-}
 
 void Encoder::set_sensor_values(const SensorValues& v) {
   Sensors& s = params_.sensors;
@@ -761,12 +719,6 @@ void Encoder::select(const Selection& s) {
 }
 
 // EibActivation::Word14Write: the EIB becomes the connected encoder when word 14 is written.
-// 3.6.4: "Error bit 1 is always set if a bit is set in this word [the encoder address, word 4].
-// This can only be cleared by resetting the word to 0000h and switching the power off and on."
-void Encoder::latch_bus_address_error() {
-  if (memory_.operating_parameter(word::kEncoderAddress) != 0) bus_address_error_ = true;
-}
-
 void Encoder::note_commissioning_write(const Selection& s, std::uint8_t address) {
   if (eib_not_initiated_ && params_.eib_activation == EibActivation::Word14Write &&
       s.area == MemoryArea::Manufacturer1 && address == word::kEncoderType)

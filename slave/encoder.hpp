@@ -1,8 +1,9 @@
 // The EnDat encoder (D297403 2, 3): a frame engine, the bit-level state machine that only talks
 // through the line's encoder-side pins (the mode command on RE3 .. RE8, t_cal, the start bit,
 // the answers of 2.3 .. 2.10, the command supplement, t_m), and the parts it hands the contents to:
-// the memory with its areas and write protection (memory.hpp), the position source
-// (position_source.hpp) and the additional data (additional_data.hpp). What an encoder is comes
+// the memory with its areas, write protection and the word being programmed (memory.hpp), the
+// position source (position_source.hpp), the additional data (additional_data.hpp) and the error
+// messages (error_messages.hpp). What an encoder is comes
 // from EncoderParams (encoder_params.hpp); every frame leaves an EncoderFrame as ground truth.
 #pragma once
 
@@ -14,6 +15,7 @@
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/slave/additional_data.hpp"
 #include "endatsim/slave/encoder_params.hpp"
+#include "endatsim/slave/error_messages.hpp"
 #include "endatsim/slave/memory.hpp"
 #include "endatsim/slave/position_source.hpp"
 #include "endatsim/slave/reference.hpp"
@@ -120,19 +122,12 @@ class Encoder {
   void adopt_encoder_type(unsigned position_bits);
   void complete_commissioning();
   std::optional<protocol::ErrorCause> not_initiated(std::optional<MemoryArea> area) const;
-  void latch_errors();
-  bool temperature_exceeded() const;
   bool function_activated(protocol::parameters::EncoderFunction f) const;
   void select(const Selection& s);
   void note_commissioning_write(const Selection& s, std::uint8_t address);
-  std::uint16_t error_word() const;
-  bool error_message_1() const;
-  void latch_bus_address_error();
   void written(const Selection& s, std::uint8_t address);
   void clock_after_supplement();
   void hand_over_for_supplement();
-  bool error_message_2() const;
-  bool error_present() const;
   bool drives_bus() const;
   void start_memory_access(Time t_ac);
   Time recovery_time() const;
@@ -146,6 +141,7 @@ class Encoder {
   Memory memory_;
   PositionSource positions_;
   AdditionalData additional_data_;
+  ErrorMessages errors_;
   sim::Signal data_logic_;
   sim::Signal enable_logic_;
   sim::TransportDelay data_out_delay_;
@@ -185,7 +181,6 @@ class Encoder {
   std::optional<bool> bus_selection_after_frame_;
   bool offline_ = false;                        // running up after power-on or reset (2.3.3)
   unsigned unsettled_left_ = 0;                 // position answers still unsettled after start-up
-  bool bus_address_error_ = false;              // error bit 1 held by a bus address in word 4 (3.6.4)
   bool eib_not_initiated_ = false;              // word 14 type Fh (3.5.7, A2 cause 5)
 
   std::vector<EncoderFrame> frames_;
