@@ -3,8 +3,8 @@
 // the answers of 2.3 .. 2.10, the command supplement, t_m), and the parts it hands the contents to:
 // the memory with its areas, write protection and the word being programmed (memory.hpp), the
 // position source (position_source.hpp), the additional data (additional_data.hpp) and the error
-// messages (error_messages.hpp). What an encoder is comes
-// from EncoderParams (encoder_params.hpp); every frame leaves an EncoderFrame as ground truth.
+// messages (error_messages.hpp). What an encoder is comes from EncoderParams
+// (encoder_params.hpp); every frame leaves an EncoderFrame as ground truth.
 #pragma once
 
 #include <cstdint>
