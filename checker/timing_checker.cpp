@@ -993,6 +993,8 @@ void TimingChecker::begin_capture(Time start, bool at_rest) {
 
 void TimingChecker::finish() {
   frozen_mark_ = settled_frames();  // what finish() reports was all still open
+  if (run_cut_at_ && in_frame_ && (wires_only_ ? decoder_.cuts_frame(*run_cut_at_) : declared_running_))
+    frame_cut_by_end_ = current_.header.index;
   if (wires_only_) {
     const Time end = std::max(kernel_.now(), capture_end_);
     if (capture_ && in_frame_ && decoder_.cuts_frame(end)) frame_cut_by_end_ = current_.header.index;

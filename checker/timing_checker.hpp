@@ -189,6 +189,10 @@ class TimingChecker final {
   std::uint64_t edges_before_first_frame() const { return decoder_.edges_before_first_frame(); }
   std::optional<std::uint64_t> frame_cut_by_end() const { return frame_cut_by_end_; }
 
+  // The run stopped at `end` before the master was done (a limit, or the scenario's max_time): a
+  // frame still going on then was cut, and the number of its clock pulses is not judged, as when a
+  // capture ends inside a frame. Call before finish().
+  void end_run_early(Time end) { run_cut_at_ = end; }
   // Evaluates what is still open (last frame, running contention). Call once after the run.
   void finish();
 
@@ -486,6 +490,7 @@ class TimingChecker final {
   std::uint64_t sample_judged_frame_ = UINT64_MAX;
   bool capture_ = false;  // begin_capture() was called
   std::optional<std::uint64_t> frame_cut_by_end_;
+  std::optional<Time> run_cut_at_;  // end_run_early()
   Time capture_end_{0};
 };
 

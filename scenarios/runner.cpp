@@ -469,6 +469,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   if (watch.reason.empty() && max_time < scenario.max_time && !master.finished() && kernel.now() >= max_time)
     watch.reason = "limit max_time reached: " + sim::format_time(max_time) + " simulated, less than the scenario's " +
                    sim::format_time(scenario.max_time) + " (" + kMaxTimeOption + " changes it)";
+  if (!master.finished()) checker.end_run_early(kernel.now());
   checker.finish();
   recorder.finish();
   if (vcd) vcd->finish();

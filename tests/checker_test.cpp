@@ -327,6 +327,31 @@ TEST(CheckerClockCount, TooFewPulsesAndPulsesBeyondAnEnDat22Frame) {
     }
 }
 
+// A run that stops while a frame is going on (a limit, or the scenario's max_time) cuts that
+// frame: its clock pulses are not counted against 2.3.1 (the master did not stop clocking; the
+// run did), as when a capture ends inside a frame. A frame the master itself ends early still is.
+TEST(CheckerClockCount, AFrameTheEndOfTheRunCutsIsNotJudged) {
+  auto s = make_scenario(1, MHz(1), false, 3);
+  s.script.back().cycle = us(100);
+  for (const Time end : {us(20), ns(30500), us(120), us(137)}) {
+    s.max_time = end;
+    const auto r = scenarios::run_scenario(s);
+    EXPECT_FALSE(r.finished) << end;
+    EXPECT_EQ(count_violations(r, checker::check::kClockCount), 0U) << end;
+  }
+  // The master thinks word 13 says 24 and gives no extra pulse: every frame stops one pulse early.
+  // At 137 us frame #0 (0 .. 42 us) is complete and judged, frame #1 (from 100 us) is cut.
+  s.max_time = us(137);
+  s.master.position_bits = 24;
+  s.master.extra_clock_after_last_bit = false;
+  const auto r = scenarios::run_scenario(s);
+  ASSERT_EQ(count_violations(r, checker::check::kClockCount), 1U);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kClockCount) {
+      EXPECT_EQ(v.frame, 0U);
+    }
+}
+
 TEST(CheckerLineChange, CompensatingWithADelayFromTheOldLineIsReported) {
   // Measured on 10 m (t_D 300 ns); at 2 ms the cable becomes 60 m (800 ns) while reads go on.
   auto s = make_scenario(10, MHz(8), true, 10);
