@@ -15,13 +15,7 @@ namespace {
 constexpr std::int64_t ps(Time t) { return t.count(); }
 constexpr std::int64_t k48BitMax = (std::int64_t{1} << 48) - 1;
 
-// An enum field whose values are 0, 1, ... in the order of `names`.
-template <class Params, auto Field, const auto& Names>
-constexpr sim::ChoiceField<Params> choice() {
-  using E = std::remove_cvref_t<decltype(std::declval<Params&>().*Field)>;
-  return {Names, [](const Params& p) { return static_cast<std::size_t>(p.*Field); },
-          [](Params& p, std::size_t i) { p.*Field = static_cast<E>(i); }};
-}
+using sim::enum_choice;
 
 constexpr std::array<std::string_view, 2> kStartBitDetections{"wait_low_then_high", "first_high"};
 static_assert(static_cast<std::size_t>(StartBitDetection::FirstHigh) == 1);
@@ -70,7 +64,7 @@ const std::array kMaster{
                       "Of those, the last ones the master drives; before them DATA is left undriven so that the "
                       "encoder's release crosses the cable first; at most supplement_lead_bits."},
     sim::Parameter<M>{"start_bit_detection",
-                      choice<M, &M::start_bit_detection, kStartBitDetections>(), 0, 0, "2.3",
+                      enum_choice<M, &M::start_bit_detection, kStartBitDetections>(), 0, 0, "2.3",
                       "How the master finds the start bit: wait for the encoder's LOW, then a HIGH; or the first HIGH "
                       "sample after the mode bits."},
 };
@@ -93,7 +87,7 @@ const std::array kDelayMeasurement{
     sim::Parameter<D>{"count", &D::count, 1, 100, "2.1.2", "Measurements averaged (at least three)."},
     sim::Parameter<D>{"max_rounds", &D::max_rounds, 1, 100, "2.1.2",
                       "Rounds in all when a value strays more than T/8 from the mean."},
-    sim::Parameter<D>{"counter_phase", choice<D, &D::counter_phase, kCounterPhases>(), 0, 0, "2.1.2",
+    sim::Parameter<D>{"counter_phase", enum_choice<D, &D::counter_phase, kCounterPhases>(), 0, 0, "2.1.2",
                       "The f_e counter on its own oscillator (free_running: counts scatter by one, their mean unbiased) "
                       "or restarted with the edge (edge_aligned: truncates; half a count is added)."},
 };

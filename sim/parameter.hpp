@@ -11,6 +11,8 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
 #include <variant>
 
 #include "endatsim/sim/time.hpp"
@@ -24,6 +26,14 @@ struct ChoiceField {
   std::size_t (*get)(const Params&);
   void (*set)(Params&, std::size_t);
 };
+
+// The ChoiceField of an enum member whose values are 0, 1, ... in the order of `names`.
+template <class Params, auto Field, const auto& Names>
+constexpr ChoiceField<Params> enum_choice() {
+  using E = std::remove_cvref_t<decltype(std::declval<Params&>().*Field)>;
+  return {Names, [](const Params& p) { return static_cast<std::size_t>(p.*Field); },
+          [](Params& p, std::size_t i) { p.*Field = static_cast<E>(i); }};
+}
 
 // A frequency (Hertz is an integer type, so it is told apart from a count by this wrapper).
 template <class Params>

@@ -157,12 +157,9 @@ namespace {
 using Row = sim::Parameter<EncoderParams>;
 namespace limit = protocol::limit;
 
-// An enum field whose values are 0, 1, ... in the order of `names`.
 template <auto Field, const auto& Names>
 constexpr sim::ChoiceField<EncoderParams> choice() {
-  using E = std::remove_cvref_t<decltype(std::declval<EncoderParams&>().*Field)>;
-  return {Names, [](const EncoderParams& p) { return static_cast<std::size_t>(p.*Field); },
-          [](EncoderParams& p, std::size_t i) { p.*Field = static_cast<E>(i); }};
+  return sim::enum_choice<EncoderParams, Field, Names>();
 }
 
 constexpr std::array<std::string_view, 5> kKinds{"singleturn", "multiturn", "linear", "touch_probe", "eib"};
