@@ -16,7 +16,7 @@ DECODER = json.JSONDecoder()
 WHITESPACE = " \t\r\n"
 
 
-def skip(text, i):
+def past_whitespace(text, i):
     while i < len(text) and text[i] in WHITESPACE:
         i += 1
     return i
@@ -24,28 +24,28 @@ def skip(text, i):
 
 def spans(text, i, path, out):
     """Parses the value at text[i:], recording (start, end) of every value by its path."""
-    i = skip(text, i)
+    i = past_whitespace(text, i)
     start = i
     if text[i] == "{":
-        i = skip(text, i + 1)
+        i = past_whitespace(text, i + 1)
         while text[i] != "}":
             key, i = DECODER.raw_decode(text, i)
-            i = skip(text, i)
+            i = past_whitespace(text, i)
             assert text[i] == ":"
             i = spans(text, i + 1, path + (key,), out)
-            i = skip(text, i)
+            i = past_whitespace(text, i)
             if text[i] == ",":
-                i = skip(text, i + 1)
+                i = past_whitespace(text, i + 1)
         i += 1
     elif text[i] == "[":
-        i = skip(text, i + 1)
+        i = past_whitespace(text, i + 1)
         k = 0
         while text[i] != "]":
             i = spans(text, i, path + (k,), out)
             k += 1
-            i = skip(text, i)
+            i = past_whitespace(text, i)
             if text[i] == ",":
-                i = skip(text, i + 1)
+                i = past_whitespace(text, i + 1)
         i += 1
     else:
         _, i = DECODER.raw_decode(text, i)
