@@ -113,9 +113,9 @@ std::vector<I> Master::additional_data_1_schedule() const {
 // selection of memory area" (2.4.2.2), what the next frame is to carry; it still answers with
 // the position and what was selected before. Additional data 1 selected for something else
 // (a memory read, a script's own choice) is left alone.
-void Master::roll_additional_data_1() {
+void Master::roll_additional_data_1(FrameRequest& request) {
   if (current_->purpose != P::None || current_->kind == Operation::Kind::AwaitNotBusy ||
-      frame_.command != MC::EncoderSendPositionValuesWithAdditionalData)
+      request.command != MC::EncoderSendPositionValuesWithAdditionalData)
     return;
   if (!params_.diagnostics.enabled && !params_.safety.position_value_2) return;
   const auto schedule = additional_data_1_schedule();
@@ -136,8 +136,8 @@ void Master::roll_additional_data_1() {
   }
   ai1_slot_ = (ai1_slot_ + 1) % schedule.size();
   if (now && schedule[ai1_slot_] == *now) return;
-  frame_.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-  supplement_word_ = std::uint32_t{protocol::selection_mrs(schedule[ai1_slot_])} << 16;
+  request.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+  request.payload = std::uint32_t{protocol::selection_mrs(schedule[ai1_slot_])} << 16;
 }
 
 // ---- the setup ----------------------------------------------------------------------------------

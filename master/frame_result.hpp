@@ -75,4 +75,18 @@ struct FrameResult {
   std::optional<Time> delay_count_time;  // measurement frames: counter value x 1/f_e
 };
 
+// What monitors and reports can observe of the master's intentions.
+class MasterObserver {
+ public:
+  virtual ~MasterObserver() = default;
+  virtual void on_frame_start(const FrameResult& frame) = 0;
+  // The master samples DATA for bit slot `clock` (the bit the encoder sent after RE_clock).
+  virtual void on_sample(const FrameResult& frame, unsigned clock, bool value, bool in_data) = 0;
+  virtual void on_frame_end(const FrameResult& frame) = 0;
+  // A result recorded: each frame as it ends (after on_frame_end), and each further word of a
+  // continuous clock (2.3.1) as its CRC arrives, which ends no frame. For outputs written while
+  // the run goes.
+  virtual void on_result(const FrameResult&) {}
+};
+
 }  // namespace endatsim::master
