@@ -216,9 +216,9 @@ sim::Time Node::as_duration(sim::Time min, sim::Time max) const {
   return t;
 }
 
-sim::Hertz Node::as_frequency(sim::Hertz min, sim::Hertz max) const {
-  const std::string range =
-      "a frequency string " + sim::format_frequency(min) + " .. " + sim::format_frequency(max) + " such as \"2 MHz\"";
+sim::Hertz Node::as_frequency(sim::Hertz min, sim::Hertz max, bool or_zero) const {
+  const std::string range = "a frequency string " + std::string(or_zero ? "0 Hz or " : "") + sim::format_frequency(min) +
+                            " .. " + sim::format_frequency(max) + " such as \"2 MHz\"";
   if (!j_.is_string()) fail(range);
   sim::Hertz f = 0;
   try {
@@ -226,7 +226,7 @@ sim::Hertz Node::as_frequency(sim::Hertz min, sim::Hertz max) const {
   } catch (const std::invalid_argument& e) {
     fail_raw(e.what());
   }
-  if (f < min || f > max) fail(range);
+  if ((f < min && !(or_zero && f == 0)) || f > max) fail(range);
   return f;
 }
 

@@ -63,7 +63,8 @@ class Node {
   std::int64_t as_int(std::int64_t min, std::int64_t max) const;
   double as_number(double min, double max, const std::string& unit) const;
   sim::Time as_duration(sim::Time min, sim::Time max) const;
-  sim::Hertz as_frequency(sim::Hertz min, sim::Hertz max) const;
+  // `or_zero`: 0 is allowed besides min .. max.
+  sim::Hertz as_frequency(sim::Hertz min, sim::Hertz max, bool or_zero = false) const;
   // An integer given as a number or as a string in hex ("0xA5B4") or decimal.
   std::uint64_t as_word(std::uint64_t max) const;
   // A 16-bit word written only as a hex string such as "0x8019" (memory images).

@@ -23,7 +23,7 @@ void read_parameter(const Node& v, const sim::Parameter<Params>& row, Params& p)
         if constexpr (std::is_same_v<F, Time Params::*> || std::is_same_v<F, std::optional<Time> Params::*>) {
           p.*field = v.as_duration(Time{row.min}, Time{row.max});
         } else if constexpr (std::is_same_v<F, sim::FrequencyField<Params>>) {
-          p.*field.field = v.as_frequency(row.min, row.max);
+          p.*field.field = v.as_frequency(row.min, row.max, row.zero_allowed);
         } else if constexpr (std::is_same_v<F, sim::NumberField<Params>>) {
           p.*field.field = v.as_number(static_cast<double>(row.min), static_cast<double>(row.max), std::string(field.unit));
         } else if constexpr (std::is_same_v<F, unsigned Params::*>) {

@@ -44,9 +44,6 @@ void MasterParams::validate() const {
   const Time shorter = std::min(period * high_permille / 1000, period - period * high_permille / 1000);
   require(jitter * 2 < shorter, "master clock jitter must be below half the shorter clock phase (" +
                                     sim::format_time(shorter / 2) + "), got " + sim::format_time(jitter));
-  require(measurement.f_e == 0 || measurement.f_e >= sim::MHz(1),
-          "master delay_measurement f_e must be 0 (8 x f_c) or 1 MHz .. 2 GHz, got " +
-              sim::format_frequency(measurement.f_e));
   require(supplement_driven_lead_bits <= supplement_lead_bits,
           "master supplement_driven_lead_bits must be 1 .. supplement_lead_bits (" +
               std::to_string(supplement_lead_bits) + "), got " + std::to_string(supplement_driven_lead_bits));

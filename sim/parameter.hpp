@@ -63,6 +63,7 @@ struct Parameter {
   std::string_view section;  // where D297403 gives the range or meaning; "" for the model's own choice
   std::string_view help;
   bool required = false;     // the key must be given (no default applies)
+  bool zero_allowed = false; // 0 is allowed besides min .. max (it means what the help says)
 };
 
 enum class ParameterType : std::uint8_t { Duration, Frequency, Number, Count, Flag, Word, Choice };
@@ -99,6 +100,11 @@ inline std::string span_text(const std::string& lo, const std::string& hi, bool 
 template <class Params>
 std::string range_text(const Parameter<Params>& p) {
   using parameter_detail::span_text;
+  if (p.zero_allowed && p.min > 0) {
+    Parameter<Params> nonzero = p;
+    nonzero.zero_allowed = false;
+    return "0 or " + range_text(nonzero);
+  }
   switch (type_of(p)) {
     case ParameterType::Duration: return span_text(format_time(Time{p.min}), format_time(Time{p.max}), p.min == 0);
     case ParameterType::Frequency: return span_text(format_frequency(p.min), format_frequency(p.max), p.min == 0);
@@ -181,6 +187,7 @@ std::optional<std::string> out_of_range(const Parameter<Params>& p, const Params
   const auto v = parameter_detail::numeric(p, params);
   // A NaN compares false both ways: outside.
   if (!v || (*v >= static_cast<long double>(p.min) && *v <= static_cast<long double>(p.max))) return std::nullopt;
+  if (p.zero_allowed && *v == 0) return std::nullopt;
   return std::string(owner) + " " + std::string(p.key) + " must be " + range_text(p) +
          (p.section.empty() ? std::string() : " (" + std::string(p.section) + ")") + ", got " + value_text(p, params);
 }

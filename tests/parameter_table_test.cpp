@@ -116,6 +116,9 @@ void check_rows(std::span<const sim::Parameter<Params>> rows, const Params& defa
       return p;
     };
     for (const auto bound : {r.min, r.max}) EXPECT_FALSE(sim::out_of_range(r, read_at(bound), object).has_value());
+    if (r.zero_allowed) {
+      EXPECT_FALSE(sim::out_of_range(r, read_at(0), object).has_value());
+    }
     for (const auto beyond : {r.min - 1, r.max + 1}) {
       try {
         (void)read_at(beyond);
@@ -164,6 +167,37 @@ TEST(ParameterTables, ValidateNamesObjectKeyAndRange) {
   l = {};
   l.encoder.receiver_delay = sim::ns(1001);
   EXPECT_THROW(l.validate(), std::invalid_argument);
+}
+
+// 2.1.2: f_e is 0 (eight times f_c) or a counter clock of its own; what lies between is refused
+// by the loader and the model alike, with the same words.
+TEST(ParameterTables, TheCounterClockIsZeroOrAtLeastOneMegahertz) {
+  const auto rows = master::delay_measurement_parameters();
+  const auto& f_e = *std::find_if(rows.begin(), rows.end(), [](const auto& r) { return r.key == "f_e"; });
+  EXPECT_EQ(sim::range_text(f_e), "0 or 1 MHz .. 2 GHz");
+  master::MasterParams m;
+  for (const sim::Hertz ok : {sim::Hertz{0}, sim::MHz(1), sim::MHz(2000)}) {
+    m.measurement.f_e = ok;
+    EXPECT_NO_THROW(m.validate()) << ok;
+  }
+  m.measurement.f_e = sim::MHz(1) - 1;
+  try {
+    m.validate();
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "master delay_measurement f_e must be 0 or 1 MHz .. 2 GHz (2.1.2), got 999.999 kHz");
+  }
+  const json half = "500 kHz";
+  master::DelayMeasurementParams d;
+  try {
+    input::read_parameter(input::Node(half, "/master/delay_measurement/f_e", "s.json"), f_e, d);
+    FAIL();
+  } catch (const input::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("0 Hz or 1 MHz .. 2 GHz"), std::string::npos) << e.what();
+  }
+  const json zero = "0 Hz";
+  input::read_parameter(input::Node(zero, "/master/delay_measurement/f_e", "s.json"), f_e, d);
+  EXPECT_EQ(d.f_e, 0U);
 }
 
 // Every object with parameter rows: the schema holds exactly the properties the rows generate,
