@@ -361,7 +361,7 @@ void FrameDecoder::note_selection() {
   if (frame_.command != MC::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
   const auto mrs = static_cast<std::uint8_t>(*frame_.supplement >> 16);
   if (!protocol::selects_additional_data(mrs)) return;
-  const unsigned which = (mrs & 0x10) != 0 ? 1 : 0;
+  const unsigned which = protocol::is_additional_data_2(protocol::information_of_mrs(mrs)) ? 1 : 0;
   selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
 }
 

@@ -19,8 +19,6 @@ using P = Operation::Purpose;
 using K = DiagnosisNoteKind;
 namespace dg = protocol::diagnosis;
 
-std::uint8_t mrs_of(protocol::MemoryArea a) { return protocol::info(a).mrs; }
-
 std::string hex(std::uint16_t v) {
   static constexpr char kDigits[] = "0123456789ABCDEF";
   std::string s = "0000h";
@@ -88,13 +86,15 @@ std::vector<I> Master::additional_data_1_schedule() const {
   std::vector<I> diagnosis;
   const DiagnosticsParams& d = params_.diagnostics;
   if (d.enabled) {
-    const std::uint16_t support = diagnosis_.report().additional_data_1_support.value_or(0x001F);  // 3.9.2
+    const std::uint16_t support =
+        diagnosis_.report().additional_data_1_support.value_or(protocol::parameters::kSupportsEveryAdditionalData1);  // 3.9.2
     const std::uint16_t active = diagnosis_.report().configuration.value_or(d.configuration);
     const unsigned numbers = static_cast<unsigned>(std::popcount(static_cast<unsigned>(active & dg::kValuationNumberBits)));
     diagnosis.insert(diagnosis.end(), std::max(numbers, 1U), I::Diagnosis);
-    if (d.temperatures && (support & 0x0004) != 0) diagnosis.push_back(I::Temperature1);
-    if (d.temperatures && (support & 0x0008) != 0) diagnosis.push_back(I::Temperature2);
-    if ((support & 0x0010) != 0) diagnosis.insert(diagnosis.end(), d.additional_sensors, I::AdditionalSensors);
+    namespace pm = protocol::parameters;
+    if (d.temperatures && (support & pm::kSupportsTemperature1) != 0) diagnosis.push_back(I::Temperature1);
+    if (d.temperatures && (support & pm::kSupportsTemperature2) != 0) diagnosis.push_back(I::Temperature2);
+    if ((support & pm::kSupportsAdditionalSensors) != 0) diagnosis.insert(diagnosis.end(), d.additional_sensors, I::AdditionalSensors);
   }
   std::vector<I> position2;
   if (params_.safety.position_value_2)

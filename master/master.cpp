@@ -23,6 +23,9 @@ DiagnosisFrame diagnosis_frame(Operation::Purpose p) {
                                         : DiagnosisFrame::Cyclic;
 }
 
+// 3.5.26: the checksum covers the encoder manufacturer's words 4 .. 46.
+constexpr unsigned kFirstChecksummedWord = protocol::parameters::kManufacturerChecksumFirstWord;
+
 const MasterParams& validated(const MasterParams& p) {
   p.validate();
   return p;
@@ -173,20 +176,23 @@ void Master::expand_startup_routine() {
   // The German brochure, "Spannungsversorgung und Einschalten": EnDat 2.1 mode commands only.
   using P = Operation::Purpose;
   using MC = ModeCommand;
+  namespace word = protocol::word;
   Sequence routine = sequence();
   const auto step = [&routine](MC c, std::uint8_t address = 0, std::uint16_t parameter = 0, P purpose = P::Step) {
     routine.frame(c, address, parameter, purpose);
   };
+  const auto read_manufacturer_word = [&step](unsigned w, P purpose) {
+    step(MC::SelectionOfMemoryArea, protocol::mrs_of(protocol::manufacturer_area(w)));
+    step(MC::EncoderSendParameters, word::manufacturer_address(w), 0, purpose);
+  };
   step(MC::EncoderReceiveReset);  // then reset_wait (50 ms)
-  step(MC::SelectionOfMemoryArea, 0xB9);
-  step(MC::EncoderSendParameters, 0, 0, P::Errors);
-  step(MC::EncoderSendParameters, 1, 0, P::Warnings);
-  step(MC::EncoderReceiveParameters, 0, 0x0000);  // 3.4.1: alarms cleared by writing 0000h
-  step(MC::EncoderReceiveParameters, 1, 0x0000);  // 3.4.2: warnings likewise
-  step(MC::SelectionOfMemoryArea, 0xA1);
-  step(MC::EncoderSendParameters, 13, 0, P::Word13);
-  step(MC::SelectionOfMemoryArea, 0xA5);
-  step(MC::EncoderSendParameters, 37 - 32, 0, P::Word37);
+  step(MC::SelectionOfMemoryArea, protocol::mrs_of(protocol::MemoryArea::OperatingStatus));
+  step(MC::EncoderSendParameters, word::kErrors, 0, P::Errors);
+  step(MC::EncoderSendParameters, word::kWarnings, 0, P::Warnings);
+  step(MC::EncoderReceiveParameters, word::kErrors, 0x0000);  // 3.4.1: alarms cleared by writing 0000h ...
+  step(MC::EncoderReceiveParameters, word::kWarnings, 0x0000);  // 3.4.2: warnings likewise
+  read_manufacturer_word(word::kPositionFormat, P::Word13);
+  read_manufacturer_word(word::kCommandSet, P::Word37);
   // The same routine / 2.1.2: then the propagation delay is measured.
   if (params_.delay_compensation) routine.add(Operation::Kind::MeasureDelay);
   startup_ = {};
@@ -207,7 +213,8 @@ void Master::note_startup(const FrameResult& f) {
     case P::Warnings: startup_.warnings = f.echo_parameter; break;
     case P::Word13:
       startup_.word13 = f.echo_parameter;
-      if (params_.adopt_word13 && (f.echo_parameter & 0x3F) != 0) position_bits_ = f.echo_parameter & 0x3F;
+      if (const unsigned bits = protocol::parameters::decode_position_bits(f.echo_parameter); params_.adopt_word13 && bits != 0)
+        position_bits_ = bits;
       break;
     case P::Word37: startup_.word37 = f.echo_parameter; break;
     default: break;
@@ -218,14 +225,15 @@ void Master::note_startup(const FrameResult& f) {
 // (addresses 0 .. 15 each) with 2.1 frames; then word 47 against the sum of words 4 .. 46.
 void Master::expand_checksum_check() {
   using MC = ModeCommand;
+  namespace word = protocol::word;
   Sequence reads = sequence();
-  for (const auto& [mrs, first] : {std::pair{0xA1, 4U}, {0xA3, 16U}, {0xA5, 32U}}) {
-    reads.frame(MC::SelectionOfMemoryArea, static_cast<std::uint8_t>(mrs));
-    for (unsigned w = first; w < (first == 4 ? 16U : first + 16); ++w)
-      reads.frame(MC::EncoderSendParameters, static_cast<std::uint8_t>(w % 16), 0, Operation::Purpose::ChecksumWord, w);
+  for (unsigned w = kFirstChecksummedWord; w <= word::kManufacturerChecksum; ++w) {
+    if (w == kFirstChecksummedWord || word::manufacturer_address(w) == 0)
+      reads.frame(MC::SelectionOfMemoryArea, protocol::mrs_of(protocol::manufacturer_area(w)));
+    reads.frame(MC::EncoderSendParameters, word::manufacturer_address(w), 0, Operation::Purpose::ChecksumWord, w);
   }
   checksum_ = ChecksumCheck{};
-  checksum_words_.assign(48, 0);
+  checksum_words_.assign(protocol::kManufacturerWords, 0);
   checksum_read_ = 0;
   run_first(reads);
 }
@@ -233,12 +241,11 @@ void Master::expand_checksum_check() {
 void Master::note_checksum_word(const FrameResult& f) {
   if (current_->purpose != Operation::Purpose::ChecksumWord || f.outcome != FrameOutcome::Ok) return;
   checksum_words_.at(current_->manufacturer_word) = f.echo_parameter;
-  if (++checksum_read_ < 44 || current_->manufacturer_word != 47) return;
+  constexpr unsigned kWordsRead = protocol::word::kManufacturerChecksum + 1 - kFirstChecksummedWord;
+  if (++checksum_read_ < kWordsRead || current_->manufacturer_word != protocol::word::kManufacturerChecksum) return;
   checksum_->complete = true;
-  checksum_->stored = checksum_words_[47];
-  std::uint16_t sum = 0;
-  for (unsigned w = 4; w <= 46; ++w) sum = static_cast<std::uint16_t>(sum + checksum_words_[w]);
-  checksum_->computed = sum;
+  checksum_->stored = checksum_words_[protocol::word::kManufacturerChecksum];
+  checksum_->computed = protocol::parameters::manufacturer_checksum(checksum_words_);
 }
 
 // ---- a careful master ---------------------------------------------------------------------
@@ -421,7 +428,7 @@ void Master::answer_accepted(const FrameResult& f) {
   if (f.command != ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
   const auto mrs = static_cast<std::uint8_t>(*f.supplement >> 16);
   if (!protocol::selects_additional_data(mrs)) return;
-  const unsigned which = (mrs & 0x10) != 0 ? 1 : 0;
+  const unsigned which = protocol::is_additional_data_2(protocol::information_of_mrs(mrs)) ? 1 : 0;
   selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
   selection_mrs_[which] = mrs;
 }

@@ -46,8 +46,6 @@ constexpr CrcVector kCrcVectors[] = {
     {48, false, false, true, 0xABCD12345678ULL, 11},
 };
 
-std::uint8_t mrs_of(protocol::MemoryArea a) { return protocol::info(a).mrs; }
-
 }  // namespace
 
 std::string_view to_string(SafetyFunction f) {
@@ -423,7 +421,7 @@ void Master::collect_words(const FrameResult& f) {
   if (f.outcome != FrameOutcome::Ok || f.additional_data.empty()) return;
   const unsigned w = current_->manufacturer_word;
   book_.note_endat22_byte(f, w, purpose == P::Endat22Msb);
-  if (w == 63 && purpose == P::Endat22Msb) finish_checksums(true);
+  if (w == protocol::word::kEndat22Checksum && purpose == P::Endat22Msb) finish_checksums(true);
 }
 
 // 3.5.26 / 3.9.37: word 47 = sum of words 4 .. 46, word 63 = sum of words 0 .. 62, overflow ignored.
@@ -431,10 +429,10 @@ void Master::finish_checksums(bool endat22) {
   bool all_read = false;
   const std::vector<std::uint16_t> e = book_.endat22_words(all_read);
   const bool complete = endat22 && all_read;
-  std::uint16_t sum = 0;
-  for (unsigned w = 0; w < 63; ++w) sum = static_cast<std::uint16_t>(sum + e[w]);
+  const std::uint16_t sum = protocol::parameters::endat22_checksum(e);
+  const std::uint16_t stored = e[protocol::word::kEndat22Checksum];
   if (endat22) {
-    safety_.report().checksum63_stored = e[63];
+    safety_.report().checksum63_stored = stored;
     safety_.report().checksum63_computed = sum;
   }
   if (checksum_) {
@@ -448,8 +446,8 @@ void Master::finish_checksums(bool endat22) {
                                                   std::to_string(checksum_->computed) + " (3.5.26)"
                                             : "the words 4 .. 47 could not all be read");
     if (endat22 && !complete) safety_.find(SafetyFunction::Checksums, kernel_.now(), "the words of the EnDat 2.2 area could not all be read");
-    else if (endat22 && e[63] != sum)
-      safety_.find(SafetyFunction::Checksums, kernel_.now(), "word 63 of the EnDat 2.2 area " + std::to_string(e[63]) + " but words 0 .. 62 sum to " + std::to_string(sum) +
+    else if (endat22 && stored != sum)
+      safety_.find(SafetyFunction::Checksums, kernel_.now(), "word 63 of the EnDat 2.2 area " + std::to_string(stored) + " but words 0 .. 62 sum to " + std::to_string(sum) +
                " (3.9.37)");
   }
   if (params_.safety.position_value_2) {

@@ -53,8 +53,8 @@ struct SafetyParams {
   bool position_value_2 = false;
   bool forced_dynamic_sampling = false;
   // 3.5.3: port addresses that force error message 1 / 2 (the table lost a column; docs/model-reference.md).
-  std::uint8_t forced_error1_port = 0x01;
-  std::uint8_t forced_error2_port = 0x09;
+  std::uint8_t forced_error1_port = protocol::parameters::kForcedError1FirstPort;
+  std::uint8_t forced_error2_port = protocol::parameters::kForcedError2FirstPort;
   Time forced_sampling_deadline = sim::ms(1);  // 3.5.3: "with one of the next EnDat 2.2 queries (< 1 ms)"
   bool crc_self_test = false;
   bool startup_positions = false;

@@ -49,6 +49,22 @@ std::span<const MemoryAreaInfo> memory_areas();
 const MemoryAreaInfo& info(MemoryArea area);
 std::optional<MemoryArea> memory_area_from_mrs(std::uint8_t mrs);
 std::optional<MemoryArea> memory_area_from_key(std::string_view key);
+inline std::uint8_t mrs_of(MemoryArea area) { return info(area).mrs; }
+
+// 3.5.1: the encoder manufacturer's 48 words lie 16 to an area, words 0..15 in A1 (of which 4..15
+// are defined), 16..31 in A3, 32..47 in A5; the area of a word (its address there is
+// word::manufacturer_address).
+constexpr unsigned kManufacturerWords = 48, kManufacturerWordsPerArea = 16;
+constexpr MemoryArea manufacturer_area(unsigned word) {
+  return word < kManufacturerWordsPerArea       ? MemoryArea::Manufacturer1
+         : word < 2 * kManufacturerWordsPerArea ? MemoryArea::Manufacturer2
+                                                : MemoryArea::Manufacturer3;
+}
+
+// 2.4.2.1 / A2 cause 2: a 2.1 MRS code reads 101x xxx1; 010x xxxx and 011x xxxx are 2.2 codes
+// (additional data selection, 2.4.2.2, and the asynchronous position, 2.4.2.3).
+constexpr bool is_endat21_mrs_code(std::uint8_t mrs) { return (mrs & 0xE1) == 0xA1; }
+constexpr bool is_endat22_mrs_code(std::uint8_t mrs) { return (mrs & 0xE0) == 0x40 || (mrs & 0xE0) == 0x60; }
 
 // 2.4.2.2: MRS codes 0x40 + I select additional data 1 (I = 0..15), 0x50 + (I - 16) additional
 // data 2 (I = 16..31); 0x4F and 0x5F stop sending.

@@ -388,7 +388,7 @@ std::string command_set_string(std::uint16_t word) {
 namespace {
 using F = EncoderFunction;
 constexpr std::array<FunctionBits, 9> kFunctionBits{{
-    {F::ShortRecoveryTime, "short recovery time I", 0x0003, 0x0001},
+    {F::ShortRecoveryTime, "short recovery time I", kShortRecoveryTimeOn | kShortRecoveryTimeOff, kShortRecoveryTimeOn},
     {F::ReferencePulseInitialization, "reference pulse initialization", 0x000C, 0x0004},
     {F::Oversampling, "oversampling", 0x0030, 0x0010},
     {F::CyclicOperation, "EnDat 2.2 cyclic operation", 0x00C0, 0x0040},
@@ -497,8 +497,10 @@ std::uint16_t checksum(std::span<const std::uint16_t> words, unsigned first, uns
   for (unsigned i = first; i <= last; ++i) sum += words[i];
   return u16(sum & 0xFFFF);
 }
-std::uint16_t manufacturer_checksum(std::span<const std::uint16_t> words48) { return checksum(words48, 4, 46); }
-std::uint16_t endat22_checksum(std::span<const std::uint16_t> words64) { return checksum(words64, 0, 62); }
+std::uint16_t manufacturer_checksum(std::span<const std::uint16_t> words48) {
+  return checksum(words48, kManufacturerChecksumFirstWord, word::kManufacturerChecksum - 1);
+}
+std::uint16_t endat22_checksum(std::span<const std::uint16_t> words64) { return checksum(words64, 0, word::kEndat22Checksum - 1); }
 
 // 3.9.2 / 3.9.3
 std::span<const std::string_view> additional_data_1_names() { return kAdditionalData1; }

@@ -71,6 +71,11 @@ constexpr std::uint16_t kWarningCyclicOperation = 0x0020;           // word 1 bi
 constexpr std::uint16_t kWarningReferencePointNotReached = 0x0010;  // word 1 bit 4 (3.4.2)
 std::string bits_string(std::uint16_t word, std::span<const std::string_view> names);  // "lighting, position" or "none"
 
+// ---- 3.10.5 operating parameters 2 word 11: referencing ------------------------------------------
+// Bit 0 = 1 and bit 1 = 0 reset RM of an incremental encoder (and set the warning "reference
+// point not reached").
+constexpr std::uint16_t kReferencingMask = 0x0003, kReferencingResetRm = 0x0001;
+
 // ---- 3.6.5 operating parameters word 5: instructions --------------------------------------------
 constexpr std::uint16_t kInstructionEnergySaving = 0x0001;      // bit 0: energy-saving mode
 constexpr std::uint16_t kInstructionHighImpedance = 0x0002;     // bit 1: data driver at high-impedance (2.10)
@@ -98,6 +103,8 @@ struct FunctionBits {
   std::uint16_t mask;       // the bits of the function
   std::uint16_t activated;  // their value when activated
 };
+// Bits 0/1 stored inversely: 01 selects the short recovery time I, 10 the long one.
+constexpr std::uint16_t kShortRecoveryTimeOn = 0x0001, kShortRecoveryTimeOff = 0x0002;
 std::span<const FunctionBits> function_initialization_bits();
 bool function_activated(std::uint16_t word3, EncoderFunction f);
 std::uint16_t encode_function_initialization(std::span<const EncoderFunction> activated);  // others deactivated
@@ -302,6 +309,7 @@ std::optional<std::string> decode_ordering_designation(std::uint16_t word);  // 
 // Word 47 = word 4 + ... + word 46; EnDat 2.2 word 63 = word 0 + ... + word 62; overflow ignored.
 std::uint16_t checksum(std::span<const std::uint16_t> words, unsigned first, unsigned last);
 // words: the 48 words of the encoder manufacturer (indices 0..3 ignored) / the 64 of area BD.
+constexpr unsigned kManufacturerChecksumFirstWord = 4;
 std::uint16_t manufacturer_checksum(std::span<const std::uint16_t> words48);
 std::uint16_t endat22_checksum(std::span<const std::uint16_t> words64);
 
@@ -336,11 +344,21 @@ std::optional<StepsPerUnit> steps_per_reference_unit(std::span<const std::uint16
 std::optional<std::uint64_t> steps_per_revolution(std::span<const std::uint16_t> words48,
                                                   std::span<const std::uint16_t> words64);
 
+// ---- 3.5.3 forced dynamic sampling of the error messages -------------------------------------------
+// Port addresses of "Encoder send position values and receive test command" that force error
+// message 1 (01h .. 07h) and error message 2 (09h .. 0Fh) until port 00h ends it. The table lost
+// a column (docs/model-reference.md).
+constexpr std::uint8_t kForcedError1FirstPort = 0x01, kForcedError2FirstPort = 0x09, kForcedPortsPerMessage = 7;
+
 // ---- 3.9.2 / 3.9.3 EnDat 2.2 words 0 and 1: supported additional data ------------------------------
 // Word 0 (additional data 1): bit 0 position value 2, 1 test values, 2 temperature sensor 1
 // (external), 3 temperature sensor 2 (on board), 4 additional sensors. Word 1 (additional data 2):
 // bit 0 commutation, 1 acceleration, 2 limit position signals, 3 asynchronous position value,
 // 4 operating status error sources, 5 reserved, 6 position value 2 (2.3.5.2), 7 timestamp.
+constexpr std::uint16_t kSupportsPositionValue2 = 0x0001, kSupportsTestValues = 0x0002,
+                        kSupportsTemperature1 = 0x0004, kSupportsTemperature2 = 0x0008,
+                        kSupportsAdditionalSensors = 0x0010;  // word 0
+constexpr std::uint16_t kSupportsEveryAdditionalData1 = 0x001F;
 std::span<const std::string_view> additional_data_1_names();  // index = bit
 std::span<const std::string_view> additional_data_2_names();
 // Bits by name (throws std::invalid_argument naming the unknown name and the known ones).

@@ -298,9 +298,10 @@ void Encoder::written(const Selection& s, std::uint8_t address) {
   // 3.10.5: bit 0 = 1 and bit 1 = 0 reset RM of an incremental encoder and set the warning
   // "reference point not reached"; "this does not influence position value and position value 2":
   // the reference found stays in use. A reference mark crossed from then on sets RM again.
-  const std::uint16_t rm_reset = 0x0001, rm_reset_mask = 0x0003;
+  namespace pm = protocol::parameters;
   if (s.area == MemoryArea::OperatingParameters2 && address == word::kReferencing &&
-      (memory_.image().areas.at(MemoryArea::OperatingParameters2).at(word::kReferencing) & rm_reset_mask) == rm_reset)
+      (memory_.image().areas.at(MemoryArea::OperatingParameters2).at(word::kReferencing) & pm::kReferencingMask) ==
+          pm::kReferencingResetRm)
     positions_.reset_reference_mark(kernel_.now());
 }
 

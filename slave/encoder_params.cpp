@@ -55,7 +55,7 @@ void EncoderParams::validate() const {
     // the width of its "no valid position" answer.
     const bool eib = protocol::parameters::decode_encoder_type(m.manufacturer_word(word::kEncoderType)) ==
                      protocol::parameters::EncoderType::ExternalInterfaceBox;
-    const unsigned word13 = m.manufacturer_word(word::kPositionFormat) & 0x3F;
+    const unsigned word13 = protocol::parameters::decode_position_bits(m.manufacturer_word(word::kPositionFormat));
     require(word13 == position_bits || (eib && word13 == 0),
             "memory word 13 says " + std::to_string(word13) + " position bits, but position_bits is " +
                 std::to_string(position_bits));
@@ -84,12 +84,12 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   // 3.4.3: the encoder manufacturer's areas and the compensation values are factory protected.
   const std::uint16_t function_init = p.short_t_m_selected ? kShortRecoveryTimeOn : kShortRecoveryTimeOff;
   img.areas[A::OperatingStatus] = {0, 0, 0x0039, function_init};
-  std::vector<std::uint16_t> m(48, 0);
+  std::vector<std::uint16_t> m(protocol::kManufacturerWords, 0);
   m[word::kVersion] = pm::encode_version(2);                       // 3.5.4
   m[word::kOemPartition] = 0x2020;                                 // OEM areas 1 and 2: addresses 0 .. 63
   m[word::kOemPartition + 1] = 0xFFFF;                             // OEM areas 3 and 4: not available
   m[word::kCompensationPartition] = m[word::kCompensationPartition + 1] = 0xFFFF;
-  m[word::kPositionFormat] = static_cast<std::uint16_t>(0x8000 | p.position_bits);  // 3.5.6
+  m[word::kPositionFormat] = pm::encode_position_bits(p.position_bits);  // 3.5.6
   m[word::kEncoderType] = pm::encode_encoder_type(type);           // 3.5.7
   m[word::kCommandSet] = pm::encode_command_set({v22, false, v22 && p.communication_command_permitted});  // 3.5.22
   try {
@@ -113,16 +113,15 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   m[word::kAccuracy + 1] = v22 ? 0xFFFF : 0x0140;
   m[word::kSupportedErrors] = 0x007F;
   m[word::kSupportedWarnings] = 0x01FF;
-  m[word::kManufacturerChecksum] = word_sum(m, 4, 46);            // 3.5.26
-  img.areas[A::Manufacturer1].assign(m.begin(), m.begin() + 16);
-  img.areas[A::Manufacturer2].assign(m.begin() + 16, m.begin() + 32);
-  img.areas[A::Manufacturer3].assign(m.begin() + 32, m.end());
+  m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);  // 3.5.26
+  for (unsigned first = 0; first < protocol::kManufacturerWords; first += protocol::kManufacturerWordsPerArea)
+    img.areas[protocol::manufacturer_area(first)].assign(m.begin() + first, m.begin() + first + protocol::kManufacturerWordsPerArea);
   img.areas[A::OperatingParameters].assign(16, 0);
   img.areas[A::Oem1].assign(64, 0);
   img.areas[A::Oem2].assign(64, 0);
   if (v22) {
     std::vector<std::uint16_t> e(64, 0);
-    e[word::kAdditionalData1Support] = 0x001F;  // 3.9.2: all additional data 1
+    e[word::kAdditionalData1Support] = pm::kSupportsEveryAdditionalData1;  // 3.9.2
     e[word::kAdditionalData2Support] = 0x009F;  // 3.9.3: all but "position value 2" in additional data 2
     e[word::kAdditionalFunctionsSupport] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
     e[word::kTemperatureScaling] = 0x8000;      // 3.9.6: 0.1 K (default value)
@@ -141,7 +140,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     const auto offset = static_cast<std::uint64_t>(p.sensors.position2_offset);
     for (unsigned k = 0; k < 3; ++k) e[word::kPosition2Offset + k] = word_of(offset, k);  // 3.9.24
     if (type == pm::EncoderType::TouchProbe) e[word::kTimestampUnit] = pm::encode_timestamp_unit(pm::TimestampUnit::Us1);  // 3.9.32
-    e[word::kEndat22Checksum] = word_sum(e, 0, 62);
+    e[word::kEndat22Checksum] = pm::endat22_checksum(e);  // 3.9.37
     img.areas[A::ManufacturerEndat22] = e;
     // 3.6.6: the default is word 22 minus a safety reserve; 5 K gives the example's 110 degC.
     img.areas[A::OperatingParameters][word::kTemperatureWarningThreshold] = 3831;

@@ -6,9 +6,6 @@ namespace endatsim::slave {
 namespace {
 
 namespace pm = protocol::parameters;
-// 3.5.3 (its table lost a column; docs/model-reference.md): ports 01h .. 07h force error message
-// 1, 09h .. 0Fh error message 2.
-constexpr std::uint8_t kForcedError1First = 0x01, kForcedError2First = 0x09, kForcedPorts = 7;
 
 }  // namespace
 
@@ -21,13 +18,13 @@ void ErrorMessages::latch() {
 
 bool ErrorMessages::error_message_1() const {
   return !params_.error_message_1_stuck &&
-         (params_.error1 || forced(kForcedError1First) || !positions_.valid() || bus_address_error_ ||
+         (params_.error1 || forced(pm::kForcedError1FirstPort) || !positions_.valid() || bus_address_error_ ||
           (error_word() & memory_.manufacturer_word(word::kSupportedErrors)) != 0);
 }
 
 bool ErrorMessages::error_message_2() const {
   return !params_.error_message_2_stuck &&
-         (params_.error1 || forced(kForcedError2First) || !positions_.valid() ||
+         (params_.error1 || forced(pm::kForcedError2FirstPort) || !positions_.valid() ||
           (error_word() & memory_.endat22_word(word::kErrorMessage2Support)) != 0);
 }
 
@@ -57,13 +54,13 @@ std::uint16_t ErrorMessages::error_word() const {
 bool ErrorMessages::temperature_exceeded() const {
   const std::uint16_t threshold = memory_.active_operating_parameters()[word::kTemperatureWarningThreshold];
   const bool supported = (memory_.manufacturer_word(word::kSupportedWarnings) & pm::kWarningTemperatureExceeded) != 0 &&
-                         (memory_.endat22_word(word::kAdditionalData1Support) & kTemperatureSensor2Support) != 0;
+                         (memory_.endat22_word(word::kAdditionalData1Support) & pm::kSupportsTemperature2) != 0;
   return supported && threshold != 0 && params_.sensors.temperature2 > threshold;
 }
 
 bool ErrorMessages::forced(std::uint8_t first_port) const {
   const std::uint8_t port = additional_data_.test_port();
-  return port >= first_port && port < first_port + kForcedPorts;
+  return port >= first_port && port < first_port + pm::kForcedPortsPerMessage;
 }
 
 }  // namespace endatsim::slave

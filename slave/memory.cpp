@@ -60,12 +60,6 @@ bool factory_protected(Area a) {
 
 }  // namespace
 
-std::uint16_t word_sum(const std::vector<std::uint16_t>& words, unsigned first, unsigned last) {
-  unsigned sum = 0;
-  for (unsigned i = first; i <= last; ++i) sum += words.at(i);
-  return static_cast<std::uint16_t>(sum);
-}
-
 Memory::Memory(MemoryImage image) : image_(std::move(image)) {
   for (Area a : {Area::OperatingStatus, Area::Manufacturer1, Area::Manufacturer2, Area::Manufacturer3,
                  Area::OperatingParameters}) {
@@ -117,9 +111,8 @@ Memory::Memory(MemoryImage image) : image_(std::move(image)) {
 }
 
 std::uint16_t Memory::manufacturer_word(unsigned n) const {
-  if (n < 4 || n > 47) throw std::out_of_range("encoder manufacturer words are 4 .. 47");
-  const Area a = n < 16 ? Area::Manufacturer1 : n < 32 ? Area::Manufacturer2 : Area::Manufacturer3;
-  return image_.areas.at(a).at(n % 16);
+  if (n < 4 || n >= protocol::kManufacturerWords) throw std::out_of_range("encoder manufacturer words are 4 .. 47");
+  return image_.areas.at(protocol::manufacturer_area(n)).at(word::manufacturer_address(n));
 }
 
 std::uint16_t Memory::endat22_word(unsigned n) const {
@@ -168,9 +161,8 @@ const std::vector<std::uint16_t>* Memory::words(const Selection& s) const {
 
 std::optional<ErrorCause> Memory::check_selection(std::uint8_t mrs, std::uint8_t block, bool endat22_command) const {
   // A2 cause 2: a 2.1 MRS code must read 101x xxx1; 010x xxxx and 011x xxxx only with 2.2.
-  const bool area_code = (mrs & 0xE1) == 0xA1;
-  const bool v22_code = (mrs & 0xE0) == 0x40 || (mrs & 0xE0) == 0x60;
-  if (!area_code && !(endat22_command && v22_code)) return ErrorCause::MrsFrameDisrupted;
+  if (!protocol::is_endat21_mrs_code(mrs) && !(endat22_command && protocol::is_endat22_mrs_code(mrs)))
+    return ErrorCause::MrsFrameDisrupted;
   const auto area = protocol::memory_area_from_mrs(mrs);
   if (!area) return ErrorCause::ImpermissibleMemoryArea;
   if (protocol::info(*area).endat22_only && !endat22_command) return ErrorCause::ImpermissibleMemoryArea;

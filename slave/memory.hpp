@@ -28,17 +28,11 @@ struct MemoryImage {
 // Word numbers (protocol/parameters.hpp).
 namespace word = protocol::word;
 
-// 3.9.2 word 0 bit 3 "temperature sensor 2 (on board)".
-constexpr std::uint16_t kTemperatureSensor2Support = 0x0008;
-
 // 3.4.3: bits of word 2.
 constexpr unsigned kProtectSection2Block0 = 6, kProtectSection2BlocksFrom3 = 9;
-// 3.4.4: word 3 bits that choose the short recovery time I for 2.2 mode commands (bit 0 = 1
-// and bit 1 = 0; the pair is redundant).
-constexpr std::uint16_t kShortRecoveryTimeOn = 0x0001, kShortRecoveryTimeOff = 0x0002;
-
-// 3.5.26 / 3.9.37: sum of words, overflow not considered.
-std::uint16_t word_sum(const std::vector<std::uint16_t>& words, unsigned first, unsigned last);
+// 3.4.4: word 3 bits that choose the short recovery time I for 2.2 mode commands.
+using protocol::parameters::kShortRecoveryTimeOff;
+using protocol::parameters::kShortRecoveryTimeOn;
 
 // What a memory area selection points at.
 struct Selection {

@@ -333,7 +333,7 @@ TEST(AdditionalData, TypeThreeForACodeTheEncoderDoesNotSupport) {
   p.memory = slave::default_memory_image(p);
   auto& e = p.memory->areas[protocol::MemoryArea::ManufacturerEndat22];
   e[0] = 0x001B;
-  e[63] = slave::word_sum(e, 0, 62);
+  e[63] = protocol::parameters::endat22_checksum(e);
   Bench b(p);
   b.frame(59, supplement_frame(0b001001, 0x4C, 0));
   b.frame(58, ScriptedFrame::header(0b111000));
@@ -471,7 +471,7 @@ TEST(AppendixA2, Cause11BlockAddressBeyondWord24IsAcknowledgedInverted) {
   p.memory = slave::default_memory_image(p);
   auto& e = p.memory->areas[protocol::MemoryArea::ManufacturerEndat22];
   e[slave::word::kSection2Blocks] = 2;
-  e[63] = slave::word_sum(e, 0, 62);
+  e[63] = protocol::parameters::endat22_checksum(e);
   p.memory->section2_blocks.assign(2, std::vector<std::uint16_t>(256, 0));
   Bench b(p);
   b.frame(59, supplement_frame(0b001001, 0x47, 0));
@@ -512,7 +512,7 @@ TEST(AppendixA2, Cause15PositionValue2InBothAdditionalData) {
   p.memory = slave::default_memory_image(p);
   auto& e = p.memory->areas[protocol::MemoryArea::ManufacturerEndat22];
   e[slave::word::kAdditionalData2Support] |= 0x0040;
-  e[63] = slave::word_sum(e, 0, 62);
+  e[63] = protocol::parameters::endat22_checksum(e);
   Bench b(p);
   b.frame(59, supplement_frame(0b001001, 0x42, 0));
   b.frame(89, supplement_frame(0b001001, 0x56, 0, 1));
@@ -586,7 +586,7 @@ TEST(DirectionOfRotation, Word30Bit0TurnsTheCountingDirection) {
   auto& m3 = p.memory->areas[protocol::MemoryArea::Manufacturer3];
   std::vector<std::uint16_t> all(48, 0);
   for (unsigned i = 4; i < 48; ++i) all[i] = i < 16 ? p.memory->areas[protocol::MemoryArea::Manufacturer1][i] : i < 32 ? m2[i - 16] : m3[i - 32];
-  m3[15] = slave::word_sum(all, 4, 46);
+  m3[15] = protocol::parameters::manufacturer_checksum(all);
   Bench b(p);
   b.frame(27, ScriptedFrame::header(0b000111));
   EXPECT_EQ(position_sent(b), 8192U - 100U);

@@ -34,7 +34,7 @@ slave::MemoryImage with_endat22_word(const slave::EncoderParams& p, unsigned w, 
   auto image = slave::default_memory_image(p);
   auto& e = image.areas.at(MemoryArea::ManufacturerEndat22);
   e.at(w) = value;
-  e[slave::word::kEndat22Checksum] = slave::word_sum(e, 0, 62);
+  e[slave::word::kEndat22Checksum] = protocol::parameters::endat22_checksum(e);
   return image;
 }
 
@@ -130,7 +130,7 @@ TEST(DefaultImage, CarriesTheDiagnosisWords) {
   EXPECT_EQ(e[slave::word::kMaxEncoderTemperature], 3881) << "3.9.16 example";
   EXPECT_EQ(image.areas.at(MemoryArea::OperatingParameters)[slave::word::kTemperatureWarningThreshold], 3831)
       << "3.6.6: word 22 minus a reserve";
-  EXPECT_EQ(e[slave::word::kEndat22Checksum], slave::word_sum(e, 0, 62));
+  EXPECT_EQ(e[slave::word::kEndat22Checksum], protocol::parameters::endat22_checksum(e));
 }
 
 TEST(EncoderTemperatureWarning, Temperature2AboveWord6SetsWarningBit1AndWrn) {

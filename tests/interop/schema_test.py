@@ -45,6 +45,7 @@ BEYOND_SCHEMA = {
     "expect_count_range_reversed.json": "relation between the two numbers of a count string",
     "f_c_too_high.json": "range inside a frequency string",
     "f_c_zero.json": "range inside a frequency string",
+    "measurement_f_e_below_1_mhz.json": "range inside a frequency string",
     "huge_duration.json": "range inside a duration string",
     "huge_duration_in_range_digits.json": "range inside a duration string",
     "huge_frequency.json": "range inside a frequency string",
