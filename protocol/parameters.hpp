@@ -36,12 +36,15 @@ constexpr unsigned kDiagnosticsConfiguration = 3;                // A7, 3.6.3
 constexpr unsigned kTemperatureWarningThreshold = 6;             // A7, 3.6.6 (0.1 K)
 constexpr unsigned kTemperatureScaling = 4, kDiagnosticStatus = 5, kMaxEncoderTemperature = 22;  // BD, 3.9.6 / 3.9.7 / 3.9.16
 constexpr unsigned kDirection = 30;                              // encoder manufacturer, 3.5.16
+constexpr unsigned kManufacturerDatumShift = 22, kIdNumber = 24, kSerialNumber = 27,
+                   kCommissioningDiagnostics = 31;  // encoder manufacturer, 3.5.13 .. 3.5.15, 3.5.17
 constexpr unsigned kSignalPeriod = 15, kDistinguishableRevolutions = 17, kReferenceMarkDistance = 18,
                    kFirstReferenceMark = 19, kMeasuringSteps = 20, kMaxVelocity = 32, kAccuracy = 33,
                    kOrderingDesignation = 40;  // encoder manufacturer, 3.5.8 .. 3.5.12, 3.5.18, 3.5.19, 3.5.25
 constexpr unsigned kAdditionalFunctionsSupport = 2, kErrorMessage2Support = 6, kPosition2MeasuringSteps = 9,
                    kPosition2Accuracy = 11, kPosition2Direction = 16, kPosition2Offset = 31,
                    kComparisonBits = 26, kTimestampUnit = 45;  // BD, 3.9.4, 3.9.8, 3.9.10, 3.9.11, 3.9.13, 3.9.20, 3.9.24, 3.9.32
+constexpr unsigned kTouchProbeSupport = 44;                      // BD, 3.9.31
 constexpr unsigned kTouchProbeStatus = 2, kReferencing = 11;     // BB operating parameters 2, 3.10.3 / 3.10.5
 }  // namespace word
 }  // namespace endatsim::protocol

@@ -16,22 +16,20 @@ bool eib_factory_word(unsigned manufacturer_word) {
 }
 
 MemoryImage eib_factory_image(const EibFactoryData& d) {
-  std::vector<std::uint16_t> m(48, 0);
-  m[9] = pm::encode_partition_word(d.oem[0], d.oem[1]);
-  m[10] = pm::encode_partition_word(d.oem[2], d.oem[3]);
-  m[11] = pm::encode_partition_word(d.compensation[0], d.compensation[1]);
-  m[12] = pm::encode_partition_word(d.compensation[2], d.compensation[3]);
+  std::vector<std::uint16_t> m(protocol::kManufacturerWords, 0);
+  m[word::kOemPartition] = pm::encode_partition_word(d.oem[0], d.oem[1]);
+  m[word::kOemPartition + 1] = pm::encode_partition_word(d.oem[2], d.oem[3]);
+  m[word::kCompensationPartition] = pm::encode_partition_word(d.compensation[0], d.compensation[1]);
+  m[word::kCompensationPartition + 1] = pm::encode_partition_word(d.compensation[2], d.compensation[3]);
   m[word::kEncoderType] = pm::encode_encoder_type(pm::EncoderType::ExternalInterfaceBox);
   const auto id = pm::encode_id_number(d.id);
-  std::copy(id.begin(), id.end(), m.begin() + 24);
+  std::copy(id.begin(), id.end(), m.begin() + word::kIdNumber);
   const auto serial = pm::encode_serial_number(d.serial);
-  std::copy(serial.begin(), serial.end(), m.begin() + 27);
+  std::copy(serial.begin(), serial.end(), m.begin() + word::kSerialNumber);
   m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);
   MemoryImage img;
   img.areas[A::OperatingStatus] = {0, 0, 0, 0};
-  img.areas[A::Manufacturer1].assign(m.begin(), m.begin() + 16);
-  img.areas[A::Manufacturer2].assign(m.begin() + 16, m.begin() + 32);
-  img.areas[A::Manufacturer3].assign(m.begin() + 32, m.end());
+  set_manufacturer_words(img, m);
   img.areas[A::OperatingParameters].assign(16, 0);
   const A oem[4] = {A::Oem1, A::Oem2, A::Oem3, A::Oem4};
   const A comp[4] = {A::Compensation1, A::Compensation2, A::Compensation3, A::Compensation4};

@@ -65,12 +65,11 @@ void Encoder::adopt_encoder_type(unsigned position_bits) {
 // with eib_activation_checks_checksum, word 47 checks (3.5.26). Otherwise it stays not initiated.
 // Relative positions count from here, as after switching on (2.3.4.3).
 void Encoder::complete_commissioning() {
-  std::vector<std::uint16_t> m(48, 0);
-  for (unsigned n = 4; n < 48; ++n) m[n] = memory_.manufacturer_word(n);
+  const std::vector<std::uint16_t> m = manufacturer_words(memory_.image());
   const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
   const unsigned bits = pm::decode_position_bits(m[word::kPositionFormat]);
   const bool checksum_ok = !params_.eib_activation_checks_checksum || pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum];
-  if (type == pm::EncoderType::ExternalInterfaceBox || bits < 1 || bits > 48 || !checksum_ok ||
+  if (type == pm::EncoderType::ExternalInterfaceBox || bits < 1 || bits > EncoderParams::kMaxPositionBits || !checksum_ok ||
       (type == pm::EncoderType::TouchProbe && bits != protocol::kTouchProbeBits))
     return;
   try {

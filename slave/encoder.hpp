@@ -159,7 +159,7 @@ class Encoder {
   const protocol::ModeCommandInfo* command_ = nullptr;
   std::uint32_t shift_ = 0;
   unsigned shifted_ = 0;
-  unsigned first_answer_clock_ = 11;  // docs/model.md §1 / §3: RE11, or RE35 after a payload
+  unsigned first_answer_clock_ = protocol::frame_position::kEarliestStartBit;  // docs/model.md §1 / §3: RE11, or RE35 after a payload
   Time answer_not_before_{0};
   bool seen_low_ = false;
   unsigned release_clock_ = 0;  // RE at which the encoder handed DATA to the master's supplement

@@ -114,8 +114,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   m[word::kSupportedErrors] = 0x007F;
   m[word::kSupportedWarnings] = 0x01FF;
   m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);  // 3.5.26
-  for (unsigned first = 0; first < protocol::kManufacturerWords; first += protocol::kManufacturerWordsPerArea)
-    img.areas[protocol::manufacturer_area(first)].assign(m.begin() + first, m.begin() + first + protocol::kManufacturerWordsPerArea);
+  set_manufacturer_words(img, m);
   img.areas[A::OperatingParameters].assign(16, 0);
   img.areas[A::Oem1].assign(64, 0);
   img.areas[A::Oem2].assign(64, 0);
@@ -187,7 +186,7 @@ const std::array kRows{
         "External Interface Box in factory delivery state, the connected encoder after initial commissioning."},
     Row{"version", choice<&EncoderParams::version, kVersions>(), 0, 0, "2.1",
         "The interface version. A 2.1 encoder answers EnDat 2.2 mode commands as not supported (type I)."},
-    Row{"position_bits", &EncoderParams::position_bits, 1, 48, "3.5.6", "Clock pulses for the position value (word 13)."},
+    Row{"position_bits", &EncoderParams::position_bits, 1, EncoderParams::kMaxPositionBits, "3.5.6", "Clock pulses for the position value (word 13)."},
     Row{"multiturn_bits", &EncoderParams::multiturn_bits, 0, 47, "3.5.6",
         "Upper bits of the position that count revolutions; needs kind \"multiturn\" and fewer than position_bits."},
     Row{"t_cal", &EncoderParams::t_cal, 0, kModelTimeMax, "2.3.2",

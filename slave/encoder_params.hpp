@@ -112,6 +112,7 @@ struct EncoderParams {
   EncoderKind kind = EncoderKind::Singleturn;
   EndatVersion version = EndatVersion::V2_2;  // a 2.1 encoder answers 2.2 commands as not supported
   unsigned position_bits = 25;                 // word 13: clock pulses for the position value
+  static constexpr unsigned kMaxPositionBits = 48;  // the model's widest position (3.5.6 allows 63)
   unsigned multiturn_bits = 0;                 // upper bits of the position that count revolutions
   Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
   // ... for EnDat 2.2 mode commands, where it differs (the German brochure: absolute linear

@@ -60,6 +60,23 @@ bool factory_protected(Area a) {
 
 }  // namespace
 
+void set_manufacturer_words(MemoryImage& image, const std::vector<std::uint16_t>& words48) {
+  if (words48.size() != protocol::kManufacturerWords) throw std::invalid_argument("the encoder manufacturer has 48 words (3.5.1)");
+  for (unsigned first = 0; first < protocol::kManufacturerWords; first += protocol::kManufacturerWordsPerArea)
+    image.areas[protocol::manufacturer_area(first)].assign(words48.begin() + first,
+                                                           words48.begin() + first + protocol::kManufacturerWordsPerArea);
+}
+
+std::vector<std::uint16_t> manufacturer_words(const MemoryImage& image) {
+  std::vector<std::uint16_t> w(protocol::kManufacturerWords, 0);
+  for (unsigned n = protocol::parameters::kManufacturerChecksumFirstWord; n < protocol::kManufacturerWords; ++n) {
+    const auto it = image.areas.find(protocol::manufacturer_area(n));
+    const unsigned address = word::manufacturer_address(n);
+    if (it != image.areas.end() && address < it->second.size()) w[n] = it->second[address];
+  }
+  return w;
+}
+
 Memory::Memory(MemoryImage image) : image_(std::move(image)) {
   for (Area a : {Area::OperatingStatus, Area::Manufacturer1, Area::Manufacturer2, Area::Manufacturer3,
                  Area::OperatingParameters}) {

@@ -34,6 +34,11 @@ constexpr unsigned kProtectSection2Block0 = 6, kProtectSection2BlocksFrom3 = 9;
 using protocol::parameters::kShortRecoveryTimeOff;
 using protocol::parameters::kShortRecoveryTimeOn;
 
+// The encoder manufacturer's 48 words spread over areas A1, A3 and A5 of `image` (3.5.1).
+void set_manufacturer_words(MemoryImage& image, const std::vector<std::uint16_t>& words48);
+// ... and gathered again: words 0..3 and those of a missing or short area read 0.
+std::vector<std::uint16_t> manufacturer_words(const MemoryImage& image);
+
 // What a memory area selection points at.
 struct Selection {
   MemoryArea area = MemoryArea::OperatingStatus;

@@ -45,8 +45,7 @@ std::string area_path(Area a) { return "/memory/" + std::string(protocol::info(a
 
 // The JSON path of word n of the encoder manufacturer (3.5.1: A1 words 0..15, A3 16..31, A5 32..47).
 std::string manufacturer_path(unsigned n) {
-  const Area a = n < 16 ? Area::Manufacturer1 : n < 32 ? Area::Manufacturer2 : Area::Manufacturer3;
-  return area_path(a) + "/" + std::to_string(n % 16);
+  return area_path(protocol::manufacturer_area(n)) + "/" + std::to_string(word::manufacturer_address(n));
 }
 
 std::vector<std::uint16_t> as_words(const Node& n, std::size_t min, std::size_t max) {
@@ -149,13 +148,13 @@ void check_reference_marks(const EncoderProfile& p, const std::vector<std::uint1
   const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
   if (!pm::is_incremental(type)) return;
   if (pm::decode_signal_period(m[word::kSignalPeriod], m[word::kSignalPeriod + 1]) == 0)
-    problems.push_back(manufacturer_path(15) + ": expected the signal period of an incremental encoder in words 15/16 "
+    problems.push_back(manufacturer_path(word::kSignalPeriod) + ": expected the signal period of an incremental encoder in words 15/16 "
                        "(3.5.8, appendix A10), got 0000h");
   if (pm::reference_marks_of(type, m[word::kReferenceMarkDistance]) != pm::ReferenceMarks::Equidistant) return;
   try {
     (void)reference_scheme(Memory(p.memory), {}, std::nullopt, p.position_bits);
   } catch (const std::invalid_argument& e) {
-    problems.push_back(manufacturer_path(18) + ": " + e.what());
+    problems.push_back(manufacturer_path(word::kReferenceMarkDistance) + ": " + e.what());
   }
 }
 
@@ -171,14 +170,7 @@ void EncoderProfile::apply(EncoderParams& p) const {
 }
 
 std::vector<std::uint16_t> EncoderProfile::manufacturer_words() const {
-  std::vector<std::uint16_t> w(48, 0);
-  for (unsigned i = 0; i < 3; ++i) {
-    const Area a = i == 0 ? Area::Manufacturer1 : i == 1 ? Area::Manufacturer2 : Area::Manufacturer3;
-    const auto it = memory.areas.find(a);
-    if (it == memory.areas.end()) continue;
-    for (unsigned k = (i == 0 ? 4U : 0U); k < 16 && k < it->second.size(); ++k) w[i * 16 + k] = it->second[k];
-  }
-  return w;
+  return slave::manufacturer_words(memory);
 }
 
 std::vector<std::uint16_t> EncoderProfile::endat22_words() const {
@@ -227,43 +219,43 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
                        : p.kind == EncoderKind::TouchProbe ? probe_type
                        : p.kind == EncoderKind::Eib        ? eib_type
                                                            : !pm::is_linear(type) && !multiturn_type && !probe_type && !eib_type;
-  expect(type_ok, manufacturer_path(14), "an encoder type of kind " + kind_key(p.kind) + " (3.5.7)", m[word::kEncoderType]);
-  expect((m[word::kEncoderType] & pm::kNvmBit0) != 0, manufacturer_path(14), "bit 0 = 1 for NVM checking (3.5.7)", m[word::kEncoderType]);
+  expect(type_ok, manufacturer_path(word::kEncoderType), "an encoder type of kind " + kind_key(p.kind) + " (3.5.7)", m[word::kEncoderType]);
+  expect((m[word::kEncoderType] & pm::kNvmBit0) != 0, manufacturer_path(word::kEncoderType), "bit 0 = 1 for NVM checking (3.5.7)", m[word::kEncoderType]);
   if (p.kind == EncoderKind::Eib) {
     // 3.5.7: in factory delivery state an EIB holds word 14, the memory size, ID and serial
     // number and (choice) their checksum; the other words are saved at initial commissioning.
-    for (unsigned n = 4; n < 47; ++n)
-      expect(n == 14 || eib_factory_word(n) || m[n] == 0, manufacturer_path(n),
+    for (unsigned n = pm::kManufacturerChecksumFirstWord; n < word::kManufacturerChecksum; ++n)
+      expect(n == word::kEncoderType || eib_factory_word(n) || m[n] == 0, manufacturer_path(n),
              "0 (an EIB in factory delivery state saves only words 9..12, 14, 24..29 and 47, 3.5.7)", m[n]);
   } else {
-    for (unsigned n : {8U, 13U, 30U, 31U})
+    for (unsigned n : {word::kVersion, word::kPositionFormat, word::kDirection, word::kCommissioningDiagnostics})
       expect((m[n] & pm::kNvmBit15) != 0, manufacturer_path(n), "bit 15 = 1 for NVM checking (3.5)", m[n]);
-    expect(pm::decode_position_bits(m[word::kPositionFormat]) == p.position_bits, manufacturer_path(13),
+    expect(pm::decode_position_bits(m[word::kPositionFormat]) == p.position_bits, manufacturer_path(word::kPositionFormat),
            "position_bits " + std::to_string(p.position_bits) + " in bits 0..5 (3.5.6)", m[word::kPositionFormat]);
     const auto commands = pm::decode_command_set(m[word::kCommandSet]);
     expect(pm::command_set_consistent(m[word::kCommandSet]) && commands.endat22 == (p.version == EndatVersion::V2_2),
-           manufacturer_path(37), "bit pairs stored inversely, command set " + version_key(p.version) + " (3.5.22)",
+           manufacturer_path(word::kCommandSet), "bit pairs stored inversely, command set " + version_key(p.version) + " (3.5.22)",
            m[word::kCommandSet]);
     check_reference_marks(p, m, problems);
   }
   const std::uint16_t revolutions =
       p.kind == EncoderKind::Multiturn ? pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U)) : 0;
-  expect(m[word::kDistinguishableRevolutions] == revolutions, manufacturer_path(17),
+  expect(m[word::kDistinguishableRevolutions] == revolutions, manufacturer_path(word::kDistinguishableRevolutions),
          hex4(revolutions) + "h distinguishable revolutions (3.5.9)", m[word::kDistinguishableRevolutions]);
   if (p.kind != EncoderKind::Linear) {
     const std::uint64_t steps = pm::steps_per_revolution(m, p.endat22_words()).value_or(0);
     const std::uint64_t expected = std::uint64_t{1} << (p.position_bits - p.multiturn_bits);
     if (steps != 0 && steps != expected)
-      problems.push_back(manufacturer_path(20) + ": expected " + std::to_string(expected) +
+      problems.push_back(manufacturer_path(word::kMeasuringSteps) + ": expected " + std::to_string(expected) +
                          " measuring steps per revolution in words 20/21 (3.5.12), got " + std::to_string(steps));
   }
   if (const auto d = pm::decode_ordering_designation(m[word::kOrderingDesignation])) {
     const bool printable = (*d)[5] > 0x20 && (*d)[5] < 0x7F && (*d)[6] > 0x20 && (*d)[6] < 0x7F;
     const bool needs22 = (*d)[6] == '2';  // EnDat02 / EnDat22: command set 2.2 (the German brochure, newer edition)
-    expect(printable && (!needs22 || p.version == EndatVersion::V2_2), manufacturer_path(40),
+    expect(printable && (!needs22 || p.version == EndatVersion::V2_2), manufacturer_path(word::kOrderingDesignation),
            "\"EnDat\" and two printable characters, x2 only with version 2.2 (3.5.25)", m[word::kOrderingDesignation]);
   }
-  expect(pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum], manufacturer_path(47),
+  expect(pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum], manufacturer_path(word::kManufacturerChecksum),
          hex4(pm::manufacturer_checksum(m)) + "h = word 4 + ... + word 46 (3.5.26)", m[word::kManufacturerChecksum]);
   const auto e = p.endat22_words();
   if (p.version == EndatVersion::V2_2 && e.empty())
@@ -271,7 +263,7 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
   if (p.version == EndatVersion::V2_1 && !e.empty())
     problems.push_back(area_path(Area::ManufacturerEndat22) + ": expected no EnDat 2.2 area for version 2.1 (3.9)");
   if (!e.empty())
-    expect(pm::endat22_checksum(e) == e[word::kEndat22Checksum], area_path(Area::ManufacturerEndat22) + "/63",
+    expect(pm::endat22_checksum(e) == e[word::kEndat22Checksum], area_path(Area::ManufacturerEndat22) + "/" + std::to_string(word::kEndat22Checksum),
            hex4(pm::endat22_checksum(e)) + "h = word 0 + ... + word 62 (3.9.37)", e[word::kEndat22Checksum]);
   return problems;
 }
@@ -292,20 +284,23 @@ std::vector<std::pair<std::string, std::string>> describe_profile(const EncoderP
     if (marks == pm::ReferenceMarks::Equidistant) text += " every " + std::to_string(m[word::kReferenceMarkDistance]) + unit;
     d.emplace_back("reference marks (words 14, 18)", text);
   }
-  d.emplace_back("ID number (words 24..26)", pm::id_number_string(pm::decode_id_number(m[24], m[25], m[26])));
+  const unsigned id = word::kIdNumber, serial = word::kSerialNumber;
+  d.emplace_back("ID number (words 24..26)", pm::id_number_string(pm::decode_id_number(m[id], m[id + 1], m[id + 2])));
   d.emplace_back("serial number (words 27..29)",
-                 pm::serial_number_string(pm::decode_serial_number(m[27], m[28], m[29])));
+                 pm::serial_number_string(pm::decode_serial_number(m[serial], m[serial + 1], m[serial + 2])));
   d.emplace_back("command set (word 37)", pm::command_set_string(m[word::kCommandSet]));
-  d.emplace_back("t_cal (word 39)", pm::calculation_time_string(pm::decode_calculation_time(m[39])));
+  d.emplace_back("t_cal (word 39)", pm::calculation_time_string(pm::decode_calculation_time(m[word::kCalculationTime])));
   d.emplace_back("ordering designation (word 40)", pm::decode_ordering_designation(m[word::kOrderingDesignation]).value_or("not supported"));
   d.emplace_back("functions (operating status word 3)", pm::function_initialization_string(p.memory.areas.at(Area::OperatingStatus).at(word::kFunctionInitialization)));
   const auto e = p.endat22_words();
   if (!e.empty()) {
-    d.emplace_back("additional data 1 (2.2 word 0)", pm::additional_data_string(pm::decode_additional_data_1(e[0])));
-    d.emplace_back("additional data 2 (2.2 word 1)", pm::additional_data_string(pm::decode_additional_data_2(e[1])));
-    d.emplace_back("maximum clock frequency (2.2 word 25)", pm::clock_frequency_string(e[25]));
+    d.emplace_back("additional data 1 (2.2 word 0)",
+                   pm::additional_data_string(pm::decode_additional_data_1(e[word::kAdditionalData1Support])));
+    d.emplace_back("additional data 2 (2.2 word 1)",
+                   pm::additional_data_string(pm::decode_additional_data_2(e[word::kAdditionalData2Support])));
+    d.emplace_back("maximum clock frequency (2.2 word 25)", pm::clock_frequency_string(e[word::kMaxClockFrequency]));
     if (p.kind == EncoderKind::TouchProbe)
-      d.emplace_back("timestamp unit (2.2 word 45)", pm::timestamp_unit_string(pm::decode_timestamp_unit(e[45])));
+      d.emplace_back("timestamp unit (2.2 word 45)", pm::timestamp_unit_string(pm::decode_timestamp_unit(e[word::kTimestampUnit])));
   }
   return d;
 }
@@ -375,12 +370,12 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   profile.kind = p.kind;
   profile.position_bits = p.position_bits;
   profile.multiturn_bits = p.multiturn_bits;
-  std::vector<std::uint16_t> m(48, 0);
-  m[8] = pm::encode_version(p.interface_version);
-  m[9] = pm::encode_partition_word(p.oem[0], p.oem[1]);
-  m[10] = pm::encode_partition_word(p.oem[2], p.oem[3]);
-  m[11] = pm::encode_partition_word(p.compensation[0], p.compensation[1]);
-  m[12] = pm::encode_partition_word(p.compensation[2], p.compensation[3]);
+  std::vector<std::uint16_t> m(protocol::kManufacturerWords, 0);
+  m[word::kVersion] = pm::encode_version(p.interface_version);
+  m[word::kOemPartition] = pm::encode_partition_word(p.oem[0], p.oem[1]);
+  m[word::kOemPartition + 1] = pm::encode_partition_word(p.oem[2], p.oem[3]);
+  m[word::kCompensationPartition] = pm::encode_partition_word(p.compensation[0], p.compensation[1]);
+  m[word::kCompensationPartition + 1] = pm::encode_partition_word(p.compensation[2], p.compensation[3]);
   m[word::kPositionFormat] = pm::encode_position_bits(p.position_bits);
   m[word::kEncoderType] = pm::encode_encoder_type(p.type);
   const auto period = pm::encode_signal_period(p.signal_period);
@@ -395,28 +390,26 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   m[word::kMeasuringSteps] = s[0];
   m[word::kMeasuringSteps + 1] = s[1];
   const auto shift = pm::encode_datum_shift48(p.datum_shift);
-  m[22] = shift[0];
-  m[23] = shift[1];
+  m[word::kManufacturerDatumShift] = shift[0];
+  m[word::kManufacturerDatumShift + 1] = shift[1];
   const auto id = pm::encode_id_number(p.id);
-  std::copy(id.begin(), id.end(), m.begin() + 24);
+  std::copy(id.begin(), id.end(), m.begin() + word::kIdNumber);
   const auto serial = pm::encode_serial_number(p.serial);
-  std::copy(serial.begin(), serial.end(), m.begin() + 27);
-  m[30] = pm::encode_direction(p.ascending);
-  m[31] = pm::kNvmBit15;  // 3.5.17: external commissioning diagnostics not supported
-  m[32] = p.max_speed;
-  m[33] = p.accuracy[0];
-  m[34] = p.accuracy[1];
-  m[35] = p.supported_errors;
-  m[36] = p.supported_warnings;
+  std::copy(serial.begin(), serial.end(), m.begin() + word::kSerialNumber);
+  m[word::kDirection] = pm::encode_direction(p.ascending);
+  m[word::kCommissioningDiagnostics] = pm::kNvmBit15;  // 3.5.17: external commissioning diagnostics not supported
+  m[word::kMaxVelocity] = p.max_speed;
+  m[word::kAccuracy] = p.accuracy[0];
+  m[word::kAccuracy + 1] = p.accuracy[1];
+  m[word::kSupportedErrors] = p.supported_errors;
+  m[word::kSupportedWarnings] = p.supported_warnings;
   m[word::kCommandSet] = pm::encode_command_set({p.version == EndatVersion::V2_2, false, p.communication_command});
-  m[39] = pm::encode_calculation_time(p.t_cal);
+  m[word::kCalculationTime] = pm::encode_calculation_time(p.t_cal);
   m[word::kOrderingDesignation] = p.ordering_designation.empty() ? 0 : pm::encode_ordering_designation(p.ordering_designation);
   m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);
   auto& areas = profile.memory.areas;
   areas[Area::OperatingStatus] = {0, 0, p.write_protection, p.function_initialization};
-  areas[Area::Manufacturer1].assign(m.begin(), m.begin() + 16);
-  areas[Area::Manufacturer2].assign(m.begin() + 16, m.begin() + 32);
-  areas[Area::Manufacturer3].assign(m.begin() + 32, m.end());
+  set_manufacturer_words(profile.memory, m);
   // 3.6.2: the factory setting of the operating parameters holds the manufacturer's datum shift.
   std::vector<std::uint16_t> op(16, 0);
   op[0] = shift[0];
@@ -431,13 +424,13 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   }
   if (p.version == EndatVersion::V2_2) {
     std::vector<std::uint16_t> e(64, 0);
-    e[0] = pm::encode_additional_data_1(p.additional_data_1);
-    e[1] = pm::encode_additional_data_2(p.additional_data_2);
-    e[2] = p.additional_functions;
-    e[6] = p.supported_errors_2;
-    e[25] = pm::encode_max_clock_frequency_khz(p.max_clock_khz);
-    e[44] = p.touch_probe_support;
-    e[45] = pm::encode_timestamp_unit(p.timestamp_unit);
+    e[word::kAdditionalData1Support] = pm::encode_additional_data_1(p.additional_data_1);
+    e[word::kAdditionalData2Support] = pm::encode_additional_data_2(p.additional_data_2);
+    e[word::kAdditionalFunctionsSupport] = p.additional_functions;
+    e[word::kErrorMessage2Support] = p.supported_errors_2;
+    e[word::kMaxClockFrequency] = pm::encode_max_clock_frequency_khz(p.max_clock_khz);
+    e[word::kTouchProbeSupport] = p.touch_probe_support;
+    e[word::kTimestampUnit] = pm::encode_timestamp_unit(p.timestamp_unit);
     e[word::kEndat22Checksum] = pm::endat22_checksum(e);
     areas[Area::ManufacturerEndat22] = e;
     areas[Area::OperatingParameters2].assign(16, 0);

@@ -18,11 +18,7 @@ __int128 crossings_of(std::uint64_t m, __int128 lo, __int128 hi, __int128 range)
   return floor_div(hi - mark, range) - floor_div(lo - mark, range);
 }
 
-std::vector<std::uint16_t> manufacturer_words(const Memory& memory) {
-  std::vector<std::uint16_t> w(48, 0);
-  for (unsigned n = 4; n < 48; ++n) w[n] = memory.manufacturer_word(n);
-  return w;
-}
+std::vector<std::uint16_t> manufacturer_words(const Memory& memory) { return slave::manufacturer_words(memory.image()); }
 
 std::vector<std::uint16_t> endat22_words(const Memory& memory) {
   const auto it = memory.image().areas.find(MemoryArea::ManufacturerEndat22);
@@ -65,7 +61,7 @@ ReferenceScheme reference_scheme(const Memory& memory, const std::vector<std::ui
                                  std::optional<std::uint64_t> selected, unsigned position_bits) {
   const auto m = manufacturer_words(memory);
   ReferenceScheme s;
-  s.marks = pm::reference_marks_of(pm::decode_encoder_type(m[word::kEncoderType]), m[18]);
+  s.marks = pm::reference_marks_of(pm::decode_encoder_type(m[word::kEncoderType]), m[word::kReferenceMarkDistance]);
   s.selected = selected;
   switch (s.marks) {
     case ReferenceMarks::None: return s;
@@ -78,16 +74,16 @@ ReferenceScheme reference_scheme(const Memory& memory, const std::vector<std::ui
   }
   const auto scale = pm::steps_per_reference_unit(m, endat22_words(memory));
   if (!scale)
-    throw std::invalid_argument("equidistant reference marks (word 18 = " + std::to_string(m[18]) +
+    throw std::invalid_argument("equidistant reference marks (word 18 = " + std::to_string(m[word::kReferenceMarkDistance]) +
                                 ") need the measuring step: words 20/21, or the signal period (words 15/16) and the "
                                 "subdivision of EnDat 2.2 words 27..29 (3.5.12, A10)");
   // 3.5.11: word 19 is given for linear encoders only; rotary ones count from position 0.
   const bool linear = pm::is_linear(pm::decode_encoder_type(m[word::kEncoderType]));
-  s.distance = std::max<std::uint64_t>(1, in_steps(m[18], *scale));
-  s.first = linear ? in_steps(m[19], *scale) : 0;
+  s.distance = std::max<std::uint64_t>(1, in_steps(m[word::kReferenceMarkDistance], *scale));
+  s.first = linear ? in_steps(m[word::kFirstReferenceMark], *scale) : 0;
   const __int128 range = __int128{1} << position_bits;
   if (static_cast<__int128>(s.first) >= range)
-    throw std::invalid_argument("the first reference mark (word 19 = " + std::to_string(m[19]) + " mm, " +
+    throw std::invalid_argument("the first reference mark (word 19 = " + std::to_string(m[word::kFirstReferenceMark]) + " mm, " +
                                 std::to_string(s.first) + " steps) lies beyond the " + std::to_string(position_bits) +
                                 "-bit range (3.5.11)");
   if (selected && *selected >= marks_per_range(s, range))
