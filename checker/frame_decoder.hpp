@@ -16,6 +16,7 @@
 #include <optional>
 #include <vector>
 
+#include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/protocol/frame.hpp"
 #include "endatsim/protocol/mode_command.hpp"
 #include "endatsim/sim/time.hpp"
@@ -40,7 +41,10 @@ struct DecodedDatum {
   std::uint16_t data = 0;
   bool crc_ok = false;
   bool busy() const { return (status & 0x20) != 0; }
-  bool additional_data_2() const { return (status & 0x1F) >= 16; }
+  bool additional_data_2() const {
+    return protocol::is_additional_data_2(
+        static_cast<protocol::Information>(status & protocol::AdditionalDataStatus::kInformation));
+  }
 };
 
 // One frame as the wires show it. Clocks count rising edges from FE1 (RE1 is the first).

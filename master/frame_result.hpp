@@ -26,6 +26,11 @@ enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error, T
 inline constexpr std::array kFrameOutcomes{FrameOutcome::Ok,         FrameOutcome::CrcError,   FrameOutcome::NoStartBit,
                                            FrameOutcome::Type1Error, FrameOutcome::Type2Error, FrameOutcome::EchoMismatch,
                                            FrameOutcome::TooFewClocks};
+static_assert([] {
+  for (std::size_t i = 0; i < kFrameOutcomes.size(); ++i)
+    if (kFrameOutcomes[i] != static_cast<FrameOutcome>(i)) return false;
+  return kFrameOutcomes.back() == FrameOutcome::TooFewClocks;
+}(), "kFrameOutcomes: every outcome once, in the order of its value (tables are indexed by it)");
 std::string_view to_string(FrameOutcome o);
 
 // One additional datum as received (2.3.5).

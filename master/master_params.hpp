@@ -65,9 +65,9 @@ struct MasterParams {
   // docs/model.md §5: one more clock pulse after the last bit (its falling edge samples the
   // last bit) — or none, sampling the last bit half a period after the last rising edge.
   bool extra_clock_after_last_bit = true;
-  Time t_m_wait = sim::us(30);   // CLOCK held HIGH after a frame: at least t_m of the encoder
-  Time t_r_wait = sim::ns(500);  // then t_R before the next FE1 (2.3.2)
-  Time error_wait = sim::us(30); // A2: "after an error handling, the maximum t_m of 30 us must be waited"
+  Time t_m_wait = protocol::limit::kRecoveryTimeMax;  // CLOCK held HIGH after a frame: at least t_m of the encoder
+  Time t_r_wait = protocol::limit::kRecoveryTime2Min;  // then t_R before the next FE1 (2.3.2)
+  Time error_wait = protocol::limit::kErrorRecoveryWait;  // A2: "after an error handling, the maximum t_m of 30 us must be waited"
   Time reset_wait = sim::ms(50); // German brochure's start-up routine: "50 ms warten" after the reset
   // 2.3.2 t_b > 1 ms before a 2.1 memory or parameter frame (read as end of the previous frame
   // to FE1; see the checker's t_b row).
@@ -85,9 +85,9 @@ struct MasterParams {
   // ... and runs at this clock: before t_D is known only a slow clock is safe on a long cable
   // (TI's firmware runs the routine at 200 kHz).
   Hertz startup_f_c = sim::kHz(200);
-  Time start_bit_timeout = sim::ms(1);  // t_cal max (2.3.2); polling gives up after this
+  Time start_bit_timeout = protocol::limit::kCalculationTimeMax;  // t_cal max (2.3.2); polling gives up after this
   // 2.1 parameter frames: polling after the 24 bits gives up after t_ac max (12 ms, 2.3.2) + 1 ms.
-  Time memory_access_timeout = sim::ms(13);
+  Time memory_access_timeout = protocol::limit::kMemoryAccessMax + sim::ms(1);
   // docs/model.md §4 (TI's choice, "can optimize"): LOW bits the master drives before the start
   // bit of a 2.2 command supplement, from the first falling edge after it has checked the answer.
   unsigned supplement_lead_bits = 7;

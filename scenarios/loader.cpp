@@ -603,7 +603,7 @@ void read_encoder_fault(Object& f, Event& e) {
       e.t_ac_write = f.req("write").as_duration(Time::zero(), max);
       break;
     case K::TCal:
-      e.t_cal = f.req("t_cal").as_duration(Time::zero(), sim::ms(100));
+      e.t_cal = f.req("t_cal").as_duration(Time::zero(), slave::EncoderParams::kMaxModelTime);
       break;
     case K::PowerInterruption:
     case K::ProbeTrigger:
@@ -678,7 +678,7 @@ Event read_event(const Node& item, const line::LineParams& line) {
     if (auto v = c.opt("cable_delay_per_m")) e.cable_delay_per_m = v->as_duration(Time::zero(), sim::ns(20));
     c.done();
   } else if (e.kind == K::TCal) {
-    e.t_cal = body->as_duration(Time::zero(), sim::ms(100));
+    e.t_cal = body->as_duration(Time::zero(), slave::EncoderParams::kMaxModelTime);
   } else {
     Object f(*body);
     if (e.kind < K::ErrorSources) read_line_fault(f, e);

@@ -663,7 +663,8 @@ void Encoder::set_memory_access_times(Time read, Time write) {
 }
 
 void Encoder::set_t_cal(Time t_cal) {
-  require(t_cal >= Time::zero() && t_cal <= sim::ms(100), "t_cal must be 0 .. 100 ms (the model's limit)");
+  require(t_cal >= Time::zero() && t_cal <= EncoderParams::kMaxModelTime,
+          "t_cal must be 0 .. " + sim::format_time(EncoderParams::kMaxModelTime) + " (the model's limit)");
   params_.t_cal = t_cal;
   params_.t_cal_22.reset();  // the event sets the calculation time of every mode command
 }

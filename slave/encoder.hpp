@@ -63,11 +63,9 @@ class Encoder {
   bool busy() const;
   const Memory& memory() const { return memory_; }
   std::optional<Information> additional_data_1() const { return additional_data_.selected(0); }
-  std::optional<Information> additional_data_2() const { return additional_data_.selected(1); }
   // The transfer format in use: word 13 as activated (an EIB's changes at commissioning).
   unsigned position_bits() const { return positions_.position_bits(); }
   bool referenced() const { return positions_.reference_mark(); }  // RM (2.3.4.3); always for absolute encoders
-  const ReferenceScheme& reference_scheme() const { return positions_.reference_scheme(); }
 
   // Faults, while running (scenario events).
   void set_error_sources(std::uint16_t errors, std::uint16_t warnings);  // words 0 and 1 (3.4.1, 3.4.2)

@@ -178,7 +178,7 @@ static_assert(static_cast<std::size_t>(SupplementHandover::EndLevel) == 1);
 static_assert(static_cast<std::size_t>(EibPositionBeforeCommissioning::NotSupported) == 1);
 
 constexpr std::int64_t ps(Time t) { return t.count(); }
-constexpr std::int64_t kModelTimeMax = ps(sim::ms(100));
+constexpr std::int64_t kModelTimeMax = ps(EncoderParams::kMaxModelTime);
 
 const std::array kRows{
     Row{"kind", choice<&EncoderParams::kind, kKinds>(), 0, 0, "3.5.7",

@@ -115,6 +115,9 @@ struct EncoderParams {
   static constexpr unsigned kMaxPositionBits = 48;  // the model's widest position (3.5.6 allows 63)
   unsigned multiturn_bits = 0;                 // upper bits of the position that count revolutions
   Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
+  // The model takes calculation times (and the encoder's other times) up to this, far beyond the
+  // spec, so that an overrun shows.
+  static constexpr Time kMaxModelTime = sim::ms(100);
   // ... for EnDat 2.2 mode commands, where it differs (the German brochure: absolute linear
   // encoders take other calculation times for 2.1 and 2.2 mode commands); none: t_cal.
   std::optional<Time> t_cal_22;

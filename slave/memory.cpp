@@ -199,10 +199,13 @@ std::optional<ErrorCause> Memory::check_selection(std::uint8_t mrs, std::uint8_t
 
 Memory::WordRead Memory::read(const Selection& s, std::uint8_t address) const {
   const auto range = address_range(s);
-  if (!range || address < range->first || address > range->second)
+  // Words 9 .. 12 declare the partitioned areas (3.5.5); a corrupted one may declare more than is
+  // stored. What is not stored is not available either.
+  const auto* stored = words(s);
+  if (!range || address < range->first || address > range->second || stored == nullptr || address >= stored->size())
     return {.value = 0, .error = s.area == Area::OperatingParameters2 ? ErrorCause::UnknownCommunicationAddress
                                                                       : ErrorCause::ImpermissibleAddress};
-  return {.value = words(s)->at(address), .error = std::nullopt};
+  return {.value = (*stored)[address], .error = std::nullopt};
 }
 
 bool Memory::write_protected(const Selection& s) const {

@@ -57,7 +57,6 @@ class PositionSource {
   std::uint16_t timestamp(Time frame_start) const;
 
   unsigned position_bits() const { return position_bits_; }
-  const ReferenceScheme& reference_scheme() const { return reference_; }
   // False for an EIB not yet initiated: "no valid position" (2.3.1), no position value 2.
   bool valid() const { return valid_; }
   bool incremental() const { return incremental_; }

@@ -247,8 +247,6 @@ TEST(EncoderParams, RejectsOutOfRangeTimesNamingTheLimit) {
   EXPECT_NO_THROW(p.validate());
 }
 
-// 3.4.1 / 3.4.2: "Error bits can be deleted by overwriting the word 0 with 0000h and sending the
-// mode command Encoder receive reset" (warnings likewise, word 1): the write alone deletes nothing.
 // Section 3: compensation values and OEM parameters "must consist of a maximum of 960 words in
 // total". OEM areas 1..3 at 0..255, compensation areas 1 and 2 at 0..127 and 0..63 hold 960
 // words; compensation area 2 at 0..64 one more, which the image is refused for.
@@ -279,6 +277,28 @@ TEST(EncoderMemory, TheOemAndCompensationAreasHoldAtMost960Words) {
   }
 }
 
+// 3.5.5: words 9 .. 12 declare the OEM and compensation areas. They lie in the factory-protected
+// areas of the encoder manufacturer, so no write changes them; a corrupted one (a flipped NVM bit)
+// may declare addresses that were never stored, and those are unavailable (A2 type II), as the
+// ones it no longer declares are.
+TEST(EncoderMemory, ACorruptedPartitionWordDeclaresNoWordThatIsNotStored) {
+  using A = protocol::MemoryArea;
+  slave::Memory m(slave::default_memory_image(slave::EncoderParams{}));
+  const slave::Selection manufacturer{A::Manufacturer1, 0}, oem1{A::Oem1, 0};
+  EXPECT_EQ(m.write(manufacturer, slave::word::kOemPartition, 0x2040), protocol::ErrorCause::WriteProtected);
+  ASSERT_EQ(m.word(manufacturer, slave::word::kOemPartition) & 0x00FF, 0x20) << "OEM area 1 at 0 .. 63";
+  m.force(manufacturer, slave::word::kOemPartition, 0x2040);  // end code 2 (63) -> 4 (127)
+  EXPECT_TRUE(m.read(oem1, 63));
+  EXPECT_EQ(m.read(oem1, 64).error, protocol::ErrorCause::ImpermissibleAddress);
+  EXPECT_EQ(m.read(oem1, 100).error, protocol::ErrorCause::ImpermissibleAddress);
+  EXPECT_EQ(m.write(oem1, 100, 1), protocol::ErrorCause::ImpermissibleAddress);
+  m.force(manufacturer, slave::word::kOemPartition, 0x2010);  // end code 1 (31)
+  EXPECT_TRUE(m.read(oem1, 31));
+  EXPECT_EQ(m.read(oem1, 32).error, protocol::ErrorCause::ImpermissibleAddress);
+}
+
+// 3.4.1 / 3.4.2: "Error bits can be deleted by overwriting the word 0 with 0000h and sending the
+// mode command Encoder receive reset" (warnings likewise, word 1): the write alone deletes nothing.
 TEST(EncoderMemory, ErrorsAndWarningsClearWithZeroAndTheResetAfterIt) {
   slave::Memory m(slave::default_memory_image(slave::EncoderParams{}));
   const slave::Selection status{protocol::MemoryArea::OperatingStatus, 0};
