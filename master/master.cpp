@@ -189,8 +189,12 @@ void Master::expand_startup_routine() {
   step(MC::SelectionOfMemoryArea, protocol::mrs_of(protocol::MemoryArea::OperatingStatus));
   step(MC::EncoderSendParameters, word::kErrors, 0, P::Errors);
   step(MC::EncoderSendParameters, word::kWarnings, 0, P::Warnings);
-  step(MC::EncoderReceiveParameters, word::kErrors, 0x0000);  // 3.4.1: alarms cleared by writing 0000h ...
-  step(MC::EncoderReceiveParameters, word::kWarnings, 0x0000);  // 3.4.2: warnings likewise
+  // 3.4.1 / 3.4.2: alarms and warnings are deleted by writing 0000h "and sending the mode command
+  // Encoder receive reset" (the brochure's routine names the clearing only; the reset completes
+  // it, and reset_wait follows it as it follows the first).
+  step(MC::EncoderReceiveParameters, word::kErrors, 0x0000);
+  step(MC::EncoderReceiveParameters, word::kWarnings, 0x0000);
+  step(MC::EncoderReceiveReset);
   read_manufacturer_word(word::kPositionFormat, P::Word13);
   read_manufacturer_word(word::kCommandSet, P::Word37);
   // The same routine / 2.1.2: then the propagation delay is measured.

@@ -265,6 +265,17 @@ TEST(MasterStartup, RoutineReadsWord13AndMeasuresTheDelayWhenCompensating) {
   EXPECT_EQ(last_of(r, 1).position, 104462U);
   EXPECT_TRUE(last_of(r, 1).compensated);
   EXPECT_TRUE(r.violations.empty()) << violations(r);
+  // 3.4.1 / 3.4.2: the writes of 0000h delete alarms and warnings only with the reset after them.
+  std::vector<MC> commands;
+  for (const auto& f : r.frames)
+    if (f.operation == 0 && !f.measurement) commands.push_back(f.command);
+  const std::vector<MC> routine_commands{MC::EncoderReceiveReset,      MC::SelectionOfMemoryArea,
+                                         MC::EncoderSendParameters,    MC::EncoderSendParameters,
+                                         MC::EncoderReceiveParameters, MC::EncoderReceiveParameters,
+                                         MC::EncoderReceiveReset,      MC::SelectionOfMemoryArea,
+                                         MC::EncoderSendParameters,    MC::SelectionOfMemoryArea,
+                                         MC::EncoderSendParameters};
+  EXPECT_EQ(commands, routine_commands);
 }
 
 namespace {
