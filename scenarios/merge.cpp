@@ -88,7 +88,7 @@ ShardMark mark_of_text(const std::string& path, const std::string& text, const s
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax, invalid UTF-8, number overflow
     fail(path, where + ": not JSON (" + e.what() + ")");
   }
   return mark_of(path, j, where);
@@ -168,7 +168,7 @@ class ResultsLines {
     while (next()) text += line_ + "\n";
     try {
       return json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // syntax, invalid UTF-8, number overflow
       fail(path_, std::string("the keys after \"scenarios\" are not JSON: ") + e.what());
     }
   }
@@ -273,7 +273,7 @@ Partial read_log(const std::string& path, PartialKind kind) {
   json j;
   try {
     j = json::parse(line);
-  } catch (const json::parse_error&) {
+  } catch (const json::exception&) {
     fail(path, "its last line is not the shard's mark {\"shard\": {...}} (a log of a whole run has none; run with --shard K/N)");
   }
   if (!j.is_object() || j.size() != 1 || !j.contains("shard"))
@@ -374,7 +374,7 @@ Partial read_partial(const std::string& path) {
     json j;
     try {
       j = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // syntax, invalid UTF-8, number overflow
       fail(path, std::string("not a JSON document: ") + e.what());
     }
     return read_sweep(path, j);
@@ -507,7 +507,7 @@ Sweep merge_sweep(const std::vector<Partial>& shards) {
     json j;
     try {
       j = json::parse(whole_file(p.path));
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // syntax, invalid UTF-8, number overflow
       fail(p.path, std::string("not a JSON document: ") + e.what());
     }
     const std::string file = key_of(p.path, j, "", "scenario", &json::is_string, "the scenario file").get<std::string>();

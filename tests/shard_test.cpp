@@ -162,6 +162,23 @@ TEST(ReadPartial, RefusesWhatNoShardWroteNamingThePath) {
   EXPECT_THROW((void)read_partial("/nonexistent/partial.json"), MergeError);
 }
 
+// Found by fuzz_partial (fuzz/corpus/partial/number_overflow.jsonl): a number too large for a
+// double in a mark is bad input like any other, not an escaping exception.
+TEST(ReadPartial, RefusesANumberThatOverflowsNamingThePath) {
+  for (const std::string& text : std::vector<std::string>{"{\"tim\"t>888\n8e88888888s\":2}}\n",
+                                                          "{\"time_ps\": 0}\n{\"shard\": 1e999}\n",
+                                                          "# endatsim\n# shard {\"k\": 1e999}\n"}) {
+    const auto path = temp_file("shard_overflow", text);
+    try {
+      (void)read_partial(path);
+      ADD_FAILURE() << "accepted '" << text << "'";
+    } catch (const MergeError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0U) << e.what();
+    }
+    std::filesystem::remove(path);
+  }
+}
+
 TEST(MergeLog, StopsWhenInterruptedAndWritesNoMore) {
   ShardMark m = sample_mark();
   m.shard = {1, 1};
