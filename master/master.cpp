@@ -11,20 +11,12 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-bool of_startup_routine(Operation::Purpose p) {
-  using P = Operation::Purpose;
-  return p == P::Step || p == P::Errors || p == P::Warnings || p == P::Word13 || p == P::Word37;
-}
-
 DiagnosisFrame diagnosis_frame(Operation::Purpose p) {
   using P = Operation::Purpose;
   return p == P::DiagnosisConfiguration ? DiagnosisFrame::ConfigurationWrite
          : p == P::DiagnosisWarnings    ? DiagnosisFrame::WarningsRead
                                         : DiagnosisFrame::Cyclic;
 }
-
-// 3.5.26: the checksum covers the encoder manufacturer's words 4 .. 46.
-constexpr unsigned kFirstChecksummedWord = protocol::parameters::kManufacturerChecksumFirstWord;
 
 const MasterParams& validated(const MasterParams& p) {
   p.validate();
@@ -132,25 +124,6 @@ void Master::next_operation() {
   kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
 }
 
-Operation& Master::Sequence::frame(ModeCommand c, std::uint8_t address, std::uint16_t parameter,
-                                   Operation::Purpose purpose, unsigned word) {
-  Operation& o = ops.emplace_back();
-  o.script_index = script_index;
-  o.command = c;
-  o.address = address;
-  o.parameter = parameter;
-  o.purpose = purpose;
-  o.manufacturer_word = word;
-  return o;
-}
-
-Operation& Master::Sequence::add(Operation::Kind k) {
-  Operation& o = ops.emplace_back();
-  o.kind = k;
-  o.script_index = script_index;
-  return o;
-}
-
 void Master::run_first(const Sequence& s) { operations_.insert(operations_.begin(), s.ops.begin(), s.ops.end()); }
 
 void Master::expand(void (Master::*expansion)()) {
@@ -173,83 +146,15 @@ void Master::power_on_pulse(std::uint64_t phase) {
 }
 
 void Master::expand_startup_routine() {
-  // The German brochure, "Spannungsversorgung und Einschalten": EnDat 2.1 mode commands only.
-  using P = Operation::Purpose;
-  using MC = ModeCommand;
-  namespace word = protocol::word;
   Sequence routine = sequence();
-  const auto step = [&routine](MC c, std::uint8_t address = 0, std::uint16_t parameter = 0, P purpose = P::Step) {
-    routine.frame(c, address, parameter, purpose);
-  };
-  const auto read_manufacturer_word = [&step](unsigned w, P purpose) {
-    step(MC::SelectionOfMemoryArea, protocol::mrs_of(protocol::manufacturer_area(w)));
-    step(MC::EncoderSendParameters, word::manufacturer_address(w), 0, purpose);
-  };
-  step(MC::EncoderReceiveReset);  // then reset_wait (50 ms)
-  step(MC::SelectionOfMemoryArea, protocol::mrs_of(protocol::MemoryArea::OperatingStatus));
-  step(MC::EncoderSendParameters, word::kErrors, 0, P::Errors);
-  step(MC::EncoderSendParameters, word::kWarnings, 0, P::Warnings);
-  // 3.4.1 / 3.4.2: alarms and warnings are deleted by writing 0000h "and sending the mode command
-  // Encoder receive reset" (the brochure's routine names the clearing only; the reset completes
-  // it, and reset_wait follows it as it follows the first).
-  step(MC::EncoderReceiveParameters, word::kErrors, 0x0000);
-  step(MC::EncoderReceiveParameters, word::kWarnings, 0x0000);
-  step(MC::EncoderReceiveReset);
-  read_manufacturer_word(word::kPositionFormat, P::Word13);
-  read_manufacturer_word(word::kCommandSet, P::Word37);
-  // The same routine / 2.1.2: then the propagation delay is measured.
-  if (params_.delay_compensation) routine.add(Operation::Kind::MeasureDelay);
-  startup_ = {};
-  startup_.completed = true;
+  routine_.plan(routine, params_.delay_compensation);
   run_first(routine);
 }
 
-void Master::note_startup(const FrameResult& f) {
-  using P = Operation::Purpose;
-  if (!of_startup_routine(current_->purpose)) return;
-  if (f.outcome != FrameOutcome::Ok) {
-    ++startup_.failed_frames;
-    startup_.completed = false;
-    return;
-  }
-  switch (current_->purpose) {
-    case P::Errors: startup_.errors = f.echo_parameter; break;
-    case P::Warnings: startup_.warnings = f.echo_parameter; break;
-    case P::Word13:
-      startup_.word13 = f.echo_parameter;
-      if (const unsigned bits = protocol::parameters::decode_position_bits(f.echo_parameter); params_.adopt_word13 && bits != 0)
-        position_bits_ = bits;
-      break;
-    case P::Word37: startup_.word37 = f.echo_parameter; break;
-    default: break;
-  }
-}
-
-// 3.5.26: words 4 .. 47 of the encoder manufacturer's areas A1 (addresses 4 .. 15), A3 and A5
-// (addresses 0 .. 15 each) with 2.1 frames; then word 47 against the sum of words 4 .. 46.
 void Master::expand_checksum_check() {
-  using MC = ModeCommand;
-  namespace word = protocol::word;
   Sequence reads = sequence();
-  for (unsigned w = kFirstChecksummedWord; w <= word::kManufacturerChecksum; ++w) {
-    if (w == kFirstChecksummedWord || word::manufacturer_address(w) == 0)
-      reads.frame(MC::SelectionOfMemoryArea, protocol::mrs_of(protocol::manufacturer_area(w)));
-    reads.frame(MC::EncoderSendParameters, word::manufacturer_address(w), 0, Operation::Purpose::ChecksumWord, w);
-  }
-  checksum_ = ChecksumCheck{};
-  checksum_words_.assign(protocol::kManufacturerWords, 0);
-  checksum_read_ = 0;
+  checksum_.plan(reads);
   run_first(reads);
-}
-
-void Master::note_checksum_word(const FrameResult& f) {
-  if (current_->purpose != Operation::Purpose::ChecksumWord || f.outcome != FrameOutcome::Ok) return;
-  checksum_words_.at(current_->manufacturer_word) = f.echo_parameter;
-  constexpr unsigned kWordsRead = protocol::word::kManufacturerChecksum + 1 - kFirstChecksummedWord;
-  if (++checksum_read_ < kWordsRead || current_->manufacturer_word != protocol::word::kManufacturerChecksum) return;
-  checksum_->complete = true;
-  checksum_->stored = checksum_words_[protocol::word::kManufacturerChecksum];
-  checksum_->computed = protocol::parameters::manufacturer_checksum(checksum_words_);
 }
 
 // ---- a careful master ---------------------------------------------------------------------
@@ -414,7 +319,7 @@ FrameRequest Master::frame_request() {
   if (!r.measurement) roll_additional_data_1(r);
   r.mode_bits = r.measurement || !current_->mode_bits ? protocol::info(r.command).bits : *current_->mode_bits;
   r.f_c = r.measurement                            ? params_.measurement.f_c
-          : of_startup_routine(current_->purpose) ? params_.startup_f_c
+          : StartupRoutine::of_routine(current_->purpose) ? params_.startup_f_c
                                                   : params_.f_c;
   if (!r.measurement && params_.delay_compensation) r.t_d = t_d_;
   r.position_bits = position_bits_;
@@ -458,8 +363,8 @@ void Master::frame_done(FrameResult& f) {
     book_.note(f);
     diagnosis_.on_frame(f, diagnosis_frame(current_->purpose));
     note_safety(f);  // sets error_detected: what the master made of F1 and F2
-    note_startup(f);
-    note_checksum_word(f);
+    if (const auto bits = routine_.note(current_->purpose, f); bits && params_.adopt_word13) position_bits_ = *bits;
+    checksum_.note(*current_, f);
   }
   record(f);
   for (auto* o : observers_) o->on_frame_end(f);

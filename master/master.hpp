@@ -6,6 +6,7 @@
 //   parameter_book.hpp     the encoder's memory as read (2.4 .. 2.6)
 //   safety.hpp             the safety functions' checks of every frame (SafetyMonitor)
 //   diagnostics.hpp        the diagnosis for a service engineer (DiagnosisMonitor, A3)
+//   startup.hpp            the start-up routine and the checksum check (2.1 reads, 3.5.26)
 //   master_params.hpp      what the master is configured with
 //   frame_result.hpp       what a frame gave; operation.hpp what the master is asked to do
 // It only talks through the line's master-side signals, all of which the frame engine drives.
@@ -25,6 +26,7 @@
 #include "endatsim/master/operation.hpp"
 #include "endatsim/master/parameter_book.hpp"
 #include "endatsim/master/safety.hpp"
+#include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/protocol.hpp"
 
 namespace endatsim::master {
@@ -32,24 +34,6 @@ namespace endatsim::master {
 using protocol::ModeCommand;
 using sim::Hertz;
 using sim::Time;
-// What VerifyChecksum found (3.5.26).
-struct ChecksumCheck {
-  bool complete = false;  // every word was read
-  std::uint16_t stored = 0;    // word 47
-  std::uint16_t computed = 0;  // word 4 + ... + word 46, overflow ignored
-  bool ok() const { return complete && stored == computed; }
-};
-
-// What the start-up routine found (docs/model.md §8).
-struct StartupInfo {
-  bool completed = false;  // every frame of the routine answered without error
-  std::optional<std::uint16_t> errors;    // operating status word 0, before clearing (3.4.1)
-  std::optional<std::uint16_t> warnings;  // word 1 (3.4.2)
-  std::optional<std::uint16_t> word13;    // clock pulses for the position value (3.5.6)
-  std::optional<std::uint16_t> word37;    // EnDat command set (3.5.22)
-  unsigned failed_frames = 0;
-};
-
 class Master : private FrameClient {
  public:
   Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params);
@@ -78,8 +62,8 @@ class Master : private FrameClient {
   // carrying no additional data 1, where the busy bit travels (D297403 2.5.1, 2.6.1): polling
   // on could never see it reset.
   std::uint64_t busy_unreadable() const { return busy_unreadable_; }
-  const StartupInfo& startup() const { return startup_; }
-  const std::optional<ChecksumCheck>& checksum() const { return checksum_; }
+  const StartupInfo& startup() const { return routine_.info(); }
+  const std::optional<ChecksumCheck>& checksum() const { return checksum_.result(); }
   std::uint64_t retries() const { return retries_done_; }
   std::uint64_t remeasurements() const { return remeasurements_; }
   const SafetyReport& safety() const { return safety_.report(); }
@@ -98,15 +82,6 @@ class Master : private FrameClient {
   sim::Signal& frame_active() { return engine_.frame_active(); }
 
  private:
-  // The operations the master expands from one script operation (a routine, a memory read, a
-  // setup): they share its script index and run before what is queued.
-  struct Sequence {
-    std::size_t script_index = 0;
-    std::vector<Operation> ops;
-    Operation& frame(ModeCommand c, std::uint8_t address = 0, std::uint16_t parameter = 0,
-                     Operation::Purpose purpose = Operation::Purpose::None, unsigned word = 0);
-    Operation& add(Operation::Kind k);
-  };
   Sequence sequence() const { return {current_->script_index, {}}; }
   void run_first(const Sequence& s);
   void next_operation();
@@ -120,9 +95,7 @@ class Master : private FrameClient {
   void frame_done(FrameResult& f) override;
   void power_on_pulse(std::uint64_t phase);
   void expand_startup_routine();
-  void note_startup(const FrameResult& f);
   void expand_checksum_check();
-  void note_checksum_word(const FrameResult& f);
   bool retry_frame(const FrameResult& f);
   void note_failures(const FrameResult& f);
   void interrupt_for_measurement();
@@ -164,10 +137,8 @@ class Master : private FrameClient {
   std::uint64_t cycle_overruns_ = 0;
   std::uint64_t busy_timeouts_ = 0;
   std::uint64_t busy_unreadable_ = 0;
-  StartupInfo startup_;
-  std::optional<ChecksumCheck> checksum_;
-  std::vector<std::uint16_t> checksum_words_;
-  unsigned checksum_read_ = 0;
+  StartupRoutine routine_;
+  ChecksumVerification checksum_;
   bool reselect_due_ = false;
   unsigned retries_left_ = 0;
   std::uint64_t retries_done_ = 0;

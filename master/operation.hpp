@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/sim/time.hpp"
@@ -61,6 +62,30 @@ struct Operation {
   // after an error message or WRN wait until it is over, lest their memory area selection
   // (2.4.1) come between its selection and its reads.
   bool expanded = false;
+};
+
+// The operations the master expands from one script operation (a routine, a memory read, a
+// setup): they share its script index and run before what is queued.
+struct Sequence {
+  std::size_t script_index = 0;
+  std::vector<Operation> ops;
+  Operation& frame(ModeCommand c, std::uint8_t address = 0, std::uint16_t parameter = 0,
+                   Operation::Purpose purpose = Operation::Purpose::None, unsigned word = 0) {
+    Operation& o = ops.emplace_back();
+    o.script_index = script_index;
+    o.command = c;
+    o.address = address;
+    o.parameter = parameter;
+    o.purpose = purpose;
+    o.manufacturer_word = word;
+    return o;
+  }
+  Operation& add(Operation::Kind k) {
+    Operation& o = ops.emplace_back();
+    o.kind = k;
+    o.script_index = script_index;
+    return o;
+  }
 };
 
 }  // namespace endatsim::master

@@ -435,15 +435,16 @@ void Master::finish_checksums(bool endat22) {
     safety_.report().checksum63_stored = stored;
     safety_.report().checksum63_computed = sum;
   }
-  if (checksum_) {
-    safety_.report().checksum47_stored = checksum_->stored;
-    safety_.report().checksum47_computed = checksum_->computed;
+  const auto& checksum = checksum_.result();
+  if (checksum) {
+    safety_.report().checksum47_stored = checksum->stored;
+    safety_.report().checksum47_computed = checksum->computed;
   }
-  const bool ok47 = checksum_ && checksum_->ok();
+  const bool ok47 = checksum && checksum->ok();
   if (params_.safety.checksums) {
     if (!ok47)
-      safety_.find(SafetyFunction::Checksums, kernel_.now(), checksum_ && checksum_->complete ? "word 47 " + std::to_string(checksum_->stored) + " but words 4 .. 46 sum to " +
-                                                  std::to_string(checksum_->computed) + " (3.5.26)"
+      safety_.find(SafetyFunction::Checksums, kernel_.now(), checksum && checksum->complete ? "word 47 " + std::to_string(checksum->stored) + " but words 4 .. 46 sum to " +
+                                                  std::to_string(checksum->computed) + " (3.5.26)"
                                             : "the words 4 .. 47 could not all be read");
     if (endat22 && !complete) safety_.find(SafetyFunction::Checksums, kernel_.now(), "the words of the EnDat 2.2 area could not all be read");
     else if (endat22 && stored != sum)
@@ -451,8 +452,8 @@ void Master::finish_checksums(bool endat22) {
                " (3.9.37)");
   }
   if (params_.safety.position_value_2) {
-    if (complete && checksum_ && checksum_->complete)
-      safety_.set_position2_parameters(position2_parameters(checksum_words_, e));
+    if (complete && checksum && checksum->complete)
+      safety_.set_position2_parameters(position2_parameters(checksum_.words(), e));
     else
       safety_.find(SafetyFunction::PositionValue2, kernel_.now(), "the encoder's parameters for the comparison could not be read");
   }
