@@ -1,6 +1,9 @@
 #include "endatsim/slave/eib.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+
+#include "endatsim/slave/reference.hpp"
 
 namespace endatsim::slave {
 
@@ -40,6 +43,54 @@ MemoryImage eib_factory_image(const EibFactoryData& d) {
   img.areas[A::ManufacturerEndat22].assign(64, 0);
   img.areas[A::OperatingParameters2].assign(16, 0);
   return img;
+}
+
+void EibCommissioning::follow_encoder_type(protocol::parameters::EncoderType type) {
+  not_initiated_ = type == pm::EncoderType::ExternalInterfaceBox;
+  memory_.set_initial_commissioning(not_initiated_);
+}
+
+// A2 cause 5 (choice, docs/model-reference.md): an EIB that is not yet initiated refuses every
+// memory access outside the areas initial commissioning fills.
+std::optional<protocol::ErrorCause> EibCommissioning::refuses(std::optional<MemoryArea> area) const {
+  if (!not_initiated_ || (area && eib_commissioning_area(*area))) return std::nullopt;
+  return protocol::ErrorCause::EibNotInitialised;
+}
+
+bool EibCommissioning::refuses_positions() const {
+  return not_initiated_ && params_.eib_position_before_commissioning == EibPositionBeforeCommissioning::NotSupported;
+}
+
+std::optional<unsigned> EibCommissioning::completes_at_reset() const {
+  if (!not_initiated_ || params_.eib_activation != EibActivation::Reset) return std::nullopt;
+  return connected_encoder_bits();
+}
+
+std::optional<unsigned> EibCommissioning::completes_at_write(const Selection& s, std::uint8_t address) const {
+  if (!not_initiated_ || params_.eib_activation != EibActivation::Word14Write || s.area != MemoryArea::Manufacturer1 ||
+      address != word::kEncoderType)
+    return std::nullopt;
+  return connected_encoder_bits();
+}
+
+// 3.5.7: "the encoder type must be modified during initial commissioning according to the
+// connected encoder". The EIB becomes that encoder when word 14 names another type, word 13 a
+// transfer format (1 .. 48 bits; 16 for a touch probe), words 18/19 usable reference marks and,
+// with eib_activation_checks_checksum, word 47 checks (3.5.26). Otherwise it stays not initiated.
+std::optional<unsigned> EibCommissioning::connected_encoder_bits() const {
+  const std::vector<std::uint16_t> m = manufacturer_words(memory_.image());
+  const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
+  const unsigned bits = pm::decode_position_bits(m[word::kPositionFormat]);
+  const bool checksum_ok = !params_.eib_activation_checks_checksum || pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum];
+  if (type == pm::EncoderType::ExternalInterfaceBox || bits < 1 || bits > EncoderParams::kMaxPositionBits || !checksum_ok ||
+      (type == pm::EncoderType::TouchProbe && bits != protocol::kTouchProbeBits))
+    return std::nullopt;
+  try {
+    (void)reference_scheme(memory_, params_.reference_marks, params_.selected_reference_mark, bits);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;  // words 18/19 name marks the model cannot place
+  }
+  return bits;
 }
 
 }  // namespace endatsim::slave

@@ -1,12 +1,14 @@
 // The External Interface Box (EIB, word 14 type Fh): its memory in factory delivery state and
 // what initial commissioning may do before the EIB is initiated (3.5.7, appendix A2 cause 5,
-// appendix A10). The encoder model (encoder.hpp) keeps the state; the rules are data here.
+// appendix A10), and the commissioning itself (EibCommissioning), a part of the encoder model.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "endatsim/protocol/parameters.hpp"
+#include "endatsim/slave/encoder_params.hpp"
 #include "endatsim/slave/memory.hpp"
 
 namespace endatsim::slave {
@@ -41,5 +43,32 @@ struct EibFactoryData {
 // checksum 0) and operating parameters 2 are present: the box answers EnDat 2.2 (A10: "EnDat22"
 // with a signal period). Operating status words 0..3 are 0: no write protection set yet.
 MemoryImage eib_factory_image(const EibFactoryData& data = {});
+
+// Initial commissioning (3.5.7): while word 14 says EIB, the box is "not yet initiated" (A2
+// cause 5) and its commissioning areas stay open; it becomes the connected encoder at a reset or
+// when word 14 is written (EncoderParams::eib_activation).
+class EibCommissioning {
+ public:
+  EibCommissioning(const EncoderParams& params, Memory& memory) : params_(params), memory_(memory) {}
+  // Word 14 as stored now decides: an EIB type opens commissioning, any other closes it.
+  void follow_encoder_type(protocol::parameters::EncoderType type);
+  bool not_initiated() const { return not_initiated_; }
+  // A2 cause 5 for a memory access outside the commissioning areas while not initiated.
+  std::optional<protocol::ErrorCause> refuses(std::optional<MemoryArea> area) const;
+  // A position command refused as not supported (EibPositionBeforeCommissioning::NotSupported).
+  bool refuses_positions() const;
+  // The connected encoder's position width if commissioning completes now: at a reset, or at a
+  // write of word 14, as eib_activation says; none while the words written do not describe an
+  // encoder the model can be.
+  std::optional<unsigned> completes_at_reset() const;
+  std::optional<unsigned> completes_at_write(const Selection& s, std::uint8_t address) const;
+
+ private:
+  std::optional<unsigned> connected_encoder_bits() const;
+
+  const EncoderParams& params_;
+  Memory& memory_;
+  bool not_initiated_ = false;
+};
 
 }  // namespace endatsim::slave

@@ -32,7 +32,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
     : kernel_(kernel), pins_(pins), params_(params),
       memory_((params.validate(), params.memory.value_or(default_memory_image(params)))),
       positions_(params_, memory_), additional_data_(params_, memory_, positions_),
-      errors_(params_, memory_, positions_, additional_data_),
+      errors_(params_, memory_, positions_, additional_data_), eib_(params_, memory_),
       data_logic_(kernel, "encoder_data_logic", false), enable_logic_(kernel, "encoder_enable_logic", true),
       data_out_delay_(kernel, data_logic_, pins_.data_out, params.output_delay),
       enable_out_delay_(kernel, enable_logic_, pins_.data_enable, params.output_delay),
@@ -54,38 +54,16 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
 // manufacturer areas stay open for initial commissioning meanwhile.
 void Encoder::adopt_encoder_type(unsigned position_bits) {
   const auto type = pm::decode_encoder_type(memory_.manufacturer_word(word::kEncoderType));
-  eib_not_initiated_ = type == pm::EncoderType::ExternalInterfaceBox;
-  memory_.set_initial_commissioning(eib_not_initiated_);
+  eib_.follow_encoder_type(type);
   positions_.adopt(type, position_bits);
 }
 
-// 3.5.7: "the encoder type must be modified during initial commissioning according to the
-// connected encoder". The EIB becomes that encoder when word 14 names another type, word 13 a
-// transfer format (1 .. 48 bits; 16 for a touch probe), words 18/19 usable reference marks and,
-// with eib_activation_checks_checksum, word 47 checks (3.5.26). Otherwise it stays not initiated.
-// Relative positions count from here, as after switching on (2.3.4.3).
-void Encoder::complete_commissioning() {
-  const std::vector<std::uint16_t> m = manufacturer_words(memory_.image());
-  const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
-  const unsigned bits = pm::decode_position_bits(m[word::kPositionFormat]);
-  const bool checksum_ok = !params_.eib_activation_checks_checksum || pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum];
-  if (type == pm::EncoderType::ExternalInterfaceBox || bits < 1 || bits > EncoderParams::kMaxPositionBits || !checksum_ok ||
-      (type == pm::EncoderType::TouchProbe && bits != protocol::kTouchProbeBits))
-    return;
-  try {
-    (void)slave::reference_scheme(memory_, params_.reference_marks, params_.selected_reference_mark, bits);
-  } catch (const std::invalid_argument&) {
-    return;  // words 18/19 name marks the model cannot place
-  }
-  adopt_encoder_type(bits);
+// The EIB has become the connected encoder (eib.hpp). Relative positions count from here, as
+// after switching on (2.3.4.3).
+void Encoder::commissioned(std::optional<unsigned> position_bits) {
+  if (!position_bits) return;
+  adopt_encoder_type(*position_bits);
   positions_.count_from(kernel_.now());
-}
-
-// A2 cause 5 (choice, docs/model-reference.md): an EIB that is not yet initiated refuses every memory access
-// outside the areas initial commissioning fills (slave/eib.hpp).
-std::optional<ErrorCause> Encoder::not_initiated(std::optional<MemoryArea> area) const {
-  if (!eib_not_initiated_ || (area && eib_commissioning_area(*area))) return std::nullopt;
-  return ErrorCause::EibNotInitialised;
 }
 
 // 2.3.3 (the figure's labels in the German brochure: "*) hochohmig"; docs/model.md §8): during
@@ -265,8 +243,7 @@ void Encoder::decode_mode_command() {
   if (!f.command || (protocol::info(*f.command).version == EndatVersion::V2_2 && params_.version == EndatVersion::V2_1))
     return abort_type1(ErrorCause::ModeCommandDisrupted);
   command_ = &protocol::info(*f.command);
-  if (eib_not_initiated_ && command_->answer == protocol::AnswerFormat::Position &&
-      params_.eib_position_before_commissioning == EibPositionBeforeCommissioning::NotSupported)
+  if (command_->answer == protocol::AnswerFormat::Position && eib_.refuses_positions())
     return abort_type1(ErrorCause::ModeCommandDisrupted);
   if (!selected_on_bus_ && *f.command != MC::EncoderReceiveCommunicationCommand) {
     state_ = State::Type1;  // 2.10: only the addressed encoder reacts; this one keeps off the bus
@@ -292,7 +269,7 @@ void Encoder::abort_type1(ErrorCause cause) {
 // bus address error (3.6.4), and the RM reset of operating parameters 2 word 11 (3.10.5). A 2.1
 // write completes with its acknowledgment, a 2.2 one when Busy is reset (3.10).
 void Encoder::written(const Selection& s, std::uint8_t address) {
-  note_commissioning_write(s, address);
+  commissioned(eib_.completes_at_write(s, address));
   errors_.note_bus_address();
   // 3.10.5: bit 0 = 1 and bit 1 = 0 reset RM of an incremental encoder and set the warning
   // "reference point not reached"; "this does not influence position value and position value 2":
@@ -344,7 +321,7 @@ void Encoder::answer_parameter_frame() {
                                 command_->command == MC::EncoderSendParameters;
   const auto area = selection ? protocol::memory_area_from_mrs(address)
                               : area_selected_ ? std::optional{selection_area_.area} : std::nullopt;
-  if (const auto refused = parameter_access ? not_initiated(area) : std::nullopt) {
+  if (const auto refused = parameter_access ? eib_.refuses(area) : std::nullopt) {
     error = refused;  // A2 cause 5; a reset still works: it completes the commissioning
   } else if (transmission_incomplete_) {
     // A2 cause 3: a transmission was not completed; "the error handling will be transferred with
@@ -497,7 +474,7 @@ void Encoder::process_supplement() {
         break;
       }
       const auto block = static_cast<std::uint8_t>(parameter);  // block address: low byte (docs/model-reference.md, guess)
-      auto error = not_initiated(protocol::memory_area_from_mrs(address));  // A2 cause 5
+      auto error = eib_.refuses(protocol::memory_area_from_mrs(address));  // A2 cause 5
       if (!error) error = memory_.check_selection(address, block, true);
       f.error = error;
       // A2 type II: the MRS code (block address) is acknowledged inverted.
@@ -639,7 +616,7 @@ void Encoder::restart_state() {
   additional_data_.restart();
   area_selected_ = false;
   // 3.5.7: an EIB becomes the connected encoder at reset or power-on (EibActivation::Reset).
-  if (eib_not_initiated_ && params_.eib_activation == EibActivation::Reset) complete_commissioning();
+  commissioned(eib_.completes_at_reset());
   positions_.restart_reference_search(kernel_.now());
   test_port_21_ = 0;
   unsettled_left_ = params_.unsettled_positions;
@@ -719,11 +696,5 @@ void Encoder::select(const Selection& s) {
   if (s.area == MemoryArea::AsynchronousPosition) additional_data_.set_asynchronous_time_delay(s.block);  // 2.4.2.3
 }
 
-// EibActivation::Word14Write: the EIB becomes the connected encoder when word 14 is written.
-void Encoder::note_commissioning_write(const Selection& s, std::uint8_t address) {
-  if (eib_not_initiated_ && params_.eib_activation == EibActivation::Word14Write &&
-      s.area == MemoryArea::Manufacturer1 && address == word::kEncoderType)
-    complete_commissioning();
-}
 
 }  // namespace endatsim::slave

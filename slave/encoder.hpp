@@ -2,9 +2,9 @@
 // through the line's encoder-side pins (the mode command on RE3 .. RE8, t_cal, the start bit,
 // the answers of 2.3 .. 2.10, the command supplement, t_m), and the parts it hands the contents to:
 // the memory with its areas, write protection and the word being programmed (memory.hpp), the
-// position source (position_source.hpp), the additional data (additional_data.hpp) and the error
-// messages (error_messages.hpp). What an encoder is comes from EncoderParams
-// (encoder_params.hpp); every frame leaves an EncoderFrame as ground truth.
+// position source (position_source.hpp), the additional data (additional_data.hpp), the error
+// messages (error_messages.hpp) and an EIB's initial commissioning (eib.hpp). What an encoder is
+// comes from EncoderParams (encoder_params.hpp); every frame leaves an EncoderFrame as ground truth.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@
 #include "endatsim/line/line.hpp"
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/slave/additional_data.hpp"
+#include "endatsim/slave/eib.hpp"
 #include "endatsim/slave/encoder_params.hpp"
 #include "endatsim/slave/error_messages.hpp"
 #include "endatsim/slave/memory.hpp"
@@ -118,11 +119,9 @@ class Encoder {
   void reset();
   void restart_state();
   void adopt_encoder_type(unsigned position_bits);
-  void complete_commissioning();
-  std::optional<protocol::ErrorCause> not_initiated(std::optional<MemoryArea> area) const;
+  void commissioned(std::optional<unsigned> position_bits);
   bool function_activated(protocol::parameters::EncoderFunction f) const;
   void select(const Selection& s);
-  void note_commissioning_write(const Selection& s, std::uint8_t address);
   void written(const Selection& s, std::uint8_t address);
   void clock_after_supplement();
   void hand_over_for_supplement();
@@ -140,6 +139,7 @@ class Encoder {
   PositionSource positions_;
   AdditionalData additional_data_;
   ErrorMessages errors_;
+  EibCommissioning eib_;
   sim::Signal data_logic_;
   sim::Signal enable_logic_;
   sim::TransportDelay data_out_delay_;
@@ -179,7 +179,6 @@ class Encoder {
   std::optional<bool> bus_selection_after_frame_;
   bool offline_ = false;                        // running up after power-on or reset (2.3.3)
   unsigned unsettled_left_ = 0;                 // position answers still unsettled after start-up
-  bool eib_not_initiated_ = false;              // word 14 type Fh (3.5.7, A2 cause 5)
 
   std::vector<EncoderFrame> frames_;
   std::size_t kept_frames_ = SIZE_MAX / 2;
