@@ -89,7 +89,7 @@ void Master::next_operation() {
       expand(&Master::expand_safety_startup);
       return;
     case Operation::Kind::CrcSelfTest:
-      run_crc_self_test();
+      safety_.run_crc_self_test(params_.crc, position_bits_, kernel_.now());
       next_operation();
       return;
     case Operation::Kind::ReadEndat22Area:
@@ -103,8 +103,7 @@ void Master::next_operation() {
       return;
     case Operation::Kind::StartupPositions:
       frames_left_ = params_.safety.startup_positions ? params_.safety.startup_max_reads : 1;
-      startup_agreeing_ = 0;
-      safety_.report().startup_reads = 0;
+      safety_.begin_startup_positions();
       break;
     case Operation::Kind::MeasureDelay:
       delay_.begin();
@@ -274,7 +273,7 @@ void Master::operation_frame_done(const FrameResult& f) {
       frames_left_ = 1;
     } else if (frames_left_ == 1) ++busy_timeouts_;
   }
-  if (current_->kind == Operation::Kind::StartupPositions && startup_position_read(f)) frames_left_ = 1;
+  if (current_->kind == Operation::Kind::StartupPositions && safety_.startup_position_read(f, position_bits_, frames_left_ == 1)) frames_left_ = 1;
   note_failures(f);
   if (retry_frame(f)) return;
   if (--frames_left_ > 0) {

@@ -102,11 +102,9 @@ class Master : private FrameClient {
   // Safety functions (safety.cpp).
   void expand_safety_startup();
   void expand_endat22_read();
-  void run_crc_self_test();
   void note_safety(FrameResult& f);
   void collect_words(const FrameResult& f);
   void finish_checksums(bool endat22);
-  bool startup_position_read(const FrameResult& f);
   // Additional data 1 in turn (diagnostics.cpp).
   std::vector<protocol::Information> additional_data_1_schedule() const;
   void roll_additional_data_1(FrameRequest& request);
@@ -151,9 +149,6 @@ class Master : private FrameClient {
   DiagnosisMonitor diagnosis_{params_.diagnostics};
   ParameterBook book_;               // the encoder's memory as read (2.4 .. 2.6)
   std::size_t ai1_slot_ = 0;         // where additional data 1 is in its schedule
-  unsigned startup_agreeing_ = 0;
-  std::uint64_t startup_previous_ = 0;
-  Time startup_previous_at_{0};
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
 
   // What has been recorded.

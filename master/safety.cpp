@@ -215,39 +215,44 @@ void Master::expand_endat22_read() {
 // ensured through a targeted execution of bit sequences with known result": each known sequence
 // must pass, and with one bit of its CRC inverted must fail. Vectors at the master's own width come
 // from the A4 algorithm.
-void Master::run_crc_self_test() {
+void SafetyMonitor::run_crc_self_test(const CrcCheck& crc, unsigned position_bits, Time now) {
   std::vector<CrcVector> vectors(crc_known_results().begin(), crc_known_results().end());
-  vectors.push_back({position_bits_, false, true, true, 0x5A5A5A5A5A5AULL & ((std::uint64_t{1} << position_bits_) - 1), 0});
-  vectors.back().crc = protocol::make_crc_pos(position_bits_, false, true, true, vectors.back().position);
+  vectors.push_back({position_bits, false, true, true, 0x5A5A5A5A5A5AULL & ((std::uint64_t{1} << position_bits) - 1), 0});
+  vectors.back().crc = protocol::make_crc_pos(position_bits, false, true, true, vectors.back().position);
   for (const CrcVector& v : vectors) {
-    const std::uint8_t computed = expected_crc_pos(params_.crc, v.bits, v.error1, v.error2, v.endat22, v.position);
-    const bool good = crc_passes(params_.crc, v.crc, computed);
-    const bool bad_rejected = !crc_passes(params_.crc, static_cast<std::uint8_t>(v.crc ^ 0x01), computed);
+    const std::uint8_t computed = expected_crc_pos(crc, v.bits, v.error1, v.error2, v.endat22, v.position);
+    const bool good = crc_passes(crc, v.crc, computed);
+    const bool bad_rejected = !crc_passes(crc, static_cast<std::uint8_t>(v.crc ^ 0x01), computed);
     if (good && bad_rejected) continue;
-    safety_.find(SafetyFunction::CrcSelfTest, kernel_.now(), std::to_string(v.bits) + "-bit sequence of known CRC " + std::to_string(v.crc) + ": " +
+    find(SafetyFunction::CrcSelfTest, now, std::to_string(v.bits) + "-bit sequence of known CRC " + std::to_string(v.crc) + ": " +
              (!good ? "rejected (the evaluation computes " + std::to_string(computed) + ")"
                     : "a CRC with one bit inverted was accepted"));
   }
-  const bool norm_ok = crc_passes(params_.crc, 10, protocol::make_crc_norm(0xB9, 0x1234, params_.crc.generator)) &&
-                       !crc_passes(params_.crc, 11, protocol::make_crc_norm(0xB9, 0x1234, params_.crc.generator));
-  if (!norm_ok) safety_.find(SafetyFunction::CrcSelfTest, kernel_.now(), "parameter CRC of B9h / 1234h (known 10) evaluated wrong");
+  const bool norm_ok = crc_passes(crc, 10, protocol::make_crc_norm(0xB9, 0x1234, crc.generator)) &&
+                       !crc_passes(crc, 11, protocol::make_crc_norm(0xB9, 0x1234, crc.generator));
+  if (!norm_ok) find(SafetyFunction::CrcSelfTest, now, "parameter CRC of B9h / 1234h (known 10) evaluated wrong");
+}
+
+void SafetyMonitor::begin_startup_positions() {
+  report_.startup_reads = 0;
+  startup_agreeing_ = 0;
 }
 
 // Multiple transmission at start-up: `startup_repetitions` consecutive values that agree (after
 // the commanded motion between them, within the tolerance) release the axis; a careless master
 // releases it with its first value.
-bool Master::startup_position_read(const FrameResult& f) {
-  const SafetyParams& s = params_.safety;
-  ++safety_.report().startup_reads;
+bool SafetyMonitor::startup_position_read(const FrameResult& f, unsigned position_bits, bool last_read) {
+  const SafetyParams& s = params_;
+  ++report_.startup_reads;
   if (f.outcome != FrameOutcome::Ok || f.error_detected) {
     startup_agreeing_ = 0;
   } else if (const double moved = static_cast<double>(s.setpoint.counts_per_s) *
                                   static_cast<double>((f.start - startup_previous_at_).count()) * 1e-12;
              startup_agreeing_ == 0 ||
-             std::abs(static_cast<double>(ring_distance(f.position, startup_previous_, position_bits_)) - moved) >
+             std::abs(static_cast<double>(ring_distance(f.position, startup_previous_, position_bits)) - moved) >
                  static_cast<double>(s.startup_tolerance)) {
     if (startup_agreeing_ != 0)
-      safety_.find(SafetyFunction::StartupPositions, f,
+      find(SafetyFunction::StartupPositions, f,
            "position " + std::to_string(f.position) + " differs from the previous " + std::to_string(startup_previous_) +
                " by more than " + std::to_string(s.startup_tolerance) + " LSB");
     startup_agreeing_ = 1;
@@ -261,18 +266,18 @@ bool Master::startup_position_read(const FrameResult& f) {
     static constexpr SafetyFunction kBlocking[] = {SafetyFunction::CrcSelfTest, SafetyFunction::Checksums,
                                                    SafetyFunction::ForcedDynamicSampling, SafetyFunction::CommandSet};
     const bool blocked = std::any_of(std::begin(kBlocking), std::end(kBlocking),
-                                     [this](SafetyFunction x) { return safety_.report().count(x) != 0; });
-    safety_.report().axis_released = !blocked;
+                                     [this](SafetyFunction x) { return report_.count(x) != 0; });
+    report_.axis_released = !blocked;
     if (!blocked) {
-      safety_.report().released_at = f.end;
-      safety_.report().release_frame = f.index;
-      safety_.report().release_position = f.position;
+      report_.released_at = f.end;
+      report_.release_frame = f.index;
+      report_.release_position = f.position;
     }
     return true;
   }
-  if (frames_left_ == 1)
-    safety_.find(SafetyFunction::StartupPositions, f,
-         "no " + std::to_string(needed) + " agreeing position values in " + std::to_string(safety_.report().startup_reads) +
+  if (last_read)
+    find(SafetyFunction::StartupPositions, f,
+         "no " + std::to_string(needed) + " agreeing position values in " + std::to_string(report_.startup_reads) +
              " reads: the axis stays blocked");
   return false;
 }

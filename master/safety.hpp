@@ -21,6 +21,8 @@
 
 namespace endatsim::master {
 
+struct CrcCheck;
+
 using sim::Time;
 
 enum class SafetyFunction : std::uint8_t {
@@ -143,6 +145,12 @@ class SafetyMonitor {
   // 3.4.1: word 0 is to be read (an error message appeared).
   bool error_sources_due() const { return error_sources_due_; }
   void clear_error_sources_due() { error_sources_due_ = false; }
+  // The start-up's own checks: the CRC evaluation against sequences of known result (`crc` the
+  // master's, at its width), and the repeated position reads, which release the axis (true once
+  // enough agree; `last_read`: the last the master makes).
+  void run_crc_self_test(const CrcCheck& crc, unsigned position_bits, Time now);
+  void begin_startup_positions();
+  bool startup_position_read(const FrameResult& f, unsigned position_bits, bool last_read);
   // What the comparison of position value 2 needs, once the start-up has read it.
   void set_position2_parameters(const Position2Parameters& p) { position2_parameters_ = p; }
 
@@ -159,6 +167,9 @@ class SafetyMonitor {
   Operation::Purpose purpose_ = Operation::Purpose::None;  // of the frame being judged
   unsigned position_bits_ = 0;
   bool error_sources_due_ = false;
+  unsigned startup_agreeing_ = 0;
+  std::uint64_t startup_previous_ = 0;
+  Time startup_previous_at_{0};
   bool error_state_ = false, disagree_state_ = false, lag_state_ = false;
   std::optional<Time> forced_sent_at_;
   bool forcing_ = false;
