@@ -3,9 +3,10 @@
 // them, its sampling instants), decode every frame from the wires (frame_decoder.hpp) and judge
 // each row of the timing table (protocol/timing.hpp; D297403 2.3.2, 2.1.2, 2.3.3, appendix A2)
 // against the spec's envelope or the declared encoder. The checks are spread over
-// timing_checker.cpp (frames, the clock's frequency and count, the rows between frames),
+// timing_checker.cpp (frames, the clock's frequency, the rows between frames),
 // clock_phase_checks.cpp (t_HI, t_LO, the on-off ratio) and data_line_checks.cpp (t_z, t_OE,
-// t_cal, t_D); what each row found is a Violation, what it measured a RowConformance.
+// t_cal, t_ST, t_D, the number of clock pulses); what each row found is a Violation, what it
+// measured a RowConformance.
 #pragma once
 
 #include <algorithm>

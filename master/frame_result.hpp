@@ -30,7 +30,8 @@ static_assert([] {
   for (std::size_t i = 0; i < kFrameOutcomes.size(); ++i)
     if (kFrameOutcomes[i] != static_cast<FrameOutcome>(i)) return false;
   return kFrameOutcomes.back() == FrameOutcome::TooFewClocks;
-}(), "kFrameOutcomes: every outcome once, in the order of its value (tables are indexed by it)");
+}(), "kFrameOutcomes: the outcomes in the order of their values up to the last one, TooFewClocks (tables are "
+      "indexed by them); a new outcome goes after it, in the list and in this check");
 std::string_view to_string(FrameOutcome o);
 
 // One additional datum as received (2.3.5).

@@ -25,8 +25,8 @@ struct StartupInfo {
 
 class StartupRoutine {
  public:
-  // Reset, 50 ms, alarms and warnings read and cleared, words 13 and 37; with delay compensation
-  // the measurement after them (2.1.2).
+  // Reset, 50 ms, alarms and warnings read, 0000h written to words 0 and 1, reset, 50 ms (3.4.1),
+  // words 13 and 37; with delay compensation the measurement after them (2.1.2).
   void plan(Sequence& s, bool measure_delay);
   static bool of_routine(Operation::Purpose p);
   // A frame of the routine; the position width word 13 gave, when it gave one.

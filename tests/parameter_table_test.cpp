@@ -170,7 +170,7 @@ TEST(ParameterTables, ValidateNamesObjectKeyAndRange) {
 }
 
 // 2.1.2: f_e is 0 (eight times f_c) or a counter clock of its own; what lies between is refused
-// by the loader and the model alike, with the same words.
+// by the loader and the model alike, each naming the range.
 TEST(ParameterTables, TheCounterClockIsZeroOrAtLeastOneMegahertz) {
   const auto rows = master::delay_measurement_parameters();
   const auto& f_e = *std::find_if(rows.begin(), rows.end(), [](const auto& r) { return r.key == "f_e"; });
