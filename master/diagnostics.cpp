@@ -1,9 +1,8 @@
-// The diagnosis the master collects (diagnostics.hpp), and the rolling selection of additional
-// data 1 that the diagnosis and the safety comparison of position value 2 share.
+// The diagnosis the master collects (diagnostics.hpp), its setup, and the master's part in the
+// rolling selection of additional data 1 (additional_data_rolling.hpp).
 #include "endatsim/master/diagnostics.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <stdexcept>
 
 #include "endatsim/master/master.hpp"
@@ -78,66 +77,19 @@ std::size_t DiagnosisReport::count(DiagnosisNoteKind k) const {
 
 // ---- additional data 1 in turn ----------------------------------------------------------------
 
-// 2.3.5.1: one information per frame. The diagnosis (one interrogation per activated valuation
-// number: the encoder rolls them, A3), the temperatures, the additional sensors (their address
-// rolls likewise); position value 2 (words 1 .. 3, "always updated by querying the first word")
-// before each of them when the safety comparison is on.
-std::vector<I> Master::additional_data_1_schedule() const {
-  std::vector<I> diagnosis;
-  const DiagnosticsParams& d = params_.diagnostics;
-  if (d.enabled) {
-    const std::uint16_t support =
-        diagnosis_.report().additional_data_1_support.value_or(protocol::parameters::kSupportsEveryAdditionalData1);  // 3.9.2
-    const std::uint16_t active = diagnosis_.report().configuration.value_or(d.configuration);
-    const unsigned numbers = static_cast<unsigned>(std::popcount(static_cast<unsigned>(active & dg::kValuationNumberBits)));
-    diagnosis.insert(diagnosis.end(), std::max(numbers, 1U), I::Diagnosis);
-    namespace pm = protocol::parameters;
-    if (d.temperatures && (support & pm::kSupportsTemperature1) != 0) diagnosis.push_back(I::Temperature1);
-    if (d.temperatures && (support & pm::kSupportsTemperature2) != 0) diagnosis.push_back(I::Temperature2);
-    if ((support & pm::kSupportsAdditionalSensors) != 0) diagnosis.insert(diagnosis.end(), d.additional_sensors, I::AdditionalSensors);
-  }
-  std::vector<I> position2;
-  if (params_.safety.position_value_2)
-    for (unsigned k = 0; k < std::min(3U, (position_bits_ + 15) / 16); ++k)
-      position2.push_back(static_cast<I>(static_cast<unsigned>(I::PositionValue2Word1) + k));
-  if (diagnosis.empty() || position2.empty()) return diagnosis.empty() ? position2 : diagnosis;
-  std::vector<I> schedule;
-  for (const I item : diagnosis) {
-    schedule.insert(schedule.end(), position2.begin(), position2.end());
-    schedule.push_back(item);
-  }
-  return schedule;
-}
-
 // Each cyclic read with additional data selects, with "Encoder send position values and
-// selection of memory area" (2.4.2.2), what the next frame is to carry; it still answers with
-// the position and what was selected before. Additional data 1 selected for something else
-// (a memory read, a script's own choice) is left alone.
+// selection of memory area" (2.4.2.2), what the next frame is to carry (AdditionalData1Rolling).
+// Additional data 1 selected for something else (a memory read, a script's own choice) is left
+// alone.
 void Master::roll_additional_data_1(FrameRequest& request) {
   if (current_->purpose != P::None || current_->kind == Operation::Kind::AwaitNotBusy ||
       request.command != MC::EncoderSendPositionValuesWithAdditionalData)
     return;
-  if (!params_.diagnostics.enabled && !params_.safety.position_value_2) return;
-  const auto schedule = additional_data_1_schedule();
-  if (schedule.empty()) return;
   const std::optional<I> now = selected_[0] ? std::optional{protocol::information_of_mrs(selection_mrs_[0])} : std::nullopt;
-  if (!now && !params_.diagnostics.enabled) return;
-  const std::size_t size = schedule.size();
-  if (ai1_slot_ >= size) ai1_slot_ = 0;
-  if (!now) {
-    ai1_slot_ = size - 1;
-  } else if (schedule[ai1_slot_] != *now) {
-    // A selection that did not come through (or another one): back to the latest slot that holds
-    // what is selected, so that the round goes on rather than starting over.
-    std::size_t back = 1;
-    while (back <= size && schedule[(ai1_slot_ + size - back) % size] != *now) ++back;
-    if (back > size) return;
-    ai1_slot_ = (ai1_slot_ + size - back) % size;
-  }
-  ai1_slot_ = (ai1_slot_ + 1) % schedule.size();
-  if (now && schedule[ai1_slot_] == *now) return;
+  const auto next = rolling_.next(diagnosis_.report(), position_bits_, now);
+  if (!next) return;
   request.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-  request.payload = std::uint32_t{protocol::selection_mrs(schedule[ai1_slot_])} << 16;
+  request.payload = std::uint32_t{protocol::selection_mrs(*next)} << 16;
 }
 
 // ---- the setup ----------------------------------------------------------------------------------

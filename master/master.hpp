@@ -6,6 +6,7 @@
 //   parameter_book.hpp     the encoder's memory as read (2.4 .. 2.6)
 //   safety.hpp             the safety functions' checks of every frame (SafetyMonitor)
 //   diagnostics.hpp        the diagnosis for a service engineer (DiagnosisMonitor, A3)
+//   additional_data_rolling.hpp  additional data 1 in turn (2.3.5.1)
 //   startup.hpp            the start-up routine and the checksum check (2.1 reads, 3.5.26)
 //   master_params.hpp      what the master is configured with
 //   frame_result.hpp       what a frame gave; operation.hpp what the master is asked to do
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "endatsim/line/line.hpp"
+#include "endatsim/master/additional_data_rolling.hpp"
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/diagnostics.hpp"
 #include "endatsim/master/frame_engine.hpp"
@@ -106,7 +108,6 @@ class Master : private FrameClient {
   void collect_words(const FrameResult& f);
   void finish_checksums(bool endat22);
   // Additional data 1 in turn (diagnostics.cpp).
-  std::vector<protocol::Information> additional_data_1_schedule() const;
   void roll_additional_data_1(FrameRequest& request);
   // Diagnosis (diagnostics.cpp).
   void expand_diagnosis_setup();
@@ -148,7 +149,7 @@ class Master : private FrameClient {
   SafetyMonitor safety_{params_.safety};
   DiagnosisMonitor diagnosis_{params_.diagnostics};
   ParameterBook book_;               // the encoder's memory as read (2.4 .. 2.6)
-  std::size_t ai1_slot_ = 0;         // where additional data 1 is in its schedule
+  AdditionalData1Rolling rolling_{params_.diagnostics, params_.safety};
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
 
   // What has been recorded.
