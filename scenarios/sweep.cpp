@@ -262,17 +262,22 @@ Scenario load_point(const json& base, const std::string& file, const std::vector
 // Workers take the next index from a shared counter; each result lands at its own index, so
 // the order of completion never shows in the output. An interruption stops them taking more.
 // Calls work(i) for every i < n on up to `jobs` threads, until an interruption; rethrows the
-// exception of the lowest i, so that a bad point is reported as a serial loop would.
+// exception of the lowest i, so that a bad point is reported as a serial loop would. Once point i
+// has failed no point after it is taken: every point before it has been taken already (they are
+// taken in order) and finishes, so the lowest failure is still found.
 template <class Work>
 void for_each_point(std::size_t n, unsigned jobs, const Work& work) {
   std::vector<std::exception_ptr> errors(n);
   std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> failed{n};  // the lowest point that failed so far
   const auto worker = [&] {
-    for (std::size_t i = next++; i < n && interrupt_signal() == 0; i = next++) {
+    for (std::size_t i = next++; i < failed.load() && interrupt_signal() == 0; i = next++) {
       try {
         work(i);
       } catch (...) {
         errors[i] = std::current_exception();
+        for (std::size_t f = failed.load(); i < f && !failed.compare_exchange_weak(f, i);) {
+        }
       }
     }
   };
