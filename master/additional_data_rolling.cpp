@@ -13,7 +13,8 @@ using I = protocol::Information;
 // The temperatures and additional sensors only where word 0 of the 2.2 area says the encoder
 // has them (3.9.2); position value 2 in as many words as its width needs (2.3.5.1, words 1 .. 3,
 // "always updated by querying the first word").
-std::vector<I> AdditionalData1Rolling::schedule(const DiagnosisReport& report, unsigned position_bits) const {
+std::vector<I> AdditionalData1Rolling::schedule(unsigned position_bits) const {
+  const DiagnosisReport& report = report_;
   namespace pm = protocol::parameters;
   std::vector<I> diagnosis;
   const DiagnosticsParams& d = diagnostics_;
@@ -40,10 +41,9 @@ std::vector<I> AdditionalData1Rolling::schedule(const DiagnosisReport& report, u
   return round;
 }
 
-std::optional<I> AdditionalData1Rolling::next(const DiagnosisReport& report, unsigned position_bits,
-                                              std::optional<I> selected) {
+std::optional<I> AdditionalData1Rolling::next_additional_data_1(const FunctionContext& ctx, std::optional<I> selected) {
   if (!active()) return std::nullopt;
-  const auto round = schedule(report, position_bits);
+  const auto round = schedule(ctx.position_bits);
   if (round.empty() || (!selected && !diagnostics_.enabled)) return std::nullopt;
   const std::size_t size = round.size();
   if (slot_ >= size) slot_ = 0;

@@ -1,11 +1,11 @@
-// The diagnosis the master collects (diagnostics.hpp), its setup, and the master's part in the
-// rolling selection of additional data 1 (additional_data_rolling.hpp).
+// The diagnosis the master collects (diagnostics.hpp): its setup and activation, and what the
+// frames bring in.
 #include "endatsim/master/diagnostics.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "endatsim/master/master.hpp"
+#include "endatsim/master/parameter_book.hpp"
 #include "endatsim/protocol/diagnosis.hpp"
 #include "endatsim/protocol/parameters.hpp"
 
@@ -75,30 +75,12 @@ std::size_t DiagnosisReport::count(DiagnosisNoteKind k) const {
 
 // ---- parameters read ------------------------------------------------------------------------
 
-// ---- additional data 1 in turn ----------------------------------------------------------------
-
-// Each cyclic read with additional data selects, with "Encoder send position values and
-// selection of memory area" (2.4.2.2), what the next frame is to carry (AdditionalData1Rolling).
-// Additional data 1 selected for something else (a memory read, a script's own choice) is left
-// alone.
-void Master::roll_additional_data_1(FrameRequest& request) {
-  if (current_->purpose != P::None || current_->kind == Operation::Kind::AwaitNotBusy ||
-      request.command != MC::EncoderSendPositionValuesWithAdditionalData)
-    return;
-  const std::optional<I> now = selected_[0] ? std::optional{protocol::information_of_mrs(selection_mrs_[0])} : std::nullopt;
-  const auto next = rolling_.next(diagnosis_.report(), position_bits_, now);
-  if (!next) return;
-  request.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-  request.payload = std::uint32_t{protocol::selection_mrs(*next)} << 16;
-}
-
 // ---- the setup ----------------------------------------------------------------------------------
 
 // The German brochure, "Aktivieren der Diagnose": read what the encoder supports (3.9.2, 3.9.7) and how it
 // scales temperatures (3.9.6, 3.9.16; word 36 for the warnings), and the operating parameters
 // in force (3.6.3, 3.6.6); DiagnosisActivate then writes word 3 if needed.
-void Master::expand_diagnosis_setup() {
-  Sequence plan = sequence();
+void Diagnosis::plan_setup(Sequence& plan) {
   plan.frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::Manufacturer3));
   plan.frame(MC::EncoderSendParameters, kSupportedWarnings);
   plan.frame(MC::EncoderSendParameters, kCommandSet);
@@ -109,40 +91,39 @@ void Master::expand_diagnosis_setup() {
       std::uint64_t{1} << kAdditionalData1Support | std::uint64_t{1} << kTemperatureScaling |
       std::uint64_t{1} << kDiagnosticStatus | std::uint64_t{1} << kMaxTemperature;
   plan.add(Operation::Kind::DiagnosisActivate);
-  diagnosis_.restart();
-  run_first(plan);
+  monitor_.restart();
 }
 
 // 3.6: "changes to the values do not become valid until the mode command 'Encoder receive
 // reset' is transmitted"; the reset also ends the selection of additional data (2.7).
-void Master::activate_diagnosis() {
-  DiagnosisReport& r = diagnosis_.report();
+void Diagnosis::plan_activation(const FunctionContext& ctx, Sequence& plan) {
+  DiagnosisReport& r = monitor_.report();
+  const auto parameter = [&ctx](std::uint8_t mrs, std::uint8_t address) { return ctx.book.parameter(mrs, address); };
   const std::uint8_t a5 = mrs_of(protocol::MemoryArea::Manufacturer3), a7 = mrs_of(protocol::MemoryArea::OperatingParameters);
   r.supported_warnings = parameter(a5, kSupportedWarnings);
   r.configuration = parameter(a7, kConfiguration);
   r.warning_threshold = parameter(a7, kWarningThreshold);
-  r.additional_data_1_support = book_.endat22_word(kAdditionalData1Support);
-  r.temperature_scaling = book_.endat22_word(kTemperatureScaling);
-  r.diagnostic_status = book_.endat22_word(kDiagnosticStatus);
-  r.max_temperature = book_.endat22_word(kMaxTemperature);
+  r.additional_data_1_support = ctx.book.endat22_word(kAdditionalData1Support);
+  r.temperature_scaling = ctx.book.endat22_word(kTemperatureScaling);
+  r.diagnostic_status = ctx.book.endat22_word(kDiagnosticStatus);
+  r.max_temperature = ctx.book.endat22_word(kMaxTemperature);
   const auto word37 = parameter(a5, kCommandSet);
   if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
-    diagnosis_.note(K::Setup, nullptr, "setup", true,
-                    "the encoder has no EnDat 2.2 command set (word 37): no diagnosis through additional data", kernel_.now());
+    monitor_.note(K::Setup, nullptr, "setup", true,
+                    "the encoder has no EnDat 2.2 command set (word 37): no diagnosis through additional data", ctx.now);
     return;
   }
-  Sequence plan = sequence();
   if (!r.configuration || !r.diagnostic_status || !r.additional_data_1_support) {
-    diagnosis_.note(K::Setup, nullptr, "setup", true,
-                    "the diagnostic status (3.9.7) or the configuration (3.6.3) could not be read", kernel_.now());
+    monitor_.note(K::Setup, nullptr, "setup", true,
+                    "the diagnostic status (3.9.7) or the configuration (3.6.3) could not be read", ctx.now);
   } else {
     if (r.temperature_scaling && !dg::temperature_scaling(*r.temperature_scaling))
-      diagnosis_.note(K::Setup, nullptr, "scaling", true,
+      monitor_.note(K::Setup, nullptr, "scaling", true,
                       "temperature scaling word 4 = " + hex(*r.temperature_scaling) +
                           " is not the 0.1 K the spec defines (3.9.6); temperatures shown as 0.1 K",
-                      kernel_.now());
+                      ctx.now);
     // 3.9.7: word 5 has the bits of word 3 for what is supported.
-    const auto wanted = static_cast<std::uint16_t>(params_.diagnostics.configuration & *r.diagnostic_status);
+    const auto wanted = static_cast<std::uint16_t>(params_.configuration & *r.diagnostic_status);
     if (wanted != *r.configuration) {
       r.configuration_written = wanted;
       plan.frame(MC::SelectionOfMemoryArea, a7);
@@ -153,7 +134,31 @@ void Master::activate_diagnosis() {
   // Its flow chart: then "Encoder send position values with additional data" with the
   // diagnosis selected (the reads of the 2.2 area left memory parameters selected).
   plan.frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::Diagnosis));
-  run_first(plan);
+}
+
+Planned Diagnosis::plan(const FunctionContext& ctx, Sequence& plan) {
+  switch (ctx.operation.kind) {
+    case Operation::Kind::DiagnosisSetup:
+      plan_setup(plan);
+      return {Planned::What::Expanded};
+    case Operation::Kind::DiagnosisActivate:
+      plan_activation(ctx, plan);
+      return {Planned::What::Expanded};
+    default: return {};
+  }
+}
+
+void Diagnosis::on_frame(FrameResult& f, const FunctionContext& ctx) {
+  const P p = ctx.operation.purpose;
+  monitor_.on_frame(f, p == P::DiagnosisConfiguration ? DiagnosisFrame::ConfigurationWrite
+                       : p == P::DiagnosisWarnings    ? DiagnosisFrame::WarningsRead
+                                                      : DiagnosisFrame::Cyclic);
+}
+
+// 3.4.2: word 1 says which warning it was.
+std::optional<StatusRead> Diagnosis::status_read_due() const {
+  if (!monitor_.warnings_due()) return std::nullopt;
+  return StatusRead{protocol::word::kWarnings, P::DiagnosisWarnings};
 }
 
 // ---- what the frames carry ----------------------------------------------------------------------

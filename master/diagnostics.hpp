@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "endatsim/master/frame_result.hpp"
+#include "endatsim/master/master_function.hpp"
 #include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/time.hpp"
 
@@ -133,6 +134,28 @@ class DiagnosisMonitor {
   bool warning_bit_ = false;
   bool warnings_due_ = false;
   std::optional<Time> warnings_read_at_;    // the last read of word 1 after WRN
+};
+
+// The diagnosis on top of the master's scheduler (master_function.hpp): it plans the setup a
+// DiagnosisSetup operation asks for and its activation (DiagnosisActivate), and hands every frame
+// to the DiagnosisMonitor.
+class Diagnosis final : public MasterFunction {
+ public:
+  explicit Diagnosis(const DiagnosticsParams& params) : params_(params), monitor_(params) {}
+
+  const DiagnosisReport& report() const { return monitor_.report(); }
+
+  Planned plan(const FunctionContext& ctx, Sequence& plan) override;
+  void on_frame(FrameResult& f, const FunctionContext& ctx) override;
+  std::optional<StatusRead> status_read_due() const override;
+  void status_read_planned() override { monitor_.clear_warnings_due(); }
+
+ private:
+  void plan_setup(Sequence& plan);
+  void plan_activation(const FunctionContext& ctx, Sequence& plan);
+
+  const DiagnosticsParams& params_;
+  DiagnosisMonitor monitor_;
 };
 
 }  // namespace endatsim::master

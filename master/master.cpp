@@ -4,18 +4,29 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "endatsim/protocol/parameters.hpp"
+
 namespace endatsim::master {
 namespace {
+
+using MC = protocol::ModeCommand;
+using I = protocol::Information;
+using P = Operation::Purpose;
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-DiagnosisFrame diagnosis_frame(Operation::Purpose p) {
-  using P = Operation::Purpose;
-  return p == P::DiagnosisConfiguration ? DiagnosisFrame::ConfigurationWrite
-         : p == P::DiagnosisWarnings    ? DiagnosisFrame::WarningsRead
-                                        : DiagnosisFrame::Cyclic;
+// The operations the scheduler leaves to the functions on top of it.
+const char* name_of_function_operation(Operation::Kind k) {
+  switch (k) {
+    case Operation::Kind::SafetyStartup: return "safety_startup";
+    case Operation::Kind::CrcSelfTest: return "crc_self_test";
+    case Operation::Kind::StartupPositions: return "startup_positions";
+    case Operation::Kind::DiagnosisSetup: return "diagnosis_setup";
+    case Operation::Kind::DiagnosisActivate: return "diagnosis_activate";
+    default: return "?";
+  }
 }
 
 const MasterParams& validated(const MasterParams& p) {
@@ -62,7 +73,7 @@ void Master::start() {
 
 void Master::next_operation() {
   // Reads of words 0 / 1 that waited for the end of an expanded sequence come before the end.
-  if (operations_.empty() && (safety_.error_sources_due() || diagnosis_.warnings_due()) && current_)
+  if (operations_.empty() && status_read_due() && current_)
     push_status_reads(*current_);
   if (operations_.empty()) {
     current_.reset();
@@ -79,32 +90,28 @@ void Master::next_operation() {
     case Operation::Kind::PowerOnSequence:
       kernel_.schedule(begin + params_.power_on.t1_t2 - kernel_.now(), sim::bind<&Master::power_on_pulse>(this, 0));
       return;
-    case Operation::Kind::StartupRoutine:
-      expand(&Master::expand_startup_routine);
+    case Operation::Kind::StartupRoutine: {
+      Sequence routine = sequence();
+      routine_.plan(routine, params_.delay_compensation);
+      expand(std::move(routine));
       return;
-    case Operation::Kind::VerifyChecksum:
-      expand(&Master::expand_checksum_check);
+    }
+    case Operation::Kind::VerifyChecksum: {
+      Sequence reads = sequence();
+      checksum_.plan(reads);
+      expand(std::move(reads));
+      return;
+    }
+    case Operation::Kind::ReadEndat22Area:
+      expand(endat22_read_plan());
       return;
     case Operation::Kind::SafetyStartup:
-      expand(&Master::expand_safety_startup);
-      return;
     case Operation::Kind::CrcSelfTest:
-      safety_.run_crc_self_test(params_.crc, position_bits_, kernel_.now());
-      next_operation();
-      return;
-    case Operation::Kind::ReadEndat22Area:
-      expand(&Master::expand_endat22_read);
-      return;
-    case Operation::Kind::DiagnosisSetup:
-      expand(&Master::expand_diagnosis_setup);
-      return;
-    case Operation::Kind::DiagnosisActivate:
-      expand(&Master::activate_diagnosis);
-      return;
     case Operation::Kind::StartupPositions:
-      frames_left_ = params_.safety.startup_positions ? params_.safety.startup_max_reads : 1;
-      safety_.begin_startup_positions();
-      break;
+    case Operation::Kind::DiagnosisSetup:
+    case Operation::Kind::DiagnosisActivate:
+      offer_to_functions(begin);
+      return;
     case Operation::Kind::MeasureDelay:
       delay_.begin();
       frames_left_ = params_.measurement.count;
@@ -118,18 +125,43 @@ void Master::next_operation() {
       retries_left_ = params_.careful.retries;
       break;
   }
+  start_frames(begin);
+}
+
+void Master::start_frames(Time begin) {
   next_due_ = begin;
   const Time at = std::max(next_due_, ready_at_);
   kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
 }
 
-void Master::run_first(const Sequence& s) { operations_.insert(operations_.begin(), s.ops.begin(), s.ops.end()); }
+FunctionContext Master::context() const {
+  return {*current_, params_, book_, checksum_, position_bits_, kernel_.now()};
+}
 
-void Master::expand(void (Master::*expansion)()) {
-  const std::size_t before = operations_.size();
-  (this->*expansion)();
-  for (std::size_t i = 0; i + before < operations_.size(); ++i) operations_[i].expanded = true;
+// The operations of a sequence run before what is queued.
+void Master::expand(Sequence s) {
+  for (Operation& o : s.ops) o.expanded = true;
+  operations_.insert(operations_.begin(), s.ops.begin(), s.ops.end());
   next_operation();
+}
+
+// An operation the scheduler does not plan itself goes to the functions on top of it.
+void Master::offer_to_functions(Time begin) {
+  Sequence plan = sequence();
+  for (MasterFunction* function : functions_) {
+    const Planned p = function->plan(context(), plan);
+    switch (p.what) {
+      case Planned::What::NotMine: continue;
+      case Planned::What::Expanded: expand(std::move(plan)); return;
+      case Planned::What::Done: next_operation(); return;
+      case Planned::What::Frames:
+        frames_left_ = p.frames;
+        start_frames(begin);
+        return;
+    }
+  }
+  throw std::logic_error(std::string("operation ") + name_of_function_operation(current_->kind) +
+                         ": no function on this master plans it (master/functions.hpp attaches them)");
 }
 
 void Master::power_on_pulse(std::uint64_t phase) {
@@ -142,18 +174,6 @@ void Master::power_on_pulse(std::uint64_t phase) {
   engine_.drive_clock(true);
   ready_at_ = std::max(ready_at_, kernel_.now() + params_.power_on.t3);
   operation_timer_.start(params_.power_on.t3);
-}
-
-void Master::expand_startup_routine() {
-  Sequence routine = sequence();
-  routine_.plan(routine, params_.delay_compensation);
-  run_first(routine);
-}
-
-void Master::expand_checksum_check() {
-  Sequence reads = sequence();
-  checksum_.plan(reads);
-  run_first(reads);
 }
 
 // ---- a careful master ---------------------------------------------------------------------
@@ -234,11 +254,17 @@ void Master::interrupt_for_measurement() {
   next_operation();
 }
 
-// 3.4.1 / 3.4.2: words 0 and 1 of the operating status say which error or warning it was.
+bool Master::status_read_due() const {
+  return std::any_of(functions_.begin(), functions_.end(), [](const MasterFunction* f) { return f->status_read_due().has_value(); });
+}
+
+// 3.4.1 / 3.4.2: words 0 and 1 of the operating status say which error or warning it was; the
+// reads come in the order of the functions that asked for them.
 void Master::push_status_reads(const Operation& base) {
-  for (const auto& [due, address, purpose] : {std::tuple{safety_.error_sources_due(), 0, Operation::Purpose::ErrorSources},
-                                              {diagnosis_.warnings_due(), 1, Operation::Purpose::DiagnosisWarnings}}) {
-    if (!due) continue;
+  std::vector<StatusRead> reads;
+  for (const MasterFunction* f : functions_)
+    if (auto r = f->status_read_due()) reads.push_back(*r);
+  for (auto r = reads.rbegin(); r != reads.rend(); ++r) {
     Operation read = base;
     read.kind = Operation::Kind::ReadPosition;
     read.count = 1;
@@ -247,16 +273,15 @@ void Master::push_status_reads(const Operation& base) {
     read.clock_adjust = 0;
     read.continuous_words = 0;
     read.command = ModeCommand::EncoderSendParameters;
-    read.address = static_cast<std::uint8_t>(address);
-    read.purpose = purpose;
+    read.address = r->address;
+    read.purpose = r->purpose;
     operations_.push_front(read);
     read.command = ModeCommand::SelectionOfMemoryArea;
     read.address = protocol::info(protocol::MemoryArea::OperatingStatus).mrs;
     read.purpose = Operation::Purpose::None;
     operations_.push_front(read);
   }
-  safety_.clear_error_sources_due();
-  diagnosis_.clear_warnings_due();
+  for (MasterFunction* f : functions_) f->status_read_planned();
 }
 
 void Master::operation_frame_done(const FrameResult& f) {
@@ -273,7 +298,8 @@ void Master::operation_frame_done(const FrameResult& f) {
       frames_left_ = 1;
     } else if (frames_left_ == 1) ++busy_timeouts_;
   }
-  if (current_->kind == Operation::Kind::StartupPositions && safety_.startup_position_read(f, position_bits_, frames_left_ == 1)) frames_left_ = 1;
+  for (MasterFunction* function : functions_)
+    if (function->ends_operation(f, context(), frames_left_ == 1)) frames_left_ = 1;
   note_failures(f);
   if (retry_frame(f)) return;
   if (--frames_left_ > 0) {
@@ -295,8 +321,8 @@ void Master::operation_frame_done(const FrameResult& f) {
 // ---- one frame ----------------------------------------------------------------------------
 
 void Master::start_frame(std::uint64_t) {
-  const bool status_read_due = (safety_.error_sources_due() || diagnosis_.warnings_due()) && !current_->expanded;
-  if ((remeasure_due_ || reselect_due_ || status_read_due) && !delay_.active()) {
+  const bool status_reads = status_read_due() && !current_->expanded;
+  if ((remeasure_due_ || reselect_due_ || status_reads) && !delay_.active()) {
     interrupt_for_measurement();
     return;
   }
@@ -360,8 +386,15 @@ void Master::frame_done(FrameResult& f) {
     ready_at_ = std::max(ready_at_, f.end + params_.reset_wait);
   if (!f.measurement) {
     book_.note(f);
-    diagnosis_.on_frame(f, diagnosis_frame(current_->purpose));
-    note_safety(f);  // sets error_detected: what the master made of F1 and F2
+    note_endat22_word(f);
+    // 2.3.1: an error message; the safety functions may evaluate F2 as well.
+    if (protocol::info(f.command).answer == protocol::AnswerFormat::Position && f.outcome == FrameOutcome::Ok)
+      f.error_detected = f.error1;
+    const FunctionContext ctx = context();
+    if (current_->purpose == Operation::Purpose::Endat22Msb && current_->manufacturer_word == protocol::word::kEndat22Checksum &&
+        f.outcome == FrameOutcome::Ok && !f.additional_data.empty())
+      for (MasterFunction* function : functions_) function->endat22_area_read(ctx, true);
+    for (MasterFunction* function : functions_) function->on_frame(f, ctx);
     if (const auto bits = routine_.note(current_->purpose, f); bits && params_.adopt_word13) position_bits_ = *bits;
     checksum_.note(*current_, f);
   }
@@ -370,6 +403,74 @@ void Master::frame_done(FrameResult& f) {
   for (auto* o : observers_) o->on_result(f);
   operation_frame_done(f);
 }
+
+// ---- the EnDat 2.2 area and additional data 1 ------------------------------------------------
+
+// 2.5.1: a word of the 2.2 area (MRS BD, selectable only with 2.2 mode commands) comes back in
+// additional data 1 as address | LSB (I = 5) and address | MSB (I = 6) once Busy is reset. An
+// encoder whose word 37 (read just before) lacks the 2.2 command set has no such area.
+Sequence Master::endat22_read_plan() {
+  book_.begin_endat22_read();
+  const std::uint64_t words = current_->endat22_words;
+  const auto word37 = parameter(mrs_of(protocol::MemoryArea::Manufacturer3), protocol::word::manufacturer_address(protocol::word::kCommandSet));
+  Sequence plan = sequence();
+  if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
+    if (words == ~std::uint64_t{0})
+      for (MasterFunction* function : functions_) function->endat22_area_read(context(), false);
+    return plan;
+  }
+  const auto frame = [&plan](MC c, std::uint8_t address, P purpose = P::None, unsigned word = 0) {
+    plan.frame(c, address, 0, purpose, word);
+  };
+  const auto await = [&plan](P purpose, unsigned word) {
+    Operation& o = plan.add(Operation::Kind::AwaitNotBusy);
+    o.count = 300;  // 50 us apart: beyond t_ac max (12 ms, 2.3.2)
+    o.cycle = sim::us(50);
+    o.purpose = purpose;
+    o.manufacturer_word = word;
+  };
+  const auto select = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+  frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
+  frame(select, mrs_of(protocol::MemoryArea::ManufacturerEndat22));
+  await(P::None, 0);
+  for (unsigned w = 0; w < 64; ++w) {
+    if (((words >> w) & 1U) == 0) continue;
+    frame(MC::EncoderSendPositionValuesAndSendParameter, static_cast<std::uint8_t>(w));
+    await(P::Endat22Lsb, w);
+    frame(select, protocol::selection_mrs(I::MemoryParameterMsb));
+    frame(MC::EncoderSendPositionValuesWithAdditionalData, 0, P::Endat22Msb, w);
+    frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
+  }
+  return plan;
+}
+
+// A byte of a word of the 2.2 area, as the plan above asked for it.
+void Master::note_endat22_word(const FrameResult& f) {
+  const Operation::Purpose purpose = current_->purpose;
+  if (purpose != Operation::Purpose::Endat22Lsb && purpose != Operation::Purpose::Endat22Msb) return;
+  if (f.outcome != FrameOutcome::Ok || f.additional_data.empty()) return;
+  book_.note_endat22_byte(f, current_->manufacturer_word, purpose == Operation::Purpose::Endat22Msb);
+}
+
+// Each cyclic read with additional data may select, with "Encoder send position values and
+// selection of memory area" (2.4.2.2), what the next frame is to carry, as a function on top
+// asks. Additional data 1 selected for something else (a memory read, a script's own choice) is
+// left alone.
+void Master::roll_additional_data_1(FrameRequest& request) {
+  if (current_->purpose != Operation::Purpose::None || current_->kind == Operation::Kind::AwaitNotBusy ||
+      request.command != ModeCommand::EncoderSendPositionValuesWithAdditionalData)
+    return;
+  const std::optional<I> now = selected_[0] ? std::optional{protocol::information_of_mrs(selection_mrs_[0])} : std::nullopt;
+  for (MasterFunction* function : functions_) {
+    const auto next = function->next_additional_data_1(context(), now);
+    if (!next) continue;
+    request.command = ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+    request.payload = std::uint32_t{protocol::selection_mrs(*next)} << 16;
+    return;
+  }
+}
+
+
 
 // ---- propagation-delay measurement (2.1.2) -----------------------------------------------
 

@@ -4,12 +4,11 @@
 //   frame_engine.hpp       one frame on the wire: clock, mode command, sampling, CRC checks
 //   delay_measurement.hpp  the propagation-delay measurement and its verdict (2.1.2)
 //   parameter_book.hpp     the encoder's memory as read (2.4 .. 2.6)
-//   safety.hpp             the safety functions' checks of every frame (SafetyMonitor)
-//   diagnostics.hpp        the diagnosis for a service engineer (DiagnosisMonitor, A3)
-//   additional_data_rolling.hpp  additional data 1 in turn (2.3.5.1)
 //   startup.hpp            the start-up routine and the checksum check (2.1 reads, 3.5.26)
 //   master_params.hpp      what the master is configured with
 //   frame_result.hpp       what a frame gave; operation.hpp what the master is asked to do
+// The functions on top of it (master_function.hpp, functions.hpp: the safety functions, the
+// diagnosis, additional data 1 in turn) plan the operations they own and see every frame.
 // It only talks through the line's master-side signals, all of which the frame engine drives.
 #pragma once
 
@@ -19,15 +18,13 @@
 #include <vector>
 
 #include "endatsim/line/line.hpp"
-#include "endatsim/master/additional_data_rolling.hpp"
 #include "endatsim/master/delay_measurement.hpp"
-#include "endatsim/master/diagnostics.hpp"
 #include "endatsim/master/frame_engine.hpp"
 #include "endatsim/master/frame_result.hpp"
+#include "endatsim/master/master_function.hpp"
 #include "endatsim/master/master_params.hpp"
 #include "endatsim/master/operation.hpp"
 #include "endatsim/master/parameter_book.hpp"
-#include "endatsim/master/safety.hpp"
 #include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/protocol.hpp"
 
@@ -43,6 +40,8 @@ class Master : private FrameClient {
   Master& operator=(const Master&) = delete;
 
   void add_observer(MasterObserver* o) { observers_.push_back(o); }
+  // A function on top of the scheduler; functions see each frame in the order they were added.
+  void add_function(MasterFunction& f) { functions_.push_back(&f); }
   void enqueue(Operation op) {
     op.script_index = enqueued_++;
     operations_.push_back(op);
@@ -68,8 +67,6 @@ class Master : private FrameClient {
   const std::optional<ChecksumCheck>& checksum() const { return checksum_.result(); }
   std::uint64_t retries() const { return retries_done_; }
   std::uint64_t remeasurements() const { return remeasurements_; }
-  const SafetyReport& safety() const { return safety_.report(); }
-  const DiagnosisReport& diagnosis() const { return diagnosis_.report(); }
   // A parameter word as last read or written with 2.1 frames (area by MRS code, 2.4.1).
   std::optional<std::uint16_t> parameter(std::uint8_t mrs, std::uint8_t address) const { return book_.parameter(mrs, address); }
   // What the installation tells the master (the runner's events): another cable, and the
@@ -85,9 +82,11 @@ class Master : private FrameClient {
 
  private:
   Sequence sequence() const { return {current_->script_index, {}}; }
-  void run_first(const Sequence& s);
+  FunctionContext context() const;
   void next_operation();
-  void expand(void (Master::*expansion)());
+  void expand(Sequence s);
+  void offer_to_functions(Time begin);
+  void start_frames(Time begin);
   void operation_frame_done(const FrameResult& f);
   void start_frame(std::uint64_t);
   FrameRequest frame_request();
@@ -96,22 +95,13 @@ class Master : private FrameClient {
   void word_done(const FrameResult& f) override;
   void frame_done(FrameResult& f) override;
   void power_on_pulse(std::uint64_t phase);
-  void expand_startup_routine();
-  void expand_checksum_check();
+  Sequence endat22_read_plan();
+  void note_endat22_word(const FrameResult& f);
   bool retry_frame(const FrameResult& f);
   void note_failures(const FrameResult& f);
   void interrupt_for_measurement();
-  // Safety functions (safety.cpp).
-  void expand_safety_startup();
-  void expand_endat22_read();
-  void note_safety(FrameResult& f);
-  void collect_words(const FrameResult& f);
-  void finish_checksums(bool endat22);
-  // Additional data 1 in turn (diagnostics.cpp).
   void roll_additional_data_1(FrameRequest& request);
-  // Diagnosis (diagnostics.cpp).
-  void expand_diagnosis_setup();
-  void activate_diagnosis();
+  bool status_read_due() const;
   void push_status_reads(const Operation& base);
   Time time_between_cycles_left() const;
   void finish_measurement_round();
@@ -120,6 +110,7 @@ class Master : private FrameClient {
   sim::Kernel& kernel_;
   MasterParams params_;
   std::vector<MasterObserver*> observers_;
+  std::vector<MasterFunction*> functions_;
   DelayMeasurement delay_;   // 2.1.2
   std::optional<Time> t_d_;  // what compensation uses: measured, or params.fixed_t_d
   FrameEngine engine_;
@@ -146,10 +137,7 @@ class Master : private FrameClient {
   std::uint64_t remeasurements_ = 0;
   std::uint8_t selection_mrs_[2] = {0, 0};  // the MRS codes behind selected_
   bool selected_[2] = {false, false};
-  SafetyMonitor safety_{params_.safety};
-  DiagnosisMonitor diagnosis_{params_.diagnostics};
   ParameterBook book_;               // the encoder's memory as read (2.4 .. 2.6)
-  AdditionalData1Rolling rolling_{params_.diagnostics, params_.safety};
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
 
   // What has been recorded.

@@ -6,7 +6,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "endatsim/master/master.hpp"
+#include "endatsim/master/frame_engine.hpp"
+#include "endatsim/master/master_params.hpp"
+#include "endatsim/master/parameter_book.hpp"
+#include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/parameters.hpp"
 
 namespace endatsim::master {
@@ -143,11 +146,10 @@ Position2Parameters position2_parameters(const std::vector<std::uint16_t>& m, co
 // Everything switched on, in the order a safety-oriented start-up runs it: the master's own CRC
 // evaluation, the encoder's parameters (checksums; what the position comparison needs), the
 // error paths, then the position read several times; the axis is released only after all.
-void Master::expand_safety_startup() {
-  const SafetyParams& s = params_.safety;
-  Sequence plan = sequence();
+void SafetyFunctions::plan_startup(const FunctionContext& ctx, Sequence& plan) {
+  const SafetyParams& s = params_;
   const auto frame = [&plan](MC c, std::uint8_t address, P purpose) { plan.frame(c, address, 0, purpose); };
-  const auto kind = [&](Operation::Kind k) { plan.add(k).command = current_->command; };
+  const auto kind = [&](Operation::Kind k) { plan.add(k).command = ctx.operation.command; };
   if (s.crc_self_test) kind(Operation::Kind::CrcSelfTest);
   if (s.command_set) {
     frame(MC::SelectionOfMemoryArea, mrs_of(protocol::MemoryArea::Manufacturer3), P::None);
@@ -170,45 +172,37 @@ void Master::expand_safety_startup() {
   kind(Operation::Kind::StartupPositions);
   if (s.position_value_2)  // 2.3.5.1: additional data 1 = position value 2, word 1 (it latches words 2, 3)
     frame(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, protocol::selection_mrs(I::PositionValue2Word1), P::None);
-  safety_.report().axis_released = false;
-  run_first(plan);
+  monitor_.report().axis_released = false;
 }
 
-// 2.5.1: a word of the 2.2 area (MRS BD, selectable only with 2.2 mode commands) comes back in
-// additional data 1 as address | LSB (I = 5) and address | MSB (I = 6) once Busy is reset. An
-// encoder whose word 37 (read just before) lacks the 2.2 command set has no such area.
-void Master::expand_endat22_read() {
-  book_.begin_endat22_read();
-  const std::uint64_t words = current_->endat22_words;
-  const auto word37 = parameter(mrs_of(protocol::MemoryArea::Manufacturer3), protocol::word::manufacturer_address(protocol::word::kCommandSet));
-  if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
-    if (words == ~std::uint64_t{0}) finish_checksums(false);
-    return;
+Planned SafetyFunctions::plan(const FunctionContext& ctx, Sequence& plan) {
+  switch (ctx.operation.kind) {
+    case Operation::Kind::SafetyStartup:
+      plan_startup(ctx, plan);
+      return {Planned::What::Expanded};
+    case Operation::Kind::CrcSelfTest:
+      monitor_.run_crc_self_test(ctx.params.crc, ctx.position_bits, ctx.now);
+      return {Planned::What::Done};
+    case Operation::Kind::StartupPositions:
+      // Started over whenever the operation is (after a delay measurement that came between).
+      monitor_.begin_startup_positions();
+      return {Planned::What::Frames, params_.startup_positions ? params_.startup_max_reads : 1};
+    default: return {};
   }
-  Sequence plan = sequence();
-  const auto frame = [&plan](MC c, std::uint8_t address, P purpose = P::None, unsigned word = 0) {
-    plan.frame(c, address, 0, purpose, word);
-  };
-  const auto await = [&plan](P purpose, unsigned word) {
-    Operation& o = plan.add(Operation::Kind::AwaitNotBusy);
-    o.count = 300;  // 50 us apart: beyond t_ac max (12 ms, 2.3.2)
-    o.cycle = sim::us(50);
-    o.purpose = purpose;
-    o.manufacturer_word = word;
-  };
-  const auto select = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-  frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
-  frame(select, mrs_of(protocol::MemoryArea::ManufacturerEndat22));
-  await(P::None, 0);
-  for (unsigned w = 0; w < 64; ++w) {
-    if (((words >> w) & 1U) == 0) continue;
-    frame(MC::EncoderSendPositionValuesAndSendParameter, static_cast<std::uint8_t>(w));
-    await(P::Endat22Lsb, w);
-    frame(select, protocol::selection_mrs(I::MemoryParameterMsb));
-    frame(MC::EncoderSendPositionValuesWithAdditionalData, 0, P::Endat22Msb, w);
-    frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
-  }
-  run_first(plan);
+}
+
+void SafetyFunctions::on_frame(FrameResult& f, const FunctionContext& ctx) {
+  monitor_.on_frame(f, ctx.operation.purpose, ctx.position_bits);
+}
+
+bool SafetyFunctions::ends_operation(const FrameResult& f, const FunctionContext& ctx, bool last) {
+  return ctx.operation.kind == Operation::Kind::StartupPositions && monitor_.startup_position_read(f, ctx.position_bits, last);
+}
+
+// 3.4.1: word 0 says which error it was.
+std::optional<StatusRead> SafetyFunctions::status_read_due() const {
+  if (!monitor_.error_sources_due()) return std::nullopt;
+  return StatusRead{protocol::word::kErrors, P::ErrorSources};
 }
 
 // The English brochure, "Safety Techniques": "the CRC generation in the receiver chip ... must be
@@ -412,55 +406,39 @@ void SafetyMonitor::check_acknowledgement(const FrameResult& f) {
   }
 }
 
-// The safety functions judge every frame (SafetyMonitor) after the words the start-up reads are in.
-void Master::note_safety(FrameResult& f) {
-  collect_words(f);
-  safety_.on_frame(f, current_->purpose, position_bits_);
-}
-
-// The words the safety start-up reads: the 2.1 manufacturer words come through VerifyChecksum,
-// those of the 2.2 area through additional data 1.
-void Master::collect_words(const FrameResult& f) {
-  const P purpose = current_->purpose;
-  if (purpose != P::Endat22Lsb && purpose != P::Endat22Msb) return;
-  if (f.outcome != FrameOutcome::Ok || f.additional_data.empty()) return;
-  const unsigned w = current_->manufacturer_word;
-  book_.note_endat22_byte(f, w, purpose == P::Endat22Msb);
-  if (w == protocol::word::kEndat22Checksum && purpose == P::Endat22Msb) finish_checksums(true);
-}
-
 // 3.5.26 / 3.9.37: word 47 = sum of words 4 .. 46, word 63 = sum of words 0 .. 62, overflow ignored.
-void Master::finish_checksums(bool endat22) {
+void SafetyFunctions::endat22_area_read(const FunctionContext& ctx, bool read) {
+  const bool endat22 = read;  // words 0 .. 63 came in; false: the encoder has no 2.2 area
   bool all_read = false;
-  const std::vector<std::uint16_t> e = book_.endat22_words(all_read);
+  const std::vector<std::uint16_t> e = ctx.book.endat22_words(all_read);
   const bool complete = endat22 && all_read;
   const std::uint16_t sum = protocol::parameters::endat22_checksum(e);
   const std::uint16_t stored = e[protocol::word::kEndat22Checksum];
   if (endat22) {
-    safety_.report().checksum63_stored = stored;
-    safety_.report().checksum63_computed = sum;
+    monitor_.report().checksum63_stored = stored;
+    monitor_.report().checksum63_computed = sum;
   }
-  const auto& checksum = checksum_.result();
+  const auto& checksum = ctx.checksum.result();
   if (checksum) {
-    safety_.report().checksum47_stored = checksum->stored;
-    safety_.report().checksum47_computed = checksum->computed;
+    monitor_.report().checksum47_stored = checksum->stored;
+    monitor_.report().checksum47_computed = checksum->computed;
   }
   const bool ok47 = checksum && checksum->ok();
-  if (params_.safety.checksums) {
+  if (params_.checksums) {
     if (!ok47)
-      safety_.find(SafetyFunction::Checksums, kernel_.now(), checksum && checksum->complete ? "word 47 " + std::to_string(checksum->stored) + " but words 4 .. 46 sum to " +
+      monitor_.find(SafetyFunction::Checksums, ctx.now, checksum && checksum->complete ? "word 47 " + std::to_string(checksum->stored) + " but words 4 .. 46 sum to " +
                                                   std::to_string(checksum->computed) + " (3.5.26)"
                                             : "the words 4 .. 47 could not all be read");
-    if (endat22 && !complete) safety_.find(SafetyFunction::Checksums, kernel_.now(), "the words of the EnDat 2.2 area could not all be read");
+    if (endat22 && !complete) monitor_.find(SafetyFunction::Checksums, ctx.now, "the words of the EnDat 2.2 area could not all be read");
     else if (endat22 && stored != sum)
-      safety_.find(SafetyFunction::Checksums, kernel_.now(), "word 63 of the EnDat 2.2 area " + std::to_string(stored) + " but words 0 .. 62 sum to " + std::to_string(sum) +
+      monitor_.find(SafetyFunction::Checksums, ctx.now, "word 63 of the EnDat 2.2 area " + std::to_string(stored) + " but words 0 .. 62 sum to " + std::to_string(sum) +
                " (3.9.37)");
   }
-  if (params_.safety.position_value_2) {
+  if (params_.position_value_2) {
     if (complete && checksum && checksum->complete)
-      safety_.set_position2_parameters(position2_parameters(checksum_.words(), e));
+      monitor_.set_position2_parameters(position2_parameters(ctx.checksum.words(), e));
     else
-      safety_.find(SafetyFunction::PositionValue2, kernel_.now(), "the encoder's parameters for the comparison could not be read");
+      monitor_.find(SafetyFunction::PositionValue2, ctx.now, "the encoder's parameters for the comparison could not be read");
   }
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "endatsim/master/frame_result.hpp"
+#include "endatsim/master/master_function.hpp"
 #include "endatsim/master/operation.hpp"
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/sim/parameter.hpp"
@@ -189,6 +190,30 @@ class SafetyMonitor {
     std::uint16_t value = 0;
   };
   std::optional<Written> acknowledgement_due_;
+};
+
+// The safety functions on top of the master's scheduler (master_function.hpp): the start-up a
+// SafetyStartup operation asks for (the master's CRC self-test, the command set, the checksums,
+// forced dynamic sampling, the position reads that release the axis; planned here, the frames
+// run by the scheduler) and the checks of every frame (SafetyMonitor).
+class SafetyFunctions final : public MasterFunction {
+ public:
+  explicit SafetyFunctions(const SafetyParams& params) : params_(params), monitor_(params) {}
+
+  const SafetyReport& report() const { return monitor_.report(); }
+
+  Planned plan(const FunctionContext& ctx, Sequence& plan) override;
+  void endat22_area_read(const FunctionContext& ctx, bool complete) override;
+  void on_frame(FrameResult& f, const FunctionContext& ctx) override;
+  bool ends_operation(const FrameResult& f, const FunctionContext& ctx, bool last) override;
+  std::optional<StatusRead> status_read_due() const override;
+  void status_read_planned() override { monitor_.clear_error_sources_due(); }
+
+ private:
+  void plan_startup(const FunctionContext& ctx, Sequence& plan);
+
+  const SafetyParams& params_;
+  SafetyMonitor monitor_;
 };
 
 // The bit sequences of known result the CRC self-test feeds to the master's CRC evaluation: the

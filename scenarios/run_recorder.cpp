@@ -62,9 +62,9 @@ std::string PositionComparator::detail() const {
   return std::to_string(compared_) + " positions equal the latched ones";
 }
 
-RunRecorder::RunRecorder(const Scenario& scenario, const master::Master& master, const slave::Encoder& encoder,
+RunRecorder::RunRecorder(const Scenario& scenario, const master::SafetyReport& safety, const slave::Encoder& encoder,
                          const checker::TimingChecker& checker, ScenarioResult& out, std::vector<RunSink*> sinks)
-    : scenario_(scenario), master_(master), encoder_(encoder), checker_(checker), out_(out), sinks_(std::move(sinks)),
+    : scenario_(scenario), safety_(safety), encoder_(encoder), checker_(checker), out_(out), sinks_(std::move(sinks)),
       paths_(clock_paths(scenario)) {}
 
 void RunRecorder::on_result(const master::FrameResult& f) {
@@ -96,7 +96,7 @@ void RunRecorder::compare(const master::FrameResult& f) {
 }
 
 void RunRecorder::settle_release() {
-  const auto& release = master_.safety().release_frame;
+  const auto& release = safety_.release_frame;
   if (release && last_good_ && last_good_->first == *release) out_.release_position_correct = last_good_->second;
 }
 

@@ -79,7 +79,7 @@ class PositionComparator {
 // after the checker's finish(). Fills `out`'s tally and what the expectations need of the frames.
 class RunRecorder final : public master::MasterObserver {
  public:
-  RunRecorder(const Scenario& scenario, const master::Master& master, const slave::Encoder& encoder,
+  RunRecorder(const Scenario& scenario, const master::SafetyReport& safety, const slave::Encoder& encoder,
               const checker::TimingChecker& checker, ScenarioResult& out, std::vector<RunSink*> sinks);
   void on_frame_start(const master::FrameResult&) override {}
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
@@ -95,7 +95,7 @@ class RunRecorder final : public master::MasterObserver {
   void flush(std::uint64_t settled);
 
   const Scenario& scenario_;
-  const master::Master& master_;
+  const master::SafetyReport& safety_;  // the master's, for the frame that released the axis
   const slave::Encoder& encoder_;
   const checker::TimingChecker& checker_;
   ScenarioResult& out_;

@@ -11,6 +11,7 @@
 #include <memory>
 #include <unordered_map>
 
+#include "endatsim/master/functions.hpp"
 #include "endatsim/sim/vcd.hpp"
 
 namespace endatsim::scenarios {
@@ -425,6 +426,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   std::vector<std::unique_ptr<slave::Encoder>> bus;
   for (const auto& p : scenario.bus) bus.push_back(std::make_unique<slave::Encoder>(kernel, line.add_encoder(), p));
   master::Master master(kernel, line, master_params);
+  master::MasterFunctions functions(master);
   checker::TimingChecker checker(kernel, line, declared_encoder(scenario.encoder), declared_master(master_params),
                                  checker_params);
   if (options.kept != SIZE_MAX) {
@@ -436,7 +438,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   }
   MasterDeclarations declarations(checker);
   master.add_observer(&declarations);
-  RunRecorder recorder(scenario, master, encoder, checker, r, options.sinks);
+  RunRecorder recorder(scenario, functions.safety(), encoder, checker, r, options.sinks);
   master.add_observer(&recorder);
   checker.set_finding_listener([&recorder](const checker::Violation& v) { recorder.on_finding(v); });
 
@@ -493,8 +495,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.checksum = master.checksum();
   r.retries = master.retries();
   r.remeasurements = master.remeasurements();
-  r.safety = master.safety();
-  if (scenario.master.diagnostics.enabled) r.diagnosis = master.diagnosis();
+  r.safety = functions.safety();
+  if (scenario.master.diagnostics.enabled) r.diagnosis = functions.diagnosis();
   r.encoder_memory = encoder.memory().image();
   for (const auto& e : bus) {
     r.bus_memory.push_back(e->memory().image());

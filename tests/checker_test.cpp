@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "scenario_support.hpp"
+#include "endatsim/master/functions.hpp"
 #include "endatsim/scenarios/declarations.hpp"
 #include "endatsim/scenarios/events.hpp"
 #include "endatsim/scenarios/loader.hpp"
@@ -492,6 +493,7 @@ struct ListenedRun final : master::MasterObserver {
   slave::Encoder encoder;
   std::vector<std::unique_ptr<slave::Encoder>> bus;
   master::Master master;
+  master::MasterFunctions functions{master};
   checker::TimingChecker checker;
   scenarios::MasterDeclarations declarations;
   std::vector<Heard> heard;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "scenario_support.hpp"
+#include "endatsim/master/functions.hpp"
 #include "endatsim/master/master.hpp"
 #include "endatsim/slave/encoder.hpp"
 
@@ -94,6 +95,102 @@ TEST(MasterFrame, SendsDummyZeroAndModeBitsBeforeTheRisingEdges) {
     ASSERT_EQ(m.frames().size(), 1U);
     EXPECT_EQ(m.frames()[0].outcome, master::FrameOutcome::Ok);
   }
+}
+
+namespace {
+
+// A master of its own on a short line, for the functions on top of the scheduler.
+master::MasterParams at_1mhz() {
+  master::MasterParams p;
+  p.f_c = MHz(1);
+  return p;
+}
+
+struct Bench {
+  explicit Bench(const master::MasterParams& p = at_1mhz()) : m(k, l, p) {}
+  Kernel k;
+  line::Line l{k, {}};
+  slave::Encoder e{k, l, {}};
+  master::Master m;
+};
+
+// A function that owns one operation kind: it expands it into two position reads and counts what
+// it sees, and asks once for word 1 of the operating status.
+class Recorder final : public master::MasterFunction {
+ public:
+  master::Planned plan(const master::FunctionContext& ctx, master::Sequence& plan) override {
+    if (ctx.operation.kind != master::Operation::Kind::DiagnosisSetup) return {};
+    plan.frame(protocol::ModeCommand::EncoderSendPositionValues);
+    plan.frame(protocol::ModeCommand::EncoderSendPositionValues);
+    return {master::Planned::What::Expanded};
+  }
+  void on_frame(master::FrameResult& f, const master::FunctionContext& ctx) override {
+    frames.push_back({f.command, ctx.operation.purpose});
+  }
+  std::optional<master::StatusRead> status_read_due() const override {
+    if (asked) return std::nullopt;
+    return master::StatusRead{protocol::word::kWarnings, master::Operation::Purpose::DiagnosisWarnings};
+  }
+  void status_read_planned() override { asked = true; }
+  std::vector<std::pair<protocol::ModeCommand, master::Operation::Purpose>> frames;
+  bool asked = false;
+};
+
+}  // namespace
+
+// The scheduler knows its functions only through their interface: an operation it does not plan
+// goes to them, every frame comes back to them, and the status word they ask for is read (after
+// the expanded sequence, whose memory area selection it must not split: 2.4.1).
+TEST(MasterFunctions, AFunctionPlansItsOperationSeesEveryFrameAndHasItsStatusWordRead) {
+  Bench b;
+  Recorder r;
+  b.m.add_function(r);
+  master::Operation op;
+  op.kind = master::Operation::Kind::DiagnosisSetup;
+  b.m.enqueue(op);
+  b.m.start();
+  b.k.run();
+  ASSERT_TRUE(b.m.finished());
+  using MC = protocol::ModeCommand;
+  using P = master::Operation::Purpose;
+  const std::vector<std::pair<MC, P>> expected{{MC::EncoderSendPositionValues, P::None},
+                                               {MC::EncoderSendPositionValues, P::None},
+                                               {MC::SelectionOfMemoryArea, P::None},
+                                               {MC::EncoderSendParameters, P::DiagnosisWarnings}};
+  EXPECT_EQ(r.frames, expected);
+  EXPECT_TRUE(r.asked);
+}
+
+TEST(MasterFunctions, AnOperationNoFunctionPlansIsRefusedNamingWhatAttachesThem) {
+  Bench b;
+  master::Operation op;
+  op.kind = master::Operation::Kind::SafetyStartup;
+  b.m.enqueue(op);
+  try {
+    b.m.start();
+    b.k.run();
+    FAIL() << "a safety start-up without the safety functions ran";
+  } catch (const std::logic_error& e) {
+    EXPECT_STREQ(e.what(), "operation safety_startup: no function on this master plans it (master/functions.hpp attaches them)");
+  }
+}
+
+// With MasterFunctions attached, the same operation runs: the safety start-up's position reads
+// release the axis (and nothing but the functions' report says so).
+TEST(MasterFunctions, TheStandardSetRunsTheSafetyStartUpAndReportsTheRelease) {
+  master::MasterParams p = at_1mhz();
+  p.safety.startup_positions = true;  // three agreeing values release the axis
+  Bench with_safety(p);
+  master::MasterFunctions functions(with_safety.m);
+  master::Operation op;
+  op.kind = master::Operation::Kind::SafetyStartup;
+  with_safety.m.enqueue(op);
+  with_safety.m.start();
+  with_safety.k.run();
+  ASSERT_TRUE(with_safety.m.finished());
+  EXPECT_TRUE(functions.safety().axis_released);
+  EXPECT_EQ(functions.safety().startup_reads, 3U);
+  EXPECT_EQ(with_safety.m.frame_count(), 3U);
 }
 
 TEST(MasterFrame, EnDat21FrameHas43Pulses) {
