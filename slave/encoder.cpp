@@ -33,11 +33,11 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
       memory_((params.validate(), params.memory.value_or(default_memory_image(params)))),
       positions_(params_, memory_), additional_data_(params_, memory_, positions_),
       errors_(params_, memory_, positions_, additional_data_), eib_(params_, memory_),
+      access_(kernel, memory_, additional_data_, *this),
       data_logic_(kernel, "encoder_data_logic", false), enable_logic_(kernel, "encoder_enable_logic", true),
       data_out_delay_(kernel, data_logic_, pins_.data_out, params.output_delay),
       enable_out_delay_(kernel, enable_logic_, pins_.data_enable, params.output_delay),
       recovery_timer_(kernel, sim::bind<&Encoder::on_recovery_time_elapsed>(this)),
-      memory_timer_(kernel, sim::bind<&Encoder::on_memory_access_done>(this)),
       end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
       startup_timer_(kernel, sim::bind<&Encoder::on_started>(this)) {
   pins_.clock_in.on_change(sim::bind<&Encoder::on_clock>(this));
@@ -81,8 +81,6 @@ void Encoder::on_started() {
   drive(false);
   enable();
 }
-
-bool Encoder::busy() const { return kernel_.now() < busy_until_; }
 
 bool Encoder::drives_bus() const {
   // 2.10: word 5 bit 1 "data driver at high-impedance"; an encoder that another address
@@ -229,11 +227,7 @@ void Encoder::clock_after_supplement() {
   f.error = ErrorCause::MrsFrameDisrupted;
   additional_data_.acknowledge_mrs(static_cast<std::uint8_t>(~address),
                                    static_cast<std::uint8_t>(~static_cast<std::uint8_t>(f.supplement.value_or(0))));
-  if (in_progress_.kind == Pending::Kind::Select) {
-    in_progress_ = {};
-    memory_timer_.cancel();
-    busy_until_ = kernel_.now();
-  }
+  access_.cancel_selection();
 }
 
 void Encoder::decode_mode_command() {
@@ -320,7 +314,7 @@ void Encoder::answer_parameter_frame() {
   const bool parameter_access = selection || command_->command == MC::EncoderReceiveParameters ||
                                 command_->command == MC::EncoderSendParameters;
   const auto area = selection ? protocol::memory_area_from_mrs(address)
-                              : area_selected_ ? std::optional{selection_area_.area} : std::nullopt;
+                              : access_.selection() ? std::optional{access_.selection()->area} : std::nullopt;
   if (const auto refused = parameter_access ? eib_.refuses(area) : std::nullopt) {
     error = refused;  // A2 cause 5; a reset still works: it completes the commissioning
   } else if (transmission_incomplete_) {
@@ -341,14 +335,12 @@ void Encoder::answer_parameter_frame() {
         t_ac = params_.t_ac_read;
         break;
       case MC::EncoderReceiveParameters:  // 2.6
-        error = area_selected_ ? memory_.check_write(selection_area_, address, parameter)
-                               : std::optional{ErrorCause::ImpermissibleMemoryArea};
-        pending_ = {Pending::Kind::Write, selection_area_, address, parameter};
+        error = access_.check_write(address, parameter);
+        pending_ = {Pending::Kind::Write, access_.selection().value_or(Selection{}), address, parameter};
         t_ac = params_.t_ac_write;
         break;
       case MC::EncoderSendParameters:  // 2.5
-        if (!area_selected_) error = ErrorCause::ImpermissibleMemoryArea;
-        else if (const auto read = memory_.read(selection_area_, address)) echo = read.value;
+        if (const auto read = access_.read(address)) echo = read.value;
         else error = read.error;
         t_ac = params_.t_ac_read;
         break;
@@ -398,10 +390,10 @@ void Encoder::answer_parameter_frame() {
   state_ = State::Answer;
   first_answer_clock_ = params_.earliest_start_bit_clock + protocol::kPayloadBits;
   if (!error && pending_.kind == Pending::Kind::Write)
-    nvm_.begin(memory_, pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
+    access_.begin_nvm_write(pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
   const bool in_frame = params_.t_ac_placement == MemoryAccessPlacement::InFrame;
   answer_not_before_ = kernel_.now() + (in_frame && !error ? t_ac : Time::zero());
-  if (!in_frame && !error && memory_access) busy_until_ = std::max(busy_until_, kernel_.now() + t_ac);
+  if (!in_frame && !error && memory_access) access_.busy_until(kernel_.now() + t_ac);
 }
 
 void Encoder::emit_answer_bit() {
@@ -480,31 +472,15 @@ void Encoder::process_supplement() {
       // A2 type II: the MRS code (block address) is acknowledged inverted.
       if (error) additional_data_.acknowledge_mrs(static_cast<std::uint8_t>(~address), static_cast<std::uint8_t>(~block));
       else additional_data_.acknowledge_mrs(address, block);
-      if (!error) {
-        in_progress_ = {Pending::Kind::Select, {*protocol::memory_area_from_mrs(address), block}, address, parameter};
-        start_memory_access(params_.t_ac_read);
-      }
+      if (!error) access_.start_selection({*protocol::memory_area_from_mrs(address), block}, address, parameter, params_.t_ac_read);
       break;
     }
     case MC::EncoderSendPositionValuesAndReceiveParameter: {  // 2.6.1
-      const auto error = area_selected_ ? memory_.check_write(selection_area_, address, parameter)
-                                        : std::optional{ErrorCause::ImpermissibleMemoryArea};
-      f.error = error;
-      in_progress_ = {error ? Pending::Kind::None : Pending::Kind::Write, selection_area_, address, parameter};
-      memory_error_ = error.has_value();
-      start_memory_access(params_.t_ac_write);
-      if (!error) nvm_.begin(memory_, selection_area_, address, parameter, busy_until_);
+      f.error = access_.start_write(address, parameter, params_.t_ac_write);
       break;
     }
     case MC::EncoderSendPositionValuesAndSendParameter: {  // 2.5.1
-      const auto read = area_selected_ ? memory_.read(selection_area_, address)
-                                       : Memory::WordRead{.value = 0, .error = ErrorCause::ImpermissibleMemoryArea};
-      const std::uint16_t value = read.value;
-      const auto error = read.error;
-      f.error = error;
-      in_progress_ = {Pending::Kind::None, selection_area_, address, error ? parameter : value};
-      memory_error_ = error.has_value();
-      start_memory_access(params_.t_ac_read);
+      f.error = access_.start_read(address, parameter, params_.t_ac_read);
       break;
     }
     case MC::EncoderSendPositionValuesAndReceiveErrorReset:  // 2.7.1
@@ -516,35 +492,6 @@ void Encoder::process_supplement() {
     default:
       break;
   }
-}
-
-void Encoder::start_memory_access(Time t_ac) {
-  busy_until_ = kernel_.now() + t_ac;
-  memory_timer_.start(t_ac);
-}
-
-void Encoder::on_memory_access_done() {
-  // 2.5.1 / 2.6.1: the result appears in additional data 1 once the busy bit is reset.
-  switch (in_progress_.kind) {
-    case Pending::Kind::Select:
-      select(in_progress_.selection);
-      return;
-    case Pending::Kind::Write:
-      memory_.write(in_progress_.selection, in_progress_.address, in_progress_.value);
-      nvm_.applied();
-      written(in_progress_.selection, in_progress_.address);
-      break;
-    default:
-      break;
-  }
-  // A2 type II (4.2.2): "the address or parameter is returned inverted", for 2.1 and 2.2 alike:
-  // both, as the 2.1 acknowledgment returns them (docs/model.md §3).
-  if (memory_error_)
-    additional_data_.acknowledge_memory_access(static_cast<std::uint8_t>(~in_progress_.address),
-                                               static_cast<std::uint16_t>(~in_progress_.value));
-  else
-    additional_data_.acknowledge_memory_access(in_progress_.address, in_progress_.value);
-  in_progress_ = {};
 }
 
 void Encoder::on_end_marker_due() {
@@ -582,17 +529,15 @@ void Encoder::finish_frame() {
   ready_at_ = kernel_.now() + params_.t_r;
   if (f.too_many_clocks && pending_.kind != Pending::Kind::None) {
     f.error = ErrorCause::MrsFrameDisrupted;  // the access is discarded
-    nvm_.discard();
+    access_.discard_nvm_write();
     return;
   }
   switch (pending_.kind) {
     case Pending::Kind::Select:
-      select(pending_.selection);
+      access_.select(pending_.selection);
       break;
     case Pending::Kind::Write:
-      memory_.write(pending_.selection, pending_.address, pending_.value);
-      nvm_.applied();
-      written(pending_.selection, pending_.address);
+      access_.write(pending_.selection, pending_.address, pending_.value);
       break;
     case Pending::Kind::Reset:
       reset();
@@ -614,15 +559,12 @@ void Encoder::restart_state() {
   memory_.activate_on_reset();
   positions_.apply_function_initialization(kernel_.now());
   additional_data_.restart();
-  area_selected_ = false;
+  access_.restart();
   // 3.5.7: an EIB becomes the connected encoder at reset or power-on (EibActivation::Reset).
   commissioned(eib_.completes_at_reset());
   positions_.restart_reference_search(kernel_.now());
   test_port_21_ = 0;
   unsettled_left_ = params_.unsettled_positions;
-  memory_timer_.cancel();
-  busy_until_ = kernel_.now();
-  in_progress_ = {};
 }
 
 // ---- faults (scenario events) ---------------------------------------------------------------
@@ -648,7 +590,7 @@ void Encoder::set_t_cal(Time t_cal) {
 
 void Encoder::power_interruption(Time duration) {
   require(duration > Time::zero() && duration <= kMaxFaultTime, "a power interruption lasts 0 .. 10 s");
-  nvm_.interrupt(memory_, kernel_.now(), params_.interrupted_nvm_write == InterruptedNvmWrite::Torn);
+  access_.power_interrupted(params_.interrupted_nvm_write == InterruptedNvmWrite::Torn);
   state_ = State::Idle;
   recovery_timer_.cancel();
   end_marker_timer_.cancel();
@@ -689,12 +631,5 @@ void Encoder::set_sensor_values(const SensorValues& v) {
 bool Encoder::function_activated(EncoderFunction f) const {
   return protocol::parameters::function_activated(memory_.active_function_initialization(), f);
 }
-
-void Encoder::select(const Selection& s) {
-  selection_area_ = s;
-  area_selected_ = true;
-  if (s.area == MemoryArea::AsynchronousPosition) additional_data_.set_asynchronous_time_delay(s.block);  // 2.4.2.3
-}
-
 
 }  // namespace endatsim::slave

@@ -1,7 +1,8 @@
 // The EnDat encoder (D297403 2, 3): a frame engine, the bit-level state machine that only talks
 // through the line's encoder-side pins (the mode command on RE3 .. RE8, t_cal, the start bit,
 // the answers of 2.3 .. 2.10, the command supplement, t_m), and the parts it hands the contents to:
-// the memory with its areas, write protection and the word being programmed (memory.hpp), the
+// the memory with its areas and write protection (memory.hpp), the accesses to it with the area
+// selected, Busy and the word being programmed (memory_access.hpp), the
 // position source (position_source.hpp), the additional data (additional_data.hpp), the error
 // messages (error_messages.hpp) and an EIB's initial commissioning (eib.hpp). What an encoder is
 // comes from EncoderParams (encoder_params.hpp); every frame leaves an EncoderFrame as ground truth.
@@ -18,6 +19,7 @@
 #include "endatsim/slave/encoder_params.hpp"
 #include "endatsim/slave/error_messages.hpp"
 #include "endatsim/slave/memory.hpp"
+#include "endatsim/slave/memory_access.hpp"
 #include "endatsim/slave/position_source.hpp"
 #include "endatsim/slave/reference.hpp"
 
@@ -44,7 +46,7 @@ struct EncoderFrame {
   std::vector<std::uint64_t> continuous_positions;
 };
 
-class Encoder {
+class Encoder : private MemoryAccess::Client {
  public:
   Encoder(sim::Kernel& kernel, line::Line& line, const EncoderParams& params);
   // An encoder on a bus tap of the line (line::Line::add_encoder(), 2.10).
@@ -61,7 +63,7 @@ class Encoder {
   std::uint64_t ignored_clock_edges() const { return ignored_edges_; }
   bool idle() const { return state_ == State::Idle; }
   bool started() const { return !offline_; }
-  bool busy() const;
+  bool busy() const { return access_.busy(); }
   const Memory& memory() const { return memory_; }
   std::optional<Information> additional_data_1() const { return additional_data_.selected(0); }
   // The transfer format in use: word 13 as activated (an EIB's changes at commissioning).
@@ -103,7 +105,6 @@ class Encoder {
   void on_falling_edge();
   void on_rising_edge();
   void on_recovery_time_elapsed();
-  void on_memory_access_done();
   void on_end_marker_due();
   void on_started();
   void go_offline(Time duration);
@@ -121,12 +122,10 @@ class Encoder {
   void adopt_encoder_type(unsigned position_bits);
   void commissioned(std::optional<unsigned> position_bits);
   bool function_activated(protocol::parameters::EncoderFunction f) const;
-  void select(const Selection& s);
-  void written(const Selection& s, std::uint8_t address);
+  void written(const Selection& s, std::uint8_t address) override;
   void clock_after_supplement();
   void hand_over_for_supplement();
   bool drives_bus() const;
-  void start_memory_access(Time t_ac);
   Time recovery_time() const;
   void drive(bool level) { data_logic_.write(level); }
   void release() { enable_logic_.write(false); }
@@ -140,12 +139,12 @@ class Encoder {
   AdditionalData additional_data_;
   ErrorMessages errors_;
   EibCommissioning eib_;
+  MemoryAccess access_;
   sim::Signal data_logic_;
   sim::Signal enable_logic_;
   sim::TransportDelay data_out_delay_;
   sim::TransportDelay enable_out_delay_;
   sim::Timer recovery_timer_;
-  sim::Timer memory_timer_;
   sim::Timer end_marker_timer_;
   sim::Timer startup_timer_;
 
@@ -167,14 +166,8 @@ class Encoder {
   Pending pending_;
 
   // Encoder state that outlives frames.
-  Selection selection_area_;
-  bool area_selected_ = false;
-  Time busy_until_{0};
-  Pending in_progress_;                         // the 2.2 access finishing at busy_until_
   std::uint8_t test_port_21_ = 0;               // 2.8: port for "Encoder send test values"
-  bool memory_error_ = false;
   bool transmission_incomplete_ = false;        // A2 cause 3, for the next acknowledgment
-  NvmProgramming nvm_;                          // the word being programmed (power interruption)
   bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command
   std::optional<bool> bus_selection_after_frame_;
   bool offline_ = false;                        // running up after power-on or reset (2.3.3)
