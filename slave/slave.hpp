@@ -5,6 +5,7 @@
 //   encoder_params.hpp   what an encoder is: EncoderParams, and the model's named choices
 //   encoder.hpp          the frame engine on the pins, and the ground truth of each frame
 //   memory.hpp           memory areas, write protection, activation on reset (3)
+//   memory_access.hpp    the area selected, Busy, 2.2 accesses, the word being programmed (2.4 .. 2.6)
 //   position_source.hpp  positions, multiturn, reference marks, touch probe (2.3.4)
 //   additional_data.hpp  additional data 1 and 2 and their rolling values (2.3.5)
 //   error_messages.hpp   F1 and F2 and the operating status words 0 and 1 (2.3.1, 3.4.1, 3.4.2)
