@@ -19,6 +19,7 @@
 #include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/protocol/frame.hpp"
 #include "endatsim/protocol/mode_command.hpp"
+#include "endatsim/protocol/timing.hpp"
 #include "endatsim/sim/time.hpp"
 
 namespace endatsim::checker {
@@ -30,7 +31,7 @@ struct DecoderParams {
   // CLOCK edge at the encoder pins -> DATA edge at the encoder pins (receiver, logic, driver).
   Time clock_to_data = sim::ns(60);
   // The encoder's recovery time I: a HIGH phase this long ends any frame (2.3.2).
-  Time t_m = sim::us(10);
+  Time t_m = protocol::limit::kRecoveryTimeMin;
   // Rising edges the encoder lets pass after releasing DATA before it hunts for the
   // supplement's start bit: its own last bit may still be on the line.
   unsigned supplement_ignore_clocks = 3;
@@ -40,7 +41,7 @@ struct DecodedDatum {
   std::uint8_t status = 0;  // WRN RM Busy I4..I0
   std::uint16_t data = 0;
   bool crc_ok = false;
-  bool busy() const { return (status & 0x20) != 0; }
+  bool busy() const { return (status & protocol::AdditionalDataStatus::kBusy) != 0; }
   bool additional_data_2() const {
     return protocol::is_additional_data_2(
         static_cast<protocol::Information>(status & protocol::AdditionalDataStatus::kInformation));

@@ -236,10 +236,11 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
 void TimingChecker::check_measurement_procedure(const DeclaredFrame& frame) {
   // 2.1.2: a counter at least eight times the intended f_c (f_e tolerance +/-10 %), and at
   // least three measurements averaged.
-  const sim::Hertz f_e = master_.f_e != 0 ? master_.f_e : 8 * master_.f_c;
+  const sim::Hertz intended = limit::kMeasurementCounterFactor * master_.f_c;
+  const sim::Hertz f_e = master_.f_e != 0 ? master_.f_e : intended;
   const std::string spec = "2.1.2 propagation-delay measurement";
   judge(protocol::check::row_index(check::kMeasurementProcedure));
-  if (f_e * 10 < 72 * master_.f_c)
+  if (f_e * 100 < intended * (100 - limit::kMeasurementCounterTolerancePercent))
     report({.check = std::string(check::kMeasurementProcedure),
             .spec = spec,
             .where = ObservationPoint::MasterPins,
@@ -247,7 +248,7 @@ void TimingChecker::check_measurement_procedure(const DeclaredFrame& frame) {
             .frame = frame.index,
             .clock = std::nullopt,
             .measured = format_frequency(f_e),
-            .limit = ">= " + format_frequency(8 * master_.f_c) + " - 10 %",
+            .limit = ">= " + format_frequency(intended) + " - " + std::to_string(limit::kMeasurementCounterTolerancePercent) + " %",
             .severity = Severity::Error,
             .message = "counter clock f_e below eight times the intended f_c"});
   if (master_.measurements < limit::kMeasurementsMin)
@@ -258,7 +259,7 @@ void TimingChecker::check_measurement_procedure(const DeclaredFrame& frame) {
             .frame = frame.index,
             .clock = std::nullopt,
             .measured = std::to_string(master_.measurements) + " measurement(s)",
-            .limit = ">= 3",
+            .limit = ">= " + std::to_string(limit::kMeasurementsMin),
             .severity = Severity::Error,
             .message = "fewer than three measurements averaged"});
 }
@@ -311,7 +312,7 @@ void TimingChecker::check_measurement_spread(const PinFrame& f) {
             .frame = f.header.index,
             .clock = std::nullopt,
             .measured = std::to_string(j->measurements) + " measurement(s)",
-            .limit = ">= 3",
+            .limit = ">= " + std::to_string(limit::kMeasurementsMin),
             .severity = Severity::Error,
             .message = "the master compensates after fewer than three measurements of t_D"});
   note(check::kMeasurementSpread, at_most(j->deviation, j->limit, params_.resolution));

@@ -21,7 +21,7 @@ std::int64_t ticks(Time t, Time phase, Time tick) {
 
 DelayMeasurement::DelayMeasurement(const DelayMeasurementParams& params, Hertz f_c) : params_(params), f_c_(f_c) {}
 
-Time DelayMeasurement::counter_tick() const { return sim::period_of(params_.f_e != 0 ? params_.f_e : 8 * f_c_); }
+Time DelayMeasurement::counter_tick() const { return sim::period_of(params_.f_e != 0 ? params_.f_e : protocol::limit::kMeasurementCounterFactor * f_c_); }
 
 void DelayMeasurement::begin() {
   active_ = true;

@@ -222,8 +222,9 @@ void SafetyMonitor::run_crc_self_test(const CrcCheck& crc, unsigned position_bit
              (!good ? "rejected (the evaluation computes " + std::to_string(computed) + ")"
                     : "a CRC with one bit inverted was accepted"));
   }
-  const bool norm_ok = crc_passes(crc, 10, protocol::make_crc_norm(0xB9, 0x1234, crc.generator)) &&
-                       !crc_passes(crc, 11, protocol::make_crc_norm(0xB9, 0x1234, crc.generator));
+  const std::uint8_t b9 = mrs_of(protocol::MemoryArea::OperatingStatus);
+  const bool norm_ok = crc_passes(crc, 10, protocol::make_crc_norm(b9, 0x1234, crc.generator)) &&
+                       !crc_passes(crc, 11, protocol::make_crc_norm(b9, 0x1234, crc.generator));
   if (!norm_ok) find(SafetyFunction::CrcSelfTest, now, "parameter CRC of B9h / 1234h (known 10) evaluated wrong");
 }
 

@@ -362,6 +362,7 @@ constexpr std::uint16_t kSupportsPositionValue2 = 0x0001, kSupportsTestValues = 
                         kSupportsTemperature1 = 0x0004, kSupportsTemperature2 = 0x0008,
                         kSupportsAdditionalSensors = 0x0010;  // word 0
 constexpr std::uint16_t kSupportsEveryAdditionalData1 = 0x001F;
+constexpr std::uint16_t kSupportsAsynchronousPosition = 0x0008;  // word 1
 std::span<const std::string_view> additional_data_1_names();  // index = bit
 std::span<const std::string_view> additional_data_2_names();
 // Bits by name (throws std::invalid_argument naming the unknown name and the known ones).

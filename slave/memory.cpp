@@ -190,7 +190,7 @@ std::optional<ErrorCause> Memory::check_selection(std::uint8_t mrs, std::uint8_t
   }
   if (*area == Area::AsynchronousPosition)
     return image_.areas.contains(Area::ManufacturerEndat22) &&
-                   (endat22_word(word::kAdditionalData2Support) & 0x0008) != 0
+                   (endat22_word(word::kAdditionalData2Support) & protocol::parameters::kSupportsAsynchronousPosition) != 0
                ? std::nullopt
                : std::optional{ErrorCause::ImpermissibleMemoryArea};
   if (!address_range({*area, 0})) return ErrorCause::ImpermissibleMemoryArea;

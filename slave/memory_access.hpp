@@ -40,7 +40,7 @@ class MemoryAccess {
 
   // ---- what a frame does at once, or when it ends ---------------------------------------------
   void select(const Selection& s);
-  // A word of the selected area; "impermissible memory area" without a selection (A2 cause 1).
+  // A word of the selected area; "impermissible memory area" without a selection (A2 cause 7).
   std::optional<ErrorCause> check_write(std::uint8_t address, std::uint16_t value) const;
   Memory::WordRead read(std::uint8_t address) const;
   // Writes the word and tells the client; the NVM write begun for it is complete.
