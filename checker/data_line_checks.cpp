@@ -213,8 +213,8 @@ void TimingChecker::check_calculation_time_maximum() {
 // word: its minimum 10.5/f_c does not apply to later words, which follow after as little as one LOW
 // bit (the continuous clock "reduces the length of the clock-pulse group by 10 periods per position
 // value", HEIDENHAIN's encoder catalogue; docs/model.md §6), and this bound takes the place of its
-// maximum. Counted as the LOW run before the start bit, so that a HIGH bit of two clocks (TI's
-// reading, docs/model.md §6) is not counted as LOW.
+// maximum. Counted as the LOW run before the start bit, so that a HIGH bit of two clocks (one
+// published master's reading, docs/model.md §6) is not counted as LOW.
 void TimingChecker::next_word_start_bit(unsigned clock) {
   ++word_;
   word_start_clock_ = clock;

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "endatsim/protocol/mode_command.hpp"
+#include "endatsim/protocol/timing.hpp"
 #include "endatsim/sim/time.hpp"
 
 namespace endatsim::checker {
@@ -24,7 +25,7 @@ struct EncoderDeclaration {
   Time t_cal = sim::us(5);             // 2.3.2 note 7, word 39: the longest calculation time
   std::optional<Time> t_cal_22;        // ... for EnDat 2.2 mode commands where it differs
   std::optional<Time> t_ac;            // 2.3.2: the longest memory access time (<= 12 ms), if declared
-  Time t_m = sim::us(20);              // 2.3.2 recovery time I, as declared (10 .. 30 us)
+  Time t_m = protocol::encoder_default::kRecoveryTime;  // 2.3.2 recovery time I, as declared (10 .. 30 us)
   std::optional<Time> t_m_short;       // 1.25 .. 3.75 us where word 3 may select it (3.4.4)
   bool short_t_m_selected = false;     // word 3 selected it before the capture or run began
   Time t_r = sim::ns(500);             // 2.3.2 recovery time II
@@ -33,7 +34,7 @@ struct EncoderDeclaration {
   std::optional<Hertz> f_c_max;        // word 25 (3.5.10): the encoder's highest clock
   bool endat21_only = false;           // an EnDat 2.1 encoder: f_c at most 2 MHz (2.1.2)
   bool switched_on_in_run = false;     // the run (capture) begins with switching on (2.3.3)
-  unsigned supplement_ignore_clocks = 3;  // clocks after a 2.2 supplement the encoder ignores
+  unsigned supplement_ignore_clocks = protocol::encoder_default::kSupplementIgnoredClocks;  // after a 2.2 supplement
 };
 
 // What a cooperating master declares about itself: the rows that need it (sampling window,

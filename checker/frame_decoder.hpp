@@ -34,7 +34,7 @@ struct DecoderParams {
   Time t_m = protocol::limit::kRecoveryTimeMin;
   // Rising edges the encoder lets pass after releasing DATA before it hunts for the
   // supplement's start bit: its own last bit may still be on the line.
-  unsigned supplement_ignore_clocks = 3;
+  unsigned supplement_ignore_clocks = protocol::encoder_default::kSupplementIgnoredClocks;
 };
 
 struct DecodedDatum {

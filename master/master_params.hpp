@@ -20,8 +20,8 @@ using sim::Time;
 
 // How the master finds the start bit while it polls (2.3: "observe the data line to detect the
 // start bit"). Fail-safe receivers read HIGH on the undriven line during the turnaround
-// (docs/model.md §1, §11), so a careful master first waits for the encoder's LOW (HPMicro's SEI
-// sample: "wait 0, then wait 1"); a simple one takes the first HIGH sample after the mode bits.
+// (docs/model.md §1, §11), so a careful master first waits for the encoder's LOW (a published
+// sample's master: "wait 0, then wait 1"); a simple one takes the first HIGH sample after the mode bits.
 enum class StartBitDetection : std::uint8_t { WaitLowThenHigh, FirstHigh };
 
 // How the master checks CRCs (masters in the field got each of these wrong, docs/model.md §12).
@@ -72,7 +72,7 @@ struct MasterParams {
   // 2.3.2 t_b > 1 ms before a 2.1 memory or parameter frame (read as end of the previous frame
   // to FE1; see the checker's t_b row).
   Time t_b_wait = sim::us(1100);
-  // 2.3.3 (the figure's labels in the German brochure, TI's reading; docs/model.md §8): after
+  // 2.3.3 (the figure's labels in the German brochure, one published master's reading; docs/model.md §8): after
   // switching on, CLOCK stays at a valid level for t1 >= 800 ms and HIGH for t2 = 80 .. 120 ms,
   // then at least one LOW pulse > 125 ns, then HIGH for t3 = 380 .. 420 ms before the first request.
   struct PowerOnSequence {
@@ -83,13 +83,14 @@ struct MasterParams {
   // The start-up routine reads word 13 and from then on clocks that many position bits.
   bool adopt_word13 = true;
   // ... and runs at this clock: before t_D is known only a slow clock is safe on a long cable
-  // (TI's firmware runs the routine at 200 kHz).
+  // (one published master's firmware runs the routine at 200 kHz).
   Hertz startup_f_c = sim::kHz(200);
   Time start_bit_timeout = protocol::limit::kCalculationTimeMax;  // t_cal max (2.3.2); polling gives up after this
   // 2.1 parameter frames: polling after the 24 bits gives up after t_ac max (12 ms, 2.3.2) + 1 ms.
   Time memory_access_timeout = protocol::limit::kMemoryAccessMax + sim::ms(1);
-  // docs/model.md §4 (TI's choice, "can optimize"): LOW bits the master drives before the start
-  // bit of a 2.2 command supplement, from the first falling edge after it has checked the answer.
+  // docs/model.md §4 (one published master's choice, "can optimize"): LOW bits the master drives
+  // before the start bit of a 2.2 command supplement, from the first falling edge after it has
+  // checked the answer.
   unsigned supplement_lead_bits = 7;
   // Of those, the master drives only the last ones: before them DATA is left undriven, so that
   // the encoder's release can travel the cable back first (a turnaround like t_ST's).

@@ -59,7 +59,7 @@ const std::array kMaster{
     sim::Parameter<M>{"type1_detect_samples", &M::type1_detect_samples, 1, 64, "A2",
                       "HIGH samples after the turnaround without a LOW that mean a type I error handling."},
     sim::Parameter<M>{"supplement_lead_bits", &M::supplement_lead_bits, 1, 32, "2.4.2",
-                      "LOW bits before the start bit of a 2.2 command supplement (TI's choice, 7)."},
+                      "LOW bits before the start bit of a 2.2 command supplement (as a published master drives them, 7)."},
     sim::Parameter<M>{"supplement_driven_lead_bits", &M::supplement_driven_lead_bits, 1, 32, "2.4.2",
                       "Of those, the last ones the master drives; before them DATA is left undriven so that the "
                       "encoder's release crosses the cable first; at most supplement_lead_bits."},

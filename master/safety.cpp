@@ -40,8 +40,8 @@ std::optional<std::uint32_t> scaled(std::uint16_t word) {
   return static_cast<std::uint32_t>(word & 0x1FFF) << code;
 }
 
-// Known results (A4 examples; the vectors of docs/model.md §12, computed with TI's open-source
-// CRC code and an independent LFSR).
+// Known results (A4 examples; the vectors of docs/model.md §12, computed with one published master's
+// open-source CRC code and an independent LFSR).
 constexpr CrcVector kCrcVectors[] = {
     {25, false, true, true, 104462, 3},  // A4.4.2 MakeCrcPos example
     {31, false, false, true, 0x7FFFFFFF, 22},

@@ -13,6 +13,9 @@ namespace endatsim::protocol {
 // Section 3: the memory areas for compensation values and for OEM parameters "must consist of a
 // maximum of 960 words in total (1920 bytes)".
 inline constexpr std::size_t kPartitionedWordsMax = 960;
+// 2.4: an address is one byte, so no area holds more than 256 words; a section 2 block holds
+// them all (3.2).
+inline constexpr std::size_t kAreaWordsMax = 256;
 
 enum class MemoryArea : std::uint8_t {
   OperatingStatus,          // B9: words 0..3 (3.4)
@@ -43,6 +46,9 @@ struct MemoryAreaInfo {
   std::string_view key;
   bool endat22_only;                         // 2.4.2.1 / A2 cause 7: only with a 2.2 mode command
   std::optional<unsigned> protection_bit;   // word 2 bit (3.4.3)
+  // The words it always holds (3.4: 4, 3.5 and 3.6: 16, 3.9: 64); 0: as words 9 .. 12 partition
+  // it (3.5.5), per block (3.2) or up to kAreaWordsMax (operating parameters 2, 3.10).
+  std::uint16_t fixed_words = 0;
 };
 
 std::span<const MemoryAreaInfo> memory_areas();

@@ -37,6 +37,17 @@ inline constexpr unsigned kTurnaround = 9;
 inline constexpr unsigned kEarliestStartBit = 11;
 }  // namespace frame_position
 
+// What the encoder model is by default where the spec leaves it to the encoder or its figures are
+// lost (docs/model.md), shared with the checker's declarations of an encoder and its decoder.
+namespace encoder_default {
+// 2.3.2 recovery time I lies in 10 .. 30 us; an encoder in the middle of it.
+inline constexpr sim::Time kRecoveryTime = sim::us(20);
+// docs/model.md §4 (guess): after handing DATA over for a 2.2 command supplement the encoder
+// lets this many rising edges pass, while its own last bit fades, before it hunts for the
+// supplement's start bit (the master's lead bits must be more).
+inline constexpr unsigned kSupplementIgnoredClocks = 3;
+}  // namespace encoder_default
+
 namespace limit {
 using sim::Hertz;
 using sim::Time;

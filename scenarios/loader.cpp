@@ -464,7 +464,7 @@ void read_frame_operation(Object& o, const std::string& name, master::Operation&
   if (auto v = o.opt("mode_bits")) op.mode_bits = read_mode_bits(*v);
   if (auto v = o.opt("clock_adjust")) op.clock_adjust = static_cast<int>(v->as_int(-64, 64));
   if (auto v = o.opt("count")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
-  if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
+  if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), Scenario::kMaxTime);
   if (auto v = o.opt("continuous_words")) {
     op.continuous_words = static_cast<unsigned>(v->as_uint(0, 100'000));
     if (op.continuous_words > 0 && op.command != protocol::ModeCommand::EncoderSendPositionValues)
@@ -495,19 +495,19 @@ master::Operation read_operation(const Node& n, std::optional<FrameExpectation>&
             : name == "safety_startup"    ? Kind::SafetyStartup
             : name == "diagnosis_setup"   ? Kind::DiagnosisSetup
                                           : Kind::ReadPosition;
-  if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), sim::ms(60'000));
+  if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), Scenario::kMaxTime);
   if (auto v = o.opt("expect")) {
     if (op.kind == Kind::Wait || op.kind == Kind::MeasureDelay || op.kind == Kind::PowerOnSequence)
       v->fail_raw("\"expect\" needs an operation that sends frames");
     expect = read_frame_expectation(*v);
   }
   if (op.kind == Kind::Wait) {
-    op.duration = o.req("duration").as_duration(Time::zero(), sim::ms(60'000));
+    op.duration = o.req("duration").as_duration(Time::zero(), Scenario::kMaxTime);
   } else if (op.kind == Kind::AwaitNotBusy) {
     op.count = 1000;
     op.cycle = sim::us(50);
     if (auto v = o.opt("max_polls")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
-    if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), sim::ms(60'000));
+    if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), Scenario::kMaxTime);
   } else if (name == "read_position" || name == "frame") {
     read_frame_operation(o, name, op);
   } else if (op.kind == Kind::SafetyStartup) {
@@ -571,12 +571,12 @@ void read_line_fault(Object& f, Event& e) {
       e.wire = read_wire(f);
       e.end = read_end(f);
       e.level = f.req("level").as_uint(0, 1) == 1;
-      if (auto v = f.opt("duration")) e.duration = v->as_duration(sim::ps(1), sim::ms(60'000));
+      if (auto v = f.opt("duration")) e.duration = v->as_duration(sim::ps(1), Scenario::kMaxTime);
       break;
     case K::RandomBitErrors:
       e.end = read_end(f);
       e.rate = f.req("rate").as_number(0.0, 1.0, " (probability per clock period)");
-      if (auto v = f.opt("duration")) e.duration = v->as_duration(sim::ps(1), sim::ms(60'000));
+      if (auto v = f.opt("duration")) e.duration = v->as_duration(sim::ps(1), Scenario::kMaxTime);
       break;
     case K::LateDriverRelease:
       e.end = read_end(f);
@@ -654,7 +654,7 @@ Event read_event(const Node& item, const line::LineParams& line) {
       {"sensors", K::SensorValues}};
   Object o(item);
   Event e;
-  if (auto v = o.opt("at")) e.at = v->as_duration(Time::zero(), sim::ms(60'000));
+  if (auto v = o.opt("at")) e.at = v->as_duration(Time::zero(), Scenario::kMaxTime);
   if (auto v = o.opt("frame")) e.frame = v->as_uint(0, UINT32_MAX);
   if (e.at.has_value() == e.frame.has_value()) item.fail_raw("expected exactly one of \"at\" and \"frame\"");
   if (auto v = o.opt("clock")) {
@@ -675,7 +675,7 @@ Event read_event(const Node& item, const line::LineParams& line) {
     Object c(*body);
     e.cable_length_m = c.req("cable_length_m").as_number(0.0, line::LineParams::kMaxCableLengthM, " m");
     e.cable_delay_per_m = line.cable_delay_per_m;
-    if (auto v = c.opt("cable_delay_per_m")) e.cable_delay_per_m = v->as_duration(Time::zero(), sim::ns(20));
+    if (auto v = c.opt("cable_delay_per_m")) e.cable_delay_per_m = v->as_duration(Time::zero(), line::LineParams::kMaxCableDelayPerM);
     c.done();
   } else if (e.kind == K::TCal) {
     e.t_cal = body->as_duration(Time::zero(), slave::EncoderParams::kMaxModelTime);
@@ -916,7 +916,7 @@ Scenario read_scenario(const json& root, const std::string& file, ScenarioKind k
     f.done();
   }
   if (auto v = o.opt("seed")) s.seed = v->as_uint(0, UINT64_MAX);
-  if (auto v = o.opt("max_time")) s.max_time = v->as_duration(sim::us(1), sim::ms(60'000));
+  if (auto v = o.opt("max_time")) s.max_time = v->as_duration(sim::us(1), Scenario::kMaxTime);
   if (auto v = o.opt("limits")) {
     Object l(*v);
     for (auto [key, field] : {std::pair{"kernel_events", &ScenarioLimits::kernel_events},

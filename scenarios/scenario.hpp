@@ -162,6 +162,9 @@ struct Scenario {
   std::string description;
   std::optional<FieldNote> field;
   std::uint64_t seed = 1;
+  // The longest simulated time a scenario may name: max_time, an operation's or event's `at`,
+  // durations and cycles.
+  static constexpr Time kMaxTime = sim::ms(60'000);
   Time max_time = sim::ms(1000);
   ScenarioLimits limits;  // what the file asks for; resolve_limits gives a run's limits
   line::LineParams line;

@@ -31,16 +31,16 @@ MemoryImage eib_factory_image(const EibFactoryData& d) {
   std::copy(serial.begin(), serial.end(), m.begin() + word::kSerialNumber);
   m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);
   MemoryImage img;
-  img.areas[A::OperatingStatus] = {0, 0, 0, 0};
+  img.areas[A::OperatingStatus].assign(protocol::info(A::OperatingStatus).fixed_words, 0);
   set_manufacturer_words(img, m);
-  img.areas[A::OperatingParameters].assign(16, 0);
+  img.areas[A::OperatingParameters].assign(protocol::info(A::OperatingParameters).fixed_words, 0);
   const A oem[4] = {A::Oem1, A::Oem2, A::Oem3, A::Oem4};
   const A comp[4] = {A::Compensation1, A::Compensation2, A::Compensation3, A::Compensation4};
   for (unsigned i = 0; i < 4; ++i) {
     if (d.oem[i]) img.areas[oem[i]].assign(d.oem[i]->end + 1, 0);
     if (d.compensation[i]) img.areas[comp[i]].assign(d.compensation[i]->end + 1, 0);
   }
-  img.areas[A::ManufacturerEndat22].assign(64, 0);
+  img.areas[A::ManufacturerEndat22].assign(protocol::info(A::ManufacturerEndat22).fixed_words, 0);
   img.areas[A::OperatingParameters2].assign(16, 0);
   return img;
 }

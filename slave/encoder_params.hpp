@@ -122,7 +122,7 @@ struct EncoderParams {
   // encoders take other calculation times for 2.1 and 2.2 mode commands); none: t_cal.
   std::optional<Time> t_cal_22;
   Time t_cal_for(EndatVersion command) const { return command == EndatVersion::V2_2 ? t_cal_22.value_or(t_cal) : t_cal; }
-  Time t_m = sim::us(20);                      // 2.3.2: recovery time I, 10 .. 30 us
+  Time t_m = protocol::encoder_default::kRecoveryTime;  // 2.3.2: recovery time I, 10 .. 30 us
   std::optional<Time> t_m_short;               // 1.25 .. 3.75 us, 2.2 commands only (word 3, 3.4.4)
   bool short_t_m_selected = false;             // as if word 3 selected it at power-on
   Time t_r = sim::ns(500);                     // 2.3.2: t_R, time before the next query can be received
@@ -144,9 +144,8 @@ struct EncoderParams {
   // docs/model.md §4 (guess): after the master's supplement the encoder drives the HIGH end
   // marker this long after the last supplement bit (the master has released DATA by then).
   Time supplement_end_marker_delay = sim::us(1);
-  // ... and before it, ignores DATA for this many rising edges after handing the line over,
-  // while its own last bit fades (guess; the master's lead bits must be more).
-  unsigned supplement_ignore_clocks = 3;
+  // ... and before it, ignores DATA for this many rising edges after handing the line over.
+  unsigned supplement_ignore_clocks = protocol::encoder_default::kSupplementIgnoredClocks;
   SupplementHandover supplement_handover = SupplementHandover::Release;
   Time output_delay = sim::ns(20);             // clock input -> data output inside the encoder
   // 2.4.2.3 / 3.4.4 (guess: "the exact evaluation of the oversampling is described in the

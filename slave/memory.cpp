@@ -31,17 +31,7 @@ std::optional<std::pair<unsigned, unsigned>> partition_of(Area a) {
   }
 }
 
-std::size_t fixed_size(Area a) {
-  switch (a) {
-    case Area::OperatingStatus: return 4;
-    case Area::Manufacturer1:
-    case Area::Manufacturer2:
-    case Area::Manufacturer3:
-    case Area::OperatingParameters: return 16;
-    case Area::ManufacturerEndat22: return 64;
-    default: return 0;
-  }
-}
+std::size_t fixed_size(Area a) { return protocol::info(a).fixed_words; }
 
 bool factory_protected(Area a) {
   switch (a) {
@@ -121,7 +111,8 @@ Memory::Memory(MemoryImage image) : image_(std::move(image)) {
     throw std::invalid_argument("section 2 memory has " + std::to_string(image_.section2_blocks.size()) +
                                 " blocks, but word 24 of the EnDat 2.2 manufacturer area says " + std::to_string(blocks));
   for (const auto& b : image_.section2_blocks)
-    if (b.size() != 256) throw std::invalid_argument("every section 2 block must have 256 words (3.2)");
+    if (b.size() != protocol::kAreaWordsMax)
+      throw std::invalid_argument("every section 2 block must have " + std::to_string(protocol::kAreaWordsMax) + " words (3.2)");
   if (const auto it = image_.areas.find(Area::OperatingParameters2); it != image_.areas.end())
     operating_parameters2_defaults_ = it->second;
   activate_on_reset();

@@ -59,15 +59,8 @@ std::vector<std::uint16_t> as_words(const Node& n, std::size_t min, std::size_t 
 // How many words each area holds in the file: fixed ones, OEM and compensation areas as words
 // 9..12 make them (slave::Memory checks those), operating parameters 2 up to 256.
 std::pair<std::size_t, std::size_t> size_limits(Area a) {
-  switch (a) {
-    case Area::OperatingStatus: return {4, 4};
-    case Area::Manufacturer1:
-    case Area::Manufacturer2:
-    case Area::Manufacturer3:
-    case Area::OperatingParameters: return {16, 16};
-    case Area::ManufacturerEndat22: return {64, 64};
-    default: return {1, 256};
-  }
+  const std::size_t fixed = protocol::info(a).fixed_words;
+  return fixed != 0 ? std::pair{fixed, fixed} : std::pair<std::size_t, std::size_t>{1, protocol::kAreaWordsMax};
 }
 
 EncoderProfile read_profile(const json& root, const std::string& file) {

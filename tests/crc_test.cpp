@@ -33,7 +33,7 @@ TEST(Crc, EverySingleBitErrorChangesTheCrc) {
 }
 
 TEST(Crc, PresetZeroWithoutInversionReproducesTheMisconfiguredMastersLog) {
-  // docs/model.md §12: an HPMicro hpm_sdk sample's log of 2.1 frames,
+  // docs/model.md §12: a published sample's log of 2.1 frames,
   // 25 bits, F1 = 0, where the spec's CRC is 06h, 0Ch, 19h.
   const CrcConfig wrong{0x00, false};
   EXPECT_EQ(make_crc_pos(25, false, true, false, 0xA5A5), 0x06);
@@ -44,7 +44,7 @@ TEST(Crc, PresetZeroWithoutInversionReproducesTheMisconfiguredMastersLog) {
 }
 
 TEST(Crc, NotesVectorsForOtherWidths) {
-  // docs/model.md §12 (TI's open-source make_crc_* and an independent LFSR agree).
+  // docs/model.md §12 (a published master's make_crc_* and an independent LFSR agree).
   EXPECT_EQ(make_crc_pos(31, false, false, true, 0x7FFFFFFF), 22);
   EXPECT_EQ(make_crc_pos(36, false, false, true, 0x512345678ULL), 13);
   EXPECT_EQ(make_crc_pos(48, false, false, true, 0xABCD12345678ULL), 11);
