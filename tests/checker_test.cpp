@@ -129,6 +129,30 @@ TEST(CheckerClockFrequency, AClockHalfAPercentFastIsCaughtAndAnExactOneIsNot) {
   EXPECT_EQ(count_violations(r, checker::check::kClockFrequency), 0U);
 }
 
+// 3.9.19 word 25 and 2.1.1: what the declared encoder allows of f_c, to the hertz; it counts
+// against this encoder only (the table allows up to 8 MHz with compensation, 16 MHz specially).
+TEST(CheckerClockFrequency, AboveTheDeclaredEncodersMaximumToTheHertz) {
+  const auto this_encoder = [](Hertz f_c, bool v21, std::optional<std::uint16_t> word25_khz) {
+    auto s = make_scenario(1, f_c, f_c > MHz(2), 2);
+    s.checker.f_c_tolerance_ppm = 0;
+    if (v21) {
+      s.encoder.version = protocol::EndatVersion::V2_1;
+    }
+    if (word25_khz) {
+      auto image = slave::default_memory_image(s.encoder);
+      image.areas.at(protocol::MemoryArea::ManufacturerEndat22).at(protocol::word::kMaxClockFrequency) = *word25_khz;
+      s.encoder.memory = image;
+    }
+    return count_violations(scenarios::run_scenario(s), checker::check::kClockFrequency, checker::Verdict::ThisEncoder);
+  };
+  // At 1 MHz one picosecond of period is one hertz; at 2 MHz the nearest clock above is 2 MHz + 4 Hz.
+  EXPECT_EQ(this_encoder(MHz(1), false, 1000), 0U);
+  EXPECT_EQ(this_encoder(MHz(1) + 1, false, 1000), 2U);  // each of the two reads
+  EXPECT_EQ(this_encoder(MHz(1) + 1, false, std::nullopt), 0U);  // the model's word 25: 16 MHz
+  EXPECT_EQ(this_encoder(MHz(2), true, std::nullopt), 0U);
+  EXPECT_EQ(this_encoder(MHz(2) + 4, true, std::nullopt), 2U);
+}
+
 TEST(CheckerMeasurementProcedure, SlowCounterAndTooFewMeasurementsAreReported) {
   auto s = make_scenario(10, MHz(8), true, 1);
   s.master.measurement.f_e = MHz(32);  // needs >= 64 MHz (8 x 8 MHz, -10 %)
@@ -183,6 +207,18 @@ TEST(CheckerCalculationTime, StartBitWithinOneMillisecondAndOnePeriod) {
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kCalculationTime), 0U);
   s.encoder.t_cal = ns(1'000'500) + ps(1);  // one picosecond more: the next edge, 1001.5 us
   EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kCalculationTime), 1U);
+}
+
+TEST(CheckerCalculationTime, AStartBitBeforeRe11BreaksTheMinimumByOneCount) {
+  // 2.3.2 t_cal >= 10.5/f_c: RE11 comes 10.5 periods after FE1.
+  auto s = make_scenario(5, MHz(1), false, 2);
+  s.encoder.t_cal = Time::zero();
+  s.encoder.earliest_start_bit_clock = 11;
+  EXPECT_EQ(count_violations(scenarios::run_scenario(s), checker::check::kCalculationTime), 0U);
+  s.encoder.earliest_start_bit_clock = 10;
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(count_violations(r, checker::check::kCalculationTime), 2U);
+  EXPECT_EQ(r.frames.front().outcome, master::FrameOutcome::Ok) << "the master still finds the start bit";
 }
 
 TEST(CheckerStartDelay, FirstLowPhaseAgainstNote8) {
