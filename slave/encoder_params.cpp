@@ -160,10 +160,6 @@ constexpr sim::ChoiceField<EncoderParams> choice() {
   return sim::enum_choice<EncoderParams, Field, Names>();
 }
 
-constexpr std::array<std::string_view, 5> kKinds{"singleturn", "multiturn", "linear", "touch_probe", "eib"};
-static_assert(static_cast<std::size_t>(EncoderKind::Eib) == kKinds.size() - 1);
-constexpr std::array<std::string_view, 2> kVersions{"2.1", "2.2"};
-static_assert(static_cast<std::size_t>(EndatVersion::V2_2) == 1);
 constexpr std::array<std::string_view, 2> kType1{"abort_high", "no_start_bit"};
 static_assert(static_cast<std::size_t>(Type1Handling::NoStartBit) == 1);
 constexpr std::array<std::string_view, 2> kPlacements{"in_frame", "after_frame"};
@@ -181,10 +177,10 @@ constexpr std::int64_t ps(Time t) { return t.count(); }
 constexpr std::int64_t kModelTimeMax = ps(EncoderParams::kMaxModelTime);
 
 const std::array kRows{
-    Row{"kind", choice<&EncoderParams::kind, kKinds>(), 0, 0, "3.5.7",
+    Row{"kind", choice<&EncoderParams::kind, kEncoderKindNames>(), 0, 0, "3.5.7",
         "What the encoder is (word 14). touch_probe sends 16 bits, the LSB its trigger status (2.3.4.4); eib is an "
         "External Interface Box in factory delivery state, the connected encoder after initial commissioning."},
-    Row{"version", choice<&EncoderParams::version, kVersions>(), 0, 0, "2.1",
+    Row{"version", choice<&EncoderParams::version, kEndatVersionNames>(), 0, 0, "2.1",
         "The interface version. A 2.1 encoder answers EnDat 2.2 mode commands as not supported (type I)."},
     Row{"position_bits", &EncoderParams::position_bits, 1, EncoderParams::kMaxPositionBits, "3.5.6", "Clock pulses for the position value (word 13)."},
     Row{"multiturn_bits", &EncoderParams::multiturn_bits, 0, 47, "3.5.6",

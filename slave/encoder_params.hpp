@@ -28,6 +28,11 @@ using sim::Time;
 // Eib: an External Interface Box in factory delivery state (word 14 type Fh, slave/eib.hpp); it
 // behaves as the connected encoder once initial commissioning is complete.
 enum class EncoderKind : std::uint8_t { Singleturn, Multiturn, Linear, TouchProbe, Eib };
+// How scenarios and profiles name the kinds and the versions, in the order of their values.
+inline constexpr std::array<std::string_view, 5> kEncoderKindNames{"singleturn", "multiturn", "linear", "touch_probe", "eib"};
+static_assert(static_cast<std::size_t>(EncoderKind::Eib) == kEncoderKindNames.size() - 1);
+inline constexpr std::array<std::string_view, 2> kEndatVersionNames{"2.1", "2.2"};
+static_assert(static_cast<std::size_t>(protocol::EndatVersion::V2_2) == kEndatVersionNames.size() - 1);
 
 // What the encoder puts on DATA after a mode command with a broken redundancy or one it does
 // not support (type I, appendix A2). The wire behaviour was in A2's Figures 55/56, which are

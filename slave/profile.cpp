@@ -58,6 +58,15 @@ std::vector<std::uint16_t> as_words(const Node& n, std::size_t min, std::size_t 
 
 // How many words each area holds in the file: fixed ones, OEM and compensation areas as words
 // 9..12 make them (slave::Memory checks those), operating parameters 2 up to 256.
+// The index of the name a string value gives, as the scenario's rows name them.
+template <std::size_t N>
+std::size_t choice(const Node& n, const std::array<std::string_view, N>& names) {
+  if (n.raw().is_string())
+    for (std::size_t i = 0; i < N; ++i)
+      if (names[i] == n.raw().get_ref<const std::string&>()) return i;
+  n.fail_choice({names.begin(), names.end()});
+}
+
 std::pair<std::size_t, std::size_t> size_limits(Area a) {
   const std::size_t fixed = protocol::info(a).fixed_words;
   return fixed != 0 ? std::pair{fixed, fixed} : std::pair<std::size_t, std::size_t>{1, protocol::kAreaWordsMax};
@@ -80,17 +89,8 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
   p.name = r.child("name").as_string();
   if (p.name.empty()) r.child("name").fail("a non-empty name");
   if (root.contains("description")) p.description = r.child("description").as_string();
-  const std::string version = r.child("version").as_string();
-  if (version == "2.1") p.version = EndatVersion::V2_1;
-  else if (version == "2.2") p.version = EndatVersion::V2_2;
-  else r.child("version").fail("\"2.1\" or \"2.2\"");
-  const std::string kind = r.child("kind").as_string();
-  if (kind == "singleturn") p.kind = EncoderKind::Singleturn;
-  else if (kind == "multiturn") p.kind = EncoderKind::Multiturn;
-  else if (kind == "linear") p.kind = EncoderKind::Linear;
-  else if (kind == "touch_probe") p.kind = EncoderKind::TouchProbe;
-  else if (kind == "eib") p.kind = EncoderKind::Eib;
-  else r.child("kind").fail("one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", \"eib\"");
+  p.version = static_cast<EndatVersion>(choice(r.child("version"), kEndatVersionNames));
+  p.kind = static_cast<EncoderKind>(choice(r.child("kind"), kEncoderKindNames));
   p.position_bits = static_cast<unsigned>(r.child("position_bits").as_uint(1, 48));
   if (root.contains("multiturn_bits")) p.multiturn_bits = static_cast<unsigned>(r.child("multiturn_bits").as_uint(0, p.position_bits - 1));
 
