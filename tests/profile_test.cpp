@@ -476,6 +476,8 @@ TEST(Profile, ErrorsNameFileJsonPathAndExpectation) {
   EXPECT_EQ(error_of(replace(good, "\"kind\": \"singleturn\"", "\"kind\": \"rotary\"")),
             "bad.json: at /kind: expected one of \"singleturn\", \"multiturn\", \"linear\", \"touch_probe\", \"eib\", "
             "got string \"rotary\"");
+  EXPECT_EQ(error_of(replace(good, "\"version\": \"2.2\"", "\"version\": \"3.0\"")),
+            "bad.json: at /version: expected one of \"2.1\", \"2.2\", got string \"3.0\"");
   EXPECT_EQ(error_of(replace(good, "\"kind\": \"singleturn\"", "\"kind\": \"linear\"")),
             "bad.json: at /memory/manufacturer_1/14: expected an encoder type of kind linear (3.5.7), got C001h");
   EXPECT_EQ(error_of(replace(good, "\"version\": \"2.2\"", "\"version\": \"2.1\"")),
