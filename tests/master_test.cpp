@@ -108,6 +108,14 @@ master::MasterParams at_1mhz() {
 
 struct Bench {
   explicit Bench(const master::MasterParams& p = at_1mhz()) : m(k, l, p) {}
+  // Runs one operation of this kind to its end.
+  void run(master::Operation::Kind kind) {
+    master::Operation op;
+    op.kind = kind;
+    m.enqueue(op);
+    m.start();
+    k.run();
+  }
   Kernel k;
   line::Line l{k, {}};
   slave::Encoder e{k, l, {}};
@@ -145,11 +153,7 @@ TEST(MasterFunctions, AFunctionPlansItsOperationSeesEveryFrameAndHasItsStatusWor
   Bench b;
   Recorder r;
   b.m.add_function(r);
-  master::Operation op;
-  op.kind = master::Operation::Kind::DiagnosisSetup;
-  b.m.enqueue(op);
-  b.m.start();
-  b.k.run();
+  b.run(master::Operation::Kind::DiagnosisSetup);
   ASSERT_TRUE(b.m.finished());
   using MC = protocol::ModeCommand;
   using P = master::Operation::Purpose;
@@ -163,12 +167,8 @@ TEST(MasterFunctions, AFunctionPlansItsOperationSeesEveryFrameAndHasItsStatusWor
 
 TEST(MasterFunctions, AnOperationNoFunctionPlansIsRefusedNamingWhatAttachesThem) {
   Bench b;
-  master::Operation op;
-  op.kind = master::Operation::Kind::SafetyStartup;
-  b.m.enqueue(op);
   try {
-    b.m.start();
-    b.k.run();
+    b.run(master::Operation::Kind::SafetyStartup);
     FAIL() << "a safety start-up without the safety functions ran";
   } catch (const std::logic_error& e) {
     EXPECT_STREQ(e.what(), "operation safety_startup: no function on this master plans it (master/functions.hpp attaches them)");
@@ -182,11 +182,7 @@ TEST(MasterFunctions, TheStandardSetRunsTheSafetyStartUpAndReportsTheRelease) {
   p.safety.startup_positions = true;  // three agreeing values release the axis
   Bench with_safety(p);
   master::MasterFunctions functions(with_safety.m);
-  master::Operation op;
-  op.kind = master::Operation::Kind::SafetyStartup;
-  with_safety.m.enqueue(op);
-  with_safety.m.start();
-  with_safety.k.run();
+  with_safety.run(master::Operation::Kind::SafetyStartup);
   ASSERT_TRUE(with_safety.m.finished());
   EXPECT_TRUE(functions.safety().axis_released);
   EXPECT_EQ(functions.safety().startup_reads, 3U);
