@@ -1,5 +1,6 @@
 // Bit layouts of the encoder's answers, as data (spec 2.3.1, 2.3.4). A layout is a list of
-// fields in wire order; encode() and decode() are the only places that shift bits.
+// fields in wire order; encode() and decode() build and take apart whole answers from it (the
+// frame engines of the master and the encoder move the bits one clock at a time).
 #pragma once
 
 #include <array>
