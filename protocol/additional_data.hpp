@@ -16,6 +16,18 @@ struct AdditionalDataStatus {
   static constexpr std::uint8_t kInformation = 0x1F;
 };
 
+// 2.3.5.2: bytes 1 and 2 of additional data 2 as one word. Commutation (I = 17, 19) has u v w in
+// D7 .. D5 of byte 1, the limit position signals (I = 20, 21) L1 in D7 and L2 in D6; with
+// acceleration (I = 19, 21) its data fill the bits below them.
+struct AdditionalData2Word {
+  static constexpr unsigned kCommutationShift = 13;
+  static constexpr std::uint16_t kCommutationBits = 0x7;
+  static constexpr std::uint16_t kLimitPosition1 = 0x8000;
+  static constexpr std::uint16_t kLimitPosition2 = 0x4000;
+  static constexpr std::uint16_t kAccelerationBesideCommutation = 0x1FFF;
+  static constexpr std::uint16_t kAccelerationBesideLimits = 0x3FFF;
+};
+
 // 2.3.5.1 (I = 0..15, additional data 1) and 2.3.5.2 (I = 16..31, additional data 2).
 enum class Information : std::uint8_t {
   Nop1 = 0,

@@ -118,8 +118,10 @@ std::uint8_t AdditionalData::status_byte(Information i, bool busy) const {
 std::uint16_t AdditionalData::content(Information i, Time frame_start, std::uint64_t true_position) {
   const Sensors& s = params_.sensors;
   const auto acceleration = s.acceleration;
-  const auto uvw = static_cast<std::uint16_t>((s.commutation & 0x7) << 13);
-  const auto limits = static_cast<std::uint16_t>((s.limit_position_1 ? 0x8000 : 0) | (s.limit_position_2 ? 0x4000 : 0));
+  using W = protocol::AdditionalData2Word;
+  const auto uvw = static_cast<std::uint16_t>((s.commutation & W::kCommutationBits) << W::kCommutationShift);
+  const auto limits = static_cast<std::uint16_t>((s.limit_position_1 ? W::kLimitPosition1 : 0) |
+                                                 (s.limit_position_2 ? W::kLimitPosition2 : 0));
   switch (i) {
     case I::Diagnosis: return next_diagnosis_value();
     case I::PositionValue2Word1: return position_value2(frame_start, true_position);
@@ -145,9 +147,9 @@ std::uint16_t AdditionalData::content(Information i, Time frame_start, std::uint
     }
     case I::Commutation: return uvw;
     case I::Acceleration: return acceleration;
-    case I::CommutationAndAcceleration: return static_cast<std::uint16_t>(uvw | (acceleration & 0x1FFF));
+    case I::CommutationAndAcceleration: return static_cast<std::uint16_t>(uvw | (acceleration & W::kAccelerationBesideCommutation));
     case I::LimitPositionSignals: return limits;
-    case I::LimitPositionSignalsAndAcceleration: return static_cast<std::uint16_t>(limits | (acceleration & 0x3FFF));
+    case I::LimitPositionSignalsAndAcceleration: return static_cast<std::uint16_t>(limits | (acceleration & W::kAccelerationBesideLimits));
     case I::AsynchronousPositionWord1: {
       // 2.4.2.3: the position "time delay k" before the latch; without oversampling only delay 0.
       const bool oversampling = pm::function_activated(memory_.active_function_initialization(), pm::EncoderFunction::Oversampling);
