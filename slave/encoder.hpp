@@ -46,7 +46,7 @@ struct EncoderFrame {
   std::vector<std::uint64_t> continuous_positions;
 };
 
-class Encoder : private MemoryAccess::Client {
+class Encoder final : private MemoryAccess::Client {
  public:
   Encoder(sim::Kernel& kernel, line::Line& line, const EncoderParams& params);
   // An encoder on a bus tap of the line (line::Line::add_encoder(), 2.10).
