@@ -61,6 +61,7 @@ inline std::uint8_t mrs_of(MemoryArea area) { return info(area).mrs; }
 // are defined), 16..31 in A3, 32..47 in A5; the area of a word (its address there is
 // word::manufacturer_address).
 constexpr unsigned kManufacturerWords = 48, kManufacturerWordsPerArea = 16;
+constexpr unsigned kFirstManufacturerWord = 4;  // 3.5.1 defines words 4 .. 47; A1's 0 .. 3 are unused
 constexpr MemoryArea manufacturer_area(unsigned word) {
   return word < kManufacturerWordsPerArea       ? MemoryArea::Manufacturer1
          : word < 2 * kManufacturerWordsPerArea ? MemoryArea::Manufacturer2

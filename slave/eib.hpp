@@ -18,7 +18,11 @@ namespace endatsim::slave {
 // 24..26 (ID number) and 27..29 (serial number) belong to the box: initial commissioning cannot
 // change them (choice: they describe the box, not the connected encoder). Word 14 must be
 // changed, word 47 follows the words written.
-constexpr std::array<unsigned, 10> kEibFactoryWords{9, 10, 11, 12, 24, 25, 26, 27, 28, 29};
+constexpr std::array<unsigned, 10> kEibFactoryWords{
+    protocol::word::kOemPartition, protocol::word::kOemPartition + 1,
+    protocol::word::kCompensationPartition, protocol::word::kCompensationPartition + 1,
+    protocol::word::kIdNumber, protocol::word::kIdNumber + 1, protocol::word::kIdNumber + 2,
+    protocol::word::kSerialNumber, protocol::word::kSerialNumber + 1, protocol::word::kSerialNumber + 2};
 
 // What an EIB that is not yet initiated still accepts (A2 cause 5; choice, docs/model-reference.md): selecting,
 // reading and writing the areas that initial commissioning fills — the encoder manufacturer's

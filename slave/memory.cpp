@@ -119,7 +119,9 @@ Memory::Memory(MemoryImage image) : image_(std::move(image)) {
 }
 
 std::uint16_t Memory::manufacturer_word(unsigned n) const {
-  if (n < 4 || n >= protocol::kManufacturerWords) throw std::out_of_range("encoder manufacturer words are 4 .. 47");
+  if (n < protocol::kFirstManufacturerWord || n >= protocol::kManufacturerWords)
+    throw std::out_of_range("encoder manufacturer words are " + std::to_string(protocol::kFirstManufacturerWord) + " .. " +
+                            std::to_string(protocol::kManufacturerWords - 1));
   return image_.areas.at(protocol::manufacturer_area(n)).at(word::manufacturer_address(n));
 }
 

@@ -189,14 +189,14 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
     return problems;
   }
   const auto& a1 = p.memory.areas.at(Area::Manufacturer1);
-  for (unsigned i = 0; i < 4; ++i) expect(a1[i] == 0, area_path(Area::Manufacturer1) + "/" + std::to_string(i),
+  for (unsigned i = 0; i < protocol::kFirstManufacturerWord; ++i) expect(a1[i] == 0, area_path(Area::Manufacturer1) + "/" + std::to_string(i),
                                           "0 (words 0..3 of A1 are not used; 3.5.1 starts at word 4)", a1[i]);
   const auto m = p.manufacturer_words();
   // 3.5.5: an OEM or compensation area is in the image exactly when words 9..12 make it available.
   const Area partitioned[8] = {Area::Oem1,          Area::Oem2,          Area::Oem3,          Area::Oem4,
                                Area::Compensation1, Area::Compensation2, Area::Compensation3, Area::Compensation4};
   for (unsigned i = 0; i < 8; ++i) {
-    const unsigned word = 9 + i / 2;
+    const unsigned word = word::kOemPartition + i / 2;  // 9 and 10 for the OEM, 11 and 12 for compensation
     const auto pair = pm::decode_partition_word(m[word]);
     const bool available = (i % 2 == 0 ? pair.first : pair.second).has_value();
     if (available && !p.memory.areas.contains(partitioned[i]))
