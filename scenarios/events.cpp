@@ -80,7 +80,7 @@ void EventDriver::apply_to_line(const Event& e, std::uint64_t index) {
       line_.invert(e.wire, e.end, e.width);
       break;
     case K::Stuck:
-      line_.stick(e.wire, e.end, e.level);
+      line_.stick(e.wire, e.end, e.level != 0);
       if (e.duration) kernel_.schedule(*e.duration, sim::bind<&EventDriver::end_of>(this, index));
       break;
     case K::RandomBitErrors:
@@ -91,7 +91,7 @@ void EventDriver::apply_to_line(const Event& e, std::uint64_t index) {
       line_.set_driver_disable_delay(e.end, e.width);
       break;
     case K::LossOfFailsafe:
-      line_.set_failsafe_level(e.level);
+      line_.set_failsafe_level(e.level != 0);
       break;
     default:
       break;

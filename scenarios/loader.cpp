@@ -4,6 +4,7 @@
 #include "endatsim/input/parameter_input.hpp"
 #include "endatsim/input/suggest.hpp"
 #include "endatsim/scenarios/bundled_profiles.hpp"
+#include "endatsim/scenarios/event_kinds.hpp"
 #include "endatsim/slave/profile.hpp"
 
 #include <algorithm>
@@ -540,149 +541,50 @@ void read_script(const Node& n, std::vector<master::Operation>& script,
 
 // ---- events --------------------------------------------------------------------------------
 
-constexpr std::string_view kEventKinds =
-    "set_cable, bit_flip, glitch, stuck, random_bit_errors, late_driver_release, loss_of_failsafe, error_sources, "
-    "memory_access_time, t_cal, power_interruption, corrupt_word, probe_trigger, stuck_error_messages, slip, "
-    "position2_fault or sensors";
-
-line::ObservationPoint read_end(Object& o) {
-  return o.req("end").as_enum<line::ObservationPoint>(
-      {{"master", line::ObservationPoint::MasterPins}, {"encoder", line::ObservationPoint::EncoderPins}});
-}
-
-line::Wire read_wire(Object& o) {
-  return o.req("wire").as_enum<line::Wire>({{"clock", line::Wire::Clock}, {"data", line::Wire::Data}});
-}
-
-void read_line_fault(Object& f, Event& e) {
-  using K = Event::Kind;
-  switch (e.kind) {
-    case K::BitFlip:
-      e.wire = read_wire(f);
-      e.end = read_end(f);
-      if (auto v = f.opt("width")) e.width = v->as_duration(sim::ps(1), sim::ms(1));
-      break;
-    case K::Glitch:
-      e.wire = read_wire(f);
-      e.end = read_end(f);
-      e.width = f.req("width").as_duration(sim::ps(1), sim::ms(1));
-      break;
-    case K::Stuck:
-      e.wire = read_wire(f);
-      e.end = read_end(f);
-      e.level = f.req("level").as_uint(0, 1) == 1;
-      if (auto v = f.opt("duration")) e.duration = v->as_duration(sim::ps(1), Scenario::kMaxTime);
-      break;
-    case K::RandomBitErrors:
-      e.end = read_end(f);
-      e.rate = f.req("rate").as_number(0.0, 1.0, " (probability per clock period)");
-      if (auto v = f.opt("duration")) e.duration = v->as_duration(sim::ps(1), Scenario::kMaxTime);
-      break;
-    case K::LateDriverRelease:
-      e.end = read_end(f);
-      e.width = f.req("disable_delay").as_duration(Time::zero(), line::Line::kMaxLateRelease);
-      break;
-    case K::LossOfFailsafe:
-      e.level = f.req("level").as_uint(0, 1) == 1;
-      break;
-    default:
-      break;
+// The two kinds whose values have types of their own (EventKindRow::Body::Custom).
+void read_custom_event(Object& f, Event& e) {
+  if (e.kind == Event::Kind::CorruptWord) {
+    const Node area = f.req("area");
+    const auto a = protocol::memory_area_from_key(area.as_string());
+    if (!a || *a == protocol::MemoryArea::AsynchronousPosition) area.fail("a memory area key such as \"manufacturer_3\"");
+    e.selection.area = *a;
+    if (auto v = f.opt("block")) e.selection.block = static_cast<std::uint8_t>(v->as_word(0xFF));
+    e.address = static_cast<std::uint8_t>(f.req("address").as_word(0xFF));
+    e.xor_mask = static_cast<std::uint16_t>(f.req("xor").as_word(0xFFFF));
+    if (e.xor_mask == 0) f.req("xor").fail("a mask with at least one bit set");
+  } else {
+    e.sensors = read_sensor_values(f);
+    if (!e.sensors.temperature1 && !e.sensors.temperature2 && !e.sensors.additional_sensors && !e.sensors.valuation_numbers)
+      f.node().fail_raw("a sensors event sets at least one of temperature_1, temperature_2, additional_sensors, valuation_numbers");
   }
 }
 
-void read_encoder_fault(Object& f, Event& e) {
-  using K = Event::Kind;
-  const Time max = slave::Encoder::kMaxFaultTime;
-  switch (e.kind) {
-    case K::ErrorSources:
-      if (auto v = f.opt("errors")) e.errors = static_cast<std::uint16_t>(v->as_word(0xFFFF));
-      if (auto v = f.opt("warnings")) e.warnings = static_cast<std::uint16_t>(v->as_word(0xFFFF));
-      break;
-    case K::MemoryAccessTime:
-      e.t_ac_read = f.req("read").as_duration(Time::zero(), max);
-      e.t_ac_write = f.req("write").as_duration(Time::zero(), max);
-      break;
-    case K::TCal:
-      e.t_cal = f.req("t_cal").as_duration(Time::zero(), slave::EncoderParams::kMaxModelTime);
-      break;
-    case K::PowerInterruption:
-    case K::ProbeTrigger:
-      e.duration = f.req("duration").as_duration(sim::ps(1), max);
-      break;
-    case K::CorruptWord: {
-      const Node area = f.req("area");
-      const auto a = protocol::memory_area_from_key(area.as_string());
-      if (!a || *a == protocol::MemoryArea::AsynchronousPosition) area.fail("a memory area key such as \"manufacturer_3\"");
-      e.selection.area = *a;
-      if (auto v = f.opt("block")) e.selection.block = static_cast<std::uint8_t>(v->as_word(0xFF));
-      e.address = static_cast<std::uint8_t>(f.req("address").as_word(0xFF));
-      e.xor_mask = static_cast<std::uint16_t>(f.req("xor").as_word(0xFFFF));
-      if (e.xor_mask == 0) f.req("xor").fail("a mask with at least one bit set");
-      break;
-    }
-    case K::StuckErrorMessages:
-      if (auto v = f.opt("error_message_1")) e.error_message_1_stuck = v->as_bool();
-      if (auto v = f.opt("error_message_2")) e.error_message_2_stuck = v->as_bool();
-      break;
-    case K::Slip:
-      e.steps = f.req("steps").as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
-      break;
-    case K::Position2Fault:
-      e.steps = f.req("deviation").as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
-      break;
-    case K::SensorValues:
-      e.sensors = read_sensor_values(f);
-      if (!e.sensors.temperature1 && !e.sensors.temperature2 && !e.sensors.additional_sensors && !e.sensors.valuation_numbers)
-        f.node().fail_raw("a sensors event sets at least one of temperature_1, temperature_2, additional_sensors, valuation_numbers");
-      break;
-    default:
-      break;
-  }
-}
-
+// An event through its rows (scenarios/event_kinds.hpp): the trigger, then exactly one kind.
 Event read_event(const Node& item, const line::LineParams& line) {
-  using K = Event::Kind;
-  static const std::pair<std::string_view, K> kKinds[] = {
-      {"set_cable", K::SetCable},         {"bit_flip", K::BitFlip},
-      {"glitch", K::Glitch},              {"stuck", K::Stuck},
-      {"random_bit_errors", K::RandomBitErrors}, {"late_driver_release", K::LateDriverRelease},
-      {"loss_of_failsafe", K::LossOfFailsafe},   {"error_sources", K::ErrorSources},
-      {"memory_access_time", K::MemoryAccessTime}, {"t_cal", K::TCal},
-      {"power_interruption", K::PowerInterruption}, {"corrupt_word", K::CorruptWord},
-      {"probe_trigger", K::ProbeTrigger}, {"stuck_error_messages", K::StuckErrorMessages},
-      {"slip", K::Slip},                  {"position2_fault", K::Position2Fault},
-      {"sensors", K::SensorValues}};
+  using Body = EventKindRow::Body;
   Object o(item);
   Event e;
-  if (auto v = o.opt("at")) e.at = v->as_duration(Time::zero(), Scenario::kMaxTime);
-  if (auto v = o.opt("frame")) e.frame = v->as_uint(0, UINT32_MAX);
+  e.cable_delay_per_m = line.cable_delay_per_m;  // set_cable's default
+  input::read_parameters(o, event_trigger_parameters(), e);
   if (e.at.has_value() == e.frame.has_value()) item.fail_raw("expected exactly one of \"at\" and \"frame\"");
-  if (auto v = o.opt("clock")) {
-    if (!e.frame) v->fail_raw("\"clock\" needs \"frame\"");
-    e.clock = static_cast<unsigned>(v->as_uint(1, 10'000));
-  }
-  if (auto v = o.opt("offset")) e.offset = v->as_duration(Time::zero(), sim::ms(1000));
+  if (auto v = o.opt("clock"); v && !e.frame) v->fail_raw("\"clock\" needs \"frame\"");
+  const EventKindRow* kind = nullptr;
   std::optional<Node> body;
-  for (const auto& [key, kind] : kKinds) {
-    auto v = o.opt(std::string(key));
+  for (const auto& k : event_kinds()) {
+    auto v = o.opt(std::string(k.key));
     if (!v) continue;
-    if (body) v->fail_raw("one event does one thing: \"" + std::string(key) + "\" after another kind");
+    if (body) v->fail_raw("one event does one thing: \"" + std::string(k.key) + "\" after another kind");
     body.emplace(*v);
-    e.kind = kind;
+    kind = &k;
   }
-  if (!body) item.fail_raw("expected one of " + std::string(kEventKinds));
-  if (e.kind == K::SetCable) {
-    Object c(*body);
-    e.cable_length_m = c.req("cable_length_m").as_number(0.0, line::LineParams::kMaxCableLengthM, " m");
-    e.cable_delay_per_m = line.cable_delay_per_m;
-    if (auto v = c.opt("cable_delay_per_m")) e.cable_delay_per_m = v->as_duration(Time::zero(), line::LineParams::kMaxCableDelayPerM);
-    c.done();
-  } else if (e.kind == K::TCal) {
-    e.t_cal = body->as_duration(Time::zero(), slave::EncoderParams::kMaxModelTime);
+  if (!body) item.fail_raw("expected one of " + event_kind_list());
+  e.kind = kind->kind;
+  if (kind->body == Body::Value) {
+    input::read_parameter(*body, kind->fields.front(), e);
   } else {
     Object f(*body);
-    if (e.kind < K::ErrorSources) read_line_fault(f, e);
-    else read_encoder_fault(f, e);
+    if (kind->body == Body::Object) input::read_parameters(f, kind->fields, e);
+    else read_custom_event(f, e);
     f.done();
   }
   o.done();

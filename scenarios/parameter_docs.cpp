@@ -6,6 +6,7 @@
 #include "endatsim/checker/timing_checker.hpp"
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
+#include "endatsim/scenarios/event_kinds.hpp"
 #include "endatsim/sim/parameter.hpp"
 #include "endatsim/slave/encoder_params.hpp"
 
@@ -29,13 +30,18 @@ std::string_view type_name(ParameterType t) {
 }
 
 template <class Params>
+std::string default_text(const sim::Parameter<Params>& row, const Params& defaults) {
+  return row.default_text.empty() ? sim::value_text(row, defaults) : std::string(row.default_text);
+}
+
+template <class Params>
 std::string description(const sim::Parameter<Params>& row, const Params& defaults) {
   std::string d(row.help);
   if (!row.section.empty()) d += " D297403 " + std::string(row.section) + ".";
   const auto type = sim::type_of(row);
   if (type == ParameterType::Duration || type == ParameterType::Frequency) d += " Range: " + sim::range_text(row) + ".";
   if (row.required) return d + " Required.";
-  return d + " Default: " + sim::value_text(row, defaults) + ".";
+  return d + " Default: " + default_text(row, defaults) + ".";
 }
 
 template <class Params>
@@ -80,7 +86,7 @@ std::string table(std::span<const sim::Parameter<Params>> rows, const Params& de
   std::string t = "| key | type | range | default | D297403 | meaning |\n|---|---|---|---|---|---|\n";
   for (const auto& row : rows)
     t += "| `" + std::string(row.key) + "` | " + std::string(type_name(sim::type_of(row))) + " | " +
-         cell(sim::range_text(row)) + " | " + (row.required ? "required" : cell(sim::value_text(row, defaults))) + " | " +
+         cell(sim::range_text(row)) + " | " + (row.required ? "required" : cell(default_text(row, defaults))) + " | " +
          (row.section.empty() ? "model" : std::string(row.section)) + " | " + cell(row.help) + " |\n";
   return t;
 }
@@ -127,6 +133,49 @@ void for_each_section(F&& f) {
 
 }  // namespace
 
+namespace {
+
+std::string kind_description(const EventKindRow& k) {
+  return std::string(k.help) + (k.section.empty() ? "" : " D297403 " + std::string(k.section) + ".");
+}
+
+// The schema of an event kind's value; none for the kinds whose schema is written by hand.
+std::optional<json> event_kind_schema(const EventKindRow& k) {
+  using Body = EventKindRow::Body;
+  const Event defaults;
+  if (k.body == Body::Custom) return std::nullopt;
+  if (k.body == Body::Value) {
+    json p = property(k.fields.front(), defaults);
+    p["description"] = kind_description(k);
+    return p;
+  }
+  json properties = json::object(), required = json::array();
+  for (const auto& row : k.fields) {
+    properties[std::string(row.key)] = property(row, defaults);
+    if (row.required) required.push_back(std::string(row.key));
+  }
+  json p = {{"description", kind_description(k)}, {"type", "object"}, {"additionalProperties", false},
+            {"properties", properties}};
+  if (!required.empty()) p["required"] = required;
+  return p;
+}
+
+// The events' tables: the trigger keys, then each kind with what it does and its keys.
+std::string event_tables_markdown() {
+  using Body = EventKindRow::Body;
+  std::string md = "\n## events\n\nEvery event has a trigger and exactly one kind key.\n\n" +
+                   table(event_trigger_parameters(), Event{});
+  for (const auto& k : event_kinds()) {
+    md += "\n### events: " + std::string(k.key) + "\n\n" + kind_description(k) + "\n\n";
+    if (k.body == Body::Object) md += table(k.fields, Event{});
+    else if (k.body == Body::Value) md += "The value is a duration, " + sim::range_text(k.fields.front()) + ".\n";
+    else md += "Keys: " + std::string(k.fields_text) + ".\n";
+  }
+  return md;
+}
+
+}  // namespace
+
 json parameter_schema() {
   json out = json::object();
   for_each_section([&](const auto& section, const auto& defaults) {
@@ -137,6 +186,11 @@ json parameter_schema() {
       if (row.required) required.push_back(std::string(row.key));
     out[std::string(section.pointer)] = {{"properties", properties}, {"required", required}};
   });
+  json events = json::object();
+  for (const auto& row : event_trigger_parameters()) events[std::string(row.key)] = property(row, Event{});
+  for (const auto& k : event_kinds())
+    if (auto p = event_kind_schema(k)) events[std::string(k.key)] = *p;
+  out["/$defs/event/properties"] = {{"properties", events}, {"required", json::array()}};
   return out;
 }
 
@@ -145,7 +199,7 @@ std::string parameter_tables_markdown() {
   for_each_section([&](const auto& section, const auto& defaults) {
     md += (md.empty() ? "" : "\n") + std::string("## ") + std::string(section.title) + "\n\n" + table(section.rows, defaults);
   });
-  return md;
+  return md + event_tables_markdown();
 }
 
 }  // namespace endatsim::scenarios

@@ -128,7 +128,7 @@ struct Event {
   line::Wire wire = line::Wire::Data;
   line::ObservationPoint end = line::ObservationPoint::MasterPins;
   Time width{0};                  // bit_flip: one period of the master's f_c unless given
-  bool level = false;             // stuck, loss_of_failsafe
+  unsigned level = 0;             // stuck, loss_of_failsafe: 0 or 1
   std::optional<Time> duration;   // stuck, random_bit_errors: none = to the end; power_interruption, probe_trigger
   double rate = 0;                // random_bit_errors: probability per clock period
   // encoder faults

@@ -64,6 +64,9 @@ struct Parameter {
   std::string_view help;
   bool required = false;     // the key must be given (no default applies)
   bool zero_allowed = false; // 0 is allowed besides min .. max (it means what the help says)
+  // What applies when the key is not given, where that is not the field's value in the defaults
+  // ("one period of the master's f_c"); empty: the value in the defaults.
+  std::string_view default_text = {};
 };
 
 enum class ParameterType : std::uint8_t { Duration, Frequency, Number, Count, Flag, Word, Choice };

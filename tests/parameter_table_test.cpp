@@ -13,6 +13,8 @@
 #include "endatsim/input/parameter_input.hpp"
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
+#include "endatsim/scenarios/event_kinds.hpp"
+#include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/parameter_docs.hpp"
 #include "endatsim/slave/encoder_params.hpp"
 
@@ -205,7 +207,7 @@ TEST(ParameterTables, TheCounterClockIsZeroOrAtLeastOneMegahertz) {
 TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
   const auto schema = json::parse(slurp("schema/scenario.schema.json"));
   const auto generated = scenarios::parameter_schema();
-  ASSERT_EQ(generated.size(), 10U);
+  ASSERT_EQ(generated.size(), 11U);
   for (const auto& [pointer, part] : generated.items()) {
     SCOPED_TRACE(pointer);
     const json::json_pointer at(pointer);
@@ -219,6 +221,68 @@ TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
     const auto required = schema[at.parent_pointer()].value("required", json::array());
     EXPECT_EQ(required, part["required"]);
   }
+}
+
+// The event keys the schema knows are the rows' and no others: the trigger keys and one per kind,
+// and its "exactly one kind" list names every kind once.
+TEST(EventKinds, SchemaKnowsExactlyTheTriggerAndKindKeys) {
+  const auto schema = json::parse(slurp("schema/scenario.schema.json"));
+  const json& event = schema["$defs"]["event"];
+  std::set<std::string> keys, expected, one_of;
+  for (const auto& [key, property] : event["properties"].items()) keys.insert(key);
+  for (const auto& row : scenarios::event_trigger_parameters()) expected.insert(std::string(row.key));
+  for (const auto& kind : scenarios::event_kinds()) expected.insert(std::string(kind.key));
+  EXPECT_EQ(keys, expected);
+  for (const auto& alternative : event["allOf"][1]["oneOf"]) one_of.insert(alternative["required"][0].get<std::string>());
+  std::set<std::string> kinds;
+  for (const auto& kind : scenarios::event_kinds()) kinds.insert(std::string(kind.key));
+  EXPECT_EQ(one_of, kinds);
+  EXPECT_EQ(event["allOf"][1]["oneOf"].size(), scenarios::event_kinds().size());
+}
+
+// Every kind is one event kind of the model, and the rows of an object kind are its keys.
+TEST(EventKinds, EachKindIsReadThroughItsRows) {
+  std::set<scenarios::Event::Kind> kinds;
+  for (const auto& kind : scenarios::event_kinds()) {
+    SCOPED_TRACE(std::string(kind.key));
+    EXPECT_TRUE(kinds.insert(kind.kind).second);
+    EXPECT_EQ(kind.body == scenarios::EventKindRow::Body::Custom, kind.fields.empty());
+    EXPECT_EQ(kind.body == scenarios::EventKindRow::Body::Custom, !kind.fields_text.empty());
+  }
+  EXPECT_EQ(kinds.size(), static_cast<std::size_t>(scenarios::Event::Kind::SensorValues) + 1);
+  const auto load = [](const json& event) {
+    json s = {{"name", "e"},
+              {"line", {{"cable_length_m", 10}}},
+              {"encoder", {{"version", "2.2"}, {"position_bits", 25}}},
+              {"master", {{"f_c", "2 MHz"}, {"position_bits", 25}}},
+              {"script", {{{"op", "read_position"}}}},
+              {"events", {event}}};
+    return scenarios::load_scenario_text(s.dump(), "e.json").events.at(0);
+  };
+  const auto message = [&](const json& event) {
+    try {
+      load(event);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // A row's range and its default.
+  EXPECT_EQ(load({{"at", "1 ms"}, {"glitch", {{"wire", "clock"}, {"end", "encoder"}, {"width", "5 ns"}}}}).width, sim::ns(5));
+  const auto width = message({{"at", "1 ms"}, {"glitch", {{"wire", "clock"}, {"end", "encoder"}, {"width", "2 ms"}}}});
+  EXPECT_NE(width.find("/events/0/glitch/width"), std::string::npos) << width;
+  EXPECT_NE(width.find("1 ps .. 1 ms"), std::string::npos) << width;
+  EXPECT_EQ(load({{"at", "1 ms"}, {"stuck", {{"wire", "data"}, {"end", "master"}, {"level", 1}}}}).duration, std::nullopt);
+  const auto level = message({{"at", "1 ms"}, {"stuck", {{"wire", "data"}, {"end", "master"}, {"level", 2}}}});
+  EXPECT_NE(level.find("/events/0/stuck/level: expected an integer 0 .. 1, got number 2"), std::string::npos) << level;
+  // A value kind, and a key no row has.
+  EXPECT_EQ(load({{"frame", 2}, {"t_cal", "3 ms"}}).t_cal, sim::ms(3));
+  EXPECT_NE(message({{"at", "1 ms"}, {"slip", {{"steps", 3}, {"stepz", 1}}}}).find("/events/0/slip"), std::string::npos);
+  // The list of kinds comes from the rows.
+  const auto none = message({{"at", "1 ms"}});
+  EXPECT_NE(none.find("/events/0: expected one of " + scenarios::event_kind_list()), std::string::npos) << none;
+  EXPECT_EQ(scenarios::event_kind_list().substr(0, 20), "set_cable, bit_flip,");
+  EXPECT_EQ(scenarios::event_kind_list().substr(scenarios::event_kind_list().size() - 11), " or sensors");
 }
 
 TEST(ParameterTables, DocsParametersIsTheGeneratedTable) {
