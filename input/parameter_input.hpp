@@ -33,6 +33,8 @@ void read_parameter(const Node& v, const sim::Parameter<Params>& row, Params& p)
           p.*field = v.as_uint(lo, hi);
         } else if constexpr (std::is_same_v<F, std::int64_t Params::*>) {
           p.*field = v.as_int(row.min, row.max);
+        } else if constexpr (std::is_same_v<F, int Params::*>) {
+          p.*field = static_cast<int>(v.as_int(row.min, row.max));  // rows of int fields keep within int
         } else if constexpr (std::is_same_v<F, bool Params::*>) {
           p.*field = v.as_bool();
         } else if constexpr (std::is_same_v<F, std::uint16_t Params::*>) {

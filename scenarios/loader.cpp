@@ -5,6 +5,7 @@
 #include "endatsim/input/suggest.hpp"
 #include "endatsim/scenarios/bundled_profiles.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
+#include "endatsim/scenarios/operation_kinds.hpp"
 #include "endatsim/slave/profile.hpp"
 
 #include <algorithm>
@@ -408,116 +409,67 @@ FrameExpectation read_frame_expectation(const Node& n) {
   return e;
 }
 
-// Operations named after the spec's procedures map onto mode commands with their 8 + 16 bits.
-void read_access(Object& o, const std::string& op, master::Operation& x) {
-  using MC = protocol::ModeCommand;
-  if (op == "select_memory_area") {
-    const bool v22 = read_endat22(o);
-    x.command = v22 ? MC::EncoderSendPositionValuesAndSelectionOfMemoryArea : MC::SelectionOfMemoryArea;
-    x.address = read_mrs(o.req("mrs"));
-    if (auto v = o.opt("block")) {
-      if (!v22) v->fail_raw("a block address needs \"command_type\": \"2.2\" (2.4.2)");
-      x.parameter = read_byte(*v);
-    }
-  } else if (op == "write_parameter") {
-    x.command = read_endat22(o) ? MC::EncoderSendPositionValuesAndReceiveParameter : MC::EncoderReceiveParameters;
-    x.address = read_byte(o.req("address"));
-    x.parameter = read_word16(o.req("value"));
-  } else if (op == "read_parameter") {
-    x.command = read_endat22(o) ? MC::EncoderSendPositionValuesAndSendParameter : MC::EncoderSendParameters;
-    x.address = read_byte(o.req("address"));
-  } else if (op == "test_command") {
-    x.command = read_endat22(o) ? MC::EncoderSendPositionValuesAndReceiveTestCommand : MC::EncoderReceiveTestCommand;
-    x.address = read_byte(o.req("port"));
-  } else if (op == "select_additional_data") {
-    x.command = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+// The keys of an operation that its rows do not read (OperationKindRow::other_keys), and the
+// rules between keys; `row.command` and `command_22` give the mode command of an access.
+void read_other_keys(Object& o, const OperationKindRow& row, master::Operation& op) {
+  const std::string_view name = row.key;
+  if (row.command_22 && row.command) op.command = read_endat22(o) ? *row.command_22 : *row.command;
+  else if (row.command) op.command = *row.command;
+  else if (row.command_22) op.command = *row.command_22;
+  if (name == "frame") {
+    op.command = read_command(o.req("command"));
+  } else if (name == "read_position" || name == "safety_startup") {
+    if (auto v = o.opt("command")) op.command = read_command(*v);
+    if (protocol::info(op.command).answer != protocol::AnswerFormat::Position)
+      o.req("command").fail(name == "read_position" ? "a position command; use \"op\": \"frame\" for the others"
+                                                    : "a position command for the start-up reads");
+  } else if (name == "select_memory_area") {
+    op.address = read_mrs(o.req("mrs"));
+  } else if (name == "select_additional_data") {
     const Node code = o.req("additional_data");
     const std::string key = code.as_string();
     const auto i = protocol::information_from_key(key);
-    if (key == "stop_1") x.address = protocol::kStopAdditionalData1;
-    else if (key == "stop_2") x.address = protocol::kStopAdditionalData2;
-    else if (i) x.address = protocol::selection_mrs(*i);
+    if (key == "stop_1") op.address = protocol::kStopAdditionalData1;
+    else if (key == "stop_2") op.address = protocol::kStopAdditionalData2;
+    else if (i) op.address = protocol::selection_mrs(*i);
     else code.fail("an information code of 2.3.5 (e.g. temperature_1, memory_parameter_lsb) or stop_1 / stop_2");
-  } else if (op == "communication_command") {
-    x.command = MC::EncoderReceiveCommunicationCommand;
-    x.address = read_byte(o.req("address"));
-    x.parameter = read_word16(o.req("instruction"));
-  } else if (op == "reset") {
-    x.command = MC::EncoderReceiveReset;
-  } else if (op == "error_reset") {
-    x.command = MC::EncoderSendPositionValuesAndReceiveErrorReset;
-  } else if (op == "send_test_values") {
-    x.command = MC::EncoderSendTestValues;
   }
+  if (name == "frame" || name == "read_position")
+    if (auto v = o.opt("mode_bits")) op.mode_bits = read_mode_bits(*v);
 }
 
-void read_frame_operation(Object& o, const std::string& name, master::Operation& op) {
-  const bool generic = name == "frame";
-  if (generic) op.command = read_command(o.req("command"));
-  else if (auto v = o.opt("command")) op.command = read_command(*v);
-  if (!generic && protocol::info(op.command).answer != protocol::AnswerFormat::Position)
-    o.req("command").fail("a position command; use \"op\": \"frame\" for the others");
+// What one key allows only with another.
+void check_key_rules(Object& o, const OperationKindRow& row, const master::Operation& op) {
   const auto& c = protocol::info(op.command);
-  if (generic && (c.payload_bits != 0 || c.supplement)) {
-    if (auto v = o.opt("address")) op.address = read_byte(*v);
-    if (auto v = o.opt("parameter")) op.parameter = read_word16(*v);
-  }
-  if (auto v = o.opt("mode_bits")) op.mode_bits = read_mode_bits(*v);
-  if (auto v = o.opt("clock_adjust")) op.clock_adjust = static_cast<int>(v->as_int(-64, 64));
-  if (auto v = o.opt("count")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
-  if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), Scenario::kMaxTime);
-  if (auto v = o.opt("continuous_words")) {
-    op.continuous_words = static_cast<unsigned>(v->as_uint(0, 100'000));
-    if (op.continuous_words > 0 && op.command != protocol::ModeCommand::EncoderSendPositionValues)
-      v->fail_raw("a continuous clock is only possible with encoder_send_position_values (spec 2.3.1)");
-  }
+  if (row.key == "frame" && c.payload_bits == 0 && !c.supplement)
+    for (const char* key : {"address", "parameter"})
+      if (auto v = o.opt(key)) v->fail_raw("\"" + std::string(key) + "\" needs a mode command with a payload or a command supplement");
+  if (row.key == "select_memory_area" && op.command != protocol::ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea)
+    if (auto v = o.opt("block")) v->fail_raw("a block address needs \"command_type\": \"2.2\" (2.4.2)");
+  if (op.continuous_words > 0 && op.command != protocol::ModeCommand::EncoderSendPositionValues)
+    o.req("continuous_words").fail_raw("a continuous clock is only possible with encoder_send_position_values (spec 2.3.1)");
 }
 
+// An operation through its row (scenarios/operation_kinds.hpp).
 master::Operation read_operation(const Node& n, std::optional<FrameExpectation>& expect) {
   Object o(n);
-  master::Operation op;
-  using Kind = master::Operation::Kind;
   const Node kind = o.req("op");
-  const auto name = std::string(kind.as_enum<std::string_view>(
-      {{"measure_delay", "measure_delay"}, {"read_position", "read_position"}, {"frame", "frame"},
-       {"wait", "wait"}, {"await_not_busy", "await_not_busy"}, {"select_memory_area", "select_memory_area"},
-       {"write_parameter", "write_parameter"}, {"read_parameter", "read_parameter"},
-       {"test_command", "test_command"}, {"select_additional_data", "select_additional_data"},
-       {"communication_command", "communication_command"}, {"reset", "reset"}, {"error_reset", "error_reset"},
-       {"send_test_values", "send_test_values"}, {"power_on_sequence", "power_on_sequence"},
-       {"startup_routine", "startup_routine"}, {"verify_checksum", "verify_checksum"},
-       {"safety_startup", "safety_startup"}, {"diagnosis_setup", "diagnosis_setup"}}));
-  op.kind = name == "measure_delay"       ? Kind::MeasureDelay
-            : name == "wait"              ? Kind::Wait
-            : name == "await_not_busy"    ? Kind::AwaitNotBusy
-            : name == "power_on_sequence" ? Kind::PowerOnSequence
-            : name == "startup_routine"   ? Kind::StartupRoutine
-            : name == "verify_checksum"   ? Kind::VerifyChecksum
-            : name == "safety_startup"    ? Kind::SafetyStartup
-            : name == "diagnosis_setup"   ? Kind::DiagnosisSetup
-                                          : Kind::ReadPosition;
-  if (auto v = o.opt("at")) op.at = v->as_duration(Time::zero(), Scenario::kMaxTime);
+  const OperationKindRow* row = kind.raw().is_string() ? operation_kind(kind.raw().get_ref<const std::string&>()) : nullptr;
+  if (row == nullptr) {
+    std::vector<std::string> names;
+    for (const auto& r : operation_kinds()) names.emplace_back(r.key);
+    kind.fail_choice(names);
+  }
+  master::Operation op = row->defaults;
+  op.kind = row->kind;
+  input::read_parameters(o, operation_common_parameters(), op);
   if (auto v = o.opt("expect")) {
-    if (op.kind == Kind::Wait || op.kind == Kind::MeasureDelay || op.kind == Kind::PowerOnSequence)
-      v->fail_raw("\"expect\" needs an operation that sends frames");
+    if (!row->sends_frames) v->fail_raw("\"expect\" needs an operation that sends frames");
     expect = read_frame_expectation(*v);
   }
-  if (op.kind == Kind::Wait) {
-    op.duration = o.req("duration").as_duration(Time::zero(), Scenario::kMaxTime);
-  } else if (op.kind == Kind::AwaitNotBusy) {
-    op.count = 1000;
-    op.cycle = sim::us(50);
-    if (auto v = o.opt("max_polls")) op.count = static_cast<unsigned>(v->as_uint(1, 1'000'000));
-    if (auto v = o.opt("cycle")) op.cycle = v->as_duration(Time::zero(), Scenario::kMaxTime);
-  } else if (name == "read_position" || name == "frame") {
-    read_frame_operation(o, name, op);
-  } else if (op.kind == Kind::SafetyStartup) {
-    if (auto v = o.opt("command")) op.command = read_command(*v);
-    if (protocol::info(op.command).answer != protocol::AnswerFormat::Position)
-      o.req("command").fail("a position command for the start-up reads");
-  } else if (op.kind == Kind::ReadPosition) {
-    read_access(o, name, op);
-  }
+  read_other_keys(o, *row, op);
+  input::read_parameters(o, row->fields, op);
+  check_key_rules(o, *row, op);
   o.done();
   return op;
 }

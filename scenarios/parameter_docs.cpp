@@ -7,6 +7,7 @@
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
+#include "endatsim/scenarios/operation_kinds.hpp"
 #include "endatsim/sim/parameter.hpp"
 #include "endatsim/slave/encoder_params.hpp"
 
@@ -174,6 +175,60 @@ std::string event_tables_markdown() {
   return md;
 }
 
+std::string operation_description(const OperationKindRow& k) {
+  return std::string(k.help) + (k.section.empty() ? "" : " D297403 " + std::string(k.section) + ".");
+}
+
+// The schema of the script's operations: "op" and "at" for all, and for each operation (the
+// operation's block in "allOf", in the rows' order) the properties its rows generate and the keys
+// it requires.
+void add_operation_schema(json& out) {
+  json names = json::array();
+  for (const auto& k : operation_kinds()) names.push_back(std::string(k.key));
+  json common = {{"op", {{"description", "What the operation does (docs/parameters.md, \"script\")."}, {"enum", names}}}};
+  for (const auto& row : operation_common_parameters()) common[std::string(row.key)] = property(row, master::Operation{});
+  out["/$defs/operation/properties"] = {{"properties", common}, {"required", json::array({"op"})}};
+  for (std::size_t i = 0; i < operation_kinds().size(); ++i) {
+    const auto& k = operation_kinds()[i];
+    json properties = json::object(), required = json::array();
+    for (const auto& row : k.fields) {
+      properties[std::string(row.key)] = property(row, k.defaults);
+      if (row.required) required.push_back(std::string(row.key));
+    }
+    for (const auto& other : k.other_keys)
+      if (other.required) required.push_back(std::string(other.key));
+    out["/$defs/operation/allOf/" + std::to_string(i) + "/then/properties"] = {{"properties", properties},
+                                                                               {"required", required}};
+  }
+}
+
+std::string mode_bits_text(protocol::ModeCommand c) {
+  std::string bits;
+  for (int b = 5; b >= 0; --b) bits += ((protocol::info(c).bits >> b) & 1) != 0 ? '1' : '0';
+  return bits + " (" + std::string(protocol::info(c).key) + ")";
+}
+
+// The script's tables: "at", then each operation with what it does, its mode commands and keys.
+std::string operation_tables_markdown() {
+  std::string md = "\n## script\n\nEvery operation has an `op` and may have:\n\n" +
+                   table(operation_common_parameters(), master::Operation{});
+  for (const auto& k : operation_kinds()) {
+    md += "\n### script: " + std::string(k.key) + "\n\n" + operation_description(k) + "\n";
+    if (k.command && k.command_22)
+      md += "\nMode command: " + mode_bits_text(*k.command) + ", with `command_type` `\"2.2\"` " +
+            mode_bits_text(*k.command_22) + ".\n";
+    else if (k.command || k.command_22)
+      md += "\nMode command: " + mode_bits_text(k.command ? *k.command : *k.command_22) + ".\n";
+    if (k.sends_frames) md += "\nIt may carry `expect`, judged on its last frame.\n";
+    if (!k.fields.empty()) md += "\n" + table(k.fields, k.defaults);
+    if (!k.other_keys.empty()) md += "\n";
+    for (const auto& other : k.other_keys)
+      md += "- `" + std::string(other.key) + "`" + (other.required ? " (required)" : "") + ": " +
+            std::string(other.text) + "\n";
+  }
+  return md;
+}
+
 }  // namespace
 
 json parameter_schema() {
@@ -191,6 +246,7 @@ json parameter_schema() {
   for (const auto& k : event_kinds())
     if (auto p = event_kind_schema(k)) events[std::string(k.key)] = *p;
   out["/$defs/event/properties"] = {{"properties", events}, {"required", json::array()}};
+  add_operation_schema(out);
   return out;
 }
 
@@ -199,7 +255,7 @@ std::string parameter_tables_markdown() {
   for_each_section([&](const auto& section, const auto& defaults) {
     md += (md.empty() ? "" : "\n") + std::string("## ") + std::string(section.title) + "\n\n" + table(section.rows, defaults);
   });
-  return md + event_tables_markdown();
+  return md + operation_tables_markdown() + event_tables_markdown();
 }
 
 }  // namespace endatsim::scenarios

@@ -55,7 +55,7 @@ struct Parameter {
   using Field =
       std::variant<Time Params::*, std::optional<Time> Params::*, FrequencyField<Params>, NumberField<Params>,
                    unsigned Params::*, std::optional<std::uint64_t> Params::*, std::uint64_t Params::*,
-                   std::int64_t Params::*, bool Params::*, std::uint16_t Params::*, std::uint8_t Params::*,
+                   std::int64_t Params::*, int Params::*, bool Params::*, std::uint16_t Params::*, std::uint8_t Params::*,
                    ChoiceField<Params>>;
   std::string_view key;
   Field field;
@@ -73,6 +73,7 @@ enum class ParameterType : std::uint8_t { Duration, Frequency, Number, Count, Fl
 
 template <class Params>
 ParameterType type_of(const Parameter<Params>& p) {
+  static_assert(std::variant_size_v<typename Parameter<Params>::Field> == 13, "a new kind of field needs its type here");
   switch (p.field.index()) {
     case 0:
     case 1: return ParameterType::Duration;
@@ -81,10 +82,11 @@ ParameterType type_of(const Parameter<Params>& p) {
     case 4:
     case 5:
     case 6:
-    case 7: return ParameterType::Count;
-    case 8: return ParameterType::Flag;
-    case 9:
-    case 10: return ParameterType::Word;
+    case 7:
+    case 8: return ParameterType::Count;
+    case 9: return ParameterType::Flag;
+    case 10:
+    case 11: return ParameterType::Word;
     default: return ParameterType::Choice;
   }
 }
@@ -144,6 +146,7 @@ std::optional<long double> numeric(const Parameter<Params>& p, const Params& par
     }
     std::optional<long double> operator()(std::uint64_t Params::*f) const { return static_cast<long double>(params.*f); }
     std::optional<long double> operator()(std::int64_t Params::*f) const { return static_cast<long double>(params.*f); }
+    std::optional<long double> operator()(int Params::*f) const { return params.*f; }
     std::optional<long double> operator()(bool Params::*) const { return std::nullopt; }
     std::optional<long double> operator()(std::uint16_t Params::*) const { return std::nullopt; }
     std::optional<long double> operator()(std::uint8_t Params::*) const { return std::nullopt; }
@@ -175,6 +178,7 @@ std::string value_text(const Parameter<Params>& p, const Params& params) {
     }
     std::string operator()(std::uint64_t Params::*f) const { return std::to_string(params.*f); }
     std::string operator()(std::int64_t Params::*f) const { return std::to_string(params.*f); }
+    std::string operator()(int Params::*f) const { return std::to_string(params.*f); }
     std::string operator()(bool Params::*f) const { return params.*f ? "true" : "false"; }
     std::string operator()(std::uint16_t Params::*f) const { return std::to_string(params.*f); }
     std::string operator()(std::uint8_t Params::*f) const { return std::to_string(params.*f); }

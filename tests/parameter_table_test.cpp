@@ -15,6 +15,7 @@
 #include "endatsim/master/master.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
 #include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/operation_kinds.hpp"
 #include "endatsim/scenarios/parameter_docs.hpp"
 #include "endatsim/slave/encoder_params.hpp"
 
@@ -207,7 +208,8 @@ TEST(ParameterTables, TheCounterClockIsZeroOrAtLeastOneMegahertz) {
 TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
   const auto schema = json::parse(slurp("schema/scenario.schema.json"));
   const auto generated = scenarios::parameter_schema();
-  ASSERT_EQ(generated.size(), 11U);
+  // The objects of the models, the events, and "op" and "at" and each operation of the script.
+  ASSERT_EQ(generated.size(), 12U + scenarios::operation_kinds().size());
   for (const auto& [pointer, part] : generated.items()) {
     SCOPED_TRACE(pointer);
     const json::json_pointer at(pointer);
@@ -283,6 +285,65 @@ TEST(EventKinds, EachKindIsReadThroughItsRows) {
   EXPECT_NE(none.find("/events/0: expected one of " + scenarios::event_kind_list()), std::string::npos) << none;
   EXPECT_EQ(scenarios::event_kind_list().substr(0, 20), "set_cable, bit_flip,");
   EXPECT_EQ(scenarios::event_kind_list().substr(scenarios::event_kind_list().size() - 11), " or sensors");
+}
+
+// The schema has one block per operation, in the rows' order (the generated properties are found
+// by their index), and "op" allows exactly the rows' operations.
+TEST(OperationKinds, SchemaHasOneBlockPerOperationInTheRowsOrder) {
+  const auto schema = json::parse(slurp("schema/scenario.schema.json"));
+  const json& operation = schema["$defs"]["operation"];
+  ASSERT_EQ(operation["allOf"].size(), scenarios::operation_kinds().size());
+  for (std::size_t i = 0; i < scenarios::operation_kinds().size(); ++i) {
+    const auto& row = scenarios::operation_kinds()[i];
+    SCOPED_TRACE(std::string(row.key));
+    const json& block = operation["allOf"][i];
+    EXPECT_EQ(block["if"]["properties"]["op"]["const"], std::string(row.key));
+    // The keys the block allows: "op", "at", "expect" where the operation sends frames, its rows,
+    // its other keys, and "command_type" where it has both a 2.1 and a 2.2 command.
+    std::set<std::string> allowed{"op", "at"}, expected;
+    for (const auto& [key, value] : block["then"]["properties"].items()) expected.insert(key);
+    if (row.sends_frames) allowed.insert("expect");
+    for (const auto& field : row.fields) allowed.insert(std::string(field.key));
+    for (const auto& other : row.other_keys) allowed.insert(std::string(other.key));
+    EXPECT_EQ(allowed, expected);
+    EXPECT_EQ(row.command.has_value() && row.command_22.has_value(), allowed.count("command_type") == 1);
+  }
+}
+
+// A key one operation has and another has not, a rule between keys, and an operation's own default.
+TEST(OperationKinds, EachOperationIsReadThroughItsRow) {
+  const auto script = [](const json& op) {
+    json s = {{"name", "o"},
+              {"line", {{"cable_length_m", 10}}},
+              {"encoder", {{"version", "2.2"}, {"position_bits", 25}}},
+              {"master", {{"f_c", "2 MHz"}, {"position_bits", 25}}},
+              {"script", {op}}};
+    return s.dump();
+  };
+  const auto load = [&](const json& op) { return scenarios::load_scenario_text(script(op), "o.json").script.at(0); };
+  const auto message = [&](const json& op) {
+    try {
+      load(op);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const auto await = load({{"op", "await_not_busy"}});
+  EXPECT_EQ(await.count, 1000U);
+  EXPECT_EQ(await.cycle, sim::us(50));
+  EXPECT_EQ(load({{"op", "await_not_busy"}, {"max_polls", 7}}).count, 7U);
+  const auto write = load({{"op", "write_parameter"}, {"address", 5}, {"value", "0x0002"}, {"command_type", "2.2"}});
+  EXPECT_EQ(write.command, protocol::ModeCommand::EncoderSendPositionValuesAndReceiveParameter);
+  EXPECT_EQ(write.parameter, 2U);
+  EXPECT_EQ(load({{"op", "write_parameter"}, {"address", 5}, {"value", 2}}).command,
+            protocol::ModeCommand::EncoderReceiveParameters);
+  EXPECT_NE(message({{"op", "wait"}, {"duration", "1 ms"}, {"count", 2}}).find("/script/0"), std::string::npos);
+  const auto payload = message({{"op", "frame"}, {"command", "encoder_send_position_values"}, {"address", 3}});
+  EXPECT_NE(payload.find("/script/0/address: \"address\" needs a mode command with a payload"), std::string::npos) << payload;
+  EXPECT_EQ(load({{"op", "frame"}, {"command", "encoder_receive_parameters"}, {"address", 3}, {"parameter", 9}}).parameter, 9U);
+  const auto unknown = message({{"op", "read_postion"}});
+  EXPECT_NE(unknown.find("\"read_position\""), std::string::npos) << unknown;
 }
 
 TEST(ParameterTables, DocsParametersIsTheGeneratedTable) {

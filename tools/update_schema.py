@@ -41,7 +41,7 @@ def spans(text, i, path, out):
         i = past_whitespace(text, i + 1)
         k = 0
         while text[i] != "]":
-            i = spans(text, i, path + (k,), out)
+            i = spans(text, i, path + (str(k),), out)  # JSON pointers name items by their index
             k += 1
             i = past_whitespace(text, i)
             if text[i] == ",":
