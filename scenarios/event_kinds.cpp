@@ -30,7 +30,7 @@ const std::array kTrigger{
       "With \"frame\": the n-th rising CLOCK edge of that frame at the fault's end (at the master's pins for the "
       "other kinds).",
       false, false, "the frame's first falling edge"},
-    P{"offset", &Event::offset, 0, sim::ms(1000).count(), "", "Delays the event further."},
+    P{"offset", &Event::offset, 0, sim::ms(1000).count(), "", "Delays the event further.", false, false, "0"},
 };
 
 // Line faults act at one end's pins: what that end's receiver and the timing checker there see;

@@ -35,7 +35,8 @@ const P kClockAdjust{"clock_adjust", &Operation::clock_adjust, -64, 64, "2.3.1, 
 const P kCount{"count", &Operation::count, 1, kMaxFrames, "", "Frames to send."};
 const P kCycle{"cycle", &Operation::cycle, 0, kMaxTime, "",
                "Frame starts this far apart; a frame that cannot start on time starts as soon as the master is "
-               "ready and counts as a cycle overrun. 0: each as soon as the master is ready."};
+               "ready and counts as a cycle overrun.",
+               false, false, "0: each as soon as the master is ready"};
 const P kContinuousWords{"continuous_words", &Operation::continuous_words, 0, 100'000, "2.3.1",
                          "Only with encoder_send_position_values: the clock runs on through this many further words; "
                          "each word is reported as a frame with its word number."};
