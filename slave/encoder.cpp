@@ -18,7 +18,6 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-using protocol::parameters::kInstructionHighImpedance;
 
 using protocol::parameters::EncoderFunction;
 namespace pm = protocol::parameters;
@@ -82,11 +81,7 @@ void Encoder::on_started() {
   enable();
 }
 
-bool Encoder::drives_bus() const {
-  // 2.10: word 5 bit 1 "data driver at high-impedance"; an encoder that another address
-  // deselected stays off the bus too.
-  return selected_on_bus_ && (memory_.operating_parameter(word::kInstructions) & kInstructionHighImpedance) == 0;
-}
+bool Encoder::drives_bus() const { return bus_.drives(memory_.operating_parameter(word::kInstructions)); }
 
 void Encoder::on_clock(std::uint64_t level) {
   if (offline_ || kernel_.now() < ready_at_) {  // running up, or t_R: not ready for the next query yet
@@ -239,7 +234,7 @@ void Encoder::decode_mode_command() {
   command_ = &protocol::info(*f.command);
   if (command_->answer == protocol::AnswerFormat::Position && eib_.refuses_positions())
     return abort_type1(ErrorCause::ModeCommandDisrupted);
-  if (!selected_on_bus_ && *f.command != MC::EncoderReceiveCommunicationCommand) {
+  if (!bus_.selected() && *f.command != MC::EncoderReceiveCommunicationCommand) {
     state_ = State::Type1;  // 2.10: only the addressed encoder reacts; this one keeps off the bus
     return;
   }
@@ -351,25 +346,17 @@ void Encoder::answer_parameter_frame() {
         test_port_21_ = address;
         break;
       case MC::EncoderReceiveCommunicationCommand: {  // 2.10
+        using Instructions = BusAddressing::Reaction::Instructions;
         const auto own = static_cast<std::uint8_t>(memory_.operating_parameter(word::kEncoderAddress));
-        const bool was_selected = selected_on_bus_;
-        if (!params_.communication_command_permitted) error = ErrorCause::CommunicationCommandNotPermitted;
-        else if (address == 0 && (parameter & kInstructionHighImpedance) != 0)
-          error = ErrorCause::DataDriverHighImpedanceBroadcast;
-        else if (address != 0 && address != own && was_selected)
-          error = ErrorCause::UnknownCommunicationAddress;
-        // 2.10: "only the encoder with the previously selected address reacts ... until a new
-        // address is given"; the change takes effect after this frame's acknowledgment.
-        bus_selection_after_frame_ = address == 0 || address == own;
-        if (!was_selected && !*bus_selection_after_frame_) {
+        const auto r = bus_.communication_command(address, parameter, own, params_.communication_command_permitted);
+        error = r.error;
+        if (r.silent) {
           state_ = State::Type1;  // not addressed: stays silent
           return;
         }
-        // The addressed encoder takes its instruction at once and acknowledges with it; a
-        // broadcast is acknowledged by the encoder active before it, then carried out (2.10).
-        if (address == own && address != 0)
+        if (r.instructions == Instructions::TakeNow)
           memory_.write({MemoryArea::OperatingParameters, 0}, word::kInstructions, parameter);
-        else if (address == 0)
+        else if (r.instructions == Instructions::TakeAfterAcknowledgment)
           pending_ = {Pending::Kind::Write, {MemoryArea::OperatingParameters, 0}, word::kInstructions, parameter};
         break;
       }
@@ -522,8 +509,7 @@ void Encoder::finish_frame() {
   if (state_ == State::Payload) transmission_incomplete_ = true;
   state_ = State::Idle;
   end_marker_timer_.cancel();
-  if (bus_selection_after_frame_) selected_on_bus_ = *bus_selection_after_frame_;
-  bus_selection_after_frame_.reset();
+  bus_.frame_ended();
   drive(false);
   enable();
   ready_at_ = kernel_.now() + params_.t_r;

@@ -2,10 +2,11 @@
 // through the line's encoder-side pins (the mode command on RE3 .. RE8, t_cal, the start bit,
 // the answers of 2.3 .. 2.10, the command supplement, t_m), and the parts it hands the contents to:
 // the memory with its areas and write protection (memory.hpp), the accesses to it with the area
-// selected, Busy and the word being programmed (memory_access.hpp), the
-// position source (position_source.hpp), the additional data (additional_data.hpp), the error
-// messages (error_messages.hpp) and an EIB's initial commissioning (eib.hpp). What an encoder is
-// comes from EncoderParams (encoder_params.hpp); every frame leaves an EncoderFrame as ground truth.
+// selected, Busy and the word being programmed (memory_access.hpp), the position source
+// (position_source.hpp), the additional data (additional_data.hpp), the error messages
+// (error_messages.hpp), its part in a bus (bus_addressing.hpp) and an EIB's initial commissioning
+// (eib.hpp). What an encoder is comes from EncoderParams (encoder_params.hpp); every frame leaves
+// an EncoderFrame as ground truth.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include "endatsim/line/line.hpp"
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/slave/additional_data.hpp"
+#include "endatsim/slave/bus_addressing.hpp"
 #include "endatsim/slave/eib.hpp"
 #include "endatsim/slave/encoder_params.hpp"
 #include "endatsim/slave/error_messages.hpp"
@@ -140,6 +142,7 @@ class Encoder final : private MemoryAccess::Client {
   ErrorMessages errors_;
   EibCommissioning eib_;
   MemoryAccess access_;
+  BusAddressing bus_;
   sim::Signal data_logic_;
   sim::Signal enable_logic_;
   sim::TransportDelay data_out_delay_;
@@ -168,8 +171,6 @@ class Encoder final : private MemoryAccess::Client {
   // Encoder state that outlives frames.
   std::uint8_t test_port_21_ = 0;               // 2.8: port for "Encoder send test values"
   bool transmission_incomplete_ = false;        // A2 cause 3, for the next acknowledgment
-  bool selected_on_bus_ = true;                 // 2.10: addressed by the last communication command
-  std::optional<bool> bus_selection_after_frame_;
   bool offline_ = false;                        // running up after power-on or reset (2.3.3)
   unsigned unsettled_left_ = 0;                 // position answers still unsettled after start-up
 

@@ -812,3 +812,38 @@ TEST(AppendixA2, Cause5EncoderBehindAnEibNotYetInitiated) {
   b.frame(65, ScriptedFrame::header(0b001110, payload(0xA1, 0)));
   EXPECT_FALSE(b.last().error.has_value()) << "A1 is open for commissioning";
 }
+
+// 2.10 as a part of its own: who is addressed, who may drive DATA, and when a new address counts.
+TEST(BusAddressing, ANewAddressTakesEffectOnlyAfterTheFrameThatGaveIt) {
+  using Instructions = slave::BusAddressing::Reaction::Instructions;
+  slave::BusAddressing bus;
+  EXPECT_TRUE(bus.selected());
+  EXPECT_TRUE(bus.drives(0x0000));
+  EXPECT_FALSE(bus.drives(protocol::parameters::kInstructionHighImpedance));
+  // Another encoder's address: the active one answers with cause 12 and is deselected after the frame.
+  auto r = bus.communication_command(17, 0x0000, 5, true);
+  EXPECT_EQ(r.error, ErrorCause::UnknownCommunicationAddress);
+  EXPECT_FALSE(r.silent);
+  EXPECT_EQ(r.instructions, Instructions::Keep);
+  EXPECT_TRUE(bus.selected());
+  bus.frame_ended();
+  EXPECT_FALSE(bus.selected());
+  EXPECT_FALSE(bus.drives(0x0000));
+  // Not selected and not addressed: silent; its own address selects it again and it takes the
+  // instruction at once.
+  EXPECT_TRUE(bus.communication_command(17, 0x0000, 5, true).silent);
+  bus.frame_ended();
+  EXPECT_FALSE(bus.selected());
+  r = bus.communication_command(5, 0x0004, 5, true);
+  EXPECT_FALSE(r.error.has_value());
+  EXPECT_EQ(r.instructions, Instructions::TakeNow);
+  bus.frame_ended();
+  EXPECT_TRUE(bus.selected());
+  // A broadcast is carried out after its acknowledgment; the high-impedance instruction to all
+  // is answered as cause 6 and carried out still.
+  EXPECT_EQ(bus.communication_command(0, 0x0000, 5, true).instructions, Instructions::TakeAfterAcknowledgment);
+  r = bus.communication_command(0, protocol::parameters::kInstructionHighImpedance, 5, true);
+  EXPECT_EQ(r.error, ErrorCause::DataDriverHighImpedanceBroadcast);
+  EXPECT_EQ(r.instructions, Instructions::TakeAfterAcknowledgment);
+  EXPECT_EQ(bus.communication_command(5, 0x0000, 5, false).error, ErrorCause::CommunicationCommandNotPermitted);
+}
