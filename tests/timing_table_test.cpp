@@ -99,6 +99,22 @@ TEST(TimingTable, FramePositionsCountFromTheFirstFallingEdge) {
   EXPECT_EQ(static_cast<double>(position::kEarliestStartBit) - 0.5, t_cal_min_periods);
 }
 
+// The rows' conditions name frame positions in words; they are the positions protocol/ counts with.
+TEST(TimingTable, ConditionsNameTheFramePositionsOfTheProtocol) {
+  const auto condition = [](std::string_view check) { return std::string(protocol::timing_row(check)->condition); };
+  const auto re = [](unsigned k) { return "RE" + std::to_string(k); };
+  const auto fe = [](unsigned k) { return "FE" + std::to_string(k); };
+  EXPECT_NE(condition(checker::check::kCalculationTime).find("start bit on " + re(position::kEarliestStartBit)),
+            std::string::npos);
+  EXPECT_NE(condition(checker::check::kDriverOn)
+                .find(fe(position::kTurnaround) + " (" + fe(position::kTurnaround + protocol::kPayloadBits) +
+                      " after a 2.1 payload)"),
+            std::string::npos);
+  EXPECT_NE(condition(checker::check::kFloatingData).find(re(position::kFirstModeBit) + ".." + re(position::kLastModeBit)),
+            std::string::npos);
+  EXPECT_NE(condition(checker::check::kDriverOff).find(fe(position::kFrameStart)), std::string::npos);
+}
+
 TEST(TimingTable, OneRowPerCheckNameWithItsSection) {
   std::set<std::string_view> names;
   for (const auto& row : protocol::timing_rows()) {
