@@ -61,12 +61,14 @@ check(r.returncode == 0 and "\033[32mPASS\033[0m endat21_1mhz_10m" in r.stdout, 
 
 # On a terminal (script(1) gives the command a pty): a progress line and coloured verdicts;
 # NO_COLOR turns the colour off, not the progress.
-def on_terminal(args, no_color=False):
+def on_terminal(args, no_color=False, interrupt_after=None):
     env = dict(os.environ)
     env.pop("NO_COLOR", None)
     if no_color:
         env["NO_COLOR"] = "1"
     command = " ".join("'" + a + "'" for a in [endatsim, *args])
+    if interrupt_after is not None:  # Ctrl-C after that many seconds, as a user would press it
+        command = "timeout --preserve-status -s INT %g %s" % (interrupt_after, command)
     return subprocess.run(["script", "-qec", command, "/dev/null"], capture_output=True, text=True, timeout=300, env=env)
 
 
@@ -85,9 +87,13 @@ loop.pop("$schema")
 loop["script"][-1]["count"] = 48000
 with open(path("loop_3s.json"), "w") as f:
     json.dump(loop, f)
-r = on_terminal(["run", path("loop_3s.json"), "--max-kernel-events", "200000000", "--max-records", "500000"])
+# Interrupted after 2.5 s of wall time, whatever the build's speed (the run would take 3 s in a
+# release build, minutes under the sanitizers): the progress line was shown by then.
+r = on_terminal(["run", path("loop_3s.json"), "--max-kernel-events", "200000000", "--max-records", "500000"],
+                interrupt_after=2.5)
 check(" of 3 s simulated, " in r.stdout and " frames, " in r.stdout and " s left" in r.stdout,
       "terminal: progress of a long run", r)
+check(r.returncode == 130 and "interrupted" in r.stdout, "terminal: a run stopped by Ctrl-C says so", r)
 
 # JUnit, JSON results, transaction logs.
 failing = path("failing.json")
