@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,11 +19,29 @@ struct Run {
   std::string out;
 };
 
+// This process's own directory for the files its tests write (ctest runs them in parallel
+// processes), removed when it exits.
+const std::filesystem::path& scratch() {
+  struct Dir {
+    std::filesystem::path path;
+    Dir() {
+      std::string pattern = (std::filesystem::temp_directory_path() / "endatsim_cli_XXXXXX").string();
+      if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+      path = pattern;
+    }
+    ~Dir() {
+      std::error_code ec;
+      std::filesystem::remove_all(path, ec);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
+}
+
 Run run(const std::string& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  // ctest runs the tests of this file in parallel processes: every call gets its own files.
+  const auto& dir = scratch();
   static int calls = 0;
-  const std::string tag = std::to_string(getpid()) + "_" + std::to_string(++calls);
+  const std::string tag = std::to_string(++calls);
   const std::string out = (dir / ("endatsim_cli_out_" + tag)).string(), err = (dir / ("endatsim_cli_err_" + tag)).string();
   const std::string cmd = std::string(ENDATSIM_EXE) + " " + args + " >" + out + " 2>" + err;
   const int raw = std::system(cmd.c_str());
@@ -39,7 +58,7 @@ Run run(const std::string& args) {
 }
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = (std::filesystem::temp_directory_path() / (std::to_string(getpid()) + name)).string();
+  const std::string path = (scratch() / name).string();
   std::ofstream(path) << text;
   return path;
 }
@@ -88,9 +107,7 @@ TEST(Cli, HelpAndVersionExitZero) {
 }
 
 TEST(Cli, WritesJsonResultsAndVcd) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string pid = std::to_string(getpid());
-  const std::string json = (dir / (pid + "endatsim_cli.json")).string(), vcd = (dir / (pid + "endatsim_cli.vcd")).string();
+  const std::string json = (scratch() / "endatsim_cli.json").string(), vcd = (scratch() / "endatsim_cli.vcd").string();
   const auto r = run("run " + kBundled + "endat21_1mhz_10m.json --json " + json + " --vcd " + vcd + " --quiet");
   EXPECT_EQ(r.status, 0);
   std::ifstream j(json);

@@ -38,7 +38,8 @@ case "$sim" in
   *) echo "run_hdl.sh: unknown simulator $sim" >&2; exit 2 ;;
 esac
 cat "$work/out.txt"
-exec python3 - "$work/result.json" "$status" "$expected" <<'PY'
+# Not exec: the shell stays to remove $work when python is done.
+python3 - "$work/result.json" "$status" "$expected" <<'PY'
 import json, sys
 path, status, expected = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 try:
