@@ -41,6 +41,14 @@ static_assert(indexed_by(kAreas, &MemoryAreaInfo::area, MemoryArea::Asynchronous
 
 std::span<const MemoryAreaInfo> memory_areas() { return kAreas; }
 
+std::uint16_t factory_write_protection() {
+  std::uint16_t word2 = 0;
+  for (const auto area : {Manufacturer1, Manufacturer2, Manufacturer3, ManufacturerEndat22, Compensation1, Compensation2,
+                          Compensation3, Compensation4})
+    if (const auto bit = info(area).protection_bit) word2 = static_cast<std::uint16_t>(word2 | 1U << *bit);
+  return word2;
+}
+
 const MemoryAreaInfo& info(MemoryArea area) { return kAreas[static_cast<std::size_t>(area)]; }
 
 std::optional<MemoryArea> memory_area_from_mrs(std::uint8_t mrs) {

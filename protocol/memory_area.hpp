@@ -52,6 +52,10 @@ struct MemoryAreaInfo {
 };
 
 std::span<const MemoryAreaInfo> memory_areas();
+// 3.4.3: "The write protection for parameters of the encoder manufacturer and if applicable the
+// write protection for compensation values are factory set to active and cannot be reset": word 2
+// as an encoder leaves the factory, the protection bits of those areas.
+std::uint16_t factory_write_protection();
 const MemoryAreaInfo& info(MemoryArea area);
 std::optional<MemoryArea> memory_area_from_mrs(std::uint8_t mrs);
 std::optional<MemoryArea> memory_area_from_key(std::string_view key);

@@ -56,7 +56,6 @@ class EibCommissioning {
   EibCommissioning(const EncoderParams& params, Memory& memory) : params_(params), memory_(memory) {}
   // Word 14 as stored now decides: an EIB type opens commissioning, any other closes it.
   void follow_encoder_type(protocol::parameters::EncoderType type);
-  bool not_initiated() const { return not_initiated_; }
   // A2 cause 5 for a memory access outside the commissioning areas while not initiated.
   std::optional<protocol::ErrorCause> refuses(std::optional<MemoryArea> area) const;
   // A position command refused as not supported (EibPositionBeforeCommissioning::NotSupported).

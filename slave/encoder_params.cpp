@@ -83,12 +83,15 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   MemoryImage img;
   // 3.4.3: the encoder manufacturer's areas and the compensation values are factory protected.
   const std::uint16_t function_init = p.short_t_m_selected ? kShortRecoveryTimeOn : kShortRecoveryTimeOff;
-  img.areas[A::OperatingStatus] = {0, 0, 0x0039, function_init};
+  img.areas[A::OperatingStatus] = {0, 0, protocol::factory_write_protection(), function_init};
   std::vector<std::uint16_t> m(protocol::kManufacturerWords, 0);
   m[word::kVersion] = pm::encode_version(2);                       // 3.5.4
-  m[word::kOemPartition] = 0x2020;                                 // OEM areas 1 and 2: addresses 0 .. 63
-  m[word::kOemPartition + 1] = 0xFFFF;                             // OEM areas 3 and 4: not available
-  m[word::kCompensationPartition] = m[word::kCompensationPartition + 1] = 0xFFFF;
+  // 3.5.5: OEM areas 1 and 2 at addresses 0 .. 63; OEM areas 3 and 4 and the compensation values
+  // not available.
+  const pm::Partition oem{pm::AddressRange{0, 63}}, none;
+  m[word::kOemPartition] = pm::encode_partition_word(oem, oem);
+  m[word::kOemPartition + 1] = pm::encode_partition_word(none, none);
+  m[word::kCompensationPartition] = m[word::kCompensationPartition + 1] = pm::encode_partition_word(none, none);
   m[word::kPositionFormat] = pm::encode_position_bits(p.position_bits);  // 3.5.6
   m[word::kEncoderType] = pm::encode_encoder_type(type);           // 3.5.7
   m[word::kCommandSet] = pm::encode_command_set({v22, false, v22 && p.communication_command_permitted});  // 3.5.22

@@ -159,7 +159,7 @@ void EncoderProfile::apply(EncoderParams& p) const {
   p.position_bits = position_bits;
   p.multiturn_bits = multiturn_bits;
   p.memory = memory;
-  if (const auto t = pm::calculation_time_duration(pm::decode_calculation_time(manufacturer_words()[39]))) p.t_cal = *t;
+  if (const auto t = pm::calculation_time_duration(pm::decode_calculation_time(manufacturer_words()[word::kCalculationTime]))) p.t_cal = *t;
 }
 
 std::vector<std::uint16_t> EncoderProfile::manufacturer_words() const {

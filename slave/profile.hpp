@@ -108,7 +108,7 @@ struct ProfileParameters {
   std::uint32_t max_clock_khz = 0;                      // BD word 25
   std::uint16_t touch_probe_support = 0;                // BD word 44 (3.9.31)
   protocol::parameters::TimestampUnit timestamp_unit = protocol::parameters::TimestampUnit::NotSupported;  // BD word 45
-  std::uint16_t write_protection = 0x0039;              // operating status word 2
+  std::uint16_t write_protection = protocol::factory_write_protection();  // operating status word 2
   std::uint16_t function_initialization = kShortRecoveryTimeOff;  // operating status word 3
 };
 EncoderProfile build_profile(const ProfileParameters& p);

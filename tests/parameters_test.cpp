@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "endatsim/protocol/memory_area.hpp"
 #include "endatsim/protocol/parameters.hpp"
 
 using namespace endatsim::protocol::parameters;
@@ -315,4 +316,20 @@ TEST(Parameters, Endat22Word45TimestampUnitExample) {
   EXPECT_FALSE(timestamp_unit_duration(TimestampUnit::NotSupported));
   EXPECT_EQ(timestamp_unit_string(TimestampUnit::Us2), "2 us");
   EXPECT_EQ(timestamp_unit_string(TimestampUnit::Ns500), "500 ns");
+}
+
+// 3.4.3 word 2: bit 0 protects the encoder manufacturer's areas (both editions), bits 3, 4 and 5
+// compensation areas 4, 3 and 2; those are factory set, the OEM's (bit 2) and the operating
+// parameters' (bit 1) are not.
+TEST(Parameters, Word2FactoryWriteProtection) {
+  EXPECT_EQ(endatsim::protocol::factory_write_protection(), (1U << 0) | (1U << 3) | (1U << 4) | (1U << 5));
+  EXPECT_EQ(endatsim::protocol::factory_write_protection() & ((1U << 1) | (1U << 2)), 0U);
+}
+
+// 3.5.5 words 9 .. 12: OEM areas 1 and 2 at 0 .. 63, the others not available, as a default
+// image has them.
+TEST(Parameters, Words9To12DefaultAllocation) {
+  const Partition oem{AddressRange{0, 63}}, none;
+  EXPECT_EQ(encode_partition_word(oem, oem), 0x2020);
+  EXPECT_EQ(encode_partition_word(none, none), 0xFFFF);
 }
