@@ -225,6 +225,27 @@ TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
   }
 }
 
+// A scenario with one operation (and one event, if given), loaded.
+scenarios::Scenario load_with(const json& op, const json& event = nullptr) {
+  json s = {{"name", "rows"},
+            {"line", {{"cable_length_m", 10}}},
+            {"encoder", {{"version", "2.2"}, {"position_bits", 25}}},
+            {"master", {{"f_c", "2 MHz"}, {"position_bits", 25}}},
+            {"script", {op}}};
+  if (!event.is_null()) s["events"] = {event};
+  return scenarios::load_scenario_text(s.dump(), "rows.json");
+}
+
+// The loader's message for it, or "accepted".
+std::string load_message(const json& op, const json& event = nullptr) {
+  try {
+    load_with(op, event);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
 // The event keys the schema knows are the rows' and no others: the trigger keys and one per kind,
 // and its "exactly one kind" list names every kind once.
 TEST(EventKinds, SchemaKnowsExactlyTheTriggerAndKindKeys) {
@@ -252,23 +273,8 @@ TEST(EventKinds, EachKindIsReadThroughItsRows) {
     EXPECT_EQ(kind.body == scenarios::EventKindRow::Body::Custom, !kind.fields_text.empty());
   }
   EXPECT_EQ(kinds.size(), static_cast<std::size_t>(scenarios::Event::Kind::SensorValues) + 1);
-  const auto load = [](const json& event) {
-    json s = {{"name", "e"},
-              {"line", {{"cable_length_m", 10}}},
-              {"encoder", {{"version", "2.2"}, {"position_bits", 25}}},
-              {"master", {{"f_c", "2 MHz"}, {"position_bits", 25}}},
-              {"script", {{{"op", "read_position"}}}},
-              {"events", {event}}};
-    return scenarios::load_scenario_text(s.dump(), "e.json").events.at(0);
-  };
-  const auto message = [&](const json& event) {
-    try {
-      load(event);
-    } catch (const std::exception& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
+  const auto load = [](const json& event) { return load_with({{"op", "read_position"}}, event).events.at(0); };
+  const auto message = [](const json& event) { return load_message({{"op", "read_position"}}, event); };
   // A row's range and its default.
   EXPECT_EQ(load({{"at", "1 ms"}, {"glitch", {{"wire", "clock"}, {"end", "encoder"}, {"width", "5 ns"}}}}).width, sim::ns(5));
   const auto width = message({{"at", "1 ms"}, {"glitch", {{"wire", "clock"}, {"end", "encoder"}, {"width", "2 ms"}}}});
@@ -312,23 +318,8 @@ TEST(OperationKinds, SchemaHasOneBlockPerOperationInTheRowsOrder) {
 
 // A key one operation has and another has not, a rule between keys, and an operation's own default.
 TEST(OperationKinds, EachOperationIsReadThroughItsRow) {
-  const auto script = [](const json& op) {
-    json s = {{"name", "o"},
-              {"line", {{"cable_length_m", 10}}},
-              {"encoder", {{"version", "2.2"}, {"position_bits", 25}}},
-              {"master", {{"f_c", "2 MHz"}, {"position_bits", 25}}},
-              {"script", {op}}};
-    return s.dump();
-  };
-  const auto load = [&](const json& op) { return scenarios::load_scenario_text(script(op), "o.json").script.at(0); };
-  const auto message = [&](const json& op) {
-    try {
-      load(op);
-    } catch (const std::exception& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
+  const auto load = [](const json& op) { return load_with(op).script.at(0); };
+  const auto message = [](const json& op) { return load_message(op); };
   const auto await = load({{"op", "await_not_busy"}});
   EXPECT_EQ(await.count, 1000U);
   EXPECT_EQ(await.cycle, sim::us(50));
