@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "endatsim/protocol/parameters.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/report.hpp"
 #include "scenario_support.hpp"
@@ -96,6 +97,36 @@ TEST(MasterParameterAccess, InstructionNoUpdatingOfPositionValuesFreezesThePosit
   EXPECT_GT(moving[0], frozen[0]);
   EXPECT_GT(moving[1], moving[0]);
   EXPECT_GT(moving[2], moving[1]);
+}
+
+// 3.6.5 word 5 bit 0, "energy-saving mode": the spec names the instruction and nothing it changes
+// (docs/model-reference.md). The encoder stores and acknowledges it, reads it back, and goes on
+// answering with moving positions, the same frames on the wires as without it.
+TEST(MasterParameterAccess, InstructionEnergySavingIsStoredAndChangesNothingOnTheWires) {
+  auto read = op(MC::EncoderSendPositionValues);
+  read.count = 3;
+  read.cycle = us(200);
+  const auto with = [&](std::uint16_t instructions) {
+    auto s = scenario(10, MHz(1), false,
+                      {op(MC::SelectionOfMemoryArea, 0xA7), op(MC::EncoderReceiveParameters, 0x05, instructions),
+                       op(MC::EncoderSendParameters, 0x05), read});
+    s.encoder.motion.counts_per_s = 1'000'000;
+    return scenarios::run_scenario(s);
+  };
+  const auto saving = with(protocol::parameters::kInstructionEnergySaving);
+  const auto plain = with(0x0000);
+  EXPECT_EQ(last_of(saving, 1).outcome, master::FrameOutcome::Ok);
+  EXPECT_EQ(last_of(saving, 1).echo_parameter, protocol::parameters::kInstructionEnergySaving);
+  EXPECT_EQ(last_of(saving, 2).echo_parameter, protocol::parameters::kInstructionEnergySaving);
+  ASSERT_EQ(saving.frames.size(), plain.frames.size());
+  for (std::size_t i = 0; i < saving.frames.size(); ++i) {
+    if (saving.frames[i].operation != 3) continue;
+    EXPECT_EQ(saving.frames[i].outcome, master::FrameOutcome::Ok) << i;
+    EXPECT_EQ(saving.frames[i].position, plain.frames[i].position) << i;
+    EXPECT_EQ(saving.frames[i].start, plain.frames[i].start) << i;
+  }
+  EXPECT_GT(last_of(saving, 3).position, saving.frames[saving.frames.size() - 3].position);
+  EXPECT_TRUE(saving.violations.empty()) << violations(saving);
 }
 
 TEST(MasterParameterAccess, EnDat22ReadThroughTheSupplementWithBusyPolling) {
