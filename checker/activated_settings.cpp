@@ -1,5 +1,6 @@
 #include "endatsim/checker/activated_settings.hpp"
 
+#include "endatsim/protocol/frame.hpp"
 #include "endatsim/protocol/memory_area.hpp"
 #include "endatsim/protocol/parameters.hpp"
 
@@ -8,8 +9,8 @@ namespace endatsim::checker {
 void ActivatedSettings::on_frame(protocol::ModeCommand command, std::optional<std::uint32_t> payload,
                                  std::optional<std::uint32_t> supplement) {
   using MC = protocol::ModeCommand;
-  const auto address = [](std::uint32_t bits) { return static_cast<std::uint8_t>(bits >> 16); };
-  const auto value = [](std::uint32_t bits) { return static_cast<std::uint16_t>(bits & 0xFFFF); };
+  const auto address = [](std::uint32_t bits) { return protocol::payload_address(bits); };
+  const auto value = [](std::uint32_t bits) { return protocol::payload_parameter(bits); };
   switch (command) {
     case MC::SelectionOfMemoryArea:
       if (payload) select(address(*payload));

@@ -217,7 +217,7 @@ void FrameDecoder::decode_mode_command() {
 // acknowledged with a good CRC count, and a selection lasts until the next.
 void FrameDecoder::follow_parameter_reads() {
   if (!frame_.command || !frame_.answer_complete || !frame_.crc_ok) return;
-  const auto address = [](std::uint32_t bits) { return static_cast<std::uint8_t>(bits >> 16); };
+  const auto address = [](std::uint32_t bits) { return protocol::payload_address(bits); };
   switch (*frame_.command) {
     case MC::SelectionOfMemoryArea:
       if (frame_.payload) area_ = address(*frame_.payload);
@@ -248,11 +248,11 @@ void FrameDecoder::follow_parameter_reads() {
 // word that holds no width (bits 0..5 zero).
 std::optional<unsigned> FrameDecoder::position_format_word() const {
   if (area_ != protocol::info(protocol::MemoryArea::Manufacturer1).mrs || !frame_.payload ||
-      (*frame_.payload >> 16) != protocol::word::kPositionFormat)
+      protocol::payload_address(*frame_.payload) != protocol::word::kPositionFormat)
     return std::nullopt;
-  const auto word = static_cast<std::uint16_t>(frame_.command == MC::EncoderReceiveParameters
-                                                   ? *frame_.payload & 0xFFFF
-                                                   : frame_.fields[static_cast<std::size_t>(protocol::Field::Parameter)]);
+  const auto word = frame_.command == MC::EncoderReceiveParameters
+                        ? protocol::payload_parameter(*frame_.payload)
+                        : static_cast<std::uint16_t>(frame_.fields[static_cast<std::size_t>(protocol::Field::Parameter)]);
   const unsigned bits = protocol::parameters::decode_position_bits(word);
   return bits != 0 ? std::optional(bits) : std::nullopt;
 }
@@ -359,7 +359,7 @@ void FrameDecoder::decode_answer(unsigned last_clock) {
 // 0x4F and 0x5F stop sending it.
 void FrameDecoder::note_selection() {
   if (frame_.command != MC::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
-  const auto mrs = static_cast<std::uint8_t>(*frame_.supplement >> 16);
+  const auto mrs = protocol::payload_address(*frame_.supplement);
   if (!protocol::selects_additional_data(mrs)) return;
   const unsigned which = protocol::is_additional_data_2(protocol::information_of_mrs(mrs)) ? 1 : 0;
   selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;

@@ -74,7 +74,7 @@ struct WireFrame {
   // the encoder's refusal (D297403 4.2.2).
   bool refused() const {
     if (!payload || !answer_complete) return false;
-    const auto sent = static_cast<std::uint8_t>(*payload >> 16);
+    const auto sent = protocol::payload_address(*payload);
     return fields[static_cast<std::size_t>(protocol::Field::Address)] == static_cast<std::uint8_t>(~sent);
   }
 };

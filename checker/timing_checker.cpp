@@ -919,7 +919,7 @@ void TimingChecker::check_access_while_busy(const AccessEvidence& frame) {
                           frame.command == MC::EncoderSendParameters || frame.command == MC::EncoderReceiveReset);
   bool access_22 = false;
   if (frame.supplement) {
-    const auto mrs = static_cast<std::uint8_t>(*frame.supplement >> 16);
+    const auto mrs = protocol::payload_address(*frame.supplement);
     access_22 = frame.command == MC::EncoderSendPositionValuesAndReceiveParameter ||
                 frame.command == MC::EncoderSendPositionValuesAndSendParameter ||
                 (frame.command == MC::EncoderSendPositionValuesAndSelectionOfMemoryArea &&
@@ -953,7 +953,7 @@ void TimingChecker::check_busy_time(const AccessEvidence& frame) {
   using MC = protocol::ModeCommand;
   check_access_while_busy(frame);
   if (frame.supplement) {
-    const auto mrs = static_cast<std::uint8_t>(*frame.supplement >> 16);
+    const auto mrs = protocol::payload_address(*frame.supplement);
     const bool access = frame.command == MC::EncoderSendPositionValuesAndReceiveParameter ||
                         frame.command == MC::EncoderSendPositionValuesAndSendParameter ||
                         (frame.command == MC::EncoderSendPositionValuesAndSelectionOfMemoryArea &&

@@ -187,7 +187,7 @@ void DiagnosisMonitor::note(DiagnosisNoteKind kind, const FrameResult* f, const 
 void DiagnosisMonitor::on_frame(const FrameResult& f, DiagnosisFrame kind) {
   if (!params_.enabled) return;
   if (kind == DiagnosisFrame::ConfigurationWrite) {
-    if (f.outcome == FrameOutcome::Ok) report_.configuration = static_cast<std::uint16_t>(*f.payload & 0xFFFF);
+    if (f.outcome == FrameOutcome::Ok) report_.configuration = protocol::payload_parameter(*f.payload);
     else
       note(K::Setup, &f, "configuration", true,
            "operating parameters word 3 could not be written (" + std::string(to_string(f.outcome)) + "); " +

@@ -288,7 +288,7 @@ void FrameEngine::decode_answer() {
   FrameOutcome outcome = ok ? FrameOutcome::Ok : FrameOutcome::CrcError;
   // A2 type II: "the address or parameter is returned inverted".
   if (ok && command_->answer == protocol::AnswerFormat::Parameter &&
-      frame_.echo_address == static_cast<std::uint8_t>(~(payload_ >> 16)))
+      frame_.echo_address == static_cast<std::uint8_t>(~protocol::payload_address(payload_)))
     outcome = FrameOutcome::Type2Error;
   outcome = check_echo(outcome);
   // 2.4.2 ff.: "following transmission of the position value and CRC it must be monitored if an
@@ -322,9 +322,9 @@ void FrameEngine::decode_additional_data(bool& ok) {
 FrameOutcome FrameEngine::check_echo(FrameOutcome outcome) const {
   if (!params_.careful.verify_echo || outcome != FrameOutcome::Ok || command_->answer != protocol::AnswerFormat::Parameter)
     return outcome;
-  const bool address_ok = frame_.echo_address == static_cast<std::uint8_t>(payload_ >> 16);
+  const bool address_ok = frame_.echo_address == protocol::payload_address(payload_);
   const bool parameter_ok = frame_.command == ModeCommand::EncoderSendParameters ||
-                            frame_.echo_parameter == static_cast<std::uint16_t>(payload_);
+                            frame_.echo_parameter == protocol::payload_parameter(payload_);
   return address_ok && parameter_ok ? outcome : FrameOutcome::EchoMismatch;
 }
 

@@ -340,7 +340,7 @@ FrameRequest Master::frame_request() {
   r.operation = current_->script_index;
   r.measurement = delay_.active();
   r.command = r.measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
-  r.payload = std::uint32_t{current_->address} << 16 | current_->parameter;
+  r.payload = protocol::make_payload(current_->address, current_->parameter);
   if (!r.measurement) roll_additional_data_1(r);
   r.mode_bits = r.measurement || !current_->mode_bits ? protocol::info(r.command).bits : *current_->mode_bits;
   r.f_c = r.measurement                            ? params_.measurement.f_c
@@ -360,7 +360,7 @@ void Master::answer_accepted(const FrameResult& f) {
     return;
   }
   if (f.command != ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
-  const auto mrs = static_cast<std::uint8_t>(*f.supplement >> 16);
+  const auto mrs = protocol::payload_address(*f.supplement);
   if (!protocol::selects_additional_data(mrs)) return;
   const unsigned which = protocol::is_additional_data_2(protocol::information_of_mrs(mrs)) ? 1 : 0;
   selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
@@ -465,7 +465,7 @@ void Master::roll_additional_data_1(FrameRequest& request) {
     const auto next = function->next_additional_data_1(context(), now);
     if (!next) continue;
     request.command = ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-    request.payload = std::uint32_t{protocol::selection_mrs(*next)} << 16;
+    request.payload = protocol::make_payload(protocol::selection_mrs(*next), 0);
     return;
   }
 }

@@ -7,12 +7,12 @@ using I = protocol::Information;
 
 void ParameterBook::note(const FrameResult& f) {
   if (f.outcome != FrameOutcome::Ok || !f.payload) return;
-  const auto address = static_cast<std::uint8_t>(*f.payload >> 16);
+  const auto address = protocol::payload_address(*f.payload);
   const auto key = static_cast<std::uint16_t>(area_mrs_ << 8 | address);
   switch (f.command) {
     case MC::SelectionOfMemoryArea: area_mrs_ = address; break;
     case MC::EncoderSendParameters: words_[key] = f.echo_parameter; break;
-    case MC::EncoderReceiveParameters: words_[key] = static_cast<std::uint16_t>(*f.payload & 0xFFFF); break;
+    case MC::EncoderReceiveParameters: words_[key] = protocol::payload_parameter(*f.payload); break;
     default: break;
   }
 }

@@ -347,7 +347,7 @@ void SafetyMonitor::check_forced_sampling(const FrameResult& f) {
   const P purpose = purpose_;
   if (purpose == P::ForcedTest) {
     forced_sent_at_ = f.end;
-    forcing_ = (f.supplement.value_or(0) >> 16) != 0;
+    forcing_ = protocol::payload_address(f.supplement.value_or(0)) != 0;
     return;
   }
   if (purpose != P::ForcedError1 && purpose != P::ForcedError2 && purpose != P::ForcedOff) return;
@@ -379,8 +379,8 @@ void SafetyMonitor::check_following_error(const FrameResult& f) {
 // 2.6 (echo) and 2.6.1 (I = 5 / 6 after Busy): the encoder acknowledges what it wrote.
 void SafetyMonitor::check_acknowledgement(const FrameResult& f) {
   if (!params_.acknowledgements) return;
-  const auto sent_address = static_cast<std::uint8_t>(f.payload.value_or(0) >> 16);
-  const auto sent_value = static_cast<std::uint16_t>(f.payload.value_or(0));
+  const auto sent_address = protocol::payload_address(f.payload.value_or(0));
+  const auto sent_value = protocol::payload_parameter(f.payload.value_or(0));
   if (f.command == MC::EncoderReceiveParameters &&
       (f.outcome == FrameOutcome::Ok || f.outcome == FrameOutcome::EchoMismatch) &&
       (f.echo_address != sent_address || f.echo_parameter != sent_value))
@@ -389,7 +389,7 @@ void SafetyMonitor::check_acknowledgement(const FrameResult& f) {
              " acknowledged as " + std::to_string(f.echo_parameter) + " at " + std::to_string(f.echo_address));
   // The write frame's own additional data come before its supplement: the acknowledgment follows.
   if (f.command == MC::EncoderSendPositionValuesAndReceiveParameter && f.supplement && f.outcome == FrameOutcome::Ok) {
-    acknowledgement_due_ = Written{static_cast<std::uint8_t>(*f.supplement >> 16), static_cast<std::uint16_t>(*f.supplement)};
+    acknowledgement_due_ = Written{protocol::payload_address(*f.supplement), protocol::payload_parameter(*f.supplement)};
     return;
   }
   if (!acknowledgement_due_ || f.outcome != FrameOutcome::Ok) return;

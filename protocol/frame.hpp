@@ -75,6 +75,13 @@ std::vector<std::uint8_t> encode_position_frame(EndatVersion command_type, unsig
 // The same 8 + 16 bits (without S and CRC) are what the master sends after a 2.1 mode command.
 Layout parameter_frame_layout();
 Layout payload_layout();  // master -> encoder: address (8), parameter (16)
+// Those 8 + 16 bits as one number, as frames record the 2.1 payload and the 2.2 command
+// supplement: the address (MRS code, port) in bits 16 .. 23, the parameter in bits 0 .. 15.
+constexpr std::uint32_t make_payload(std::uint8_t address, std::uint16_t parameter) {
+  return std::uint32_t{address} << 16 | parameter;
+}
+constexpr std::uint8_t payload_address(std::uint32_t payload) { return static_cast<std::uint8_t>(payload >> 16); }
+constexpr std::uint16_t payload_parameter(std::uint32_t payload) { return static_cast<std::uint16_t>(payload); }
 std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint16_t parameter, const CrcConfig& crc = {});
 
 // 2.9: S F1 test value (40 bits, LSB first) CRC = MakeCrcPos over 40 bits (A4.4.2).

@@ -318,7 +318,7 @@ std::string frame_log_line(const checker::WireFrame& f) {
   }
   const auto& info = protocol::info(*f.command);
   out << info.key;
-  if (f.payload) out << " address " << hex(*f.payload >> 16, 2) << " parameter " << hex(*f.payload & 0xFFFF, 4);
+  if (f.payload) out << " address " << hex(protocol::payload_address(*f.payload), 2) << " parameter " << hex(protocol::payload_parameter(*f.payload), 4);
   if (f.start_bit_clock == 0) {
     out << ": no start bit, " << f.clocks << " clocks\n";
     return out.str();
@@ -346,7 +346,7 @@ std::string frame_log_line(const checker::WireFrame& f) {
   for (const auto& d : f.additional_data)
     out << ", additional data I=" << (d.status & 0x1F) << " status " << hex(d.status, 2) << " data " << hex(d.data, 4)
         << " CRC " << (d.crc_ok ? "ok" : "BAD");
-  if (f.supplement) out << ", supplement " << hex(*f.supplement >> 16, 2) << " " << hex(*f.supplement & 0xFFFF, 4);
+  if (f.supplement) out << ", supplement " << hex(protocol::payload_address(*f.supplement), 2) << " " << hex(protocol::payload_parameter(*f.supplement), 4);
   if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";
   if (f.learnt_position_bits != 0)
     out << "; word 13" << (f.command == protocol::ModeCommand::EncoderReceiveReset ? " as written, now active" : "")

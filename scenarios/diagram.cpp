@@ -419,9 +419,9 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     // 2.1 parameter frames: 8 bits of address / MRS code / port and 16 bits after the mode bits.
     if (frame->payload && m_fe.size() >= 33) {
       char text[48];
-      std::snprintf(text, sizeof text, "address 0x%02X", static_cast<unsigned>(*frame->payload >> 16 & 0xFFU));
+      std::snprintf(text, sizeof text, "address 0x%02X", static_cast<unsigned>(protocol::payload_address(*frame->payload)));
       svg.field(axis.x(m_fe[8]), axis.x(m_fe[16]), row_y("endat.master_data") - 22, text, "address");
-      std::snprintf(text, sizeof text, "parameter 0x%04X", static_cast<unsigned>(*frame->payload & 0xFFFFU));
+      std::snprintf(text, sizeof text, "parameter 0x%04X", static_cast<unsigned>(protocol::payload_parameter(*frame->payload)));
       svg.field(axis.x(m_fe[16]), axis.x(m_fe[32]), row_y("endat.master_data") - 22, text, "parameter");
     }
   }
@@ -465,8 +465,8 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     const T64 off = on != kNone ? m_en.first(on, to, 0) : kNone;
     if (on != kNone) {
       char text[64];
-      std::snprintf(text, sizeof text, "command supplement 0x%02X 0x%04X", static_cast<unsigned>(*frame->supplement >> 16 & 0xFFU),
-                    static_cast<unsigned>(*frame->supplement & 0xFFFFU));
+      std::snprintf(text, sizeof text, "command supplement 0x%02X 0x%04X", static_cast<unsigned>(protocol::payload_address(*frame->supplement)),
+                    static_cast<unsigned>(protocol::payload_parameter(*frame->supplement)));
       svg.field(axis.x(on), axis.x(off != kNone ? off : to), row_y("endat.master_data") - 22, text, "supplement");
     }
   }

@@ -71,12 +71,12 @@ ordered_json transaction_of(const master::FrameResult& f, std::span<const checke
   if (f.measurement) sent["delay_measurement"] = true;
   if (f.compensated) sent["t_d"] = sim::format_time(f.t_d_used);
   if (f.payload) {  // 2.1 parameter frames: address / MRS code / port, then 16 bits
-    sent["address"] = hex(*f.payload >> 16 & 0xFFU, 2);
-    sent["parameter"] = hex(*f.payload & 0xFFFFU, 4);
+    sent["address"] = hex(protocol::payload_address(*f.payload), 2);
+    sent["parameter"] = hex(protocol::payload_parameter(*f.payload), 4);
   }
   if (f.supplement) {  // 2.2 command supplement
-    sent["supplement_address"] = hex(*f.supplement >> 16 & 0xFFU, 2);
-    sent["supplement_parameter"] = hex(*f.supplement & 0xFFFFU, 4);
+    sent["supplement_address"] = hex(protocol::payload_address(*f.supplement), 2);
+    sent["supplement_parameter"] = hex(protocol::payload_parameter(*f.supplement), 4);
   }
   t["sent"] = sent;
 

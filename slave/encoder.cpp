@@ -215,7 +215,7 @@ void Encoder::clock_after_supplement() {
   EncoderFrame& f = frames_.back();
   if (f.too_many_clocks) return;
   f.too_many_clocks = true;
-  const auto address = static_cast<std::uint8_t>(f.supplement.value_or(0) >> 16);
+  const auto address = protocol::payload_address(f.supplement.value_or(0));
   if (command_->command != MC::EncoderSendPositionValuesAndSelectionOfMemoryArea ||
       protocol::selects_additional_data(address) || f.supplement_ignored)
     return;
@@ -298,7 +298,7 @@ void Encoder::answer_position() {
 void Encoder::answer_parameter_frame() {
   EncoderFrame& f = frames_.back();
   f.payload = shift_;
-  const auto address = static_cast<std::uint8_t>(shift_ >> 16);
+  const auto address = protocol::payload_address(shift_);
   const auto parameter = static_cast<std::uint16_t>(shift_);
   std::uint16_t echo = parameter;
   std::optional<ErrorCause> error;
@@ -435,7 +435,7 @@ void Encoder::process_supplement() {
   f.supplement = shift_;
   state_ = State::SupplementDone;
   end_marker_timer_.start(params_.supplement_end_marker_delay);
-  const auto address = static_cast<std::uint8_t>(shift_ >> 16);
+  const auto address = protocol::payload_address(shift_);
   const auto parameter = static_cast<std::uint16_t>(shift_);
   const MC c = command_->command;
   const bool memory_access = c == MC::EncoderSendPositionValuesAndReceiveParameter ||

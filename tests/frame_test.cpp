@@ -49,3 +49,14 @@ TEST(PositionFrame, DecodeInvertsEncode) {
   EXPECT_EQ(layout.field_at(3), Field::Position);
   EXPECT_EQ(layout.field_at(28), Field::Crc);
 }
+
+// 2.3: the 8 + 16 bits after a 2.1 mode command (and in a 2.2 command supplement) are the
+// address, MRS code or port, then the parameter: "Selection of memory area" A9h is A9 0000h.
+TEST(Payload, AddressThenParameterAsOneNumber) {
+  EXPECT_EQ(make_payload(0xA9, 0x0000), 0xA90000U);
+  EXPECT_EQ(make_payload(0x0B, 0xA5B4), 0x0BA5B4U);
+  EXPECT_EQ(payload_address(0x0BA5B4), 0x0B);
+  EXPECT_EQ(payload_parameter(0x0BA5B4), 0xA5B4);
+  EXPECT_EQ(payload_layout().width(), kPayloadBits);
+  EXPECT_EQ(kPayloadBits, 24U);
+}
