@@ -93,7 +93,9 @@ r = on_terminal(["run", path("loop_3s.json"), "--max-kernel-events", "200000000"
                 interrupt_after=2.5)
 check(" of 3 s simulated, " in r.stdout and " frames, " in r.stdout and " s left" in r.stdout,
       "terminal: progress of a long run", r)
-check(r.returncode == 130 and "interrupted" in r.stdout, "terminal: a run stopped by Ctrl-C says so", r)
+# The exit status, not the last lines: script(1) may lose what a process writes just before it
+# exits (what an interrupted run says is the interrupt test's).
+check(r.returncode == 130, "terminal: a run stopped by Ctrl-C exits 130", r)
 
 # JUnit, JSON results, transaction logs.
 failing = path("failing.json")
