@@ -77,7 +77,7 @@ std::size_t DiagnosisReport::count(DiagnosisNoteKind k) const {
 
 // ---- the setup ----------------------------------------------------------------------------------
 
-// The German brochure, "Aktivieren der Diagnose": read what the encoder supports (3.9.2, 3.9.7) and how it
+// The German brochure (older edition), "Aktivieren der Diagnose": read what the encoder supports (3.9.2, 3.9.7) and how it
 // scales temperatures (3.9.6, 3.9.16; word 36 for the warnings), and the operating parameters
 // in force (3.6.3, 3.6.6); DiagnosisActivate then writes word 3 if needed.
 void Diagnosis::plan_setup(Sequence& plan) {

@@ -1,6 +1,6 @@
 // master/diagnostics.hpp — what the subsequent electronics collect for a service engineer (spec
 // appendix A3, 2.3.5.1, 3.4.2, 3.6.3, 3.6.6, 3.9.2, 3.9.6, 3.9.7, 3.9.16; the German EnDat 2.2
-// brochure, "Diagnose"): the setup reads what the encoder supports and activates the valuation
+// brochure, both editions, "Diagnose"): the setup reads what the encoder supports and activates the valuation
 // numbers (operating parameters word 3, valid after "Encoder receive reset", 3.6); the cyclic
 // position reads with additional data then roll additional data 1 through the diagnosis, the
 // temperatures and the additional sensors ("transmission of the diagnosis is possible in
@@ -33,7 +33,7 @@ struct DiagnosticsParams {
   std::uint16_t configuration = 0x003F;
   bool temperatures = true;         // temperature 1 and 2 (2.3.5.1) in the rotation
   unsigned additional_sensors = 0;  // interrogations of the additional sensors per round (2.3.5.1)
-  // UNCERTAIN (the German brochure: "the border areas should be suppressed in a display (definition of
+  // UNCERTAIN (the German brochure, both editions: "the border areas should be suppressed in a display (definition of
   // reserve areas is necessary)"; A3: the scaling is "identical for all HEIDENHAIN encoders"
   // but not given): a valuation number below this is reported as a low function reserve.
   unsigned reserve_limit = 25;

@@ -68,11 +68,11 @@ struct MasterParams {
   Time t_m_wait = protocol::limit::kRecoveryTimeMax;  // CLOCK held HIGH after a frame: at least t_m of the encoder
   Time t_r_wait = protocol::limit::kRecoveryTime2Min;  // then t_R before the next FE1 (2.3.2)
   Time error_wait = protocol::limit::kErrorRecoveryWait;  // A2: "after an error handling, the maximum t_m of 30 us must be waited"
-  Time reset_wait = sim::ms(50); // German brochure's start-up routine: "50 ms warten" after the reset
+  Time reset_wait = sim::ms(50); // the German brochure's (older edition) start-up routine: "50 ms warten" after the reset
   // 2.3.2 t_b > 1 ms before a 2.1 memory or parameter frame (read as end of the previous frame
   // to FE1; see the checker's t_b row).
   Time t_b_wait = sim::us(1100);
-  // 2.3.3 (the figure's labels in the German brochure, one published master's reading; docs/model.md §8): after
+  // 2.3.3 (the figure's labels in the German brochure, older edition, one published master's reading; docs/model.md §8): after
   // switching on, CLOCK stays at a valid level for t1 >= 800 ms and HIGH for t2 = 80 .. 120 ms,
   // then at least one LOW pulse > 125 ns, then HIGH for t3 = 380 .. 420 ms before the first request.
   struct PowerOnSequence {

@@ -21,7 +21,7 @@ struct Operation {
   // payload or the 2.2 supplement); AwaitNotBusy sends "Encoder send position values with
   // additional data" until additional data 1 shows Busy = 0 (2.5.1, 2.6.1), at most `count` times.
   // PowerOnSequence drives CLOCK as 2.3.3 asks after switching on; StartupRoutine is the German
-  // brochure's switch-on routine with EnDat 2.1 commands only (reset, wait 50 ms, read and clear
+  // brochure's (older edition) switch-on routine with EnDat 2.1 commands only (reset, wait 50 ms, read and clear
   // alarms and warnings, read words 13 and 37; docs/model.md §8).
   // VerifyChecksum reads the encoder manufacturer's words 4 .. 47 with 2.1 frames and compares
   // word 47 with their sum (3.5.26).

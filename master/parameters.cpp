@@ -45,7 +45,7 @@ const std::array kMaster{
     sim::Parameter<M>{"error_wait", &M::error_wait, 0, ps(sim::ms(100)), "A2",
                       "The wait after an error handling (\"the maximum t_m of 30 us must be waited\")."},
     sim::Parameter<M>{"reset_wait", &M::reset_wait, 0, ps(sim::ms(100)), "2.7",
-                      "The wait after \"Encoder receive reset\" (the German brochure's start-up routine waits 50 ms)."},
+                      "The wait after \"Encoder receive reset\" (the start-up routine of the German brochure, older edition, waits 50 ms)."},
     sim::Parameter<M>{"t_b_wait", &M::t_b_wait, 0, ps(sim::ms(100)), "2.3.2",
                       "The wait before a 2.1 memory or parameter frame after the previous frame (t_b > 1 ms)."},
     sim::Parameter<M>{"adopt_word13", &M::adopt_word13, 0, 0, "3.5.6",

@@ -12,7 +12,7 @@ constexpr unsigned kFirstChecksummedWord = protocol::parameters::kManufacturerCh
 
 }  // namespace
 
-// The German brochure, "Spannungsversorgung und Einschalten": EnDat 2.1 mode commands only.
+// The German brochure (older edition), "Spannungsversorgung und Einschalten": EnDat 2.1 mode commands only.
 void StartupRoutine::plan(Sequence& s, bool measure_delay) {
   const auto step = [&s](MC c, std::uint8_t address = 0, std::uint16_t parameter = 0, P purpose = P::Step) {
     s.frame(c, address, parameter, purpose);

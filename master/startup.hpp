@@ -1,5 +1,5 @@
 // Two routines that read the encoder's memory with EnDat 2.1 frames, each with what it found:
-// the German brochure's start-up routine (StartupRoutine, docs/model.md §8) and the check of the
+// the German brochure's (older edition) start-up routine (StartupRoutine, docs/model.md §8) and the check of the
 // encoder manufacturer's checksum (ChecksumVerification, D297403 3.5.26). The master expands
 // them into frames (plan) and hands each frame of theirs back (note).
 #pragma once

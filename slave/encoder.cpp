@@ -65,7 +65,7 @@ void Encoder::commissioned(std::optional<unsigned> position_bits) {
   positions_.count_from(kernel_.now());
 }
 
-// 2.3.3 (the figure's labels in the German brochure: "*) hochohmig"; docs/model.md §8): during
+// 2.3.3 (the figure's labels in the German brochure, older edition: "*) hochohmig"; docs/model.md §8): during
 // run-up DATA is high-impedance and the encoder takes no clock; afterwards DATA is driven LOW,
 // the EnDat idle level (2.3).
 void Encoder::go_offline(Time duration) {

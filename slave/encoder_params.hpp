@@ -123,7 +123,7 @@ struct EncoderParams {
   // The model takes calculation times (and the encoder's other times) up to this, far beyond the
   // spec, so that an overrun shows.
   static constexpr Time kMaxModelTime = sim::ms(100);
-  // ... for EnDat 2.2 mode commands, where it differs (the German brochure: absolute linear
+  // ... for EnDat 2.2 mode commands, where it differs (the German brochure, both editions: absolute linear
   // encoders take other calculation times for 2.1 and 2.2 mode commands); none: t_cal.
   std::optional<Time> t_cal_22;
   Time t_cal_for(EndatVersion command) const { return command == EndatVersion::V2_2 ? t_cal_22.value_or(t_cal) : t_cal; }
@@ -140,7 +140,7 @@ struct EncoderParams {
   // run starts with the encoder up.
   Time startup_time{0};
   // 2.7 "same reaction as switching the power off and on": the encoder restarts for this long
-  // after "Encoder receive reset" (guess; the German brochure's start-up routine waits 50 ms).
+  // after "Encoder receive reset" (guess; the start-up routine of the German brochure, older edition, waits 50 ms).
   Time reset_time = sim::ms(20);
   Time t_ac_read = sim::us(500);               // 2.3.2: memory access time t_ac (0 .. 12 ms) for reads, selections
   Time t_ac_write = sim::ms(3);                // ... and for writes

@@ -77,7 +77,7 @@ TEST(EncoderPositionFrame, StartBitWaitsForTcal) {
 }
 
 TEST(EncoderPositionFrame, TcalOfEnDat22CommandsMayDifferFromEnDat21s) {
-  // The German brochure: absolute linear encoders take other calculation times for 2.1 and 2.2
+  // The German brochure (both editions): absolute linear encoders take other calculation times for 2.1 and 2.2
   // mode commands. t_cal 5 us for 000111 (RE11), t_cal_22 15 us for 111000 (RE16).
   auto p = encoder_params(protocol::EndatVersion::V2_2, 8, 1);
   p.t_cal = us(5);

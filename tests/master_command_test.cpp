@@ -276,7 +276,7 @@ TEST(MasterBus, AHighImpedanceEncoderStaysOffTheBus) {
 }
 
 TEST(MasterStartup, RoutineReadsWord13AndMeasuresTheDelayWhenCompensating) {
-  // The German brochure's start-up routine (docs/model.md §8): reset, 50 ms, alarms and warnings
+  // The German brochure's (older edition) start-up routine (docs/model.md §8): reset, 50 ms, alarms and warnings
   // read and cleared, words 13 and 37; then (2.1.2) the delay measurement. The master was
   // configured for 13 bits and takes word 13's 25.
   auto s = test_support::make_scenario(50, MHz(8), true, 2);

@@ -451,7 +451,7 @@ TEST(PinMaster, GivingUpTheStartBitBeforeTCalIsCaughtToThePicosecond) {
   EXPECT_EQ(v[0].verdict, checker::Verdict::Both);
 }
 
-// The German brochure: t_cal may differ for 2.1 and 2.2 mode commands. The declared 2.2 value
+// The German brochure (both editions): t_cal may differ for 2.1 and 2.2 mode commands. The declared 2.2 value
 // (t_cal_22) judges 111000 frames, t_cal the 000111 ones; each to the picosecond.
 TEST(PinMaster, EachModeCommandTypesPollingIsJudgedAgainstItsOwnTCal) {
   slave::EncoderParams model;
