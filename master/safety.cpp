@@ -11,6 +11,7 @@
 #include "endatsim/master/parameter_book.hpp"
 #include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/parameters.hpp"
+#include "endatsim/sim/int128.hpp"
 
 namespace endatsim::master {
 namespace {
@@ -67,8 +68,12 @@ std::string_view to_string(SafetyFunction f) {
 }
 
 std::uint64_t MotionSetpoint::at(Time t, unsigned position_bits) const {
-  const __int128 range = __int128{1} << position_bits;
-  __int128 p = static_cast<__int128>(start) + static_cast<__int128>(counts_per_s) * t.count() / 1'000'000'000'000;
+  // Counted as the encoder counts a moving axis: whole steps toward minus infinity, so that a
+  // negative velocity gives the same position on both sides between two steps.
+  constexpr sim::Int128 kPsPerSecond = 1'000'000'000'000;
+  const sim::Int128 range = sim::Int128{1} << position_bits;
+  sim::Int128 p = static_cast<sim::Int128>(start) +
+                  sim::floor_div(static_cast<sim::Int128>(counts_per_s) * t.count(), kPsPerSecond);
   p %= range;
   if (p < 0) p += range;
   return static_cast<std::uint64_t>(p);

@@ -9,6 +9,7 @@
 #include "endatsim/master/safety.hpp"
 #include "endatsim/protocol/crc.hpp"
 #include "endatsim/protocol/parameters.hpp"
+#include "endatsim/slave/encoder_params.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/runner.hpp"
 
@@ -202,4 +203,21 @@ TEST(SafetyParams, RejectsValuesOutsideTheirLimitsNamingThem) {
   p = {};
   p.forced_error2_port = p.forced_error1_port;
   EXPECT_THROW(p.validate(), std::invalid_argument);
+}
+
+// The master's set-point for the following error counts a moving axis as the encoder does
+// (EncoderMotion.ANegativeVelocityCountsDownAtEachStepCrossed): a negative velocity crosses its
+// first step at once, so the set-point between two steps is the lower one, not the one before.
+TEST(SafetyFunctions, FollowingErrorSetpointCountsANegativeVelocityAsTheEncoderDoes) {
+  using sim::ns, sim::ps, sim::Time, sim::us;
+  const master::MotionSetpoint down{.start = 1000, .counts_per_s = -1'000'000};  // a step per microsecond
+  slave::EncoderParams encoder;
+  encoder.motion.start = down.start;
+  encoder.motion.counts_per_s = down.counts_per_s;
+  for (const Time t : {Time::zero(), ps(1), ns(500), us(1), us(1) + ps(1), us(2) + ns(1)}) {
+    EXPECT_EQ(down.at(t, 25), encoder.position_at(t)) << t.count() << " ps";
+  }
+  EXPECT_EQ(down.at(ns(500), 25), 999U);
+  const master::MotionSetpoint wrap{.start = 0, .counts_per_s = -1'000'000};
+  EXPECT_EQ(wrap.at(ns(500), 25), (1U << 25) - 1) << "below zero the count wraps to the top of the range";
 }
