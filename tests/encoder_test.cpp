@@ -297,6 +297,38 @@ TEST(EncoderMemory, ACorruptedPartitionWordDeclaresNoWordThatIsNotStored) {
   EXPECT_EQ(m.read(oem1, 32).error, protocol::ErrorCause::ImpermissibleAddress);
 }
 
+// Section 3's 960 words hold for writes too: words 9 .. 12 cannot be written (factory-protected),
+// and with all four of them corrupted to declare every area at 0 .. 255 (2 048 words) no write or
+// read reaches a word beyond those the image stored, which the image check held to 960.
+TEST(EncoderMemory, NoWriteMakesTheOemAndCompensationAreasHoldMoreThan960Words) {
+  namespace pm = protocol::parameters;
+  using A = protocol::MemoryArea;
+  slave::Memory m(slave::default_memory_image(slave::EncoderParams{}));
+  const slave::Selection manufacturer{A::Manufacturer1, 0};
+  const pm::Partition to255 = pm::AddressRange{0, 255};
+  const std::uint16_t everything = pm::encode_partition_word(to255, to255);
+  for (unsigned w = slave::word::kOemPartition; w < slave::word::kOemPartition + 4; ++w) {
+    EXPECT_EQ(m.write(manufacturer, static_cast<std::uint8_t>(w), everything), protocol::ErrorCause::WriteProtected);
+    m.force(manufacturer, static_cast<std::uint8_t>(w), everything);
+  }
+  std::size_t readable = 0, writable = 0;
+  for (A a : {A::Oem1, A::Oem2, A::Oem3, A::Oem4, A::Compensation1, A::Compensation2, A::Compensation3,
+              A::Compensation4}) {
+    for (unsigned address = 0; address < 256; ++address) {
+      const slave::Selection s{a, 0};
+      if (m.read(s, static_cast<std::uint8_t>(address))) ++readable;
+      if (!m.write(s, static_cast<std::uint8_t>(address), 0x1234)) ++writable;
+    }
+  }
+  EXPECT_LE(readable, protocol::kPartitionedWordsMax);
+  std::size_t stored = 0;
+  for (const auto& [area, words] : slave::default_memory_image(slave::EncoderParams{}).areas)
+    if (area >= A::Oem1 && area <= A::Compensation4) stored += words.size();
+  EXPECT_EQ(readable, stored) << "every stored word, and none that the corrupted words declare beyond them";
+  EXPECT_GT(stored, 0U);
+  EXPECT_EQ(writable, readable);
+}
+
 // 3.4.1 / 3.4.2: "Error bits can be deleted by overwriting the word 0 with 0000h and sending the
 // mode command Encoder receive reset" (warnings likewise, word 1): the write alone deletes nothing.
 TEST(EncoderMemory, ErrorsAndWarningsClearWithZeroAndTheResetAfterIt) {
