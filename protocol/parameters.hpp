@@ -44,6 +44,7 @@ constexpr unsigned kSignalPeriod = 15, kDistinguishableRevolutions = 17, kRefere
 constexpr unsigned kAdditionalFunctionsSupport = 2, kErrorMessage2Support = 6, kPosition2MeasuringSteps = 9,
                    kPosition2Accuracy = 11, kPosition2Direction = 16, kPosition2Offset = 31,
                    kComparisonBits = 26, kTimestampUnit = 45;  // BD, 3.9.4, 3.9.8, 3.9.10, 3.9.11, 3.9.13, 3.9.20, 3.9.24, 3.9.32
+constexpr unsigned kInstructionSupport = 21;                     // BD, 3.9.15
 constexpr unsigned kTouchProbeSupport = 44;                      // BD, 3.9.31
 constexpr unsigned kTouchProbeStatus = 2, kReferencing = 11;     // BB operating parameters 2, 3.10.3 / 3.10.5
 }  // namespace word
@@ -83,6 +84,9 @@ constexpr std::uint16_t kReferencingMask = 0x0003, kReferencingResetRm = 0x0001;
 constexpr std::uint16_t kInstructionEnergySaving = 0x0001;      // bit 0: energy-saving mode
 constexpr std::uint16_t kInstructionHighImpedance = 0x0002;     // bit 1: data driver at high-impedance (2.10)
 constexpr std::uint16_t kInstructionNoPositionUpdate = 0x0004;  // bit 2: no updating of position values
+// 3.9.15: word 21 of the EnDat 2.2 manufacturer parameters has the same bits, each set for an
+// instruction the encoder does not support.
+constexpr std::uint16_t kInstructionBits = kInstructionEnergySaving | kInstructionHighImpedance | kInstructionNoPositionUpdate;
 
 // ---- 3.4.4 operating status word 3: function initialization ------------------------------------
 // Each function is a bit pair stored inversely (or a single bit); the value activates it only

@@ -81,7 +81,7 @@ void Encoder::on_started() {
   enable();
 }
 
-bool Encoder::drives_bus() const { return bus_.drives(memory_.operating_parameter(word::kInstructions)); }
+bool Encoder::drives_bus() const { return bus_.drives(memory_.instructions()); }
 
 void Encoder::on_clock(std::uint64_t level) {
   if (offline_ || kernel_.now() < ready_at_) {  // running up, or t_R: not ready for the next query yet

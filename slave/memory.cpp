@@ -130,6 +130,11 @@ std::uint16_t Memory::endat22_word(unsigned n) const {
   return it == image_.areas.end() ? 0 : it->second.at(n);
 }
 
+std::uint16_t Memory::instructions() const {
+  const auto unsupported = endat22_word(word::kInstructionSupport);
+  return operating_parameter(word::kInstructions) & protocol::parameters::kInstructionBits & ~unsupported;
+}
+
 std::uint16_t Memory::operating_parameter(unsigned n) const {
   return image_.areas.at(Area::OperatingParameters).at(n);
 }

@@ -56,6 +56,9 @@ class Memory {
   std::uint16_t endat22_word(unsigned n) const;
   std::uint16_t operating_status(unsigned n) const { return image_.areas.at(MemoryArea::OperatingStatus).at(n); }
   std::uint16_t operating_parameter(unsigned n) const;
+  // The instructions of word 5 (3.6.5) that take effect: those word 21 of the EnDat 2.2
+  // manufacturer parameters (3.9.15) does not mark as not supported. Word 5 keeps what was written.
+  std::uint16_t instructions() const;
 
   // 2.4.1 / 2.4.2.1 / 2.4.2.3 / A2 causes 2, 7, 11.
   std::optional<ErrorCause> check_selection(std::uint8_t mrs, std::uint8_t block, bool endat22_command) const;

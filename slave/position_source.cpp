@@ -96,7 +96,7 @@ std::uint64_t PositionSource::latched(Time t) const {
 // instruction the encoder keeps sending the position it latched then (our reading: the spec
 // names the instruction only), until the bit is cleared.
 std::uint64_t PositionSource::sent(std::uint64_t latched) {
-  if ((memory_.operating_parameter(word::kInstructions) & pm::kInstructionNoPositionUpdate) == 0) {
+  if ((memory_.instructions() & pm::kInstructionNoPositionUpdate) == 0) {
     frozen_.reset();
     return latched;
   }

@@ -329,6 +329,23 @@ TEST(EncoderMemory, NoWriteMakesTheOemAndCompensationAreasHoldMoreThan960Words) 
   EXPECT_EQ(writable, readable);
 }
 
+// 3.6.5 / 3.9.15: an instruction of word 5 takes effect unless word 21 of the EnDat 2.2
+// manufacturer parameters marks it as not supported; bits 3 .. 15 of word 5 are no instruction.
+TEST(EncoderMemory, InstructionsTakeEffectWhereWord21DoesNotMarkThemUnsupported) {
+  namespace pm = protocol::parameters;
+  using A = protocol::MemoryArea;
+  auto image = slave::default_memory_image(slave::EncoderParams{});
+  image.areas.at(A::ManufacturerEndat22).at(protocol::word::kInstructionSupport) = pm::kInstructionEnergySaving;
+  slave::Memory m(image);
+  const slave::Selection operating{A::OperatingParameters, 0};
+  EXPECT_FALSE(m.write(operating, slave::word::kInstructions, 0xFFFF));
+  EXPECT_EQ(m.operating_parameter(slave::word::kInstructions), 0xFFFF);
+  EXPECT_EQ(m.instructions(), pm::kInstructionHighImpedance | pm::kInstructionNoPositionUpdate);
+  slave::Memory all(slave::default_memory_image(slave::EncoderParams{}));
+  EXPECT_FALSE(all.write(operating, slave::word::kInstructions, pm::kInstructionEnergySaving));
+  EXPECT_EQ(all.instructions(), pm::kInstructionEnergySaving) << "the default image supports every instruction";
+}
+
 // 3.4.1 / 3.4.2: "Error bits can be deleted by overwriting the word 0 with 0000h and sending the
 // mode command Encoder receive reset" (warnings likewise, word 1): the write alone deletes nothing.
 TEST(EncoderMemory, ErrorsAndWarningsClearWithZeroAndTheResetAfterIt) {

@@ -99,6 +99,31 @@ TEST(MasterParameterAccess, InstructionNoUpdatingOfPositionValuesFreezesThePosit
   EXPECT_GT(moving[2], moving[1]);
 }
 
+// 3.9.15: word 21 of the EnDat 2.2 manufacturer parameters marks the instructions the encoder does
+// not support. One that marks "no updating of position values" stores word 5 bit 2 as written and
+// goes on updating the position.
+TEST(MasterParameterAccess, AnInstructionWord21MarksUnsupportedTakesNoEffect) {
+  auto read = op(MC::EncoderSendPositionValues);
+  read.count = 3;
+  read.cycle = us(200);
+  auto s = scenario(10, MHz(1), false,
+                    {op(MC::SelectionOfMemoryArea, 0xA7), op(MC::EncoderReceiveParameters, 0x05, 0x0004),
+                     op(MC::EncoderSendParameters, 0x05), read});
+  s.encoder.motion.counts_per_s = 1'000'000;
+  auto image = slave::default_memory_image(s.encoder);
+  image.areas.at(protocol::MemoryArea::ManufacturerEndat22).at(protocol::word::kInstructionSupport) =
+      protocol::parameters::kInstructionNoPositionUpdate;
+  s.encoder.memory = image;
+  const auto r = scenarios::run_scenario(s);
+  EXPECT_EQ(last_of(r, 2).echo_parameter, 0x0004) << "word 5 keeps what was written";
+  std::vector<std::uint64_t> positions;
+  for (const auto& f : r.frames)
+    if (f.operation == 3) positions.push_back(f.position);
+  ASSERT_EQ(positions.size(), 3U);
+  EXPECT_GT(positions[1], positions[0]);
+  EXPECT_GT(positions[2], positions[1]);
+}
+
 // 3.6.5 word 5 bit 0, "energy-saving mode": the spec names the instruction and nothing it changes
 // (docs/model-reference.md). The encoder stores and acknowledges it, reads it back, and goes on
 // answering with moving positions, the same frames on the wires as without it.
