@@ -54,6 +54,7 @@ struct CarefulMaster {
 struct MasterParams {
   Hertz f_c = sim::MHz(1);
   unsigned high_permille = 500;  // duty cycle: HIGH share of the period
+  static constexpr unsigned kHighPermilleMin = 100, kHighPermilleMax = 900;  // duty_cycle 0.1 .. 0.9 (model)
   Time t_st{0};                  // first LOW phase stretched to t_ST (2.3.2 note 8); 0 = not stretched
   Time jitter{0};                // peak edge jitter, uniform in [-jitter, +jitter], seeded
   std::uint64_t seed = 1;
@@ -114,5 +115,8 @@ struct MasterParams {
 std::span<const sim::Parameter<MasterParams>> master_parameters();
 std::span<const sim::Parameter<MasterParams::PowerOnSequence>> power_on_parameters();
 std::span<const sim::Parameter<CarefulMaster>> careful_parameters();
+// "master.crc" besides protocol::crc_generator_parameters(), and "master.safety.setpoint".
+std::span<const sim::Parameter<CrcCheck>> crc_check_parameters();
+std::span<const sim::Parameter<MotionSetpoint>> setpoint_parameters();
 
 }  // namespace endatsim::master

@@ -160,8 +160,27 @@ const std::array kDiagnostics{
                       "Read word 1 again this often while WRN stays set; 0: only when WRN appears."},
 };
 
+const std::array kCrcCheck{
+    sim::Parameter<CrcCheck>{"endat22_rule_for_21", &CrcCheck::endat22_rule_for_21, 0, 0, "A4",
+                             "2.1 frames checked with F2 included, as 2.2 frames are (a fault)."},
+    sim::Parameter<CrcCheck>{"table_fault_width", &CrcCheck::table_fault_width, 0, 48, "",
+                             "A table-driven CRC whose loop ends one bit early at this position width; 0: none (a "
+                             "fault)."},
+    sim::Parameter<CrcCheck>{"accept_any", &CrcCheck::accept_any, 0, 0, "",
+                             "A comparator stuck at 'equal': every CRC passes (a fault the CRC self-test catches)."},
+};
+
+const std::array kSetpoint{
+    sim::Parameter<MotionSetpoint>{"start", &MotionSetpoint::start, 0, k48BitMax, "",
+                                   "The commanded position at time 0, in measuring steps."},
+    sim::Parameter<MotionSetpoint>{"counts_per_s", &MotionSetpoint::counts_per_s, -(k48BitMax + 1), k48BitMax + 1, "",
+                                   "The commanded velocity in measuring steps per second."},
+};
+
 }  // namespace
 
+std::span<const sim::Parameter<CrcCheck>> crc_check_parameters() { return kCrcCheck; }
+std::span<const sim::Parameter<MotionSetpoint>> setpoint_parameters() { return kSetpoint; }
 std::span<const sim::Parameter<MasterParams>> master_parameters() { return kMaster; }
 std::span<const sim::Parameter<MasterParams::PowerOnSequence>> power_on_parameters() { return kPowerOn; }
 std::span<const sim::Parameter<DelayMeasurementParams>> delay_measurement_parameters() { return kDelayMeasurement; }

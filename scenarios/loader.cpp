@@ -3,6 +3,7 @@
 #include "endatsim/input/json_input.hpp"
 #include "endatsim/input/parameter_input.hpp"
 #include "endatsim/input/suggest.hpp"
+#include "endatsim/protocol/crc_parameters.hpp"
 #include "endatsim/scenarios/bundled_profiles.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
 #include "endatsim/scenarios/operation_kinds.hpp"
@@ -140,15 +141,7 @@ void read_sensors(const Node& n, slave::Sensors& s) {
   if (values.temperature2) s.temperature2 = *values.temperature2;
   if (values.additional_sensors) s.additional_sensors = *values.additional_sensors;
   if (values.valuation_numbers) s.valuation_numbers = *values.valuation_numbers;
-  if (auto v = o.opt("position2_offset")) s.position2_offset = v->as_int(-(std::int64_t{1} << 47), (std::int64_t{1} << 47) - 1);
-  if (auto v = o.opt("position2_reversed")) s.position2_reversed = v->as_bool();
-  if (auto v = o.opt("position2_fault")) s.position2_fault = v->as_int(-(std::int64_t{1} << 47), std::int64_t{1} << 47);
-  if (auto v = o.opt("commutation")) s.commutation = static_cast<std::uint8_t>(v->as_uint(0, 7));
-  if (auto v = o.opt("acceleration")) s.acceleration = static_cast<std::uint16_t>(v->as_word(0xFFFF));
-  if (auto v = o.opt("limit_position_1")) s.limit_position_1 = v->as_bool();
-  if (auto v = o.opt("limit_position_2")) s.limit_position_2 = v->as_bool();
-  if (auto v = o.opt("operating_status_error_sources"))
-    s.operating_status_error_sources = static_cast<std::uint16_t>(v->as_word(0xFFFF));
+  input::read_parameters(o, slave::sensor_parameters(), s);
   if (auto v = o.opt("system_data")) {
     if (!v->raw().is_object()) v->fail("an object of A3 address (7 .. 64, not a valuation number's) -> 8-bit value");
     for (const auto& [address, value] : v->raw().items()) {
@@ -169,7 +162,6 @@ void read_sensors(const Node& n, slave::Sensors& s) {
       s.test_values[a] = Node(value, v->path() + "/" + port, n.file()).as_word((std::uint64_t{1} << 40) - 1);
     }
   }
-  if (auto v = o.opt("timestamp_unit")) s.timestamp_unit = v->as_duration(sim::ns(1), sim::ms(1));
   if (auto v = o.opt("not_updatable")) {
     if (!v->raw().is_array()) v->fail("an array of information codes");
     for (std::size_t i = 0; i < v->raw().size(); ++i)
@@ -201,19 +193,6 @@ void read_memory(const Node& n, slave::EncoderParams& p) {
   p.memory = image;
 }
 
-void read_crc_generator(Object& c, protocol::CrcConfig& g) {
-  if (auto s = c.opt("preset")) g.preset = static_cast<std::uint8_t>(s->as_word(0x1F));
-  if (auto s = c.opt("final_inversion")) g.final_inversion = s->as_bool();
-}
-
-protocol::CrcConfig read_crc_config(const Node& n) {
-  Object c(n);
-  protocol::CrcConfig g;
-  read_crc_generator(c, g);
-  c.done();
-  return g;
-}
-
 void read_encoder(const Node& n, slave::EncoderParams& p) {
   Object o(n);
   // A profile first; the keys below refine it. A bare name is a bundled profile (profiles/),
@@ -235,7 +214,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     }
   }
   input::read_parameters(o, slave::encoder_parameters(), p);
-  if (auto v = o.opt("crc")) p.crc = read_crc_config(*v);
+  if (auto v = o.opt("crc")) read_object(*v, protocol::crc_generator_parameters(), p.crc);
   if (auto v = o.opt("reference_marks")) {
     if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > 1024) v->fail("an array of 1 .. 1024 positions");
     p.reference_marks.clear();
@@ -244,12 +223,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
           v->item(i).as_uint(0, (std::uint64_t{1} << 48) - 1));
   }
   if (auto v = o.opt("sensors")) read_sensors(*v, p.sensors);
-  if (auto v = o.opt("motion")) {
-    Object m(*v);
-    if (auto s = m.opt("start")) p.motion.start = s->as_uint(0, (std::uint64_t{1} << 48) - 1);
-    if (auto s = m.opt("counts_per_s")) p.motion.counts_per_s = s->as_int(-(std::int64_t{1} << 48), std::int64_t{1} << 48);
-    m.done();
-  }
+  if (auto v = o.opt("motion")) read_object(*v, slave::motion_parameters(), p.motion);
   // Last: the default image follows the parameters read above (word 13, t_m_short, version).
   if (auto v = o.opt("memory")) {
     read_memory(*v, p);
@@ -262,12 +236,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
 void read_safety(const Node& n, master::SafetyParams& p) {
   Object o(n);
   input::read_parameters(o, master::safety_parameters(), p);
-  if (auto v = o.opt("setpoint")) {
-    Object m(*v);
-    if (auto s = m.opt("start")) p.setpoint.start = s->as_uint(0, (std::uint64_t{1} << 48) - 1);
-    if (auto s = m.opt("counts_per_s")) p.setpoint.counts_per_s = s->as_int(-(std::int64_t{1} << 48), std::int64_t{1} << 48);
-    m.done();
-  }
+  if (auto v = o.opt("setpoint")) read_object(*v, master::setpoint_parameters(), p.setpoint);
   o.done();
   validated(n, [&] { p.validate(); });
 }
@@ -293,14 +262,14 @@ void read_master(const Node& n, master::MasterParams& p) {
   Object o(n);
   input::read_parameters(o, master::master_parameters(), p);
   if (auto v = o.opt("duty_cycle"))
-    p.high_permille = static_cast<unsigned>(std::lround(v->as_number(0.1, 0.9, "") * 1000.0));
+    p.high_permille = static_cast<unsigned>(std::lround(
+        v->as_number(master::MasterParams::kHighPermilleMin / 1000.0, master::MasterParams::kHighPermilleMax / 1000.0, "") *
+        1000.0));
   if (auto v = o.opt("power_on")) read_object(*v, master::power_on_parameters(), p.power_on);
   if (auto v = o.opt("crc")) {
     Object c(*v);
-    read_crc_generator(c, p.crc.generator);
-    if (auto s = c.opt("endat22_rule_for_21")) p.crc.endat22_rule_for_21 = s->as_bool();
-    if (auto s = c.opt("table_fault_width")) p.crc.table_fault_width = static_cast<unsigned>(s->as_uint(0, 48));
-    if (auto s = c.opt("accept_any")) p.crc.accept_any = s->as_bool();
+    input::read_parameters(c, protocol::crc_generator_parameters(), p.crc.generator);
+    input::read_parameters(c, master::crc_check_parameters(), p.crc);
     c.done();
   }
   if (auto v = o.opt("safety")) read_safety(*v, p.safety);

@@ -6,6 +6,7 @@
 #include "endatsim/checker/timing_checker.hpp"
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
+#include "endatsim/protocol/crc_parameters.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
 #include "endatsim/scenarios/operation_kinds.hpp"
 #include "endatsim/sim/parameter.hpp"
@@ -40,7 +41,9 @@ std::string description(const sim::Parameter<Params>& row, const Params& default
   std::string d(row.help);
   if (!row.section.empty()) d += " D297403 " + std::string(row.section) + ".";
   const auto type = sim::type_of(row);
-  if (type == ParameterType::Duration || type == ParameterType::Frequency) d += " Range: " + sim::range_text(row) + ".";
+  const bool narrow_word = type == ParameterType::Word && row.max != 0xFF && row.max != 0xFFFF;
+  if (type == ParameterType::Duration || type == ParameterType::Frequency || narrow_word)
+    d += " Range: " + sim::range_text(row) + ".";
   if (row.required) return d + " Required.";
   return d + " Default: " + default_text(row, defaults) + ".";
 }
@@ -62,7 +65,14 @@ json property(const sim::Parameter<Params>& row, const Params& defaults) {
       p["maximum"] = row.max;
       break;
     case ParameterType::Flag: p["type"] = "boolean"; break;
-    case ParameterType::Word: p["$ref"] = row.max <= 0xFF ? "#/$defs/byte" : "#/$defs/word"; break;
+    case ParameterType::Word:
+      if (row.max == 0xFF || row.max == 0xFFFF) {
+        p["$ref"] = row.max == 0xFF ? "#/$defs/byte" : "#/$defs/word";
+      } else {  // fewer bits: the integer's range is checked here, a hex string's by the loader
+        p["oneOf"] = json::array({json{{"type", "integer"}, {"minimum", 0}, {"maximum", row.max}},
+                                  json{{"type", "string"}, {"pattern", "^(0[xX][0-9a-fA-F]{1,4}|[0-9]{1,5})$"}}});
+      }
+      break;
     case ParameterType::Choice: {
       json names = json::array();
       for (const auto name : std::get<sim::ChoiceField<Params>>(row.field).names) names.push_back(std::string(name));
@@ -102,6 +112,7 @@ struct Section {
   std::string_view title;    // the scenario's JSON path of the object
   std::string_view pointer;  // the schema's JSON pointer of its "properties"
   std::span<const sim::Parameter<Params>> rows;
+  std::string_view also_pointer = {};  // a second object with the same rows
 };
 
 template <class F>
@@ -111,7 +122,17 @@ void for_each_section(F&& f) {
                                      line::transceiver_parameters()},
     line::LineParams{}.master);
   f(Section<slave::EncoderParams>{"encoder", "/$defs/encoder/properties", slave::encoder_parameters()}, slave::EncoderParams{});
+  f(Section<slave::Sensors>{"encoder.sensors", "/$defs/encoder/properties/sensors/properties", slave::sensor_parameters()},
+    slave::Sensors{});
+  f(Section<slave::MotionProfile>{"encoder.motion", "/$defs/encoder/properties/motion/properties",
+                                  slave::motion_parameters()},
+    slave::MotionProfile{});
+  f(Section<protocol::CrcConfig>{"encoder.crc, master.crc", "/$defs/encoder/properties/crc/properties",
+                                 protocol::crc_generator_parameters(), "/$defs/master/properties/crc/properties"},
+    protocol::CrcConfig{});
   f(Section<master::MasterParams>{"master", "/$defs/master/properties", master::master_parameters()}, master::MasterParams{});
+  f(Section<master::CrcCheck>{"master.crc", "/$defs/master/properties/crc/properties", master::crc_check_parameters()},
+    master::CrcCheck{});
   f(Section<master::MasterParams::PowerOnSequence>{"master.power_on", "/$defs/master/properties/power_on/properties",
                                                    master::power_on_parameters()},
     master::MasterParams{}.power_on);
@@ -125,6 +146,9 @@ void for_each_section(F&& f) {
   f(Section<master::SafetyParams>{"master.safety", "/$defs/master/properties/safety/properties",
                                   master::safety_parameters()},
     master::SafetyParams{});
+  f(Section<master::MotionSetpoint>{"master.safety.setpoint", "/$defs/master/properties/safety/properties/setpoint/properties",
+                                    master::setpoint_parameters()},
+    master::MotionSetpoint{});
   f(Section<master::DiagnosticsParams>{"master.diagnostics", "/$defs/master/properties/diagnostics/properties",
                                        master::diagnostics_parameters()},
     master::DiagnosticsParams{});
@@ -239,7 +263,14 @@ json parameter_schema() {
     json required = json::array();
     for (const auto& row : section.rows)
       if (row.required) required.push_back(std::string(row.key));
-    out[std::string(section.pointer)] = {{"properties", properties}, {"required", required}};
+    // Two sections may fill one object (master.crc: the generator's rows and the check's).
+    for (const auto pointer : {section.pointer, section.also_pointer}) {
+      if (pointer.empty()) continue;
+      json& slot = out[std::string(pointer)];
+      if (slot.is_null()) slot = {{"properties", json::object()}, {"required", json::array()}};
+      slot["properties"].update(properties);
+      for (const auto& key : required) slot["required"].push_back(key);
+    }
   });
   json events = json::object();
   for (const auto& row : event_trigger_parameters()) events[std::string(row.key)] = property(row, Event{});

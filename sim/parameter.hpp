@@ -3,7 +3,8 @@
 // timing table: the key, the field it sets, its range, the D297403 section the range or meaning
 // comes from, and a help text. The scenario loader reads the keys through these rows, the model
 // checks its ranges with them, and the JSON Schema's properties and docs/parameters.md are
-// generated from them, so a range is written once.
+// generated from them, so a range is written once (docs/parameters.md names the few keys that are
+// not rows).
 
 #include <cstddef>
 #include <cstdint>

@@ -42,10 +42,9 @@ void EncoderParams::validate() const {
   require(motion.start < (std::uint64_t{1} << position_bits),
           "motion.start must be below 2^position_bits = " + std::to_string(std::uint64_t{1} << position_bits) +
               ", got " + std::to_string(motion.start));
-  require(sensors.position2_offset >= -(std::int64_t{1} << 47) && sensors.position2_offset < (std::int64_t{1} << 47),
-          "sensors position2_offset must fit 48 bits (3.9.24)");
+  if (const auto why = sim::first_out_of_range(sensor_parameters(), sensors, "encoder sensors")) throw std::invalid_argument(*why);
+  if (const auto why = sim::first_out_of_range(motion_parameters(), motion, "encoder motion")) throw std::invalid_argument(*why);
   require(sensors.additional_sensors.size() <= 16, "at most 16 additional sensors (4-bit address, 2.3.5.1)");
-  require(sensors.timestamp_unit > Time::zero(), "sensors.timestamp_unit must be > 0");
   for (const auto& [port, value] : sensors.test_values)
     require(value < (std::uint64_t{1} << protocol::kTestValueBits),
             "test value of port " + std::to_string(port) + " must fit 40 bits (2.9)");
@@ -268,8 +267,37 @@ const std::array kRows{
     Row{"warning_sources", &EncoderParams::warning_sources, 0, 0xFFFF, "3.4.2", "Word 1 bits a fault keeps setting."},
 };
 
+constexpr std::int64_t k47 = std::int64_t{1} << 47, k48 = std::int64_t{1} << 48;
+
+using S = Sensors;
+const std::array kSensorRows{
+    sim::Parameter<S>{"position2_offset", &S::position2_offset, -k47, k47 - 1, "3.9.24",
+                      "Position value 2 = position + offset (also stored in words 31 .. 33 of the 2.2 area)."},
+    sim::Parameter<S>{"position2_reversed", &S::position2_reversed, 0, 0, "3.9.13",
+                      "Position value 2 = offset - position."},
+    sim::Parameter<S>{"position2_fault", &S::position2_fault, -k47, k47, "",
+                      "A fault of the second position sensing: added to position value 2."},
+    sim::Parameter<S>{"commutation", &S::commutation, 0, 7, "2.3.5.2", "The commutation signals u v w, u the MSB."},
+    sim::Parameter<S>{"acceleration", &S::acceleration, 0, 0xFFFF, "2.3.5.2", "The acceleration, as sent."},
+    sim::Parameter<S>{"limit_position_1", &S::limit_position_1, 0, 0, "2.3.5.2", "Limit position signal 1."},
+    sim::Parameter<S>{"limit_position_2", &S::limit_position_2, 0, 0, "2.3.5.2", "Limit position signal 2."},
+    sim::Parameter<S>{"operating_status_error_sources", &S::operating_status_error_sources, 0, 0xFFFF, "2.3.5.3",
+                      "The operating status error sources, as sent."},
+    sim::Parameter<S>{"timestamp_unit", &S::timestamp_unit, ps(sim::ns(1)), ps(sim::ms(1)), "3.9.32",
+                      "The unit of the touch probe's timestamps."},
+};
+
+using Motion = MotionProfile;
+const std::array kMotionRows{
+    sim::Parameter<Motion>{"start", &Motion::start, 0, k48 - 1, "", "The position at time 0, in measuring steps."},
+    sim::Parameter<Motion>{"counts_per_s", &Motion::counts_per_s, -k48, k48, "",
+                           "The velocity in measuring steps per second; negative counts down."},
+};
+
 }  // namespace
 
 std::span<const sim::Parameter<EncoderParams>> encoder_parameters() { return kRows; }
+std::span<const sim::Parameter<Sensors>> sensor_parameters() { return kSensorRows; }
+std::span<const sim::Parameter<MotionProfile>> motion_parameters() { return kMotionRows; }
 
 }  // namespace endatsim::slave

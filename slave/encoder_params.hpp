@@ -206,9 +206,13 @@ struct EncoderParams {
 
 // The scalar keys of a scenario's "encoder" object, one row each (sim/parameter.hpp): the loader
 // reads them, EncoderParams::validate() checks their ranges, the schema and docs/parameters.md
-// are generated from them. Structured keys (profile, crc, sensors, motion, reference_marks,
-// memory) are read by the loader itself.
+// are generated from them. Structured keys (profile, reference_marks, memory, and the arrays and
+// maps of "sensors") are read by the loader itself.
 std::span<const sim::Parameter<EncoderParams>> encoder_parameters();
+// The single-value keys of "encoder.sensors" and "encoder.motion"; "encoder.crc" is
+// protocol::crc_generator_parameters().
+std::span<const sim::Parameter<Sensors>> sensor_parameters();
+std::span<const sim::Parameter<MotionProfile>> motion_parameters();
 
 // A memory image consistent with the parameters: word 13 = position bits, word 39 = t_cal, an
 // OEM area of 64 words in A9 and AB, EnDat 2.2 area for 2.2 encoders, checksums valid.

@@ -1,6 +1,7 @@
 // The models' parameter rows (sim/parameter.hpp): the loader and the models take each key exactly
 // within its range, the spec's ranges are the spec's numbers, and the schema and
 // docs/parameters.md are what the rows generate.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "endatsim/input/parameter_input.hpp"
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
+#include "endatsim/protocol/crc_parameters.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/operation_kinds.hpp"
@@ -144,6 +146,61 @@ TEST(ParameterTables, EveryObjectsNumbersAreTakenAtTheirBoundsAndRefusedOneStepB
   check_rows(master::safety_parameters(), master::SafetyParams{}, "master.safety");
   check_rows(master::diagnostics_parameters(), master::DiagnosticsParams{}, "master.diagnostics");
   check_rows(checker::checker_parameters(), checker::CheckerParams{}, "checker");
+  check_rows(slave::sensor_parameters(), slave::Sensors{}, "encoder.sensors");
+  check_rows(slave::motion_parameters(), slave::MotionProfile{}, "encoder.motion");
+  check_rows(protocol::crc_generator_parameters(), protocol::CrcConfig{}, "encoder.crc");
+  check_rows(master::crc_check_parameters(), master::CrcCheck{}, "master.crc");
+  check_rows(master::setpoint_parameters(), master::MotionSetpoint{}, "master.safety.setpoint");
+}
+
+// The objects inside "encoder" and "master" whose single values are rows: a scenario's keys land
+// in the models' parameters, and a value beyond a row's range is refused with its path and range.
+TEST(ParameterTables, SensorsMotionCrcAndSetpointAreReadThroughTheirRows) {
+  const auto load = [](const json& encoder, const json& master) {
+    json s = {{"name", "rows"},
+              {"line", {{"cable_length_m", 10}}},
+              {"encoder", {{"version", "2.2"}, {"position_bits", 25}}},
+              {"master", {{"f_c", "2 MHz"}, {"position_bits", 25}}},
+              {"script", json::array({{{"op", "read_position"}}})}};
+    s["encoder"].update(encoder);
+    s["master"].update(master);
+    return scenarios::load_scenario_text(s.dump(), "rows.json");
+  };
+  const auto s = load({{"crc", {{"preset", "0x0F"}, {"final_inversion", false}}},
+                       {"sensors", {{"commutation", 5}, {"timestamp_unit", "2 ns"}, {"position2_offset", -7}}},
+                       {"motion", {{"start", 100}, {"counts_per_s", -3}}}},
+                      {{"crc", {{"preset", 30}, {"table_fault_width", 31}, {"accept_any", true}}},
+                       {"safety", {{"setpoint", {{"start", 5}, {"counts_per_s", 9}}}}}});
+  EXPECT_EQ(s.encoder.crc, (protocol::CrcConfig{.preset = 0x0F, .final_inversion = false}));
+  EXPECT_EQ(s.encoder.sensors.commutation, 5);
+  EXPECT_EQ(s.encoder.sensors.timestamp_unit, sim::ns(2));
+  EXPECT_EQ(s.encoder.sensors.position2_offset, -7);
+  EXPECT_EQ(s.encoder.motion.start, 100U);
+  EXPECT_EQ(s.encoder.motion.counts_per_s, -3);
+  EXPECT_EQ(s.master.crc.generator.preset, 30);
+  EXPECT_TRUE(s.master.crc.generator.final_inversion);
+  EXPECT_EQ(s.master.crc.table_fault_width, 31U);
+  EXPECT_TRUE(s.master.crc.accept_any);
+  EXPECT_EQ(s.master.safety.setpoint.start, 5U);
+  EXPECT_EQ(s.master.safety.setpoint.counts_per_s, 9);
+  const auto message = [&](const json& encoder, const json& master) -> std::string {
+    try {
+      load(encoder, master);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  EXPECT_THAT(message({{"crc", {{"preset", 32}}}}, json::object()), ::testing::HasSubstr("/encoder/crc/preset"));
+  EXPECT_THAT(message({{"crc", {{"preset", 32}}}}, json::object()), ::testing::HasSubstr("0 .. 31"));
+  EXPECT_THAT(message({{"sensors", {{"commutation", 8}}}}, json::object()), ::testing::HasSubstr("0 .. 7"));
+  EXPECT_THAT(message({{"sensors", {{"timestamp_unit", "2 ms"}}}}, json::object()), ::testing::HasSubstr("1 ns .. 1 ms"));
+  EXPECT_THAT(message({{"motion", {{"start", std::int64_t{1} << 48}}}}, json::object()),
+              ::testing::HasSubstr("/encoder/motion/start"));
+  EXPECT_THAT(message(json::object(), {{"crc", {{"table_fault_width", 49}}}}), ::testing::HasSubstr("0 .. 48"));
+  EXPECT_THAT(message(json::object(), {{"crc", {{"presett", 1}}}}), ::testing::HasSubstr("preset"));
+  EXPECT_THAT(message(json::object(), {{"safety", {{"setpoint", {{"counts_per_s", "fast"}}}}}}),
+              ::testing::HasSubstr("/master/safety/setpoint/counts_per_s"));
 }
 
 // The models refuse what the loader would never give them, naming object, key and range.
@@ -209,7 +266,8 @@ TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
   const auto schema = json::parse(slurp("schema/scenario.schema.json"));
   const auto generated = scenarios::parameter_schema();
   // The objects of the models, the events, and "op" and "at" and each operation of the script.
-  ASSERT_EQ(generated.size(), 12U + scenarios::operation_kinds().size());
+  // (encoder.crc and master.crc share the generator's rows; master.crc adds the check's).
+  ASSERT_EQ(generated.size(), 17U + scenarios::operation_kinds().size());
   for (const auto& [pointer, part] : generated.items()) {
     SCOPED_TRACE(pointer);
     const json::json_pointer at(pointer);
