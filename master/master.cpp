@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "endatsim/protocol/crc_parameters.hpp"
 #include "endatsim/protocol/parameters.hpp"
 
 namespace endatsim::master {
@@ -44,7 +45,10 @@ void MasterParams::validate() const {
   in_range(power_on_parameters(), power_on, "master power_on");
   in_range(delay_measurement_parameters(), measurement, "master delay_measurement");
   in_range(careful_parameters(), careful, "master careful");
-  require(high_permille >= 100 && high_permille <= 900,
+  in_range(crc_check_parameters(), crc, "master crc");
+  in_range(protocol::crc_generator_parameters(), crc.generator, "master crc");
+  in_range(setpoint_parameters(), safety.setpoint, "master safety setpoint");
+  require(high_permille >= kHighPermilleMin && high_permille <= kHighPermilleMax,
           "master duty cycle must be 0.1 .. 0.9, got " + std::to_string(high_permille / 1000.0));
   const Time period = sim::period_of(f_c);
   const Time shorter = std::min(period * high_permille / 1000, period - period * high_permille / 1000);
@@ -53,8 +57,6 @@ void MasterParams::validate() const {
   require(supplement_driven_lead_bits <= supplement_lead_bits,
           "master supplement_driven_lead_bits must be 1 .. supplement_lead_bits (" +
               std::to_string(supplement_lead_bits) + "), got " + std::to_string(supplement_driven_lead_bits));
-  require(crc.table_fault_width <= 48,
-          "master crc table_fault_width must be 0 .. 48 (0: none), got " + std::to_string(crc.table_fault_width));
   safety.validate();
   diagnostics.validate();
 }
@@ -62,7 +64,8 @@ void MasterParams::validate() const {
 Master::Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params)
     : kernel_(kernel), params_(validated(params)), delay_(params.measurement, params.f_c),
       t_d_(params.fixed_t_d), engine_(kernel, line.master(), params_, delay_, *this, observers_),
-      operation_timer_(kernel, sim::bind<&Master::next_operation>(this)), position_bits_(params.position_bits) {}
+      operation_timer_(kernel, sim::bind<&Master::next_operation>(this)),
+      careful_(params.careful, params.delay_compensation), position_bits_(params.position_bits) {}
 
 void Master::start() {
   finished_ = false;
@@ -122,7 +125,7 @@ void Master::next_operation() {
       break;
     case Operation::Kind::ReadPosition:
       frames_left_ = current_->count;
-      retries_left_ = params_.careful.retries;
+      careful_.position_read_started();
       break;
   }
   start_frames(begin);
@@ -178,38 +181,12 @@ void Master::power_on_pulse(std::uint64_t phase) {
 
 // ---- a careful master ---------------------------------------------------------------------
 
-void Master::line_changed() {
-  if (params_.careful.remeasure_after_line_change && params_.delay_compensation) remeasure_due_ = true;
-}
+void Master::line_changed() { careful_.line_changed(); }
 
-void Master::encoder_power_interrupted() {
-  if (params_.careful.remeasure_after_power_interruption && params_.delay_compensation) remeasure_due_ = true;
-  if (params_.careful.reselect_after_power_interruption && (selected_[0] || selected_[1])) reselect_due_ = true;
-}
-
-void Master::note_failures(const FrameResult& f) {
-  if (f.measurement) return;
-  const auto o = f.outcome;
-  const bool failed = o == FrameOutcome::CrcError || o == FrameOutcome::NoStartBit || o == FrameOutcome::Type1Error ||
-                      o == FrameOutcome::EchoMismatch || o == FrameOutcome::TooFewClocks;
-  failures_in_a_row_ = failed ? failures_in_a_row_ + 1 : 0;
-  const unsigned k = params_.careful.remeasure_after_crc_errors;
-  if (k != 0 && failures_in_a_row_ >= k && params_.delay_compensation) {
-    remeasure_due_ = true;
-    failures_in_a_row_ = 0;
-  }
-}
+void Master::encoder_power_interrupted() { careful_.power_interrupted(selection_.count() != 0); }
 
 bool Master::retry_frame(const FrameResult& f) {
-  const auto o = f.outcome;
-  const bool failed = o != FrameOutcome::Ok && o != FrameOutcome::Type2Error;
-  if (current_->kind != Operation::Kind::ReadPosition || f.measurement || !failed ||
-      retries_left_ == 0) {
-    retries_left_ = params_.careful.retries;
-    return false;
-  }
-  --retries_left_;
-  ++retries_done_;
+  if (!careful_.retry(f, current_->kind == Operation::Kind::ReadPosition)) return false;
   kernel_.schedule(std::max(ready_at_, kernel_.now()) - kernel_.now(), sim::bind<&Master::start_frame>(this));
   return true;
 }
@@ -228,29 +205,26 @@ void Master::interrupt_for_measurement() {
   rest.count = frames_left_;
   rest.at.reset();
   operations_.push_front(rest);
-  if (remeasure_due_) {
+  const auto due = careful_.take_interruption();
+  if (due.remeasure) {
     Operation m;
     m.kind = Operation::Kind::MeasureDelay;
     m.script_index = current_->script_index;
     operations_.push_front(m);
-    ++remeasurements_;
   }
-  if (reselect_due_) {
-    for (unsigned i : {1U, 0U}) {
-      if (!selected_[i]) continue;
+  if (due.reselect) {
+    for (const std::uint8_t mrs : selection_.take()) {
       Operation s = rest;
       s.count = 1;
       s.kind = Operation::Kind::ReadPosition;
       s.command = ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-      s.address = selection_mrs_[i];
+      s.address = mrs;
       s.parameter = 0;
       s.purpose = Operation::Purpose::None;
       operations_.push_front(s);
-      selected_[i] = false;
     }
   }
   if (!rest.expanded) push_status_reads(rest);
-  remeasure_due_ = reselect_due_ = false;
   next_operation();
 }
 
@@ -300,7 +274,7 @@ void Master::operation_frame_done(const FrameResult& f) {
   }
   for (MasterFunction* function : functions_)
     if (function->ends_operation(f, context(), frames_left_ == 1)) frames_left_ = 1;
-  note_failures(f);
+  careful_.frame_done(f);
   if (retry_frame(f)) return;
   if (--frames_left_ > 0) {
     next_due_ += current_->kind != Operation::Kind::MeasureDelay ? current_->cycle : Time::zero();
@@ -322,7 +296,7 @@ void Master::operation_frame_done(const FrameResult& f) {
 
 void Master::start_frame(std::uint64_t) {
   const bool status_reads = status_read_due() && !current_->expanded;
-  if ((remeasure_due_ || reselect_due_ || status_reads) && !delay_.active()) {
+  if ((careful_.interruption_due() || status_reads) && !delay_.active()) {
     interrupt_for_measurement();
     return;
   }
@@ -353,19 +327,7 @@ FrameRequest Master::frame_request() {
   return r;
 }
 
-// What the master expects after its own selections (2.4.2.2); a reset clears them (2.7).
-void Master::answer_accepted(const FrameResult& f) {
-  if (f.command == ModeCommand::EncoderReceiveReset) {
-    selected_[0] = selected_[1] = false;
-    return;
-  }
-  if (f.command != ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
-  const auto mrs = protocol::payload_address(*f.supplement);
-  if (!protocol::selects_additional_data(mrs)) return;
-  const unsigned which = protocol::is_additional_data_2(protocol::information_of_mrs(mrs)) ? 1 : 0;
-  selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
-  selection_mrs_[which] = mrs;
-}
+void Master::answer_accepted(const FrameResult& f) { selection_.accepted(f); }
 
 void Master::record(const FrameResult& f) {
   ++frame_count_;
@@ -460,7 +422,7 @@ void Master::roll_additional_data_1(FrameRequest& request) {
   if (current_->purpose != Operation::Purpose::None || current_->kind == Operation::Kind::AwaitNotBusy ||
       request.command != ModeCommand::EncoderSendPositionValuesWithAdditionalData)
     return;
-  const std::optional<I> now = selected_[0] ? std::optional{protocol::information_of_mrs(selection_mrs_[0])} : std::nullopt;
+  const std::optional<I> now = selection_.additional_data_1();
   for (MasterFunction* function : functions_) {
     const auto next = function->next_additional_data_1(context(), now);
     if (!next) continue;

@@ -18,6 +18,8 @@
 #include <vector>
 
 #include "endatsim/line/line.hpp"
+#include "endatsim/master/additional_data_selection.hpp"
+#include "endatsim/master/careful_policy.hpp"
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/frame_engine.hpp"
 #include "endatsim/master/frame_result.hpp"
@@ -65,8 +67,8 @@ class Master : private FrameClient {
   std::uint64_t busy_unreadable() const { return busy_unreadable_; }
   const StartupInfo& startup() const { return routine_.info(); }
   const std::optional<ChecksumCheck>& checksum() const { return checksum_.result(); }
-  std::uint64_t retries() const { return retries_done_; }
-  std::uint64_t remeasurements() const { return remeasurements_; }
+  std::uint64_t retries() const { return careful_.retries(); }
+  std::uint64_t remeasurements() const { return careful_.remeasurements(); }
   // A parameter word as last read or written with 2.1 frames (area by MRS code, 2.4.1).
   std::optional<std::uint16_t> parameter(std::uint8_t mrs, std::uint8_t address) const { return book_.parameter(mrs, address); }
   // What the installation tells the master (the runner's events): another cable, and the
@@ -75,7 +77,7 @@ class Master : private FrameClient {
   void encoder_power_interrupted();
   unsigned position_bits() const { return position_bits_; }
   // What the master has selected with 2.4.2.2 MRS codes: it expects this many additional data.
-  unsigned expected_additional_data() const override { return (selected_[0] ? 1U : 0U) + (selected_[1] ? 1U : 0U); }
+  unsigned expected_additional_data() const override { return selection_.count(); }
 
   sim::Signal& sample_strobe() { return engine_.sample_strobe(); }  // toggles at each sampling instant
   sim::Signal& frame_active() { return engine_.frame_active(); }
@@ -98,7 +100,6 @@ class Master : private FrameClient {
   Sequence endat22_read_plan();
   void note_endat22_word(const FrameResult& f);
   bool retry_frame(const FrameResult& f);
-  void note_failures(const FrameResult& f);
   void interrupt_for_measurement();
   void roll_additional_data_1(FrameRequest& request);
   bool status_read_due() const;
@@ -129,14 +130,8 @@ class Master : private FrameClient {
   std::uint64_t busy_unreadable_ = 0;
   StartupRoutine routine_;
   ChecksumVerification checksum_;
-  bool reselect_due_ = false;
-  unsigned retries_left_ = 0;
-  std::uint64_t retries_done_ = 0;
-  unsigned failures_in_a_row_ = 0;
-  bool remeasure_due_ = false;
-  std::uint64_t remeasurements_ = 0;
-  std::uint8_t selection_mrs_[2] = {0, 0};  // the MRS codes behind selected_
-  bool selected_[2] = {false, false};
+  CarefulPolicy careful_;
+  AdditionalDataSelection selection_;  // as the encoder accepted it (2.4.2.2)
   ParameterBook book_;               // the encoder's memory as read (2.4 .. 2.6)
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
 
