@@ -3,6 +3,8 @@
 // careful master works and can be switched off.
 #include <gtest/gtest.h>
 
+#include "endatsim/master/additional_data_selection.hpp"
+#include "endatsim/master/careful_policy.hpp"
 #include "scenario_support.hpp"
 
 using namespace endatsim;
@@ -267,4 +269,89 @@ TEST(MasterChecksum, VerifyChecksumReadsWords4To47AndComparesWord47) {
   EXPECT_TRUE(bad.checksum->complete);
   EXPECT_FALSE(bad.checksum->ok());
   EXPECT_EQ(static_cast<std::uint16_t>(bad.checksum->computed - good.checksum->computed), 0x0001);
+}
+
+namespace {
+
+master::FrameResult frame(master::FrameOutcome outcome) {
+  master::FrameResult f;
+  f.outcome = outcome;
+  return f;
+}
+
+}  // namespace
+
+// 2.1.2: with delay compensation, remeasure_after_crc_errors failed frames in a row call for a new
+// measurement; a good frame between them starts the count again; measurement frames do not count.
+TEST(CarefulPolicy, FailedFramesInARowCallForANewMeasurement) {
+  master::CarefulMaster params;
+  params.remeasure_after_crc_errors = 3;
+  master::CarefulPolicy careful(params, true);
+  careful.frame_done(frame(master::FrameOutcome::CrcError));
+  careful.frame_done(frame(master::FrameOutcome::CrcError));
+  careful.frame_done(frame(master::FrameOutcome::Ok));
+  careful.frame_done(frame(master::FrameOutcome::NoStartBit));
+  auto measurement = frame(master::FrameOutcome::CrcError);
+  measurement.measurement = true;
+  careful.frame_done(measurement);
+  careful.frame_done(frame(master::FrameOutcome::TooFewClocks));
+  EXPECT_FALSE(careful.interruption_due());
+  careful.frame_done(frame(master::FrameOutcome::EchoMismatch));
+  ASSERT_TRUE(careful.interruption_due());
+  const auto due = careful.take_interruption();
+  EXPECT_TRUE(due.remeasure);
+  EXPECT_FALSE(due.reselect);
+  EXPECT_FALSE(careful.interruption_due());
+  EXPECT_EQ(careful.remeasurements(), 1U);
+  master::CarefulPolicy uncompensated(params, false);
+  for (int i = 0; i < 5; ++i) uncompensated.frame_done(frame(master::FrameOutcome::CrcError));
+  EXPECT_FALSE(uncompensated.interruption_due()) << "without delay compensation there is no t_D to measure";
+}
+
+// A position read repeats each failed frame up to `retries` times in a row; a frame that did not
+// fail (type II is an answer) gives the retries back.
+TEST(CarefulPolicy, RetriesAreUsedByFailedFramesInARowAndGivenBackByAnyOther) {
+  master::CarefulMaster params;
+  params.retries = 2;
+  master::CarefulPolicy careful(params, false);
+  careful.position_read_started();
+  const auto crc = frame(master::FrameOutcome::CrcError);
+  EXPECT_TRUE(careful.retry(crc, true));
+  EXPECT_TRUE(careful.retry(crc, true));
+  EXPECT_FALSE(careful.retry(crc, true)) << "two retries used";
+  EXPECT_TRUE(careful.retry(crc, true)) << "the refusal gave them back";
+  EXPECT_FALSE(careful.retry(frame(master::FrameOutcome::Type2Error), true));
+  EXPECT_TRUE(careful.retry(crc, true));
+  EXPECT_FALSE(careful.retry(crc, false)) << "only position reads are repeated";
+  EXPECT_EQ(careful.retries(), 4U);
+}
+
+// 2.4.2.2: what the encoder accepted as additional data 1 and 2; a stop code ends one, a reset
+// (2.7) both; after a power interruption they are selected again, additional data 2 first.
+TEST(AdditionalDataSelection, FollowsTheSelectionsTheEncoderAccepted) {
+  const auto select = [](std::uint8_t mrs) {
+    master::FrameResult f;
+    f.command = protocol::ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+    f.supplement = protocol::make_payload(mrs, 0);
+    return f;
+  };
+  master::AdditionalDataSelection s;
+  EXPECT_EQ(s.count(), 0U);
+  s.accepted(select(protocol::selection_mrs(protocol::Information::Temperature1)));
+  s.accepted(select(protocol::selection_mrs(protocol::Information::Commutation)));
+  s.accepted(select(0xA1));  // a memory area, not additional data
+  EXPECT_EQ(s.count(), 2U);
+  EXPECT_EQ(s.additional_data_1(), protocol::Information::Temperature1);
+  s.accepted(select(protocol::kStopAdditionalData1));
+  EXPECT_EQ(s.count(), 1U);
+  EXPECT_FALSE(s.additional_data_1());
+  s.accepted(select(protocol::selection_mrs(protocol::Information::Temperature2)));
+  EXPECT_EQ(s.take(), (std::vector<std::uint8_t>{protocol::selection_mrs(protocol::Information::Commutation),
+                                                 protocol::selection_mrs(protocol::Information::Temperature2)}));
+  EXPECT_EQ(s.count(), 0U);
+  s.accepted(select(protocol::selection_mrs(protocol::Information::Temperature1)));
+  master::FrameResult reset;
+  reset.command = protocol::ModeCommand::EncoderReceiveReset;
+  s.accepted(reset);
+  EXPECT_EQ(s.count(), 0U);
 }
