@@ -18,7 +18,7 @@ using MC = protocol::ModeCommand;
 // The CRC over a word's bits between its first bit (start bit or leading LOW) and its CRC: in
 // wire order that is what MakeCrcPos and MakeCrcNorm feed the generator (A4.4.2).
 bool crc_matches(std::span<const std::uint8_t> word) {
-  constexpr std::size_t kCrcBits = 5;
+  constexpr std::size_t kCrcBits = protocol::kCrcBits;
   const auto covered = word.subspan(1, word.size() - 1 - kCrcBits);
   std::uint8_t received = 0;
   for (std::size_t i = word.size() - kCrcBits; i < word.size(); ++i) received = static_cast<std::uint8_t>(received << 1 | word[i]);

@@ -395,7 +395,7 @@ Sequence Master::endat22_read_plan() {
   frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
   frame(select, mrs_of(protocol::MemoryArea::ManufacturerEndat22));
   await(P::None, 0);
-  for (unsigned w = 0; w < 64; ++w) {
+  for (unsigned w = 0; w < protocol::kEndat22Words; ++w) {
     if (((words >> w) & 1U) == 0) continue;
     frame(MC::EncoderSendPositionValuesAndSendParameter, static_cast<std::uint8_t>(w));
     await(P::Endat22Lsb, w);

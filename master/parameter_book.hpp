@@ -10,12 +10,13 @@
 #include <vector>
 
 #include "endatsim/master/frame_result.hpp"
+#include "endatsim/protocol/memory_area.hpp"
 
 namespace endatsim::master {
 
 class ParameterBook {
  public:
-  static constexpr unsigned kEndat22Words = 64;  // words 0 .. 63 of the 2.2 area (3.9.1)
+  static constexpr unsigned kEndat22Words = protocol::kEndat22Words;  // words 0 .. 63 of the 2.2 area (3.9.1)
 
   // A frame's contribution: a selection points later frames at its area; a read or a write
   // records the word (the value read, or the value written and acknowledged).

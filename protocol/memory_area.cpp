@@ -10,14 +10,14 @@ using enum MemoryArea;
 
 // Spec 2.4.1 / 2.4.2.1 MRS tables; protection bits from 3.4.3 (word 2).
 constexpr std::array kAreas{
-    MemoryAreaInfo{OperatingStatus, 0xB9, "Operating status", "operating_status", false, std::nullopt, 4},
+    MemoryAreaInfo{OperatingStatus, 0xB9, "Operating status", "operating_status", false, std::nullopt, kOperatingStatusWords},
     MemoryAreaInfo{Manufacturer1, 0xA1, "Parameters of the encoder manufacturer (words 4..15)", "manufacturer_1",
                    false, 0, 16},
     MemoryAreaInfo{Manufacturer2, 0xA3, "Parameters of the encoder manufacturer (words 16..31)", "manufacturer_2",
                    false, 0, 16},
     MemoryAreaInfo{Manufacturer3, 0xA5, "Parameters of the encoder manufacturer (words 32..47)", "manufacturer_3",
                    false, 0, 16},
-    MemoryAreaInfo{OperatingParameters, 0xA7, "Operating parameters", "operating_parameters", false, 1, 16},
+    MemoryAreaInfo{OperatingParameters, 0xA7, "Operating parameters", "operating_parameters", false, 1, kOperatingParametersWords},
     MemoryAreaInfo{Oem1, 0xA9, "Parameters of the OEM, area 1", "oem_1", false, 2},
     MemoryAreaInfo{Oem2, 0xAB, "Parameters of the OEM, area 2", "oem_2", false, 2},
     MemoryAreaInfo{Oem3, 0xAD, "Parameters of the OEM, area 3", "oem_3", false, 2},
@@ -27,7 +27,7 @@ constexpr std::array kAreas{
     MemoryAreaInfo{Compensation3, 0xB5, "Compensation values, area 3", "compensation_3", false, 4},
     MemoryAreaInfo{Compensation4, 0xB7, "Compensation values, area 4", "compensation_4", false, 3},
     MemoryAreaInfo{ManufacturerEndat22, 0xBD, "Parameters of the encoder manufacturer for EnDat 2.2",
-                   "manufacturer_endat22", true, 0, 64},
+                   "manufacturer_endat22", true, 0, kEndat22Words},
     MemoryAreaInfo{Section2, 0xBF, "Parameters of the section 2 memory area", "section2", true, std::nullopt},
     MemoryAreaInfo{OperatingParameters2, 0xBB, "Operating parameters 2", "operating_parameters2", true,
                    std::nullopt},

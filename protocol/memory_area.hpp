@@ -16,6 +16,9 @@ inline constexpr std::size_t kPartitionedWordsMax = 960;
 // 2.4: an address is one byte, so no area holds more than 256 words; a section 2 block holds
 // them all (3.2).
 inline constexpr std::size_t kAreaWordsMax = 256;
+// 3.4, 3.6, 3.9.1: the operating status holds words 0 .. 3, the operating parameters 0 .. 15,
+// the EnDat 2.2 parameters of the encoder manufacturer 0 .. 63.
+inline constexpr std::uint16_t kOperatingStatusWords = 4, kOperatingParametersWords = 16, kEndat22Words = 64;
 
 enum class MemoryArea : std::uint8_t {
   OperatingStatus,          // B9: words 0..3 (3.4)

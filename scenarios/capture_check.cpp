@@ -8,6 +8,7 @@
 
 #include "endatsim/capture/capture.hpp"
 #include "endatsim/line/line.hpp"
+#include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/report.hpp"
 
@@ -344,7 +345,7 @@ std::string frame_log_line(const checker::WireFrame& f) {
   }
   out << ", CRC " << (f.crc_ok ? "ok" : "BAD");
   for (const auto& d : f.additional_data)
-    out << ", additional data I=" << (d.status & 0x1F) << " status " << hex(d.status, 2) << " data " << hex(d.data, 4)
+    out << ", additional data I=" << (d.status & protocol::AdditionalDataStatus::kInformation) << " status " << hex(d.status, 2) << " data " << hex(d.data, 4)
         << " CRC " << (d.crc_ok ? "ok" : "BAD");
   if (f.supplement) out << ", supplement " << hex(protocol::payload_address(*f.supplement), 2) << " " << hex(protocol::payload_parameter(*f.supplement), 4);
   if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";

@@ -1,5 +1,6 @@
 #include "endatsim/scenarios/diagram.hpp"
 
+#include "endatsim/protocol/timing.hpp"
 #include "endatsim/scenarios/xml.hpp"
 
 #include <unistd.h>
@@ -413,7 +414,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   // Fields.
   if (frame != nullptr && m_fe.size() >= 9) {
     std::string bits;
-    for (int b = 5; b >= 0; --b) bits += ((frame->mode_bits >> b) & 1U) != 0 ? '1' : '0';
+    for (int b = static_cast<int>(protocol::frame_position::kModeBits) - 1; b >= 0; --b) bits += ((frame->mode_bits >> b) & 1U) != 0 ? '1' : '0';
     svg.field(axis.x(m_fe[2]), axis.x(m_fe[8]), row_y("endat.master_data") - 22, "mode bits " + bits, bits);
     svg.field(axis.x(m_fe[0]), axis.x(m_fe[2]), row_y("endat.master_data") - 22, "turnaround", "");
     // 2.1 parameter frames: 8 bits of address / MRS code / port and 16 bits after the mode bits.

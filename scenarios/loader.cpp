@@ -180,7 +180,8 @@ void read_memory(const Node& n, slave::EncoderParams& p) {
       if (!value.is_array() || value.size() > 256) item.fail("an array of at most 256 blocks of 256 words");
       image.section2_blocks.clear();
       for (std::size_t i = 0; i < value.size(); ++i)
-        image.section2_blocks.push_back(read_words(Node(value[i], item.path() + "/" + std::to_string(i), n.file()), 256));
+        image.section2_blocks.push_back(
+            read_words(Node(value[i], item.path() + "/" + std::to_string(i), n.file()), protocol::kAreaWordsMax));
       continue;
     }
     const auto area = protocol::memory_area_from_key(key);
@@ -188,7 +189,7 @@ void read_memory(const Node& n, slave::EncoderParams& p) {
       item.fail_raw("unknown memory area \"" + key + "\" (expected operating_status, manufacturer_1 .. 3, "
                     "operating_parameters, oem_1 .. 4, compensation_1 .. 4, manufacturer_endat22, "
                     "operating_parameters2 or section2_blocks)");
-    image.areas[*area] = read_words(item, 256);
+    image.areas[*area] = read_words(item, protocol::kAreaWordsMax);
   }
   p.memory = image;
 }

@@ -7,6 +7,7 @@
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
 #include "endatsim/protocol/crc_parameters.hpp"
+#include "endatsim/protocol/timing.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
 #include "endatsim/scenarios/operation_kinds.hpp"
 #include "endatsim/sim/parameter.hpp"
@@ -228,7 +229,7 @@ void add_operation_schema(json& out) {
 
 std::string mode_bits_text(protocol::ModeCommand c) {
   std::string bits;
-  for (int b = 5; b >= 0; --b) bits += ((protocol::info(c).bits >> b) & 1) != 0 ? '1' : '0';
+  for (int b = static_cast<int>(protocol::frame_position::kModeBits) - 1; b >= 0; --b) bits += ((protocol::info(c).bits >> b) & 1) != 0 ? '1' : '0';
   return bits + " (" + std::string(protocol::info(c).key) + ")";
 }
 

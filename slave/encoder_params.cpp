@@ -19,6 +19,8 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
+constexpr protocol::parameters::AddressRange kDefaultOemArea{0, 63};  // OEM areas 1 and 2 of the default image
+
 std::uint16_t word_of(std::uint64_t value, unsigned index) {  // 16-bit word `index` (0 = LSB word)
   return static_cast<std::uint16_t>(value >> (16 * index));
 }
@@ -87,7 +89,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   m[word::kVersion] = pm::encode_version(2);                       // 3.5.4
   // 3.5.5: OEM areas 1 and 2 at addresses 0 .. 63; OEM areas 3 and 4 and the compensation values
   // not available.
-  const pm::Partition oem{pm::AddressRange{0, 63}}, none;
+  const pm::Partition oem{kDefaultOemArea}, none;
   m[word::kOemPartition] = pm::encode_partition_word(oem, oem);
   m[word::kOemPartition + 1] = pm::encode_partition_word(none, none);
   m[word::kCompensationPartition] = m[word::kCompensationPartition + 1] = pm::encode_partition_word(none, none);
@@ -117,11 +119,11 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   m[word::kSupportedWarnings] = 0x01FF;
   m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);  // 3.5.26
   set_manufacturer_words(img, m);
-  img.areas[A::OperatingParameters].assign(16, 0);
-  img.areas[A::Oem1].assign(64, 0);
-  img.areas[A::Oem2].assign(64, 0);
+  img.areas[A::OperatingParameters].assign(protocol::kOperatingParametersWords, 0);
+  img.areas[A::Oem1].assign(kDefaultOemArea.end + 1, 0);
+  img.areas[A::Oem2].assign(kDefaultOemArea.end + 1, 0);
   if (v22) {
-    std::vector<std::uint16_t> e(64, 0);
+    std::vector<std::uint16_t> e(protocol::kEndat22Words, 0);
     e[word::kAdditionalData1Support] = pm::kSupportsEveryAdditionalData1;  // 3.9.2
     e[word::kAdditionalData2Support] = 0x009F;  // 3.9.3: all but "position value 2" in additional data 2
     e[word::kAdditionalFunctionsSupport] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I

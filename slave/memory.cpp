@@ -149,11 +149,12 @@ std::optional<std::pair<unsigned, unsigned>> Memory::address_range(const Selecti
     return std::pair{*start, *end};
   }
   switch (s.area) {
-    case Area::OperatingStatus: return std::pair{0U, 3U};
-    case Area::Manufacturer1: return std::pair{4U, 15U};  // 2.4.1: address area 04h .. 0Fh
+    case Area::OperatingStatus: return std::pair{0U, unsigned{protocol::kOperatingStatusWords} - 1};
+    case Area::Manufacturer1:  // 2.4.1: address area 04h .. 0Fh
+      return std::pair{protocol::kFirstManufacturerWord, protocol::kManufacturerWordsPerArea - 1};
     case Area::Section2:
       if (s.block >= image_.section2_blocks.size()) return std::nullopt;
-      return std::pair{0U, 255U};
+      return std::pair{0U, static_cast<unsigned>(protocol::kAreaWordsMax - 1)};
     case Area::AsynchronousPosition: return std::nullopt;  // selects a time delay, holds no words
     default: {
       const auto* w = words(s);
@@ -232,7 +233,8 @@ std::optional<ErrorCause> Memory::check_write(const Selection& s, std::uint8_t a
   if (const auto word = read(s, address); !word) return word.error;
   if (commissioning_ && eib_commissioning_area(s.area)) {
     // 3.5.7: "other parameters must be saved during initial commissioning".
-    const unsigned n = address + (s.area == Area::Manufacturer2 ? 16U : s.area == Area::Manufacturer3 ? 32U : 0U);
+    constexpr unsigned k = protocol::kManufacturerWordsPerArea;
+    const unsigned n = address + (s.area == Area::Manufacturer2 ? k : s.area == Area::Manufacturer3 ? 2 * k : 0U);
     const bool factory = s.area != Area::ManufacturerEndat22 && eib_factory_word(n);
     return factory ? std::optional{ErrorCause::WriteProtected} : std::nullopt;
   }

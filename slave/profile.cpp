@@ -404,10 +404,10 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   areas[Area::OperatingStatus] = {0, 0, p.write_protection, p.function_initialization};
   set_manufacturer_words(profile.memory, m);
   // 3.6.2: the factory setting of the operating parameters holds the manufacturer's datum shift.
-  std::vector<std::uint16_t> op(16, 0);
-  op[0] = shift[0];
-  op[1] = shift[1];
-  if (p.position_bits > 32) op[2] = shift[2];
+  std::vector<std::uint16_t> op(protocol::kOperatingParametersWords, 0);
+  op[word::kDatumShift] = shift[0];
+  op[word::kDatumShift + 1] = shift[1];
+  if (p.position_bits > 32) op[word::kDatumShift + 2] = shift[2];
   areas[Area::OperatingParameters] = op;
   const Area oem[4] = {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4};
   const Area comp[4] = {Area::Compensation1, Area::Compensation2, Area::Compensation3, Area::Compensation4};
@@ -416,7 +416,7 @@ EncoderProfile build_profile(const ProfileParameters& p) {
     if (p.compensation[i]) areas[comp[i]].assign(p.compensation[i]->end + 1, 0);
   }
   if (p.version == EndatVersion::V2_2) {
-    std::vector<std::uint16_t> e(64, 0);
+    std::vector<std::uint16_t> e(protocol::kEndat22Words, 0);
     e[word::kAdditionalData1Support] = pm::encode_additional_data_1(p.additional_data_1);
     e[word::kAdditionalData2Support] = pm::encode_additional_data_2(p.additional_data_2);
     e[word::kAdditionalFunctionsSupport] = p.additional_functions;
