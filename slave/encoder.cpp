@@ -38,10 +38,9 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
       enable_out_delay_(kernel, enable_logic_, pins_.data_enable, params.output_delay),
       recovery_timer_(kernel, sim::bind<&Encoder::on_recovery_time_elapsed>(this)),
       end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
-      startup_timer_(kernel, sim::bind<&Encoder::on_started>(this)) {
+      readiness_(kernel, sim::bind<&Encoder::on_started>(this), params.unsettled_positions) {
   pins_.clock_in.on_change(sim::bind<&Encoder::on_clock>(this));
   adopt_encoder_type(params_.position_bits);
-  unsettled_left_ = params_.unsettled_positions;
   positions_.apply_function_initialization(kernel_.now());
   errors_.note_bus_address();
   enable();  // idle: DATA driven LOW, unless word 5 puts the driver at high impedance (2.10)
@@ -69,14 +68,12 @@ void Encoder::commissioned(std::optional<unsigned> position_bits) {
 // run-up DATA is high-impedance and the encoder takes no clock; afterwards DATA is driven LOW,
 // the EnDat idle level (2.3).
 void Encoder::go_offline(Time duration) {
-  offline_ = true;
   state_ = State::Idle;
   enable_logic_.write(false);
-  startup_timer_.start(duration);
+  readiness_.run_up(duration);
 }
 
 void Encoder::on_started() {
-  offline_ = false;
   drive(false);
   enable();
 }
@@ -84,10 +81,7 @@ void Encoder::on_started() {
 bool Encoder::drives_bus() const { return bus_.drives(memory_.instructions()); }
 
 void Encoder::on_clock(std::uint64_t level) {
-  if (offline_ || kernel_.now() < ready_at_) {  // running up, or t_R: not ready for the next query yet
-    ++ignored_edges_;
-    return;
-  }
+  if (!readiness_.takes_edge()) return;  // running up, or t_R: not ready for the next query yet
   if (level == 0) on_falling_edge();
   else on_rising_edge();
 }
@@ -281,8 +275,7 @@ void Encoder::answer_position() {
                                            params_.crc);
     return;
   }
-  if (unsettled_left_ > 0) {  // a fault: a value from before the position settled (seeded by the frame)
-    --unsettled_left_;
+  if (readiness_.take_unsettled()) {  // a fault: a value from before the position settled (seeded by the frame)
     const std::uint64_t mask = (std::uint64_t{1} << positions_.position_bits()) - 1;
     std::uint64_t z = (frame_count_ + 1) * 0x9E3779B97F4A7C15ULL;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
@@ -512,7 +505,7 @@ void Encoder::finish_frame() {
   bus_.frame_ended();
   drive(false);
   enable();
-  ready_at_ = kernel_.now() + params_.t_r;
+  readiness_.frame_ended(params_.t_r);
   if (f.too_many_clocks && pending_.kind != Pending::Kind::None) {
     f.error = ErrorCause::MrsFrameDisrupted;  // the access is discarded
     access_.discard_nvm_write();
@@ -550,7 +543,7 @@ void Encoder::restart_state() {
   commissioned(eib_.completes_at_reset());
   positions_.restart_reference_search(kernel_.now());
   test_port_21_ = 0;
-  unsettled_left_ = params_.unsettled_positions;
+  readiness_.restart_settling(params_.unsettled_positions);
 }
 
 // ---- faults (scenario events) ---------------------------------------------------------------

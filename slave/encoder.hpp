@@ -23,6 +23,7 @@
 #include "endatsim/slave/memory.hpp"
 #include "endatsim/slave/memory_access.hpp"
 #include "endatsim/slave/position_source.hpp"
+#include "endatsim/slave/readiness.hpp"
 #include "endatsim/slave/reference.hpp"
 
 namespace endatsim::slave {
@@ -62,9 +63,9 @@ class Encoder final : private MemoryAccess::Client {
   const std::vector<EncoderFrame>& frames() const { return frames_; }
   void keep_frames(std::size_t n) { kept_frames_ = std::max<std::size_t>(n, 1); }
   std::uint64_t frame_count() const { return frame_count_; }
-  std::uint64_t ignored_clock_edges() const { return ignored_edges_; }
+  std::uint64_t ignored_clock_edges() const { return readiness_.ignored_edges(); }
   bool idle() const { return state_ == State::Idle; }
-  bool started() const { return !offline_; }
+  bool started() const { return !readiness_.running_up(); }
   bool busy() const { return access_.busy(); }
   const Memory& memory() const { return memory_; }
   std::optional<Information> additional_data_1() const { return additional_data_.selected(0); }
@@ -149,11 +150,10 @@ class Encoder final : private MemoryAccess::Client {
   sim::TransportDelay enable_out_delay_;
   sim::Timer recovery_timer_;
   sim::Timer end_marker_timer_;
-  sim::Timer startup_timer_;
+  Readiness readiness_;  // run-up (2.3.3), t_R (2.3.2), unsettled answers after start-up
 
   // Frame state.
   State state_ = State::Idle;
-  Time ready_at_{0};
   unsigned clock_ = 0;  // index k of the current clock period: FE_k, RE_k
   std::uint8_t mode_bits_ = 0;
   const protocol::ModeCommandInfo* command_ = nullptr;
@@ -171,13 +171,10 @@ class Encoder final : private MemoryAccess::Client {
   // Encoder state that outlives frames.
   std::uint8_t test_port_21_ = 0;               // 2.8: port for "Encoder send test values"
   bool transmission_incomplete_ = false;        // A2 cause 3, for the next acknowledgment
-  bool offline_ = false;                        // running up after power-on or reset (2.3.3)
-  unsigned unsettled_left_ = 0;                 // position answers still unsettled after start-up
 
   std::vector<EncoderFrame> frames_;
   std::size_t kept_frames_ = SIZE_MAX / 2;
   std::uint64_t frame_count_ = 0;
-  std::uint64_t ignored_edges_ = 0;
 };
 
 }  // namespace endatsim::slave
