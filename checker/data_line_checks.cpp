@@ -477,7 +477,9 @@ void TimingChecker::check_master_sample(const DeclaredFrame& frame, unsigned clo
 // 2.3.2: "Polling the start bit must be independent of t_CAL; this means clock pulses must be
 // continuously sent". A frame that ends without a start bit ended its polling after FE1 + the
 // time its last rising edge shows; an encoder may take t_cal (declared, word 39) and any
-// compliant one up to 1 ms (note 7). Only a frame whose DATA was still LOW at its last rising edge
+// compliant one up to 1 ms (note 7); an encoder that calculates longer in energy-saving mode
+// (3.6.5), whether or not the wires switched it on, the longer of the two. Only a frame whose DATA
+// was still LOW at its last rising edge
 // is judged: the encoder was calculating. An encoder that answers HIGH at once (a type I error
 // handling, A2) lets the master stop. A 2.1 parameter frame waits in the same way for the memory
 // access after the master's last payload bit: the declared t_ac, and up to 12 ms for any
@@ -488,10 +490,10 @@ void TimingChecker::check_start_bit_polling(const PinFrame& f) {
       master_found_start_bit_ == f.header.index)  // a declaring master read a start bit: it did not give up
     return;
   if (f.header.payload_bits == 0) {
+    const Time t_cal = f.header.command_type == protocol::EndatVersion::V2_2 ? encoder_.t_cal_22.value_or(encoder_.t_cal)
+                                                                            : encoder_.t_cal;
     judge_polling(f, f.fe1, {check::kCalculationTime, "2.3.2 (start-bit polling independent of t_cal, note 7)",
-                             "t_cal",
-                             f.header.command_type == protocol::EndatVersion::V2_2 ? encoder_.t_cal_22.value_or(encoder_.t_cal)
-                                                                                   : encoder_.t_cal,
+                             "t_cal", std::max(t_cal, encoder_.t_cal_energy_saving.value_or(t_cal)),
                              limit::kCalculationTimeMax});
     return;
   }

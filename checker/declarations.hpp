@@ -24,6 +24,7 @@ struct EncoderDeclaration {
   Time output_delay = sim::ns(60);     // CLOCK in to DATA out inside the encoder (its share of t_D)
   Time t_cal = sim::us(5);             // 2.3.2 note 7, word 39: the longest calculation time
   std::optional<Time> t_cal_22;        // ... for EnDat 2.2 mode commands where it differs
+  std::optional<Time> t_cal_energy_saving;  // ... while energy-saving mode is on (3.6.5), if it differs
   std::optional<Time> t_ac;            // 2.3.2: the longest memory access time (<= 12 ms), if declared
   Time t_m = protocol::encoder_default::kRecoveryTime;  // 2.3.2 recovery time I, as declared (10 .. 30 us)
   std::optional<Time> t_m_short;       // 1.25 .. 3.75 us where word 3 may select it (3.4.4)

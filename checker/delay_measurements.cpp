@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "endatsim/protocol/timing.hpp"
+
 namespace endatsim::checker {
 
 void DelayMeasurements::measured(std::uint64_t frame, sim::Time t_d) {
@@ -19,7 +21,7 @@ namespace {
 
 enum class Agreement : std::uint8_t { Pass, Fail, Undecided };
 
-// The latest n measurements against T/8 of their mean, kept exact: |n d_i - sum| / n <= T / 8
+// The latest n measurements against T/8 of their mean (2.1.2), kept exact: |n d_i - sum| / n <= T / 8
 // is 8 |n d_i - sum| <= n T. Each t_D is known to within r, so the deviation is to within 2r.
 template <typename Run>
 Agreement agree(const Run& run, std::size_t n, sim::Time period, sim::Time resolution, std::size_t* worst) {
@@ -28,10 +30,11 @@ Agreement agree(const Run& run, std::size_t n, sim::Time period, sim::Time resol
   for (auto it = first; it != run.end(); ++it) sum += it->t_d.count();
   const auto count = static_cast<std::int64_t>(n);
   const std::int64_t limit = count * period.count();
-  const std::int64_t margin = 16 * count * resolution.count();
+  constexpr std::int64_t kDivisor = protocol::limit::kMeasurementSpreadPeriodDivisor;
+  const std::int64_t margin = 2 * kDivisor * count * resolution.count();
   std::int64_t worst_scaled = -1;
   for (auto it = first; it != run.end(); ++it) {
-    const std::int64_t scaled = 8 * std::llabs(count * it->t_d.count() - sum);
+    const std::int64_t scaled = kDivisor * std::llabs(count * it->t_d.count() - sum);
     if (scaled > worst_scaled) {
       worst_scaled = scaled;
       if (worst != nullptr) *worst = static_cast<std::size_t>(it - run.begin());
@@ -54,10 +57,10 @@ std::optional<DelayMeasurements::Judgement> DelayMeasurements::compensated(sim::
   Judgement j;
   j.measurements = run_.size();
   j.first_frame = run_.front().frame;
-  j.enough = run_.size() >= 3;
-  j.limit = period / 8;
+  j.enough = run_.size() >= protocol::limit::kMeasurementsMin;
+  j.limit = period / protocol::limit::kMeasurementSpreadPeriodDivisor;
   // The latest three (or all there are) are reported; any latest three or more may carry it.
-  const std::size_t shown = std::min<std::size_t>(run_.size(), 3);
+  const std::size_t shown = std::min<std::size_t>(run_.size(), protocol::limit::kMeasurementsMin);
   const Agreement latest = agree(run_, shown, period, resolution, &j.worst);
   std::int64_t sum = 0;
   for (std::size_t i = run_.size() - shown; i < run_.size(); ++i) sum += run_[i].t_d.count();

@@ -74,7 +74,7 @@ const DelayMeasurementResult& DelayMeasurement::finish_round(Time start) {
                " measurement frames gave a start bit with a valid CRC";
   } else {
     // 2.1.2: each measured value within 1/8 of the clock period (at the intended f_c) of the mean.
-    const Time eighth = sim::period_of(f_c_) / 8;
+    const Time eighth = sim::period_of(f_c_) / protocol::limit::kMeasurementSpreadPeriodDivisor;
     for (std::size_t i = 0; i < counts_.size() && r.reason.empty(); ++i) {
       const Time deviation = tick * std::abs(n * counts_[i] - sum) / n;
       if (deviation > eighth)

@@ -234,7 +234,7 @@ void DiagnosisMonitor::note_datum(const FrameResult& f, const AdditionalDatum& d
   DiagnosisReport& r = report_;
   switch (d.information()) {
     case I::Diagnosis: {
-      const unsigned address = d.data >> 8, value = d.data & 0xFF;
+      const unsigned address = protocol::datum_address(d.data), value = protocol::datum_byte(d.data);
       const auto a = dg::decode_diagnosis_address(address);
       const std::uint16_t active = r.configuration.value_or(params_.configuration);
       if (!a || a->bit >= dg::kValuationNumbers || ((active >> a->bit) & 1U) == 0) {

@@ -386,8 +386,10 @@ Sequence Master::endat22_read_plan() {
   };
   const auto await = [&plan](P purpose, unsigned word) {
     Operation& o = plan.add(Operation::Kind::AwaitNotBusy);
-    o.count = 300;  // 50 us apart: beyond t_ac max (12 ms, 2.3.2)
-    o.cycle = sim::us(50);
+    // Polls 50 us apart until past t_ac max (2.3.2), with a 25 % margin.
+    constexpr Time kPollCycle = sim::us(50);
+    o.cycle = kPollCycle;
+    o.count = static_cast<unsigned>(protocol::limit::kMemoryAccessMax * 5 / 4 / kPollCycle);
     o.purpose = purpose;
     o.manufacturer_word = word;
   };

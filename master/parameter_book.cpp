@@ -8,7 +8,7 @@ using I = protocol::Information;
 void ParameterBook::note(const FrameResult& f) {
   if (f.outcome != FrameOutcome::Ok || !f.payload) return;
   const auto address = protocol::payload_address(*f.payload);
-  const auto key = static_cast<std::uint16_t>(area_mrs_ << 8 | address);
+  const std::pair key{area_mrs_, address};
   switch (f.command) {
     case MC::SelectionOfMemoryArea: area_mrs_ = address; break;
     case MC::EncoderSendParameters: words_[key] = f.echo_parameter; break;
@@ -18,7 +18,7 @@ void ParameterBook::note(const FrameResult& f) {
 }
 
 std::optional<std::uint16_t> ParameterBook::parameter(std::uint8_t mrs, std::uint8_t address) const {
-  const auto it = words_.find(static_cast<std::uint16_t>(mrs << 8 | address));
+  const auto it = words_.find({mrs, address});
   if (it == words_.end()) return std::nullopt;
   return it->second;
 }
@@ -32,14 +32,14 @@ void ParameterBook::note_endat22_byte(const FrameResult& f, unsigned w, bool msb
   if (f.outcome != FrameOutcome::Ok || w >= endat22_lsb_.size()) return;
   const I wanted = msb ? I::MemoryParameterMsb : I::MemoryParameterLsb;
   for (const auto& d : f.additional_data) {
-    if (!d.crc_ok || d.busy() || (d.data >> 8) != w || d.information() != wanted) continue;
-    (msb ? endat22_msb_ : endat22_lsb_)[w] = static_cast<std::uint8_t>(d.data & 0xFF);
+    if (!d.crc_ok || d.busy() || protocol::datum_address(d.data) != w || d.information() != wanted) continue;
+    (msb ? endat22_msb_ : endat22_lsb_)[w] = protocol::datum_byte(d.data);
   }
 }
 
 std::optional<std::uint16_t> ParameterBook::endat22_word(unsigned w) const {
   if (w >= endat22_lsb_.size() || !endat22_lsb_[w] || !endat22_msb_[w]) return std::nullopt;
-  return static_cast<std::uint16_t>(*endat22_msb_[w] << 8 | *endat22_lsb_[w]);
+  return protocol::parameter_of(*endat22_msb_[w], *endat22_lsb_[w]);
 }
 
 std::vector<std::uint16_t> ParameterBook::endat22_words(bool& complete) const {
@@ -47,7 +47,7 @@ std::vector<std::uint16_t> ParameterBook::endat22_words(bool& complete) const {
   complete = endat22_lsb_.size() == kEndat22Words;
   for (unsigned w = 0; w < kEndat22Words && w < endat22_lsb_.size(); ++w) {
     complete = complete && endat22_lsb_[w] && endat22_msb_[w];
-    e[w] = static_cast<std::uint16_t>(endat22_msb_[w].value_or(0) << 8 | endat22_lsb_[w].value_or(0));
+    e[w] = protocol::parameter_of(endat22_msb_[w].value_or(0), endat22_lsb_[w].value_or(0));
   }
   return e;
 }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "endatsim/master/frame_result.hpp"
@@ -35,7 +36,7 @@ class ParameterBook {
   std::vector<std::uint16_t> endat22_words(bool& complete) const;
 
  private:
-  std::map<std::uint16_t, std::uint16_t> words_;  // MRS << 8 | address -> value
+  std::map<std::pair<std::uint8_t, std::uint8_t>, std::uint16_t> words_;  // {MRS code, address} -> value
   std::uint8_t area_mrs_ = 0;                     // the 2.1 memory area selected last
   std::vector<std::optional<std::uint8_t>> endat22_lsb_, endat22_msb_;
 };

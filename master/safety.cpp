@@ -16,6 +16,7 @@
 namespace endatsim::master {
 namespace {
 
+namespace pm = protocol::parameters;
 using MC = protocol::ModeCommand;
 using I = protocol::Information;
 using P = Operation::Purpose;
@@ -33,13 +34,6 @@ std::int64_t ring_distance(std::uint64_t a, std::uint64_t b, unsigned bits) {
 }
 
 std::uint64_t magnitude(std::int64_t v) { return v < 0 ? static_cast<std::uint64_t>(-v) : static_cast<std::uint64_t>(v); }
-
-// 3.9.11: bits 15..13 scale the value in bits 12..0 by 1 .. 32; 110 and 111 are not supported.
-std::optional<std::uint32_t> scaled(std::uint16_t word) {
-  const unsigned code = word >> 13;
-  if (code > 5) return std::nullopt;
-  return static_cast<std::uint32_t>(word & 0x1FFF) << code;
-}
 
 // Known results (A4 examples; the vectors of docs/model.md §12, computed with one published master's
 // open-source CRC code and an independent LFSR).
@@ -95,7 +89,8 @@ bool SafetyParams::enabled(SafetyFunction f) const {
 }
 
 void SafetyParams::validate() const {
-  require(forced_error1_port != 0 && forced_error2_port != 0 && forced_error1_port != forced_error2_port,
+  require(forced_error1_port != pm::kForcedSamplingOffPort && forced_error2_port != pm::kForcedSamplingOffPort &&
+              forced_error1_port != forced_error2_port,
           "safety forced_error1_port and forced_error2_port must differ and not be 0 (0 switches forcing off, 3.5.3)");
   if (auto why = sim::first_out_of_range(safety_parameters(), *this, "master safety")) throw std::invalid_argument(*why);
   require(startup_max_reads >= startup_repetitions,
@@ -123,26 +118,24 @@ std::optional<std::uint32_t> Position2Parameters::accuracy_at(double steps_per_s
 Position2Parameters position2_parameters(const std::vector<std::uint16_t>& m, const std::vector<std::uint16_t>& e) {
   Position2Parameters p;
   namespace word = protocol::word;
-  const auto type = m[word::kEncoderType] >> 12;
-  p.linear = type <= 0x7;  // 3.5.7: types 0 .. 7 are linear (5 the touch probe)
-  p.measuring_steps = static_cast<std::uint32_t>(m[word::kMeasuringSteps + 1]) << 16 | m[word::kMeasuringSteps];
+  p.linear = pm::is_linear(pm::decode_encoder_type(m[word::kEncoderType]));
+  p.measuring_steps = pm::decode_measuring_steps(m[word::kMeasuringSteps], m[word::kMeasuringSteps + 1]);
   p.max_velocity = m[word::kMaxVelocity];
-  if (m[word::kAccuracy] != 0xFFFF || m[word::kAccuracy + 1] != 0xFFFF) {
-    // 3.5.19: high byte the conversion factor c_i, low byte the accuracy a_i in LSB.
-    for (unsigned w : {word::kAccuracy, word::kAccuracy + 1}) p.ranges.push_back({static_cast<std::uint32_t>(m[w] >> 8), m[w] & 0xFFU});
+  if (m[word::kAccuracy] != pm::kAccuracySeeEndat22 || m[word::kAccuracy + 1] != pm::kAccuracySeeEndat22) {
+    for (unsigned w : {word::kAccuracy, word::kAccuracy + 1}) {
+      const auto r = pm::decode_accuracy_range(m[w]);
+      p.ranges.push_back({r.conversion_factor, r.accuracy});
+    }
   } else {
-    // 3.5.19: 65535 in both: words 11 .. 14 of the 2.2 area (3.9.11), each value scaled.
-    for (unsigned w : {word::kPosition2Accuracy, word::kPosition2Accuracy + 2}) {
-      const auto c = scaled(e[w]), a = scaled(e[w + 1]);
+    for (unsigned w : {word::kPosition2Accuracy, word::kPosition2Accuracy + 2}) {  // 3.9.11: c_i, a_i
+      const auto c = pm::decode_scaled_value(e[w]), a = pm::decode_scaled_value(e[w + 1]);
       if (c && a) p.ranges.push_back({*c, *a});
     }
   }
-  p.reversed = (e[word::kPosition2Direction] & 1U) != 0;
+  p.reversed = pm::decode_direction_falling(e[word::kPosition2Direction]);  // 3.9.13 as 3.5.16
   p.comparison_bits = e[word::kComparisonBits];
-  const unsigned offset = word::kPosition2Offset;  // 3.9.24: 48 bits, the low word first
-  const std::uint64_t raw = std::uint64_t{e[offset + 2]} << 32 | std::uint64_t{e[offset + 1]} << 16 | e[offset];
-  p.offset = (raw & 0x8000'0000'0000ULL) != 0 ? static_cast<std::int64_t>(raw | 0xFFFF'0000'0000'0000ULL)
-                                               : static_cast<std::int64_t>(raw);
+  const unsigned offset = word::kPosition2Offset;  // 3.9.24: 48 bits, two's complement, the low word first
+  p.offset = pm::decode_datum_shift48(e[offset], e[offset + 1], e[offset + 2]);
   return p;
 }
 
@@ -171,7 +164,7 @@ void SafetyFunctions::plan_startup(const FunctionContext& ctx, Sequence& plan) {
     frame(query, 0, P::ForcedError1);
     frame(MC::EncoderSendPositionValuesAndReceiveTestCommand, s.forced_error2_port, P::ForcedTest);
     frame(query, 0, P::ForcedError2);
-    frame(MC::EncoderSendPositionValuesAndReceiveTestCommand, 0x00, P::ForcedTest);
+    frame(MC::EncoderSendPositionValuesAndReceiveTestCommand, pm::kForcedSamplingOffPort, P::ForcedTest);
     frame(query, 0, P::ForcedOff);
   }
   kind(Operation::Kind::StartupPositions);
@@ -401,8 +394,9 @@ void SafetyMonitor::check_acknowledgement(const FrameResult& f) {
   for (const auto& d : f.additional_data) {
     const bool lsb = d.information() == I::MemoryParameterLsb, msb = d.information() == I::MemoryParameterMsb;
     if (!d.crc_ok || d.busy() || (!lsb && !msb)) continue;
-    const auto want = static_cast<std::uint8_t>(lsb ? acknowledgement_due_->value : acknowledgement_due_->value >> 8);
-    const auto address = static_cast<std::uint8_t>(d.data >> 8), byte = static_cast<std::uint8_t>(d.data);
+    const std::uint16_t written = acknowledgement_due_->value;
+    const auto want = lsb ? protocol::lsb_of(written) : protocol::msb_of(written);
+    const auto address = protocol::datum_address(d.data), byte = protocol::datum_byte(d.data);
     if (address != acknowledgement_due_->address || byte != want)
       find(SafetyFunction::Acknowledgements, f,
            std::string("2.2 write acknowledged (I = ") + (lsb ? "5" : "6") + ") as address " + std::to_string(address) +

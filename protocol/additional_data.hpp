@@ -28,6 +28,20 @@ struct AdditionalData2Word {
   static constexpr std::uint16_t kAccelerationBesideLimits = 0x3FFF;
 };
 
+// 2.3.5: bytes 1 and 2 of an additional datum as one word. Diagnosis, memory parameters (I = 5, 6),
+// the MRS code acknowledgment and the test command acknowledgment carry an address (or code) in
+// byte 1 and a data byte in byte 2.
+constexpr std::uint16_t make_addressed_datum(std::uint8_t address, std::uint8_t byte) {
+  return static_cast<std::uint16_t>(address << 8 | byte);
+}
+constexpr std::uint8_t datum_address(std::uint16_t data) { return static_cast<std::uint8_t>(data >> 8); }
+constexpr std::uint8_t datum_byte(std::uint16_t data) { return static_cast<std::uint8_t>(data); }
+// A 16-bit parameter travels as two data bytes: I = 5 its lower-value byte (LSB), I = 6 its
+// higher-value one (MSB).
+constexpr std::uint8_t lsb_of(std::uint16_t parameter) { return static_cast<std::uint8_t>(parameter); }
+constexpr std::uint8_t msb_of(std::uint16_t parameter) { return static_cast<std::uint8_t>(parameter >> 8); }
+constexpr std::uint16_t parameter_of(std::uint8_t msb, std::uint8_t lsb) { return static_cast<std::uint16_t>(msb << 8 | lsb); }
+
 // 2.3.5.1 (I = 0..15, additional data 1) and 2.3.5.2 (I = 16..31, additional data 2).
 enum class Information : std::uint8_t {
   Nop1 = 0,

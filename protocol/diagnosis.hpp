@@ -25,6 +25,7 @@ std::optional<double> temperature_scaling(std::uint16_t word4);
 
 // 2.3.5.1 / 3.9.6: "additional sensors" = 4-bit address, 12 bits in 0.1 K with an offset of 115 K.
 constexpr unsigned kAdditionalSensorOffsetTenthKelvin = 1150;
+constexpr unsigned kAdditionalSensorAddresses = 16;  // a 4-bit address
 struct AdditionalSensorValue {
   unsigned address = 0;
   unsigned tenth_kelvin = 0;
@@ -48,6 +49,8 @@ constexpr std::optional<DiagnosisAddress> decode_diagnosis_address(unsigned addr
   if (address == 0 || address > 64) return std::nullopt;
   return DiagnosisAddress{(address - 1) % 16, (address - 1) / 16};
 }
+// The address at which an encoder sends valuation number n (1 .. 6): n, the first area of A3.
+constexpr std::uint8_t valuation_number_address(unsigned n) { return static_cast<std::uint8_t>(n); }
 constexpr unsigned kValuationNumbers = 6;                // 3.6.3 bits 0 .. 5
 constexpr std::uint16_t kValuationNumberBits = 0x003F;
 constexpr std::uint16_t kSystemSpecificDataBit = 0x8000;  // 3.6.3 bit 15

@@ -16,9 +16,14 @@ inline constexpr std::size_t kPartitionedWordsMax = 960;
 // 2.4: an address is one byte, so no area holds more than 256 words; a section 2 block holds
 // them all (3.2).
 inline constexpr std::size_t kAreaWordsMax = 256;
+// 2.4.2: a block address is one byte, so section 2 has at most 256 blocks (3.9.18 word 24).
+inline constexpr std::size_t kSection2BlocksMax = 256;
 // 3.4, 3.6, 3.9.1: the operating status holds words 0 .. 3, the operating parameters 0 .. 15,
 // the EnDat 2.2 parameters of the encoder manufacturer 0 .. 63.
 inline constexpr std::uint16_t kOperatingStatusWords = 4, kOperatingParametersWords = 16, kEndat22Words = 64;
+// 3.10.1: operating parameters 2 assign words 0 .. 12 (I/O, touch probes, referencing, word 12
+// preset by HEIDENHAIN) of up to 256; the model's default images hold words 0 .. 15.
+inline constexpr std::uint16_t kOperatingParameters2DefaultWords = 16;
 
 enum class MemoryArea : std::uint8_t {
   OperatingStatus,          // B9: words 0..3 (3.4)
@@ -55,6 +60,13 @@ struct MemoryAreaInfo {
 };
 
 std::span<const MemoryAreaInfo> memory_areas();
+// 3.4.3: the section 2 memory area has a protection bit per block: bit 6 block 0, bit 7 block 1,
+// bit 8 block 2, bit 9 blocks 3 .. n.
+inline constexpr unsigned kProtectSection2Block0 = 6, kProtectSection2BlocksFrom3 = 9;
+constexpr unsigned section2_protection_bit(unsigned block) {
+  return block < kProtectSection2BlocksFrom3 - kProtectSection2Block0 ? kProtectSection2Block0 + block
+                                                                      : kProtectSection2BlocksFrom3;
+}
 // 3.4.3: "The write protection for parameters of the encoder manufacturer and if applicable the
 // write protection for compensation values are factory set to active and cannot be reset": word 2
 // as an encoder leaves the factory, the protection bits of those areas.

@@ -353,8 +353,15 @@ std::string serial_number_string(const SerialNumber& s) {
 }
 
 // 3.5.16
-std::uint16_t encode_direction(bool ascending) { return u16(kNvmBit15 | (ascending ? 1U : 0U)); }
-bool decode_direction_ascending(std::uint16_t word) { return (word & 1U) != 0; }
+std::optional<std::uint32_t> decode_scaled_value(std::uint16_t word) {
+  constexpr unsigned kScaleShift = 13, kLargestScale = 5;  // x32
+  const unsigned scale = word >> kScaleShift;
+  if (scale > kLargestScale) return std::nullopt;
+  return static_cast<std::uint32_t>(word & ((1U << kScaleShift) - 1)) << scale;
+}
+
+std::uint16_t encode_direction(bool falling) { return u16(kNvmBit15 | (falling ? kDirectionFalling : 0U)); }
+bool decode_direction_falling(std::uint16_t word) { return (word & kDirectionFalling) != 0; }
 
 // 3.5.22
 std::uint16_t encode_command_set(const CommandSet& c) {
@@ -573,18 +580,25 @@ ResolutionScaling decode_position_scaling(std::uint16_t word27) {
 namespace {
 // A10: the subdivision values per grating period (EnDat 2.2 words 28/29), when word 27 says so.
 std::optional<std::uint64_t> grating_subdivision(std::span<const std::uint16_t> words64) {
-  if (words64.size() < 30 || decode_position_scaling(words64[27]) != ResolutionScaling::GratingSubdivision)
+  if (words64.size() <= word::kResolution + 1 ||
+      decode_position_scaling(words64[word::kResolutionScaling]) != ResolutionScaling::GratingSubdivision)
     return std::nullopt;
-  const std::uint64_t values = join32(words64[28], words64[29]);
+  const std::uint64_t values = join32(words64[word::kResolution], words64[word::kResolution + 1]);
   return values == 0 ? std::nullopt : std::optional{values};
+}
+std::uint32_t measuring_steps_of(std::span<const std::uint16_t> words48) {
+  return decode_measuring_steps(words48[word::kMeasuringSteps], words48[word::kMeasuringSteps + 1]);
+}
+std::uint32_t signal_period_of(std::span<const std::uint16_t> words48) {
+  return decode_signal_period(words48[word::kSignalPeriod], words48[word::kSignalPeriod + 1]);
 }
 }  // namespace
 
 std::optional<std::uint64_t> steps_per_revolution(std::span<const std::uint16_t> words48,
                                                   std::span<const std::uint16_t> words64) {
-  if (is_linear(decode_encoder_type(words48[14]))) return std::nullopt;
-  if (const std::uint64_t steps = decode_measuring_steps(words48[20], words48[21]); steps != 0) return steps;
-  const std::uint64_t periods = decode_signal_period(words48[15], words48[16]);
+  if (is_linear(decode_encoder_type(words48[word::kEncoderType]))) return std::nullopt;
+  if (const std::uint64_t steps = measuring_steps_of(words48); steps != 0) return steps;
+  const std::uint64_t periods = signal_period_of(words48);
   const auto subdivision = grating_subdivision(words64);
   if (periods == 0 || !subdivision) return std::nullopt;
   return periods * *subdivision;
@@ -592,10 +606,10 @@ std::optional<std::uint64_t> steps_per_revolution(std::span<const std::uint16_t>
 
 std::optional<StepsPerUnit> steps_per_reference_unit(std::span<const std::uint16_t> words48,
                                                      std::span<const std::uint16_t> words64) {
-  const std::uint64_t step_nm = decode_measuring_steps(words48[20], words48[21]);
-  const std::uint64_t period = decode_signal_period(words48[15], words48[16]);  // nm or P/rev
+  const std::uint64_t step_nm = measuring_steps_of(words48);
+  const std::uint64_t period = signal_period_of(words48);  // nm or P/rev
   const auto subdivision = grating_subdivision(words64);
-  if (is_linear(decode_encoder_type(words48[14]))) {
+  if (is_linear(decode_encoder_type(words48[word::kEncoderType]))) {
     constexpr std::uint64_t kNmPerMm = 1'000'000;
     if (step_nm != 0) return StepsPerUnit{kNmPerMm, step_nm};
     if (period != 0 && subdivision) return StepsPerUnit{kNmPerMm * *subdivision, period};  // step = period / subdivision

@@ -45,6 +45,7 @@ constexpr unsigned kAdditionalFunctionsSupport = 2, kErrorMessage2Support = 6, k
                    kPosition2Accuracy = 11, kPosition2Direction = 16, kPosition2Offset = 31,
                    kComparisonBits = 26, kTimestampUnit = 45;  // BD, 3.9.4, 3.9.8, 3.9.10, 3.9.11, 3.9.13, 3.9.20, 3.9.24, 3.9.32
 constexpr unsigned kInstructionSupport = 21;                     // BD, 3.9.15
+constexpr unsigned kResolutionScaling = 27, kResolution = 28;    // BD, 3.9.21 / 3.9.22 (words 28/29)
 constexpr unsigned kTouchProbeSupport = 44;                      // BD, 3.9.31
 constexpr unsigned kTouchProbeStatus = 2, kReferencing = 11;     // BB operating parameters 2, 3.10.3 / 3.10.5
 }  // namespace word
@@ -263,11 +264,28 @@ std::string serial_number_string(const SerialNumber& s);
 
 // ---- 3.5.16 word 30: direction of rotation or traverse ------------------------------------------
 // Bit 15 = 1 for NVM checking, default 0 in bit 0.
-// UNCERTAIN: the table's "= 0" entry for bit 0 is lost; its "= 1" entry reads "ascending
-// position values" (with respect to the documented direction of measurement), so bit 0 = 0 is
-// taken as falling position values.
-std::uint16_t encode_direction(bool ascending);
-bool decode_direction_ascending(std::uint16_t word);
+// UNCERTAIN: the table lost a column; what survives names bit 0 "direction of measurement" and
+// "ascending position values". Bit 0 = 0, the default, is taken as positions ascending in the
+// documented direction of measurement, bit 0 = 1 as falling (docs/model-reference.md).
+constexpr std::uint16_t kDirectionFalling = 0x0001;
+std::uint16_t encode_direction(bool falling);
+bool decode_direction_falling(std::uint16_t word);
+
+// ---- 3.5.19 words 33/34: accuracy with respect to linear or rotational velocity -------------------
+// The higher-value byte the conversion factor c_i (v_i = v_max / c_i), the lower-value byte the
+// accuracy a_i in LSB. 65535 in both words: see words 11 .. 14 of the EnDat 2.2 area (3.9.11).
+struct AccuracyRange {
+  std::uint32_t conversion_factor = 0;  // c_i
+  std::uint32_t accuracy = 0;           // a_i, in LSB
+  bool operator==(const AccuracyRange&) const = default;
+};
+constexpr std::uint16_t kAccuracySeeEndat22 = 0xFFFF;
+constexpr AccuracyRange decode_accuracy_range(std::uint16_t word) {
+  return {static_cast<std::uint32_t>(word >> 8), static_cast<std::uint32_t>(word & 0xFFU)};
+}
+// 3.9.11: words 11 .. 14 of the EnDat 2.2 area, c_1 a_1 c_2 a_2, each a value in bits 12..0
+// scaled by bits 15..13 (000 x1 .. 101 x32; 111 and the unlisted 110 not supported: none).
+std::optional<std::uint32_t> decode_scaled_value(std::uint16_t word);
 
 // ---- 3.5.22 word 37: EnDat command set ----------------------------------------------------------
 // Three functions, each in a pair of bits that must be stored inversely: bit 0 = 1 / bit 1 = 0
@@ -356,6 +374,7 @@ std::optional<std::uint64_t> steps_per_revolution(std::span<const std::uint16_t>
 // message 1 (01h .. 07h) and error message 2 (09h .. 0Fh) until port 00h ends it. The table lost
 // a column (docs/model-reference.md).
 constexpr std::uint8_t kForcedError1FirstPort = 0x01, kForcedError2FirstPort = 0x09, kForcedPortsPerMessage = 7;
+constexpr std::uint8_t kForcedSamplingOffPort = 0x00;
 
 // ---- 3.9.2 / 3.9.3 EnDat 2.2 words 0 and 1: supported additional data ------------------------------
 // Word 0 (additional data 1): bit 0 position value 2, 1 test values, 2 temperature sensor 1

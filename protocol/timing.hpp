@@ -65,6 +65,8 @@ inline constexpr Hertz kMeasurementFcMax = sim::kHz(200);
 inline constexpr unsigned kMeasurementCounterFactor = 8;
 inline constexpr unsigned kMeasurementCounterTolerancePercent = 10;
 inline constexpr unsigned kMeasurementsMin = 3;
+// 2.1.2: each measured value within T/8 of their mean (T the period of the compensated f_c).
+inline constexpr unsigned kMeasurementSpreadPeriodDivisor = 8;
 // 2.3.2 t_cal: 10.5/f_c (as frame_position::kEarliestStartBit) .. 1 ms (note 7: per encoder).
 inline constexpr Time kCalculationTimeMax = sim::ms(1);
 // 2.3.1.1 Figure 15, continuous clock: at most 7 LOW bits before the next word's start bit.

@@ -12,6 +12,7 @@ checker::EncoderDeclaration declared_encoder(const slave::EncoderParams& e) {
   d.output_delay = e.output_delay;
   d.t_cal = e.t_cal;
   d.t_cal_22 = e.t_cal_22;
+  d.t_cal_energy_saving = e.t_cal_energy_saving;
   d.t_ac = std::max(e.t_ac_read, e.t_ac_write);
   d.t_m = e.t_m;
   d.t_m_short = e.t_m_short;

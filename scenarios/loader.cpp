@@ -20,6 +20,7 @@
 
 namespace endatsim::scenarios {
 namespace {
+namespace dg = protocol::diagnosis;
 
 using input::json;
 using input::Node;
@@ -119,15 +120,17 @@ slave::SensorValues read_sensor_values(Object& o) {
   if (auto v = o.opt("temperature_1")) s.temperature1 = as_temperature(*v);
   if (auto v = o.opt("temperature_2")) s.temperature2 = as_temperature(*v);
   if (auto v = o.opt("additional_sensors")) {
-    if (!v->raw().is_array() || v->raw().size() > 16) v->fail("an array of at most 16 temperatures (a 4-bit address, 2.3.5.1)");
+    if (!v->raw().is_array() || v->raw().size() > dg::kAdditionalSensorAddresses)
+      v->fail("an array of at most " + std::to_string(dg::kAdditionalSensorAddresses) + " temperatures (a 4-bit address, 2.3.5.1)");
     s.additional_sensors.emplace();
     for (std::size_t i = 0; i < v->raw().size(); ++i)
       s.additional_sensors->push_back(as_temperature(v->item(i)));
   }
   if (auto v = o.opt("valuation_numbers")) {
-    if (!v->raw().is_array() || v->raw().size() != 6) v->fail("an array of the 6 valuation numbers (A3)");
+    if (!v->raw().is_array() || v->raw().size() != dg::kValuationNumbers)
+      v->fail("an array of the " + std::to_string(dg::kValuationNumbers) + " valuation numbers (A3)");
     s.valuation_numbers.emplace();
-    for (std::size_t i = 0; i < 6; ++i)
+    for (std::size_t i = 0; i < dg::kValuationNumbers; ++i)
       (*s.valuation_numbers)[i] =
           static_cast<std::uint8_t>(v->item(i).as_word(0xFF));
   }
@@ -148,18 +151,18 @@ void read_sensors(const Node& n, slave::Sensors& s) {
       const json key = address;
       const Node at(key, v->path() + "/" + address, n.file());
       const auto a = static_cast<std::uint8_t>(at.as_word(64));
-      const auto decoded = protocol::diagnosis::decode_diagnosis_address(a);
-      if (!decoded || decoded->bit < protocol::diagnosis::kValuationNumbers)
+      const auto decoded = dg::decode_diagnosis_address(a);
+      if (!decoded || decoded->bit < dg::kValuationNumbers)
         at.fail("an A3 address 1 .. 64 that is not a valuation number's (n + 16 k, n = 1 .. 6)");
       s.system_data[a] = static_cast<std::uint8_t>(Node(value, v->path() + "/" + address, n.file()).as_word(0xFF));
     }
   }
   if (auto v = o.opt("test_values")) {
-    if (!v->raw().is_object()) v->fail("an object of port address -> 40-bit test value");
+    if (!v->raw().is_object()) v->fail("an object of port address -> " + std::to_string(protocol::kTestValueBits) + "-bit test value");
     for (const auto& [port, value] : v->raw().items()) {
       const json key = port;
       const auto a = static_cast<std::uint8_t>(Node(key, v->path() + "/" + port, n.file()).as_word(0xFF));
-      s.test_values[a] = Node(value, v->path() + "/" + port, n.file()).as_word((std::uint64_t{1} << 40) - 1);
+      s.test_values[a] = Node(value, v->path() + "/" + port, n.file()).as_word((std::uint64_t{1} << protocol::kTestValueBits) - 1);
     }
   }
   if (auto v = o.opt("not_updatable")) {
@@ -177,7 +180,9 @@ void read_memory(const Node& n, slave::EncoderParams& p) {
   for (const auto& [key, value] : n.raw().items()) {
     const Node item(value, n.path() + "/" + key, n.file());
     if (key == "section2_blocks") {
-      if (!value.is_array() || value.size() > 256) item.fail("an array of at most 256 blocks of 256 words");
+      if (!value.is_array() || value.size() > protocol::kSection2BlocksMax)
+        item.fail("an array of at most " + std::to_string(protocol::kSection2BlocksMax) + " blocks of " +
+                  std::to_string(protocol::kAreaWordsMax) + " words");
       image.section2_blocks.clear();
       for (std::size_t i = 0; i < value.size(); ++i)
         image.section2_blocks.push_back(
@@ -221,7 +226,7 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
     p.reference_marks.clear();
     for (std::size_t i = 0; i < v->raw().size(); ++i)
       p.reference_marks.push_back(
-          v->item(i).as_uint(0, (std::uint64_t{1} << 48) - 1));
+          v->item(i).as_uint(0, slave::EncoderParams::kMaxPosition));
   }
   if (auto v = o.opt("sensors")) read_sensors(*v, p.sensors);
   if (auto v = o.opt("motion")) read_object(*v, slave::motion_parameters(), p.motion);
@@ -246,15 +251,15 @@ void read_diagnostics(const Node& n, master::DiagnosticsParams& p) {
   Object o(n);
   input::read_parameters(o, master::diagnostics_parameters(), p);
   if (auto v = o.opt("valuation_numbers")) {
-    if (!v->raw().is_array()) v->fail("an array of valuation numbers 1 .. 6 to activate (3.6.3)");
-    p.configuration &= protocol::diagnosis::kSystemSpecificDataBit;
-    for (std::size_t i = 0; i < v->raw().size(); ++i)
-      p.configuration |= static_cast<std::uint16_t>(
-          1U << (v->item(i).as_uint(1, 6) - 1));
+    if (!v->raw().is_array())
+      v->fail("an array of valuation numbers 1 .. " + std::to_string(dg::kValuationNumbers) + " to activate (3.6.3)");
+    p.configuration &= dg::kSystemSpecificDataBit;
+    for (std::size_t i = 0; i < v->raw().size(); ++i)  // valuation number n is bit n - 1 of word 3
+      p.configuration |= static_cast<std::uint16_t>(1U << (v->item(i).as_uint(1, dg::kValuationNumbers) - 1));
   }
   if (auto v = o.opt("system_specific_data"))
-    p.configuration = static_cast<std::uint16_t>((p.configuration & ~protocol::diagnosis::kSystemSpecificDataBit) |
-                                                 (v->as_bool() ? protocol::diagnosis::kSystemSpecificDataBit : 0));
+    p.configuration = static_cast<std::uint16_t>((p.configuration & ~dg::kSystemSpecificDataBit) |
+                                                 (v->as_bool() ? dg::kSystemSpecificDataBit : 0));
   o.done();
   validated(n, [&] { p.validate(); });
 }
@@ -363,11 +368,11 @@ FrameExpectation read_frame_expectation(const Node& n) {
   FrameExpectation e;
   if (auto v = o.opt("outcome"))
     e.outcome = outcome_name(*v);
-  if (auto v = o.opt("position")) e.position = v->as_uint(0, (std::uint64_t{1} << 48) - 1);
+  if (auto v = o.opt("position")) e.position = v->as_uint(0, slave::EncoderParams::kMaxPosition);
   if (auto v = o.opt("error1")) e.error1 = v->as_bool();
   if (auto v = o.opt("echo_address")) e.echo_address = read_byte(*v);
   if (auto v = o.opt("echo_parameter")) e.echo_parameter = read_word16(*v);
-  if (auto v = o.opt("test_value")) e.test_value = v->as_word((std::uint64_t{1} << 40) - 1);
+  if (auto v = o.opt("test_value")) e.test_value = v->as_word((std::uint64_t{1} << protocol::kTestValueBits) - 1);
   if (auto v = o.opt("additional_data")) {
     if (!v->raw().is_array() || v->raw().size() > 2) v->fail("an array of at most two additional data");
     std::vector<AdditionalDataExpectation> list;
@@ -617,7 +622,7 @@ void read_expect(const Node& n, Expectations& e) {
     if (!v->raw().is_array()) v->fail("an array of positions");
     std::vector<std::uint64_t> p;
     for (std::size_t i = 0; i < v->raw().size(); ++i)
-      p.push_back(v->item(i).as_uint(0, (std::uint64_t{1} << 48) - 1));
+      p.push_back(v->item(i).as_uint(0, slave::EncoderParams::kMaxPosition));
     e.positions = p;
   }
   if (auto v = o.opt("delay_measurement")) {

@@ -39,7 +39,7 @@ std::string decoded(const master::AdditionalDatum& d) {
   char buf[32];
   switch (d.information()) {
     case protocol::Information::Diagnosis:
-      std::snprintf(buf, sizeof buf, "%u:%u", static_cast<unsigned>(d.data >> 8), static_cast<unsigned>(d.data & 0xFF));
+      std::snprintf(buf, sizeof buf, "%u:%u", unsigned{protocol::datum_address(d.data)}, unsigned{protocol::datum_byte(d.data)});
       return buf;
     case protocol::Information::Temperature1:
     case protocol::Information::Temperature2:

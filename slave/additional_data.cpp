@@ -127,10 +127,10 @@ std::uint16_t AdditionalData::content(Information i, Time frame_start, std::uint
     case I::PositionValue2Word1: return position_value2(frame_start, true_position);
     case I::PositionValue2Word2: return word_of(position2_latched_, 1);
     case I::PositionValue2Word3: return word_of(position2_latched_, 2);
-    case I::MemoryParameterLsb: return static_cast<std::uint16_t>(memory_address_ << 8 | (memory_value_ & 0xFF));
-    case I::MemoryParameterMsb: return static_cast<std::uint16_t>(memory_address_ << 8 | memory_value_ >> 8);
-    case I::MrsCodeAcknowledgment: return static_cast<std::uint16_t>(mrs_ << 8 | block_);
-    case I::TestCommandAcknowledgment: return static_cast<std::uint16_t>(test_port_ << 8);
+    case I::MemoryParameterLsb: return protocol::make_addressed_datum(memory_address_, protocol::lsb_of(memory_value_));
+    case I::MemoryParameterMsb: return protocol::make_addressed_datum(memory_address_, protocol::msb_of(memory_value_));
+    case I::MrsCodeAcknowledgment: return protocol::make_addressed_datum(mrs_, block_);
+    case I::TestCommandAcknowledgment: return protocol::make_addressed_datum(test_port_, 0);
     case I::TestValuesWord1: {
       const auto it = s.test_values.find(test_port_);
       test_value_latched_ = it == s.test_values.end() ? 0 : it->second;
@@ -185,9 +185,10 @@ std::uint16_t AdditionalData::next_diagnosis_value() {
   const std::uint16_t enabled = memory_.active_operating_parameters()[word::kDiagnosticsConfiguration];
   std::vector<std::uint16_t> rotation;
   for (unsigned k = 0; k < s.valuation_numbers.size(); ++k)
-    if (((enabled >> k) & 1U) != 0) rotation.push_back(static_cast<std::uint16_t>((k + 1) << 8 | s.valuation_numbers[k]));
+    if (((enabled >> k) & 1U) != 0)
+      rotation.push_back(protocol::make_addressed_datum(protocol::diagnosis::valuation_number_address(k + 1), s.valuation_numbers[k]));
   if ((enabled & protocol::diagnosis::kSystemSpecificDataBit) != 0)
-    for (const auto& [address, value] : s.system_data) rotation.push_back(static_cast<std::uint16_t>(address << 8 | value));
+    for (const auto& [address, value] : s.system_data) rotation.push_back(protocol::make_addressed_datum(address, value));
   if (rotation.empty()) return 0;
   return rotation[diagnosis_index_++ % rotation.size()];
 }

@@ -41,7 +41,7 @@ MemoryImage eib_factory_image(const EibFactoryData& d) {
     if (d.compensation[i]) img.areas[comp[i]].assign(d.compensation[i]->end + 1, 0);
   }
   img.areas[A::ManufacturerEndat22].assign(protocol::info(A::ManufacturerEndat22).fixed_words, 0);
-  img.areas[A::OperatingParameters2].assign(16, 0);
+  img.areas[A::OperatingParameters2].assign(protocol::kOperatingParameters2DefaultWords, 0);
   return img;
 }
 

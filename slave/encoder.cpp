@@ -268,7 +268,8 @@ void Encoder::answer_position() {
   EncoderFrame& f = frames_.back();
   state_ = State::Answer;
   first_answer_clock_ = params_.earliest_start_bit_clock;
-  answer_not_before_ = f.start + params_.t_cal_for(command_->version);  // 2.3.2: t_cal runs from FE1
+  const bool energy_saving = (memory_.instructions() & pm::kInstructionEnergySaving) != 0;  // 3.6.5
+  answer_not_before_ = f.start + params_.t_cal_for(command_->version, energy_saving);  // 2.3.2: t_cal runs from FE1
   if (command_->answer == protocol::AnswerFormat::TestValues) {
     const auto it = params_.sensors.test_values.find(test_port_21_);
     answer_ = protocol::encode_test_values(errors_.error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second,
@@ -564,7 +565,8 @@ void Encoder::set_t_cal(Time t_cal) {
   require(t_cal >= Time::zero() && t_cal <= EncoderParams::kMaxModelTime,
           "t_cal must be 0 .. " + sim::format_time(EncoderParams::kMaxModelTime) + " (the model's limit)");
   params_.t_cal = t_cal;
-  params_.t_cal_22.reset();  // the event sets the calculation time of every mode command
+  params_.t_cal_22.reset();  // the event sets the calculation time of every mode command, in every mode
+  params_.t_cal_energy_saving.reset();
 }
 
 void Encoder::power_interruption(Time duration) {

@@ -146,8 +146,10 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     e[word::kEndat22Checksum] = pm::endat22_checksum(e);  // 3.9.37
     img.areas[A::ManufacturerEndat22] = e;
     // 3.6.6: the default is word 22 minus a safety reserve; 5 K gives the example's 110 degC.
-    img.areas[A::OperatingParameters][word::kTemperatureWarningThreshold] = 3831;
-    img.areas[A::OperatingParameters2].assign(16, 0);
+    constexpr std::uint16_t kSafetyReserveTenthKelvin = 50;
+    img.areas[A::OperatingParameters][word::kTemperatureWarningThreshold] =
+        static_cast<std::uint16_t>(e[word::kMaxEncoderTemperature] - kSafetyReserveTenthKelvin);
+    img.areas[A::OperatingParameters2].assign(protocol::kOperatingParameters2DefaultWords, 0);
   }
   return img;
 }
@@ -194,6 +196,9 @@ const std::array kRows{
         "the checker reports them."},
     Row{"t_cal_22", &EncoderParams::t_cal_22, 0, kModelTimeMax, "2.3.2",
         "t_cal for EnDat 2.2 mode commands where it differs (absolute linear encoders may); none: t_cal."},
+    Row{"t_cal_energy_saving", &EncoderParams::t_cal_energy_saving, 0, kModelTimeMax, "3.6.5",
+        "t_cal of every mode command while the instruction energy-saving mode (operating parameters word 5 bit 0) is "
+        "in effect; none: unchanged (the spec does not say what the mode saves)."},
     Row{"t_m", &EncoderParams::t_m, ps(limit::kRecoveryTimeMin), ps(limit::kRecoveryTimeMax), "2.3.2",
         "Recovery time I t_m: DATA HIGH after the last bit until the encoder is idle again."},
     Row{"t_m_short", &EncoderParams::t_m_short, ps(limit::kShortRecoveryTimeMin), ps(limit::kShortRecoveryTimeMax),

@@ -118,6 +118,7 @@ struct EncoderParams {
   EndatVersion version = EndatVersion::V2_2;  // a 2.1 encoder answers 2.2 commands as not supported
   unsigned position_bits = 25;                 // word 13: clock pulses for the position value
   static constexpr unsigned kMaxPositionBits = 48;  // the model's widest position (3.5.6 allows 63)
+  static constexpr std::uint64_t kMaxPosition = (std::uint64_t{1} << kMaxPositionBits) - 1;
   unsigned multiturn_bits = 0;                 // upper bits of the position that count revolutions
   Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
   // The model takes calculation times (and the encoder's other times) up to this, far beyond the
@@ -126,7 +127,14 @@ struct EncoderParams {
   // ... for EnDat 2.2 mode commands, where it differs (the German brochure, both editions: absolute linear
   // encoders take other calculation times for 2.1 and 2.2 mode commands); none: t_cal.
   std::optional<Time> t_cal_22;
-  Time t_cal_for(EndatVersion command) const { return command == EndatVersion::V2_2 ? t_cal_22.value_or(t_cal) : t_cal; }
+  // ... while the instruction "energy-saving mode" (operating parameters word 5 bit 0, 3.6.5) is in
+  // effect, where the encoder declares one; none: unchanged. The spec does not say what the mode
+  // saves; a slower calculation is the one effect it can have on the wires (docs/model-reference.md).
+  std::optional<Time> t_cal_energy_saving;
+  Time t_cal_for(EndatVersion command, bool energy_saving = false) const {
+    if (energy_saving && t_cal_energy_saving) return *t_cal_energy_saving;
+    return command == EndatVersion::V2_2 ? t_cal_22.value_or(t_cal) : t_cal;
+  }
   Time t_m = protocol::encoder_default::kRecoveryTime;  // 2.3.2: recovery time I, 10 .. 30 us
   std::optional<Time> t_m_short;               // 1.25 .. 3.75 us, 2.2 commands only (word 3, 3.4.4)
   bool short_t_m_selected = false;             // as if word 3 selected it at power-on

@@ -79,8 +79,8 @@ Memory::Memory(MemoryImage image) : image_(std::move(image)) {
     if (fixed_size(a) != 0 && w.size() != fixed_size(a))
       throw std::invalid_argument("memory area " + area_key(a) + " must have " + std::to_string(fixed_size(a)) +
                                   " words, got " + std::to_string(w.size()));
-    if (a == Area::OperatingParameters2 && (w.empty() || w.size() > 256))
-      throw std::invalid_argument("memory area operating_parameters2 must have 1 .. 256 words");
+    if (a == Area::OperatingParameters2 && (w.empty() || w.size() > protocol::kAreaWordsMax))
+      throw std::invalid_argument("memory area operating_parameters2 must have 1 .. " + std::to_string(protocol::kAreaWordsMax) + " words");
     if (a == Area::Section2 || a == Area::AsynchronousPosition)
       throw std::invalid_argument("memory area " + area_key(a) + " is not given as words of its own");
     if (const auto p = partition_of(a)) {
@@ -211,8 +211,7 @@ bool Memory::write_protected(const Selection& s) const {
   if (factory_protected(s.area)) return true;
   const auto bit = protocol::info(s.area).protection_bit;
   if (s.area == Area::Section2) {
-    const unsigned b = std::min<unsigned>(kProtectSection2Block0 + s.block, kProtectSection2BlocksFrom3);
-    return ((active_protection_ >> b) & 1U) != 0;
+    return ((active_protection_ >> protocol::section2_protection_bit(s.block)) & 1U) != 0;
   }
   return bit && ((active_protection_ >> *bit) & 1U) != 0;
 }

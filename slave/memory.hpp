@@ -28,8 +28,6 @@ struct MemoryImage {
 // Word numbers (protocol/parameters.hpp).
 namespace word = protocol::word;
 
-// 3.4.3: bits of word 2.
-constexpr unsigned kProtectSection2Block0 = 6, kProtectSection2BlocksFrom3 = 9;
 // 3.4.4: word 3 bits that choose the short recovery time I for 2.2 mode commands.
 using protocol::parameters::kShortRecoveryTimeOff;
 using protocol::parameters::kShortRecoveryTimeOn;

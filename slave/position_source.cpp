@@ -148,15 +148,12 @@ std::uint64_t PositionSource::measured(Time t) const {
 std::uint64_t PositionSource::output(std::uint64_t measured) const {
   const unsigned n = position_bits_;
   const std::uint64_t mask = n >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1;
-  // UNCERTAIN (3.5.16, its table lost a column): bit 0 = 0, the default, is taken as positions
-  // rising in the documented direction of measurement, bit 0 = 1 as falling.
-  const bool falling = (memory_.manufacturer_word(word::kDirection) & 1U) != 0;
+  const bool falling = pm::decode_direction_falling(memory_.manufacturer_word(word::kDirection));
   const std::uint64_t p = falling ? (0 - measured) & mask : measured;
   const auto& op = memory_.active_operating_parameters();
-  std::uint64_t shift = std::uint64_t{op[word::kDatumShift]} | std::uint64_t{op[word::kDatumShift + 1]} << 16;
-  if (n > 32) shift |= std::uint64_t{op[word::kDatumShift + 2]} << 32;
-  else if ((shift & 0x8000'0000ULL) != 0) shift |= 0xFFFF'FFFF'0000'0000ULL;  // two's complement in 32 bits
-  return (p + shift) & mask;
+  const unsigned w = word::kDatumShift;  // 3.6.2: word 2 extends the shift to 48 bits above 32-bit positions
+  const std::int64_t shift = n > 32 ? pm::decode_datum_shift48(op[w], op[w + 1], op[w + 2]) : pm::decode_datum_shift32(op[w], op[w + 1]);
+  return (p + static_cast<std::uint64_t>(shift)) & mask;
 }
 
 // The revolution counter has left 0 .. 2^M - 1 (counting up past the top or down past 0).

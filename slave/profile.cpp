@@ -99,8 +99,11 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
   for (const auto& [key, value] : m.raw().items()) {
     const Node item = m.child(key);
     if (key == "section2_blocks") {
-      if (!value.is_array() || value.size() > 256) item.fail("an array of at most 256 blocks of 256 hex words");
-      for (std::size_t i = 0; i < value.size(); ++i) p.memory.section2_blocks.push_back(as_words(item.item(i), 256, 256));
+      if (!value.is_array() || value.size() > protocol::kSection2BlocksMax)
+        item.fail("an array of at most " + std::to_string(protocol::kSection2BlocksMax) + " blocks of " +
+                  std::to_string(protocol::kAreaWordsMax) + " hex words");
+      for (std::size_t i = 0; i < value.size(); ++i)
+        p.memory.section2_blocks.push_back(as_words(item.item(i), protocol::kAreaWordsMax, protocol::kAreaWordsMax));
       continue;
     }
     const auto area = protocol::memory_area_from_key(key);
@@ -389,7 +392,7 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   std::copy(id.begin(), id.end(), m.begin() + word::kIdNumber);
   const auto serial = pm::encode_serial_number(p.serial);
   std::copy(serial.begin(), serial.end(), m.begin() + word::kSerialNumber);
-  m[word::kDirection] = pm::encode_direction(p.ascending);
+  m[word::kDirection] = pm::encode_direction(p.falling);
   m[word::kCommissioningDiagnostics] = pm::kNvmBit15;  // 3.5.17: external commissioning diagnostics not supported
   m[word::kMaxVelocity] = p.max_speed;
   m[word::kAccuracy] = p.accuracy[0];
@@ -426,7 +429,7 @@ EncoderProfile build_profile(const ProfileParameters& p) {
     e[word::kTimestampUnit] = pm::encode_timestamp_unit(p.timestamp_unit);
     e[word::kEndat22Checksum] = pm::endat22_checksum(e);
     areas[Area::ManufacturerEndat22] = e;
-    areas[Area::OperatingParameters2].assign(16, 0);
+    areas[Area::OperatingParameters2].assign(protocol::kOperatingParameters2DefaultWords, 0);
   }
   return profile;
 }

@@ -92,7 +92,7 @@ struct ProfileParameters {
   std::int64_t datum_shift = 0;                         // stored value of words 22/23 and operating parameters 0..2
   protocol::parameters::IdNumber id;                    // words 24..26
   protocol::parameters::SerialNumber serial;            // words 27..29
-  bool ascending = false;                               // word 30
+  bool falling = false;                                 // word 30 (3.5.16)
   std::uint16_t max_speed = 0;                          // word 32
   std::uint16_t accuracy[2] = {0, 0};                   // words 33, 34
   std::uint16_t supported_errors = 0;                   // word 35

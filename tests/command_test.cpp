@@ -3,6 +3,7 @@
 // values come from protocol::make_crc_*, which crc_test checks against the examples of A4.
 #include <gtest/gtest.h>
 
+#include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/protocol/parameters.hpp"
 #include "endatsim/slave/encoder.hpp"
 #include "test_support.hpp"
@@ -279,6 +280,16 @@ INSTANTIATE_TEST_SUITE_P(EnDat22, Supplement,
                                            SupplementCase{"ReceiveErrorReset", 0b101101},
                                            SupplementCase{"ReceiveTestCommand", 0b110110}),
                          [](const auto& p) { return std::string(p.param.name); });
+
+TEST(AdditionalData, AnAddressedDatumCarriesTheAddressInByte1AndTheDataInByte2) {
+  // 2.3.5: "Address or data" in byte 1, "Data" in byte 2; a parameter travels as LSB (I = 5) and MSB (I = 6).
+  EXPECT_EQ(protocol::make_addressed_datum(0x0B, 0xB4), 0x0BB4);
+  EXPECT_EQ(protocol::datum_address(0x0BB4), 0x0B);
+  EXPECT_EQ(protocol::datum_byte(0x0BB4), 0xB4);
+  EXPECT_EQ(protocol::lsb_of(0xA5B4), 0xB4);
+  EXPECT_EQ(protocol::msb_of(0xA5B4), 0xA5);
+  EXPECT_EQ(protocol::parameter_of(0xA5, 0xB4), 0xA5B4);
+}
 
 TEST(AdditionalData, SelectedTemperatureFollowsFromTheNextFrame) {
   // 2.3.5.1 / 2.4.2.2: MRS 4Ch selects temperature 1; it comes with the next 2.2 position frame.

@@ -90,6 +90,32 @@ TEST(EncoderPositionFrame, TcalOfEnDat22CommandsMayDifferFromEnDat21s) {
   }
 }
 
+// 3.6.5: word 5 bit 0 switches energy-saving mode on; an encoder that declares a calculation time
+// for it answers after that one, unless word 21 (3.9.15) marks the instruction not supported.
+TEST(EncoderPositionFrame, EnergySavingModeTakesTheCalculationTimeTheEncoderDeclaresForIt) {
+  namespace pm = protocol::parameters;
+  using A = protocol::MemoryArea;
+  const auto start_bit_clock = [](std::optional<Time> t_cal_energy_saving, std::uint16_t word5, std::uint16_t word21) {
+    auto p = encoder_params(protocol::EndatVersion::V2_2, 8, 1);
+    p.t_cal = us(5);
+    p.t_cal_energy_saving = t_cal_energy_saving;
+    p.memory = slave::default_memory_image(p);
+    p.memory->areas.at(A::OperatingParameters).at(protocol::word::kInstructions) = word5;
+    auto& endat22 = p.memory->areas.at(A::ManufacturerEndat22);
+    endat22.at(protocol::word::kInstructionSupport) = word21;
+    endat22.at(protocol::word::kEndat22Checksum) = pm::endat22_checksum(endat22);
+    Bench b(p);
+    ScriptedClock clock(b.k, b.line, us(1), 40, 0b000111);
+    b.k.run();
+    return b.encoder.frames().at(0).start_bit_clock;
+  };
+  EXPECT_EQ(start_bit_clock(us(15), pm::kInstructionEnergySaving, 0), 16U) << "at 1 MHz the first RE_k >= 15 us";
+  EXPECT_EQ(start_bit_clock(us(15), 0, 0), 11U) << "the mode is off";
+  EXPECT_EQ(start_bit_clock(std::nullopt, pm::kInstructionEnergySaving, 0), 11U) << "nothing declared for it";
+  EXPECT_EQ(start_bit_clock(us(15), pm::kInstructionEnergySaving, pm::kInstructionEnergySaving), 11U)
+      << "word 21 says the encoder does not support it";
+}
+
 TEST(EncoderPositionFrame, DataFallsLowExactlyTmAfterTheLastRisingEdge) {
   auto p = encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5);
   p.t_m = us(12);

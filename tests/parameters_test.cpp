@@ -190,11 +190,29 @@ TEST(Parameters, Words27To29SerialNumberExample) {
 }
 
 TEST(Parameters, Word30Direction) {
-  // 3.5.16: bit 15 = 1 for NVM checking, default 0.
+  // 3.5.16: bit 15 = 1 for NVM checking, default 0 (positions in the direction of measurement).
   EXPECT_EQ(encode_direction(false), 0x8000);
   EXPECT_EQ(encode_direction(true), 0x8001);
-  EXPECT_FALSE(decode_direction_ascending(0x8000));
-  EXPECT_TRUE(decode_direction_ascending(0x8001));
+  EXPECT_FALSE(decode_direction_falling(0x8000));
+  EXPECT_TRUE(decode_direction_falling(0x8001));
+}
+
+TEST(Parameters, Words33And34AccuracyRangesAsTheExamplesOf3519) {
+  // Linear: c_1 = 40, a_1 = +/-16 LSB = 0010 1000 0001 0000. Rotary: c_1 = 10, a_1 = 1; c_2 = 1, a_2 = 50.
+  EXPECT_EQ(decode_accuracy_range(0x2810), (AccuracyRange{40, 16}));
+  EXPECT_EQ(decode_accuracy_range(0x0A01), (AccuracyRange{10, 1}));
+  EXPECT_EQ(decode_accuracy_range(0x0132), (AccuracyRange{1, 50}));
+  EXPECT_EQ(kAccuracySeeEndat22, 65535);
+}
+
+TEST(Parameters, Endat22Words11To14ScaleTheirValueByBits15To13) {
+  // 3.9.11's example: c_1 = 40 and a_1 = 16, each x1.
+  EXPECT_EQ(decode_scaled_value(0x0028), 40U);
+  EXPECT_EQ(decode_scaled_value(0x0010), 16U);
+  EXPECT_EQ(decode_scaled_value(0x2028), 80U);            // 001 x2
+  EXPECT_EQ(decode_scaled_value(0xA000 | 0x1FFF), 0x1FFFU * 32);  // 101 x32, the largest value
+  EXPECT_EQ(decode_scaled_value(0xE001), std::nullopt);   // 111 not supported
+  EXPECT_EQ(decode_scaled_value(0xC001), std::nullopt);   // 110 is not in the table
 }
 
 TEST(Parameters, Word37CommandSetBitPairsStoredInversely) {
@@ -324,6 +342,16 @@ TEST(Parameters, Endat22Word45TimestampUnitExample) {
 TEST(Parameters, Word2FactoryWriteProtection) {
   EXPECT_EQ(endatsim::protocol::factory_write_protection(), (1U << 0) | (1U << 3) | (1U << 4) | (1U << 5));
   EXPECT_EQ(endatsim::protocol::factory_write_protection() & ((1U << 1) | (1U << 2)), 0U);
+}
+
+// 3.4.3 word 2: bits 6, 7 and 8 protect section 2 blocks 0, 1 and 2, bit 9 blocks 3 .. n.
+TEST(Parameters, Word2ProtectsSection2BlocksOneBitEachUpToBlock3) {
+  using endatsim::protocol::section2_protection_bit;
+  EXPECT_EQ(section2_protection_bit(0), 6U);
+  EXPECT_EQ(section2_protection_bit(1), 7U);
+  EXPECT_EQ(section2_protection_bit(2), 8U);
+  EXPECT_EQ(section2_protection_bit(3), 9U);
+  EXPECT_EQ(section2_protection_bit(255), 9U);
 }
 
 // 3.5.5 words 9 .. 12: OEM areas 1 and 2 at 0 .. 63, the others not available, as a default
