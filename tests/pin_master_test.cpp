@@ -473,6 +473,28 @@ TEST(PinMaster, EachModeCommandTypesPollingIsJudgedAgainstItsOwnTCal) {
   EXPECT_EQ(verdict(k21Position, polled + ps(1), us(1)), checker::Verdict::Both);
 }
 
+// 3.6.5: an encoder that declares a longer calculation time in energy-saving mode may take it
+// whenever the master switches the mode on; polling is judged against the longer of the two.
+TEST(PinMaster, PollingIsJudgedAgainstTheEnergySavingTCalWhereItIsLonger) {
+  slave::EncoderParams model;
+  model.t_cal = us(500);
+  const auto verdict = [&](Time t_cal, std::optional<Time> t_cal_energy_saving) {
+    const std::vector<PinFrame> frames{{us(10), MHz(1), 40, header(k21Position)}};
+    const auto v = polling_findings(model, frames, checker::check::kCalculationTime, [&](checker::EncoderDeclaration& d) {
+      d.t_cal = t_cal;
+      d.t_cal_energy_saving = t_cal_energy_saving;
+    });
+    return v.size() == 1 ? std::optional{v[0].verdict} : std::nullopt;
+  };
+  const Time polled = ns(39'500);  // FE1 to RE40 at 1 MHz
+  EXPECT_EQ(verdict(us(1), polled), checker::Verdict::SpecEnvelope);
+  EXPECT_EQ(verdict(us(1), polled + ps(1)), checker::Verdict::Both);
+  EXPECT_EQ(verdict(polled + ps(1), us(1)), checker::Verdict::Both) << "a shorter one does not lower the limit";
+  EXPECT_EQ(verdict(us(1), std::nullopt), checker::Verdict::SpecEnvelope);
+  model.t_cal_energy_saving = us(20);
+  EXPECT_EQ(scenarios::declared_encoder(model).t_cal_energy_saving, us(20));
+}
+
 // 2.3.2 t_ac: a 2.1 parameter frame polls for the acknowledgment through the memory access. The
 // model takes 2 ms to select memory area A1h; the master gives up 40 us after its last payload bit.
 TEST(PinMaster, GivingUpTheStartBitBeforeTAcIsCaughtToThePicosecond) {
