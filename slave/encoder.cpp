@@ -33,9 +33,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
       positions_(params_, memory_), additional_data_(params_, memory_, positions_),
       errors_(params_, memory_, positions_, additional_data_), eib_(params_, memory_),
       access_(kernel, memory_, additional_data_, *this),
-      data_logic_(kernel, "encoder_data_logic", false), enable_logic_(kernel, "encoder_enable_logic", true),
-      data_out_delay_(kernel, data_logic_, pins_.data_out, params.output_delay),
-      enable_out_delay_(kernel, enable_logic_, pins_.data_enable, params.output_delay),
+      driver_(kernel, pins_, params.output_delay),
       recovery_timer_(kernel, sim::bind<&Encoder::on_recovery_time_elapsed>(this)),
       end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
       readiness_(kernel, sim::bind<&Encoder::on_started>(this), params.unsettled_positions) {
@@ -69,7 +67,7 @@ void Encoder::commissioned(std::optional<unsigned> position_bits) {
 // the EnDat idle level (2.3).
 void Encoder::go_offline(Time duration) {
   state_ = State::Idle;
-  enable_logic_.write(false);
+  release();
   readiness_.run_up(duration);
 }
 

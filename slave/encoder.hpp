@@ -23,6 +23,7 @@
 #include "endatsim/slave/memory.hpp"
 #include "endatsim/slave/memory_access.hpp"
 #include "endatsim/slave/position_source.hpp"
+#include "endatsim/slave/data_driver.hpp"
 #include "endatsim/slave/readiness.hpp"
 #include "endatsim/slave/reference.hpp"
 
@@ -130,9 +131,9 @@ class Encoder final : private MemoryAccess::Client {
   void hand_over_for_supplement();
   bool drives_bus() const;
   Time recovery_time() const;
-  void drive(bool level) { data_logic_.write(level); }
-  void release() { enable_logic_.write(false); }
-  void enable() { enable_logic_.write(drives_bus()); }
+  void drive(bool level) { driver_.drive(level); }
+  void release() { driver_.release(); }
+  void enable() { driver_.enable(drives_bus()); }
 
   sim::Kernel& kernel_;
   line::Line::EncoderSide pins_;
@@ -144,10 +145,7 @@ class Encoder final : private MemoryAccess::Client {
   EibCommissioning eib_;
   MemoryAccess access_;
   BusAddressing bus_;
-  sim::Signal data_logic_;
-  sim::Signal enable_logic_;
-  sim::TransportDelay data_out_delay_;
-  sim::TransportDelay enable_out_delay_;
+  DataDriver driver_;
   sim::Timer recovery_timer_;
   sim::Timer end_marker_timer_;
   Readiness readiness_;  // run-up (2.3.3), t_R (2.3.2), unsettled answers after start-up

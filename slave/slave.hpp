@@ -11,6 +11,7 @@
 //   error_messages.hpp   F1 and F2 and the operating status words 0 and 1 (2.3.1, 3.4.1, 3.4.2)
 //   bus_addressing.hpp   the encoder's part in a bus: addressed or not, driver on or off (2.10)
 //   readiness.hpp        whether a clock edge is taken: run-up (2.3.3), t_R (2.3.2)
+//   data_driver.hpp      the level the encoder sends on DATA and whether its driver is on (2.3)
 //   reference.hpp        reference mark schemes (2.3.4.3)
 //   eib.hpp              the EIB: its factory image and initial commissioning (3.5.7)
 //   profile.hpp          encoder profiles: memory images with their parameters as JSON
