@@ -132,9 +132,8 @@ void Master::next_operation() {
 }
 
 void Master::start_frames(Time begin) {
-  next_due_ = begin;
-  const Time at = std::max(next_due_, ready_at_);
-  kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
+  pacing_.start(begin);
+  kernel_.schedule(pacing_.due() - kernel_.now(), sim::bind<&Master::start_frame>(this));
 }
 
 FunctionContext Master::context() const {
@@ -175,7 +174,7 @@ void Master::power_on_pulse(std::uint64_t phase) {
     return;
   }
   engine_.drive_clock(true);
-  ready_at_ = std::max(ready_at_, kernel_.now() + params_.power_on.t3);
+  pacing_.not_before(kernel_.now() + params_.power_on.t3);
   operation_timer_.start(params_.power_on.t3);
 }
 
@@ -187,7 +186,7 @@ void Master::encoder_power_interrupted() { careful_.power_interrupted(selection_
 
 bool Master::retry_frame(const FrameResult& f) {
   if (!careful_.retry(f, current_->kind == Operation::Kind::ReadPosition)) return false;
-  kernel_.schedule(std::max(ready_at_, kernel_.now()) - kernel_.now(), sim::bind<&Master::start_frame>(this));
+  kernel_.schedule(std::max(pacing_.ready_at(), kernel_.now()) - kernel_.now(), sim::bind<&Master::start_frame>(this));
   return true;
 }
 
@@ -277,12 +276,10 @@ void Master::operation_frame_done(const FrameResult& f) {
   careful_.frame_done(f);
   if (retry_frame(f)) return;
   if (--frames_left_ > 0) {
-    next_due_ += current_->kind != Operation::Kind::MeasureDelay ? current_->cycle : Time::zero();
     // The read cycle of a control loop; polls for the busy bit may come later than their interval.
-    if (ready_at_ > next_due_ && current_->cycle > Time::zero() && current_->kind == Operation::Kind::ReadPosition)
-      ++cycle_overruns_;
-    const Time at = std::max(next_due_, ready_at_);
-    kernel_.schedule(at - kernel_.now(), sim::bind<&Master::start_frame>(this));
+    pacing_.next_cycle(current_->kind != Operation::Kind::MeasureDelay ? current_->cycle : Time::zero(),
+                       current_->cycle > Time::zero() && current_->kind == Operation::Kind::ReadPosition);
+    kernel_.schedule(pacing_.due() - kernel_.now(), sim::bind<&Master::start_frame>(this));
     return;
   }
   if (delay_.active()) {
@@ -343,9 +340,9 @@ void Master::word_done(const FrameResult& f) {
 
 void Master::frame_done(FrameResult& f) {
   const bool error_handling = f.outcome == FrameOutcome::NoStartBit || f.outcome == FrameOutcome::Type1Error;
-  ready_at_ = f.end + (error_handling ? params_.error_wait : params_.t_m_wait) + params_.t_r_wait;
+  pacing_.ready_at(f.end + (error_handling ? params_.error_wait : params_.t_m_wait) + params_.t_r_wait);
   if (f.command == ModeCommand::EncoderReceiveReset && f.outcome == FrameOutcome::Ok)
-    ready_at_ = std::max(ready_at_, f.end + params_.reset_wait);
+    pacing_.not_before(f.end + params_.reset_wait);
   if (!f.measurement) {
     book_.note(f);
     note_endat22_word(f);
@@ -445,8 +442,8 @@ void Master::finish_measurement_round() {
   if (r.accepted) t_d_ = r.t_d;
   if (delay_.next_round()) {
     frames_left_ = m.count;
-    next_due_ = kernel_.now();
-    kernel_.schedule(std::max(ready_at_, kernel_.now()) - kernel_.now(), sim::bind<&Master::start_frame>(this));
+    pacing_.start(kernel_.now());
+    kernel_.schedule(std::max(pacing_.ready_at(), kernel_.now()) - kernel_.now(), sim::bind<&Master::start_frame>(this));
     return;
   }
   next_operation();

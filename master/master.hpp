@@ -2,6 +2,9 @@
 // it expands a script's operations into frames (routines, memory reads, setups), paces them
 // (cycles, recovery waits, t_b, retries) and hands each frame to its parts:
 //   frame_engine.hpp       one frame on the wire: clock, mode command, sampling, CRC checks
+//   pacing.hpp             when the next frame is due: the operation's cycle, the encoder's waits
+//   careful_policy.hpp     retries and new measurements when frames fail (a careful master)
+//   additional_data_selection.hpp  additional data 1 and 2 as the encoder accepted them (2.4.2.2)
 //   delay_measurement.hpp  the propagation-delay measurement and its verdict (2.1.2)
 //   parameter_book.hpp     the encoder's memory as read (2.4 .. 2.6)
 //   startup.hpp            the start-up routine and the checksum check (2.1 reads, 3.5.26)
@@ -26,6 +29,7 @@
 #include "endatsim/master/master_function.hpp"
 #include "endatsim/master/master_params.hpp"
 #include "endatsim/master/operation.hpp"
+#include "endatsim/master/pacing.hpp"
 #include "endatsim/master/parameter_book.hpp"
 #include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/protocol.hpp"
@@ -59,7 +63,7 @@ class Master : private FrameClient {
   std::uint64_t frame_count() const { return frame_count_; }  // every frame and word recorded
   const std::vector<DelayMeasurementResult>& measurements() const { return delay_.results(); }
   std::optional<Time> t_d() const { return t_d_; }
-  std::uint64_t cycle_overruns() const { return cycle_overruns_; }
+  std::uint64_t cycle_overruns() const { return pacing_.cycle_overruns(); }
   std::uint64_t busy_timeouts() const { return busy_timeouts_; }
   // await_not_busy operations given up at once because a poll frame came back (without error)
   // carrying no additional data 1, where the busy bit travels (D297403 2.5.1, 2.6.1): polling
@@ -122,10 +126,8 @@ class Master : private FrameClient {
   std::optional<Operation> current_;
   std::size_t enqueued_ = 0;
   unsigned frames_left_ = 0;
-  Time next_due_{0};
-  Time ready_at_{0};
+  Pacing pacing_;
   bool finished_ = false;
-  std::uint64_t cycle_overruns_ = 0;
   std::uint64_t busy_timeouts_ = 0;
   std::uint64_t busy_unreadable_ = 0;
   StartupRoutine routine_;
