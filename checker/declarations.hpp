@@ -44,7 +44,7 @@ struct MasterDeclaration {
   unsigned position_bits = 25;   // as configured (word 13)
   Hertz f_c = sim::MHz(1);       // the intended clock
   Hertz f_e = 0;                 // 2.1.2 delay counter clock; 0: eight times f_c
-  unsigned measurements = 3;     // 2.1.2 delay measurements averaged
+  unsigned measurements = protocol::limit::kMeasurementsMin;  // 2.1.2 delay measurements averaged
 };
 
 // One frame as the master declares it, at its FE1 (start), per sample and at its end.

@@ -69,7 +69,7 @@ std::optional<DelayMeasurements::Judgement> DelayMeasurements::compensated(sim::
   j.worst_frame = run_[j.worst].frame;
   bool undecided = latest == Agreement::Undecided;
   j.consistent = latest == Agreement::Pass;
-  for (std::size_t k = 4; k <= run_.size() && !j.consistent; ++k) {
+  for (std::size_t k = protocol::limit::kMeasurementsMin + 1; k <= run_.size() && !j.consistent; ++k) {
     const Agreement a = agree(run_, k, period, resolution, nullptr);
     j.consistent = a == Agreement::Pass;
     undecided = undecided || a == Agreement::Undecided;

@@ -230,8 +230,8 @@ void FrameDecoder::follow_parameter_reads() {
       if (const auto bits = position_format_word()) learn_width(*bits);
       return;
     case MC::EncoderReceiveParameters: {
-      const auto echo = (frame_.fields[static_cast<std::size_t>(protocol::Field::Address)] << 16) |
-                        frame_.fields[static_cast<std::size_t>(protocol::Field::Parameter)];
+      const auto echo = protocol::make_payload(static_cast<std::uint8_t>(frame_.fields[static_cast<std::size_t>(protocol::Field::Address)]),
+                                               static_cast<std::uint16_t>(frame_.fields[static_cast<std::size_t>(protocol::Field::Parameter)]));
       const auto bits = position_format_word();
       if (bits && echo == *frame_.payload) written_width_ = bits;  // an echo differs when refused (A2)
       return;

@@ -30,7 +30,7 @@ std::vector<I> AdditionalData1Rolling::schedule(unsigned position_bits) const {
   }
   std::vector<I> position2;
   if (safety_.position_value_2)
-    for (unsigned k = 0; k < std::min(3U, (position_bits + 15) / 16); ++k)
+    for (unsigned k = 0; k < protocol::position_value2_words(position_bits); ++k)
       position2.push_back(static_cast<I>(static_cast<unsigned>(I::PositionValue2Word1) + k));
   if (diagnosis.empty() || position2.empty()) return diagnosis.empty() ? position2 : diagnosis;
   std::vector<I> round;

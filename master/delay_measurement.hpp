@@ -12,6 +12,7 @@
 
 #include <boost/random/mersenne_twister.hpp>
 
+#include "endatsim/protocol/timing.hpp"
 #include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/time.hpp"
 
@@ -29,7 +30,7 @@ enum class CounterPhase : std::uint8_t { FreeRunning, EdgeAligned };
 struct DelayMeasurementParams {
   Hertz f_c = sim::kHz(200);  // 2.1.2: reduced clock 100 .. 200 kHz
   Hertz f_e = 0;              // counter clock; 0 = 8 x the intended f_c (2.1.2: "at least eight times")
-  unsigned count = 3;         // 2.1.2: at least three measurements, averaged
+  unsigned count = protocol::limit::kMeasurementsMin;  // 2.1.2: at least three measurements, averaged
   unsigned max_rounds = 3;    // further rounds when a value strays more than T/8 from the mean
   CounterPhase counter_phase = CounterPhase::FreeRunning;
 };

@@ -18,6 +18,7 @@
 
 #include "endatsim/master/frame_result.hpp"
 #include "endatsim/master/master_function.hpp"
+#include "endatsim/protocol/diagnosis.hpp"
 #include "endatsim/sim/parameter.hpp"
 #include "endatsim/sim/time.hpp"
 
@@ -30,7 +31,7 @@ struct DiagnosticsParams {
   // Operating parameters word 3 as the setup writes it (3.6.3: bits 0 .. 5 valuation numbers
   // 1 .. 6, bit 15 system-specific data), limited to what 3.9.7 word 5 says is supported
   // (the same bits).
-  std::uint16_t configuration = 0x003F;
+  std::uint16_t configuration = protocol::diagnosis::kValuationNumberBits;
   bool temperatures = true;         // temperature 1 and 2 (2.3.5.1) in the rotation
   unsigned additional_sensors = 0;  // interrogations of the additional sensors per round (2.3.5.1)
   // UNCERTAIN (the German brochure, both editions: "the border areas should be suppressed in a display (definition of

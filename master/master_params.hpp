@@ -103,8 +103,8 @@ struct MasterParams {
   SafetyParams safety;
   DiagnosticsParams diagnostics;
 
-  static constexpr Hertz kMinFc = sim::kHz(100);
-  static constexpr Hertz kMaxFc = sim::MHz(16);
+  static constexpr Hertz kMinFc = protocol::limit::kFcMin;
+  static constexpr Hertz kMaxFc = protocol::limit::kFcMaxSpecial;
   // Throws std::invalid_argument naming the parameter and its limit.
   void validate() const;
 };

@@ -461,7 +461,7 @@ void SafetyMonitor::check_position_value_2(const FrameResult& f) {
     position2_->value |= std::uint64_t{d.data} << (16 * k);
     ++position2_->words;
   }
-  const unsigned words = std::min(3U, (position_bits_ + 15) / 16);
+  const unsigned words = protocol::position_value2_words(position_bits_);
   if (!position2_ || position2_->words < words) return;
   const Position2Read r = *position2_;
   position2_.reset();

@@ -98,6 +98,13 @@ constexpr bool is_additional_data_2(Information i) { return static_cast<std::uin
 constexpr std::uint8_t selection_mrs(Information i) { return static_cast<std::uint8_t>(0x40 | static_cast<std::uint8_t>(i)); }
 // The code an MRS code 0x40..0x5F selects.
 constexpr Information information_of_mrs(std::uint8_t mrs) { return static_cast<Information>(mrs & 0x1F); }
+// 2.3.5.1: position value 2 travels in words 1 .. 3 (I = 2, 3, 4), 16 bits each, as many as its
+// width needs.
+constexpr unsigned position_value2_words(unsigned bits) {
+  constexpr unsigned kWordsMax = 3, kBitsPerWord = 16;
+  const unsigned words = (bits + kBitsPerWord - 1) / kBitsPerWord;
+  return words < kWordsMax ? words : kWordsMax;
+}
 // 3.9.3: EnDat 2.2 manufacturer word 1 bit 6, "position value 2" in additional data 2 (as
 // the asynchronous position value's codes, 2.3.5.2).
 constexpr std::uint16_t kPositionValue2InAdditionalData2 = 0x0040;

@@ -71,6 +71,8 @@ constexpr std::uint32_t join32(std::uint16_t low, std::uint16_t high) {
 // Index = bit. Bits 7 .. 15 are "currently not assigned" and show as "bit 7" ... in strings.
 std::span<const std::string_view> error_bit_names();    // 2^0 lighting .. 2^6 battery
 std::span<const std::string_view> warning_bit_names();  // 2^0 frequency collision .. 2^8 diagnostics
+constexpr std::uint16_t kEveryErrorBit = 0x007F;                    // word 0 bits 0 .. 6 (3.4.1)
+constexpr std::uint16_t kEveryWarningBit = 0x01FF;                  // word 1 bits 0 .. 8 (3.4.2)
 constexpr std::uint16_t kWarningTemperatureExceeded = 0x0002;       // word 1 bit 1 (3.4.2)
 constexpr std::uint16_t kWarningCyclicOperation = 0x0020;           // word 1 bit 5 (3.4.2)
 constexpr std::uint16_t kWarningReferencePointNotReached = 0x0010;  // word 1 bit 4 (3.4.2)
@@ -215,6 +217,8 @@ std::string measuring_step_string(EncoderType type, std::uint32_t value);
 std::array<std::uint16_t, 2> encode_datum_shift32(std::int64_t value);  // throws outside int32
 std::int64_t decode_datum_shift32(std::uint16_t w0, std::uint16_t w1);
 std::array<std::uint16_t, 3> encode_datum_shift48(std::int64_t value);  // throws outside 48 bits
+// 3.6.2: operating parameters word 2 takes part for positions of more than 32 bits.
+constexpr bool datum_shift_has_48_bits(unsigned position_bits) { return position_bits > 32; }
 std::int64_t decode_datum_shift48(std::uint16_t w0, std::uint16_t w1, std::uint16_t w2);
 // The spec's examples store a shift "by +N measuring steps" as the two's complement of N, i.e.
 // as -N: "+20 mm" with 0.1 um steps = 200 000 = 30D40h -> FFFCF2C0h; "+45 degrees" with 8192
@@ -280,6 +284,9 @@ struct AccuracyRange {
   bool operator==(const AccuracyRange&) const = default;
 };
 constexpr std::uint16_t kAccuracySeeEndat22 = 0xFFFF;
+constexpr std::uint16_t encode_accuracy_range(std::uint8_t conversion_factor, std::uint8_t accuracy) {
+  return static_cast<std::uint16_t>(conversion_factor << 8 | accuracy);
+}
 constexpr AccuracyRange decode_accuracy_range(std::uint16_t word) {
   return {static_cast<std::uint32_t>(word >> 8), static_cast<std::uint32_t>(word & 0xFFU)};
 }
@@ -386,6 +393,15 @@ constexpr std::uint16_t kSupportsPositionValue2 = 0x0001, kSupportsTestValues = 
                         kSupportsAdditionalSensors = 0x0010;  // word 0
 constexpr std::uint16_t kSupportsEveryAdditionalData1 = 0x001F;
 constexpr std::uint16_t kSupportsAsynchronousPosition = 0x0008;  // word 1
+constexpr std::uint16_t kSupportsTimestamp = 0x0080;             // word 1
+// Word 1: every code of additional data 2 (bits 0 .. 4 and 7) but position value 2 (bit 6,
+// protocol::kPositionValue2InAdditionalData2).
+constexpr std::uint16_t kSupportsEveryAdditionalData2ButPositionValue2 = 0x001F | kSupportsTimestamp;
+// ---- 3.9.4 EnDat 2.2 word 2: status of additional functions ---------------------------------------
+constexpr std::uint16_t kSupportsSettableRecoveryTime = 0x0002;  // bit 1: recovery time I t_m
+// ---- 3.9.6 EnDat 2.2 word 4: scaling of temperatures -------------------------------------------------
+// Bits 2..0 = 000: 0.1 K; bit 15 set for NVM checking. Default 8000h.
+constexpr std::uint16_t kTemperatureScalingTenthKelvin = kNvmBit15;
 std::span<const std::string_view> additional_data_1_names();  // index = bit
 std::span<const std::string_view> additional_data_2_names();
 // Bits by name (throws std::invalid_argument naming the unknown name and the known ones).

@@ -67,7 +67,8 @@ void judge_delay(const Scenario& s, ScenarioResult& r) {
                                               : (last->accepted ? "accepted" : "rejected: " + last->reason)});
   }
   if (d.max_error || d.max_error_is_eighth) {
-    const Time limit = d.max_error_is_eighth ? sim::period_of(s.master.f_c) / 8 : *d.max_error;
+    const Time limit = d.max_error_is_eighth ? sim::period_of(s.master.f_c) / protocol::limit::kMeasurementSpreadPeriodDivisor
+                                              : *d.max_error;
     if (last == nullptr || !last->accepted) {
       r.expectations.push_back({"delay_measurement.max_error", false, "no accepted measurement"});
       return;

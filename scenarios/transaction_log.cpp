@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "endatsim/protocol/frame.hpp"
 #include "endatsim/scenarios/streamed_outputs.hpp"
 
 namespace endatsim::scenarios {
@@ -12,7 +13,7 @@ namespace {
 
 using nlohmann::ordered_json;
 
-std::string mode_bits_text(std::uint8_t bits) { return std::bitset<6>(bits).to_string(); }
+std::string mode_bits_text(std::uint8_t bits) { return std::bitset<protocol::frame_position::kModeBits>(bits).to_string(); }
 
 std::string hex(std::uint64_t value, int digits) {
   char buf[24];

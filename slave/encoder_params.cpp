@@ -46,7 +46,8 @@ void EncoderParams::validate() const {
               ", got " + std::to_string(motion.start));
   if (const auto why = sim::first_out_of_range(sensor_parameters(), sensors, "encoder sensors")) throw std::invalid_argument(*why);
   if (const auto why = sim::first_out_of_range(motion_parameters(), motion, "encoder motion")) throw std::invalid_argument(*why);
-  require(sensors.additional_sensors.size() <= 16, "at most 16 additional sensors (4-bit address, 2.3.5.1)");
+  require(sensors.additional_sensors.size() <= protocol::diagnosis::kAdditionalSensorAddresses,
+          "at most 16 additional sensors (4-bit address, 2.3.5.1)");
   for (const auto& [port, value] : sensors.test_values)
     require(value < (std::uint64_t{1} << protocol::kTestValueBits),
             "test value of port " + std::to_string(port) + " must fit 40 bits (2.9)");
@@ -113,10 +114,12 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   m[word::kMeasuringSteps] = steps[0];
   m[word::kMeasuringSteps + 1] = steps[1];
   m[word::kMaxVelocity] = p.kind == EncoderKind::Linear ? 120 : 12000;
-  m[word::kAccuracy] = v22 ? 0xFFFF : 0x2810;
-  m[word::kAccuracy + 1] = v22 ? 0xFFFF : 0x0140;
-  m[word::kSupportedErrors] = 0x007F;
-  m[word::kSupportedWarnings] = 0x01FF;
+  // 3.5.19: c_1 = 40, a_1 = 16 LSB (the spec's example), c_2 = 1, a_2 = 64 LSB; a 2.2 encoder keeps
+  // them in words 11 .. 14 of its 2.2 area.
+  m[word::kAccuracy] = v22 ? pm::kAccuracySeeEndat22 : pm::encode_accuracy_range(40, 16);
+  m[word::kAccuracy + 1] = v22 ? pm::kAccuracySeeEndat22 : pm::encode_accuracy_range(1, 64);
+  m[word::kSupportedErrors] = pm::kEveryErrorBit;
+  m[word::kSupportedWarnings] = pm::kEveryWarningBit;
   m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);  // 3.5.26
   set_manufacturer_words(img, m);
   img.areas[A::OperatingParameters].assign(protocol::kOperatingParametersWords, 0);
@@ -125,13 +128,13 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   if (v22) {
     std::vector<std::uint16_t> e(protocol::kEndat22Words, 0);
     e[word::kAdditionalData1Support] = pm::kSupportsEveryAdditionalData1;  // 3.9.2
-    e[word::kAdditionalData2Support] = 0x009F;  // 3.9.3: all but "position value 2" in additional data 2
-    e[word::kAdditionalFunctionsSupport] = p.t_m_short ? 0x0002 : 0x0000;      // 3.9.4: settable recovery time I
-    e[word::kTemperatureScaling] = 0x8000;      // 3.9.6: 0.1 K (default value)
+    e[word::kAdditionalData2Support] = pm::kSupportsEveryAdditionalData2ButPositionValue2;  // 3.9.3
+    e[word::kAdditionalFunctionsSupport] = p.t_m_short ? pm::kSupportsSettableRecoveryTime : 0;  // 3.9.4
+    e[word::kTemperatureScaling] = pm::kTemperatureScalingTenthKelvin;  // 3.9.6 (default value)
     // 3.9.7: valuation numbers 1 .. 6, system-specific data where the encoder has any.
     e[word::kDiagnosticStatus] = static_cast<std::uint16_t>(
         protocol::diagnosis::kValuationNumberBits | (p.sensors.system_data.empty() ? 0 : protocol::diagnosis::kSystemSpecificDataBit));
-    e[word::kErrorMessage2Support] = 0x007F;                              // 3.9.8: support of error message 2
+    e[word::kErrorMessage2Support] = pm::kEveryErrorBit;                  // 3.9.8: support of error message 2
     e[word::kMaxEncoderTemperature] = 3881;     // 3.9.16's example: 115 degC
     e[word::kMaxClockFrequency] = 16000;        // 3.9.19: kHz
     // 3.9.10: position value 2 in the steps of position value 1

@@ -141,12 +141,9 @@ std::uint16_t Memory::operating_parameter(unsigned n) const {
 
 std::optional<std::pair<unsigned, unsigned>> Memory::address_range(const Selection& s) const {
   if (const auto p = partition_of(s.area)) {
-    const unsigned w = manufacturer_word(p->first) >> p->second;
-    // 3.5.5: four bits per start or end address.
-    const auto start = protocol::parameters::partition_address(w & 0xF);
-    const auto end = protocol::parameters::partition_address((w >> 4) & 0xF);
-    if (!start || !end || *start > *end) return std::nullopt;
-    return std::pair{*start, *end};
+    const auto range = protocol::parameters::decode_partition(static_cast<std::uint8_t>(manufacturer_word(p->first) >> p->second));
+    if (!range || range->start > range->end) return std::nullopt;
+    return std::pair{range->start, range->end};
   }
   switch (s.area) {
     case Area::OperatingStatus: return std::pair{0U, unsigned{protocol::kOperatingStatusWords} - 1};

@@ -151,8 +151,8 @@ std::uint64_t PositionSource::output(std::uint64_t measured) const {
   const bool falling = pm::decode_direction_falling(memory_.manufacturer_word(word::kDirection));
   const std::uint64_t p = falling ? (0 - measured) & mask : measured;
   const auto& op = memory_.active_operating_parameters();
-  const unsigned w = word::kDatumShift;  // 3.6.2: word 2 extends the shift to 48 bits above 32-bit positions
-  const std::int64_t shift = n > 32 ? pm::decode_datum_shift48(op[w], op[w + 1], op[w + 2]) : pm::decode_datum_shift32(op[w], op[w + 1]);
+  const unsigned w = word::kDatumShift;
+  const std::int64_t shift = pm::datum_shift_has_48_bits(n) ? pm::decode_datum_shift48(op[w], op[w + 1], op[w + 2]) : pm::decode_datum_shift32(op[w], op[w + 1]);
   return (p + static_cast<std::uint64_t>(shift)) & mask;
 }
 

@@ -91,7 +91,7 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
   if (root.contains("description")) p.description = r.child("description").as_string();
   p.version = static_cast<EndatVersion>(choice(r.child("version"), kEndatVersionNames));
   p.kind = static_cast<EncoderKind>(choice(r.child("kind"), kEncoderKindNames));
-  p.position_bits = static_cast<unsigned>(r.child("position_bits").as_uint(1, 48));
+  p.position_bits = static_cast<unsigned>(r.child("position_bits").as_uint(1, EncoderParams::kMaxPositionBits));
   if (root.contains("multiturn_bits")) p.multiturn_bits = static_cast<unsigned>(r.child("multiturn_bits").as_uint(0, p.position_bits - 1));
 
   const Node m = r.child("memory");
@@ -410,7 +410,7 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   std::vector<std::uint16_t> op(protocol::kOperatingParametersWords, 0);
   op[word::kDatumShift] = shift[0];
   op[word::kDatumShift + 1] = shift[1];
-  if (p.position_bits > 32) op[word::kDatumShift + 2] = shift[2];
+  if (pm::datum_shift_has_48_bits(p.position_bits)) op[word::kDatumShift + 2] = shift[2];
   areas[Area::OperatingParameters] = op;
   const Area oem[4] = {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4};
   const Area comp[4] = {Area::Compensation1, Area::Compensation2, Area::Compensation3, Area::Compensation4};

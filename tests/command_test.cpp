@@ -291,6 +291,15 @@ TEST(AdditionalData, AnAddressedDatumCarriesTheAddressInByte1AndTheDataInByte2) 
   EXPECT_EQ(protocol::parameter_of(0xA5, 0xB4), 0xA5B4);
 }
 
+TEST(AdditionalData, PositionValue2TakesAsManyOfItsThreeWordsAsItsWidthNeeds) {
+  // 2.3.5.1: I = 2, 3, 4 carry words 1, 2, 3 of position value 2, 16 bits each.
+  EXPECT_EQ(protocol::position_value2_words(16), 1U);
+  EXPECT_EQ(protocol::position_value2_words(17), 2U);
+  EXPECT_EQ(protocol::position_value2_words(25), 2U);
+  EXPECT_EQ(protocol::position_value2_words(48), 3U);
+  EXPECT_EQ(protocol::position_value2_words(63), 3U);
+}
+
 TEST(AdditionalData, SelectedTemperatureFollowsFromTheNextFrame) {
   // 2.3.5.1 / 2.4.2.2: MRS 4Ch selects temperature 1; it comes with the next 2.2 position frame.
   Bench b(params());

@@ -203,6 +203,8 @@ TEST(Parameters, Words33And34AccuracyRangesAsTheExamplesOf3519) {
   EXPECT_EQ(decode_accuracy_range(0x0A01), (AccuracyRange{10, 1}));
   EXPECT_EQ(decode_accuracy_range(0x0132), (AccuracyRange{1, 50}));
   EXPECT_EQ(kAccuracySeeEndat22, 65535);
+  EXPECT_EQ(encode_accuracy_range(40, 16), 0x2810);
+  EXPECT_EQ(encode_accuracy_range(1, 50), 0x0132);
 }
 
 TEST(Parameters, Endat22Words11To14ScaleTheirValueByBits15To13) {
