@@ -37,7 +37,7 @@ std::uint16_t as_temperature(const Node& n) {
   std::smatch m;
   const std::string s = n.raw().get<std::string>();
   if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) return static_cast<std::uint16_t>(n.as_word(0xFFFF));
-  if (!std::regex_match(s, m, kTemperature)) n.fail(what);
+  if (!std::regex_match(s, m, kTemperature) || (m[3].str() == "K" && s[0] == '-')) n.fail(what);  // no K below 0
   const double x = std::stod(m[1].str());
   const long tenth = m[3].str() == "degC" ? protocol::diagnosis::tenth_kelvin_of_celsius(x) : std::lround(x * 10.0);
   if (tenth < 0 || tenth > 0xFFFF) n.fail(what);
@@ -146,7 +146,7 @@ void read_sensors(const Node& n, slave::Sensors& s) {
   if (values.valuation_numbers) s.valuation_numbers = *values.valuation_numbers;
   input::read_parameters(o, slave::sensor_parameters(), s);
   if (auto v = o.opt("system_data")) {
-    if (!v->raw().is_object()) v->fail("an object of A3 address (7 .. 64, not a valuation number's) -> 8-bit value");
+    if (!v->raw().is_object()) v->fail("an object of A3 address (1 .. 64, not a valuation number's n + 16 k, n = 1 .. 6) -> 8-bit value");
     for (const auto& [address, value] : v->raw().items()) {
       const json key = address;
       const Node at(key, v->path() + "/" + address, n.file());

@@ -214,6 +214,24 @@ TEST(TypeTwo, Cause8AccessWhileBusyAfterTheFrame) {
   EXPECT_EQ(*b.last().error, ErrorCause::ImpermissibleAddress);
 }
 
+// 2.3.1 note 1: a reset with Busy = 1 gets type II as well (A2 cause 8), and does not take place:
+// the additional data selected before it stay selected (2.4.2.2).
+TEST(TypeTwo, Cause8ResetWhileBusyIsRefusedAndResetsNothing) {
+  auto p = params();
+  p.t_ac_placement = slave::MemoryAccessPlacement::AfterFrame;
+  p.t_ac_write = ms(1);
+  Bench b(p);
+  b.frame(59, ScriptedFrame::header(0b001001) + std::string(18, '-') + "0000000" "1" + payload(0x4C, 0));
+  ASSERT_EQ(b.encoder.additional_data_1(), protocol::Information::Temperature1);
+  b.frame(65, ScriptedFrame::header(0b001110, payload(0xA9, 0)));
+  b.frame(65, ScriptedFrame::header(0b011100, payload(0x01, 0x1111)));
+  ASSERT_FALSE(b.last().error.has_value());
+  b.frame(65, ScriptedFrame::header(0b101010, payload(0, 0)));  // 200 us later: still busy
+  ASSERT_TRUE(b.last().error.has_value());
+  EXPECT_EQ(*b.last().error, ErrorCause::ImpermissibleAddress);
+  EXPECT_EQ(b.encoder.additional_data_1(), protocol::Information::Temperature1) << "the reset did not take place";
+}
+
 TEST(TypeTwo, TooManyClocksDiscardTheWrite) {
   // 2.4.1: "If more clock pulses than required are sent ... an error message is output".
   Bench b(params());
