@@ -202,7 +202,7 @@ void TimingChecker::check_calculation_time_maximum() {
        .frame = current_.header.index,
        .clock = start_clock_,
        .measured = format_time(t_cal),
-       .limit = "<= 1 ms + T = " + format_time(bound),
+       .limit = "<= " + format_time(limit::kCalculationTimeMax) + " + T = " + format_time(bound),
        .severity = Severity::Error,
        .message = "the start bit came later than the longest calculation time allows"}, "start bit");
 }
@@ -268,7 +268,7 @@ void TimingChecker::check_memory_access_time() {
        .frame = current_.header.index,
        .clock = start_clock_,
        .measured = format_time(t_ac),
-       .limit = "<= 12 ms + T = " + format_time(bound),
+       .limit = "<= " + format_time(limit::kMemoryAccessMax) + " + T = " + format_time(bound),
        .severity = Severity::Error,
        .message = "the acknowledgment came later than the longest memory access time allows"}, "start bit");
 }
@@ -370,14 +370,15 @@ namespace {
 
 // 2.3.2 note 8: t_ST = 2 us for f_c 2 .. 8 MHz, 1 us at 16 MHz, linear in between; "the 2 us
 // relate to a cable length of 100 m and can be reduced with a shorter cable". The note's value
-// scaled with the spec's t_D bound, (0.2 + 0.01 L) / 1.2, is what the cable needs: above 100 m
+// scaled with the spec's t_D bound, t_D max(L) / t_D max(100 m) = (0.2 + 0.01 L) / 1.2, is what the cable needs: above 100 m
 // it is longer (the encoder's release must reach the master before it drives) and always
 // required; below 100 m it is shorter and accepted only with
 // CheckerParams::t_st_reduced_for_cable, else the note's own value is required. Only with delay
 // compensation (table column).
 Time required_start_delay(sim::Hertz f_c, double cable_m, bool reduced_for_cable) {
   const Time note8 = limit::start_delay(f_c);
-  const double share = (0.2 + 0.01 * cable_m) / 1.2;
+  const double share = static_cast<double>(limit::data_delay_max(cable_m).count()) /
+                       static_cast<double>(limit::data_delay_max(limit::kCompensatedCableMaxMetres).count());
   const Time scaled{static_cast<std::int64_t>(static_cast<double>(note8.count()) * share + 0.5)};
   return reduced_for_cable ? scaled : std::max(note8, scaled);
 }

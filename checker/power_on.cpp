@@ -88,7 +88,7 @@ PowerOnSequence::Judgement PowerOnSequence::judge_pulse(std::uint64_t index, Tim
                                                         std::optional<Time> t2_from) const {
   Judgement j;
   const Time width = pulse.rise - pulse.fall;
-  j.push_back({index, pulse.fall, sim::format_time(width), "> 125 ns", "the power-on pulse is too short",
+  j.push_back({index, pulse.fall, sim::format_time(width), "> " + sim::format_time(limit::kPowerOnPulseMin), "the power-on pulse is too short",
                         more_than(width, limit::kPowerOnPulseMin, resolution_)});
   judge_t1_t2(j, index, pulse.fall, t2_from, "the power-on pulse");
   judge_t3(j, index, pulse.rise, start);
@@ -99,7 +99,7 @@ PowerOnSequence::Judgement PowerOnSequence::judge_pulse(std::uint64_t index, Tim
 // shows no boundary between them; after a LOW phase, the HIGH before the wake-up is t2.
 void PowerOnSequence::judge_t1_t2(Judgement& j, std::uint64_t index, Time wake, std::optional<Time> t2_from,
                                   const std::string& what) const {
-  j.push_back({index, wake, sim::format_time(wake - on_at_) + " after switching on", ">= t1 + t2 = 800 ms + 80 ms",
+  j.push_back({index, wake, sim::format_time(wake - on_at_) + " after switching on", ">= t1 + t2 = " + sim::format_time(limit::kPowerOnT1Min) + " + " + sim::format_time(limit::kPowerOnT2Min),
                         what + " came before t1 and t2 had passed",
                         at_least(wake - on_at_, limit::kPowerOnT1Min + limit::kPowerOnT2Min, resolution_)});
   if (!t2_from) return;

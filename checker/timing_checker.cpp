@@ -10,6 +10,7 @@
 
 #include "endatsim/checker/clock_fit.hpp"
 #include "endatsim/protocol/memory_area.hpp"
+#include "endatsim/sim/parameter.hpp"
 
 namespace endatsim::checker {
 
@@ -293,7 +294,9 @@ void TimingChecker::check_measurement_spread(const PinFrame& f) {
             .frame = f.header.index,
             .clock = std::nullopt,
             .measured = "no measurement",
-            .limit = ">= 3 measurements at 100 .. 200 kHz",
+            .limit = ">= " + std::to_string(limit::kMeasurementsMin) + " measurements at " +
+                     sim::parameter_detail::span_text(format_frequency(limit::kMeasurementFcMin),
+                                                      format_frequency(limit::kMeasurementFcMax), false),
             .severity = Severity::Error,
             .message = "the master compensates (f_c " + format_frequency(f.header.f_c)
                        + ") without measuring t_D after switching on"});
@@ -629,7 +632,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
             .frame = f.header.index,
             .clock = std::nullopt,
             .measured = format_frequency(fc),
-            .limit = ">= 1 MHz",
+            .limit = ">= " + format_frequency(limit::kShortRecoveryTimeFcMin),
             .severity = Severity::Error,
             .message = "the short recovery time is selected but the clock is slower than 1 MHz"});
   check_frequency_for_encoder(f, fit);
@@ -769,7 +772,7 @@ void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_ri
        .frame = next.header.index,
        .clock = 1U,
        .measured = format_time(gap),
-       .limit = "> 1 ms",
+       .limit = "> " + format_time(limit::kTimeBetweenCyclesMin),
        .severity = Severity::Error,
        .message = "a 2.1 memory or parameter frame followed the previous frame too soon (read here: last rising "
                   "edge to FE1 of 2.1 frames with 8 + 16 bits; other readings: start to start, or "
@@ -792,7 +795,7 @@ void TimingChecker::check_recovery(const PinFrame& next) {
          .frame = next.header.index,
          .clock = 1U,
          .measured = format_time(next.fe1 - last_rise),
-         .limit = ">= 30 us",
+         .limit = ">= " + format_time(limit::kErrorRecoveryWait),
          .severity = Severity::Error,
          .message = "the next frame followed an error handling too soon"}, "between frames");
   check_time_between_cycles(next, last_rise);
@@ -981,7 +984,7 @@ void TimingChecker::check_busy_time(const AccessEvidence& frame) {
        .frame = frame.index,
        .clock = std::nullopt,
        .measured = "busy after " + format_time(busy_for),
-       .limit = "<= 12 ms + T = " + format_time(bound),
+       .limit = "<= " + format_time(limit::kMemoryAccessMax) + " + T = " + format_time(bound),
        .severity = Severity::Error,
        .message = "the encoder's memory access outlasts the longest access time: Busy is still set"},
        "additional data 1");
