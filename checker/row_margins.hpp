@@ -23,6 +23,7 @@ enum class Unit : std::uint8_t { Duration, Frequency, Count };
 // Whose limit: the spec's (for rows with an envelope, what any compliant encoder may do), or
 // the declared encoder's.
 enum class LimitOf : std::uint8_t { Spec, ThisEncoder };
+inline constexpr std::size_t kLimitsOf = static_cast<std::size_t>(LimitOf::ThisEncoder) + 1;
 std::string_view to_string(LimitOf of);
 
 struct WorstCase {
@@ -55,7 +56,7 @@ class RowMargins {
     Unit unit;
     std::int64_t margin() const { return bound == Bound::AtMost ? limit - measured : measured - limit; }
   };
-  std::vector<std::array<std::optional<Extreme>, 2>> worst_;  // by LimitOf
+  std::vector<std::array<std::optional<Extreme>, kLimitsOf>> worst_;  // indexed by LimitOf
 };
 
 }  // namespace endatsim::checker

@@ -93,6 +93,8 @@ std::vector<std::uint8_t> encode_test_values(bool error1, std::uint64_t test_val
 
 // 2.3.5: a LOW bit, byte 0 (status), bytes 1 and 2, CRC over the 24 bits = MakeCrcNorm.
 constexpr unsigned kAdditionalDatumBits = 30;
+// Its Busy bit: after the LOW bit, WRN and RM.
+constexpr unsigned kAdditionalDatumBusyBit = 3;
 Layout additional_datum_layout();
 std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data, const CrcConfig& crc = {});
 

@@ -412,18 +412,21 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
              "stroke=\"#1f7a3a\" stroke-dasharray=\"2 2\" stroke-width=\"0.8\"");
 
   // Fields.
-  if (frame != nullptr && m_fe.size() >= 9) {
+  namespace fp = protocol::frame_position;
+  const auto fe = [&](unsigned k) { return m_fe[k - 1]; };  // FE_k
+  if (frame != nullptr && m_fe.size() >= fp::kTurnaround) {
     std::string bits;
-    for (int b = static_cast<int>(protocol::frame_position::kModeBits) - 1; b >= 0; --b) bits += ((frame->mode_bits >> b) & 1U) != 0 ? '1' : '0';
-    svg.field(axis.x(m_fe[2]), axis.x(m_fe[8]), row_y("endat.master_data") - 22, "mode bits " + bits, bits);
-    svg.field(axis.x(m_fe[0]), axis.x(m_fe[2]), row_y("endat.master_data") - 22, "turnaround", "");
+    for (int b = static_cast<int>(fp::kModeBits) - 1; b >= 0; --b) bits += ((frame->mode_bits >> b) & 1U) != 0 ? '1' : '0';
+    svg.field(axis.x(fe(fp::kFirstModeBit)), axis.x(fe(fp::kTurnaround)), row_y("endat.master_data") - 22, "mode bits " + bits, bits);
+    svg.field(axis.x(fe(fp::kFrameStart)), axis.x(fe(fp::kFirstModeBit)), row_y("endat.master_data") - 22, "turnaround", "");
     // 2.1 parameter frames: 8 bits of address / MRS code / port and 16 bits after the mode bits.
-    if (frame->payload && m_fe.size() >= 33) {
+    constexpr unsigned kAddressEnd = fp::kTurnaround + 8, kPayloadEnd = fp::kTurnaround + protocol::kPayloadBits;
+    if (frame->payload && m_fe.size() >= kPayloadEnd) {
       char text[48];
       std::snprintf(text, sizeof text, "address 0x%02X", static_cast<unsigned>(protocol::payload_address(*frame->payload)));
-      svg.field(axis.x(m_fe[8]), axis.x(m_fe[16]), row_y("endat.master_data") - 22, text, "address");
+      svg.field(axis.x(fe(fp::kTurnaround)), axis.x(fe(kAddressEnd)), row_y("endat.master_data") - 22, text, "address");
       std::snprintf(text, sizeof text, "parameter 0x%04X", static_cast<unsigned>(protocol::payload_parameter(*frame->payload)));
-      svg.field(axis.x(m_fe[16]), axis.x(m_fe[32]), row_y("endat.master_data") - 22, text, "parameter");
+      svg.field(axis.x(fe(kAddressEnd)), axis.x(fe(kPayloadEnd)), row_y("endat.master_data") - 22, text, "parameter");
     }
   }
   if (e_start != kNone && frame != nullptr && launch >= 1) {
@@ -438,7 +441,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
       std::string name(protocol::field_name(spec.field));
       std::string short_name = spec.field == protocol::Field::StartBit ? "S" : name;
       if (spec.field == protocol::Field::Position) name += " (" + std::to_string(spec.width) + " bits, LSB first)";
-      if (spec.field == protocol::Field::Crc) name += " (5 bits)";
+      if (spec.field == protocol::Field::Crc) name += " (" + std::to_string(protocol::kCrcBits) + " bits)";
       svg.field(axis.x(a), axis.x(b), row_y("endat.encoder_data") - 22, name, short_name);
       slot = last;
     }
@@ -453,7 +456,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
                 std::string(second ? "additional data 2: " : "additional data 1: ") +
                     std::string(protocol::info(d.information()).key) + (d.crc_ok ? "" : " (CRC FAIL)"),
                 second ? "AD2" : "AD1");
-      const std::size_t busy = slot + 3;  // after the LOW bit, WRN and RM
+      const std::size_t busy = slot + protocol::kAdditionalDatumBusyBit;  // after the LOW bit, WRN and RM
       svg.field(axis.x(edge(busy)), axis.x(edge(busy + 1)), row_y("endat.encoder_data") - 40,
                 d.busy() ? "Busy 1" : "Busy 0", d.busy() ? "B1" : "B0");
       slot = last;

@@ -246,8 +246,10 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
                          " measuring steps per revolution in words 20/21 (3.5.12), got " + std::to_string(steps));
   }
   if (const auto d = pm::decode_ordering_designation(m[word::kOrderingDesignation])) {
-    const bool printable = (*d)[5] > 0x20 && (*d)[5] < 0x7F && (*d)[6] > 0x20 && (*d)[6] < 0x7F;
-    const bool needs22 = (*d)[6] == '2';  // EnDat02 / EnDat22: command set 2.2 (the German brochure, newer edition)
+    constexpr std::size_t kFirst = std::string_view("EnDat").size();  // the two characters after "EnDat"
+    const auto printable_char = [](char c) { return c > 0x20 && c < 0x7F; };
+    const bool printable = printable_char((*d)[kFirst]) && printable_char((*d)[kFirst + 1]);
+    const bool needs22 = (*d)[kFirst + 1] == '2';  // EnDat02 / EnDat22: command set 2.2 (the German brochure, newer edition)
     expect(printable && (!needs22 || p.version == EndatVersion::V2_2), manufacturer_path(word::kOrderingDesignation),
            "\"EnDat\" and two printable characters, x2 only with version 2.2 (3.5.25)", m[word::kOrderingDesignation]);
   }
