@@ -1,5 +1,7 @@
 #include "endatsim/capture/capture.hpp"
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstring>
 #include <algorithm>
@@ -73,6 +75,10 @@ std::string list(const std::vector<std::string>& names, std::size_t at_most) {
 }  // namespace
 
 std::unique_ptr<Reader> open(const std::string& path) {
+  // Looked at before it is opened: opening a FIFO would wait for a writer.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw CaptureError(path + ": cannot open the capture for reading: " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw CaptureError(path + ": not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CaptureError(path + ": cannot open the capture for reading: " + std::strerror(errno));
   std::array<char, 4> magic{};

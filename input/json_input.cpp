@@ -209,6 +209,8 @@ sim::Time Node::as_duration(sim::Time min, sim::Time max) const {
   sim::Time t;
   try {
     t = sim::parse_duration(j_.get<std::string>());
+  } catch (const sim::ValueTooLarge&) {
+    fail(range);  // beyond any range: say which one applies here
   } catch (const std::invalid_argument& e) {
     fail_raw(e.what());
   }
@@ -223,6 +225,8 @@ sim::Hertz Node::as_frequency(sim::Hertz min, sim::Hertz max, bool or_zero) cons
   sim::Hertz f = 0;
   try {
     f = sim::parse_frequency(j_.get<std::string>());
+  } catch (const sim::ValueTooLarge&) {
+    fail(range);
   } catch (const std::invalid_argument& e) {
     fail_raw(e.what());
   }

@@ -37,6 +37,8 @@ void stop_if_interrupted(std::size_t line) {
 std::ifstream open(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(path, "a directory, not a partial");
+  // A FIFO would wait for a writer, a device never end.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) fail(path, "not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, std::string("cannot open it: ") + std::strerror(errno));
   return in;

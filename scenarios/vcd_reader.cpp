@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -285,6 +286,10 @@ const VcdVariable* VcdFile::find(const std::string& name) const {
 VcdFile parse_vcd(const std::string& text, const VcdLintOptions& options) { return Parser(text, options).run(); }
 
 VcdFile read_vcd_file(const std::string& path, const VcdLintOptions& options) {
+  // Looked at before it is opened: a FIFO would wait for a writer, a device never end.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw std::runtime_error("'" + path + "' is not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open '" + path + "': " + std::strerror(errno));
   std::ostringstream ss;

@@ -48,7 +48,7 @@ std::int64_t parse_quantity(std::string_view text, const std::array<Unit, N>& un
       if (point && ++fraction_digits > kMaxFractionDigits)
         throw std::invalid_argument("expected " + expected + ", got more than " + std::to_string(kMaxFractionDigits) +
                                     " digits after the decimal point");
-      if (mantissa > Wide{1} << 86) throw std::invalid_argument("expected " + expected + ", got a number too large");
+      if (mantissa > Wide{1} << 86) throw ValueTooLarge("expected " + expected + ", got a number too large");
     } else if (c == '.' && !point) {
       point = true;
     } else {
@@ -69,7 +69,7 @@ std::int64_t parse_quantity(std::string_view text, const std::array<Unit, N>& un
                                   std::string(units.front().name) + ", got \"" + std::string(text) + "\"");
     value /= divisor;
     if (value > Wide{INT64_MAX} / 2)
-      throw std::invalid_argument("expected " + expected + ", got \"" + std::string(text) + "\" which is too large");
+      throw ValueTooLarge("expected " + expected + ", got \"" + std::string(text) + "\" which is too large");
     return static_cast<std::int64_t>(value);
   }
   std::string names;

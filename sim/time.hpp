@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <stdexcept>
 #include <string_view>
 
 namespace endatsim::sim {
@@ -26,7 +27,13 @@ Time period_of(Hertz f);
 Hertz frequency_of(Time t);
 
 // "2 us", "500ns", "1.25 us", "0.000001 s": exact decimal parsing, no floating point.
-// Throws std::invalid_argument with a message that says what was expected.
+// Throws std::invalid_argument with a message that says what was expected; ValueTooLarge (one
+// kind of it) for a value beyond what an int64 of picoseconds or hertz holds, which a caller with
+// a range of its own may name instead.
+class ValueTooLarge : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 Time parse_duration(std::string_view text);
 // "2 MHz", "200 kHz", "16000000 Hz".
 Hertz parse_frequency(std::string_view text);

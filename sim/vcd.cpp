@@ -1,5 +1,6 @@
 #include "endatsim/sim/vcd.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -37,7 +38,11 @@ VcdWriter::VcdWriter(Kernel& kernel, const std::string& path) : kernel_(kernel),
     file_ = fd < 0 ? nullptr : ::fdopen(fd, "wb");
     if (file_ == nullptr && fd >= 0) ::close(fd);
   } else {
-    file_ = std::fopen(device ? path.c_str() : part_.c_str(), "wb");
+    // A part file is created afresh, never through a link planted in its place.
+    const int flags = device ? O_WRONLY | O_CLOEXEC : O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC;
+    const int fd = ::open(device ? path.c_str() : part_.c_str(), flags, 0666);
+    file_ = fd < 0 ? nullptr : ::fdopen(fd, "wb");
+    if (file_ == nullptr && fd >= 0) ::close(fd);
   }
   if (file_ == nullptr)
     throw std::runtime_error("cannot open VCD file '" + path + "' for writing: " + std::strerror(errno));

@@ -475,6 +475,56 @@ TEST(HostileText, NullIsNamedOnce) {
   }
 }
 
+// A duration or frequency beyond what 64 bits hold is out of the key's range like any other: the
+// message names that range.
+TEST(HostileText, ADurationBeyondSixtyFourBitsIsRefusedWithTheKeysRange) {
+  auto s = base("huge");
+  s["encoder"]["t_cal"] = "4611687 s";
+  try {
+    (void)endatsim::scenarios::load_scenario_text(s.dump(), "huge.json");
+    FAIL() << "accepted";
+  } catch (const endatsim::scenarios::ScenarioError& e) {
+    EXPECT_TRUE(contains(e.what(), "/encoder/t_cal: expected a duration string 0 ps .. 100 ms")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "\"4611687 s\"")) << e.what();
+  }
+  s = base("huge");
+  s["master"]["f_c"] = "10000000000000000000 GHz";
+  try {
+    (void)endatsim::scenarios::load_scenario_text(s.dump(), "huge.json");
+    FAIL() << "accepted";
+  } catch (const endatsim::scenarios::ScenarioError& e) {
+    EXPECT_TRUE(contains(e.what(), "/master/f_c: expected a frequency string 100 kHz .. 16 MHz")) << e.what();
+  }
+}
+
+// Readers look at a file before they open it: a FIFO would wait for a writer that never comes,
+// a device would never end.
+TEST(HostileInputs, FifosAndDevicesAreRefusedByEveryReader) {
+  TempDir dir;
+  const std::string fifo = dir / "pipe", vcd = dir / "s.vcd";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto made = run("run " + write(dir / "s.json", base("fifo").dump()) + " --quiet --vcd " + vcd, dir);
+  ASSERT_TRUE(made.status == 0 || made.status == 1) << made.err;
+  for (const std::string& input : {fifo, std::string("/dev/zero")}) {
+    const std::string signals = " --clock endat.encoder_clock --data endat.encoder_data --quiet";
+    const auto check = run("check " + input + signals, dir);
+    EXPECT_EQ(check.status, 2) << input << ": " << check.err;
+    EXPECT_TRUE(contains(check.err, "not a regular file")) << check.err;
+    const auto encoder = run("check " + vcd + signals + " --encoder " + input, dir);
+    EXPECT_EQ(encoder.status, 2) << input << ": " << encoder.err;
+    EXPECT_TRUE(contains(encoder.err, "not a regular file")) << encoder.err;
+    const auto merge = run("merge " + input + " --json " + (dir / "m.json"), dir);
+    EXPECT_EQ(merge.status, 2) << input << ": " << merge.err;
+    EXPECT_TRUE(contains(merge.err, "not a regular file")) << merge.err;
+    try {
+      (void)endatsim::scenarios::read_vcd_file(input, {});
+      ADD_FAILURE() << input << " was read as a VCD";
+    } catch (const std::runtime_error& e) {
+      EXPECT_TRUE(contains(e.what(), "not a regular file")) << e.what();
+    }
+  }
+}
+
 TEST(HostileText, HugeNamesAndKeysAreCutInMessages) {
   TempDir dir;
   const std::string name(3'000'000, 'n');

@@ -2,7 +2,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+
+#include <unistd.h>
 
 #include "endatsim/sim/sim.hpp"
 #include "scenario_support.hpp"
@@ -67,6 +70,22 @@ TEST(VcdWriter, WritesOnlyCommittedChangesAtTheEndOfEachTimeStep) {
 TEST(VcdWriter, ReportsAnUnwritablePath) {
   Kernel k;
   EXPECT_THROW(VcdWriter(k, "/nonexistent-dir/x.vcd"), std::runtime_error);
+}
+
+// The part file is made afresh: a symlink planted where it goes is refused, not written through.
+TEST(VcdWriter, RefusesALinkPlantedWhereItsPartFileGoes) {
+  const auto dir = std::filesystem::temp_directory_path() / ("endatsim_vcd_link_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto victim = dir / "victim", out = dir / "out.vcd";
+  std::ofstream(victim) << "precious";
+  std::filesystem::create_symlink(victim, dir / ("out.vcd.part-" + std::to_string(::getpid())));
+  Kernel k;
+  EXPECT_THROW(VcdWriter(k, out.string()), std::runtime_error);
+  std::ifstream in(victim);
+  const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(kept, "precious");
+  EXPECT_FALSE(std::filesystem::exists(out));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(VcdWriter, ChangesAtTimeZeroAreStampedZero) {

@@ -24,6 +24,7 @@
 #include <thread>
 
 #include "endatsim/capture/capture.hpp"
+#include "endatsim/input/json_input.hpp"
 #include "endatsim/input/suggest.hpp"
 #include "endatsim/slave/profile.hpp"
 #include "endatsim/protocol/timing.hpp"
@@ -1100,9 +1101,9 @@ struct EncoderFile {
 };
 
 EncoderFile encoder_declaration_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the encoder declaration for reading: " + std::strerror(errno));
-  const auto j = nlohmann::json::parse(in, nullptr, false);
+  // A regular file of at most 4 MiB, as every JSON input (a FIFO or a device is refused).
+  const std::string text = input::read_file(path, {"encoder profile or scenario", "an"});
+  const auto j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw std::runtime_error(path + ": not a JSON object (a profile or a scenario)");
   if (j.contains("encoder") || j.contains("script") || j.contains("line")) {
     const bool bench = !j.contains("master") && !j.contains("script");
