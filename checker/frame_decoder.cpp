@@ -351,7 +351,7 @@ void FrameDecoder::decode_answer(unsigned last_clock) {
   seen_low_ = false;
   // 2.3.1: only "Encoder send position values" goes on with a continuous clock.
   if (*frame_.command == MC::EncoderSendPositionValues) state_ = State::Hunt;
-  else if (additional_data && frame_.additional_data.size() < 2) state_ = State::MoreData;
+  else if (additional_data && frame_.additional_data.size() < protocol::kAdditionalDataPerFrameMax) state_ = State::MoreData;
   else state_ = State::Done;
 }
 

@@ -88,8 +88,12 @@ PowerOnSequence::Judgement PowerOnSequence::judge_pulse(std::uint64_t index, Tim
                                                         std::optional<Time> t2_from) const {
   Judgement j;
   const Time width = pulse.rise - pulse.fall;
-  j.push_back({index, pulse.fall, sim::format_time(width), "> " + sim::format_time(limit::kPowerOnPulseMin), "the power-on pulse is too short",
-                        more_than(width, limit::kPowerOnPulseMin, resolution_)});
+  j.push_back({.frame = index,
+               .at = pulse.fall,
+               .measured = sim::format_time(width),
+               .bound = "> " + sim::format_time(limit::kPowerOnPulseMin),
+               .message = "the power-on pulse is too short",
+               .decision = more_than(width, limit::kPowerOnPulseMin, resolution_)});
   judge_t1_t2(j, index, pulse.fall, t2_from, "the power-on pulse");
   judge_t3(j, index, pulse.rise, start);
   return j;
@@ -99,20 +103,30 @@ PowerOnSequence::Judgement PowerOnSequence::judge_pulse(std::uint64_t index, Tim
 // shows no boundary between them; after a LOW phase, the HIGH before the wake-up is t2.
 void PowerOnSequence::judge_t1_t2(Judgement& j, std::uint64_t index, Time wake, std::optional<Time> t2_from,
                                   const std::string& what) const {
-  j.push_back({index, wake, sim::format_time(wake - on_at_) + " after switching on", ">= t1 + t2 = " + sim::format_time(limit::kPowerOnT1Min) + " + " + sim::format_time(limit::kPowerOnT2Min),
-                        what + " came before t1 and t2 had passed",
-                        at_least(wake - on_at_, limit::kPowerOnT1Min + limit::kPowerOnT2Min, resolution_)});
+  j.push_back({.frame = index,
+               .at = wake,
+               .measured = sim::format_time(wake - on_at_) + " after switching on",
+               .bound = ">= t1 + t2 = " + sim::format_time(limit::kPowerOnT1Min) + " + " + sim::format_time(limit::kPowerOnT2Min),
+               .message = what + " came before t1 and t2 had passed",
+               .decision = at_least(wake - on_at_, limit::kPowerOnT1Min + limit::kPowerOnT2Min, resolution_)});
   if (!t2_from) return;
   const Time t2 = wake - *t2_from;
-  j.push_back({index, wake, sim::format_time(t2), "t2 = 80 .. 120 ms", "CLOCK was not HIGH for t2 before " + what,
-                        both(at_least(t2, limit::kPowerOnT2Min, resolution_), at_most(t2, limit::kPowerOnT2Max, resolution_))});
+  j.push_back({.frame = index,
+               .at = wake,
+               .measured = sim::format_time(t2),
+               .bound = "t2 = " + sim::format_time_range(limit::kPowerOnT2Min, limit::kPowerOnT2Max),
+               .message = "CLOCK was not HIGH for t2 before " + what,
+               .decision = both(at_least(t2, limit::kPowerOnT2Min, resolution_), at_most(t2, limit::kPowerOnT2Max, resolution_))});
 }
 
 void PowerOnSequence::judge_t3(Judgement& j, std::uint64_t index, Time from, Time request) const {
   const Time t3 = request - from;
-  j.push_back({index, request, sim::format_time(t3), "t3 = 380 .. 420 ms",
-                        "the first request does not follow the pulse or request cycle after t3",
-                        both(at_least(t3, limit::kPowerOnT3Min, resolution_), at_most(t3, limit::kPowerOnT3Max, resolution_))});
+  j.push_back({.frame = index,
+               .at = request,
+               .measured = sim::format_time(t3),
+               .bound = "t3 = " + sim::format_time_range(limit::kPowerOnT3Min, limit::kPowerOnT3Max),
+               .message = "the first request does not follow the pulse or request cycle after t3",
+               .decision = both(at_least(t3, limit::kPowerOnT3Min, resolution_), at_most(t3, limit::kPowerOnT3Max, resolution_))});
 }
 
 }  // namespace endatsim::checker

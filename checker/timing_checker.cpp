@@ -295,8 +295,7 @@ void TimingChecker::check_measurement_spread(const PinFrame& f) {
             .clock = std::nullopt,
             .measured = "no measurement",
             .limit = ">= " + std::to_string(limit::kMeasurementsMin) + " measurements at " +
-                     sim::parameter_detail::span_text(format_frequency(limit::kMeasurementFcMin),
-                                                      format_frequency(limit::kMeasurementFcMax), false),
+                     sim::format_frequency_range(limit::kMeasurementFcMin, limit::kMeasurementFcMax),
             .severity = Severity::Error,
             .message = "the master compensates (f_c " + format_frequency(f.header.f_c)
                        + ") without measuring t_D after switching on"});
@@ -607,13 +606,14 @@ void TimingChecker::check_frequency(const PinFrame& f) {
     note_range(check::kMeasurementClock, limit::kMeasurementFcMin, limit::kMeasurementFcMax);
     if (fit.below(limit::kMeasurementFcMin, tol) || fit.above(limit::kMeasurementFcMax, tol))
       report({.check = std::string(check::kMeasurementClock),
-              .spec = "2.1.2 propagation-delay measurement at 100 .. 200 kHz",
+              .spec = "2.1.2 propagation-delay measurement at " +
+                      sim::format_frequency_range(limit::kMeasurementFcMin, limit::kMeasurementFcMax),
               .where = ObservationPoint::EncoderPins,
               .time = at,
               .frame = f.header.index,
               .clock = std::nullopt,
               .measured = format_frequency(fc),
-              .limit = "100 kHz .. 200 kHz",
+              .limit = sim::format_frequency(limit::kMeasurementFcMin) + " .. " + sim::format_frequency(limit::kMeasurementFcMax),
               .severity = Severity::Error,
               .message = "delay measured with a clock outside the prescribed range"});
     return;
@@ -826,7 +826,7 @@ void TimingChecker::check_recovery(const PinFrame& next) {
   if (fails_envelope)
     message += std::string(fails_encoder ? "; " : ": suits this encoder (t_m + t_R " + format_time(declared) + "), but ") +
                "any compliant encoder may need t_m " + format_time(envelope - limit::kRecoveryTime2Min) + setting +
-               " + t_R 500 ns = " + format_time(envelope);
+               " + t_R " + format_time(limit::kRecoveryTime2Min) + " = " + format_time(envelope);
   report_unless_passed(shown,
       {.check = std::string(check::kRecovery),
        .spec = "2.3.2 recovery time I (t_m) and II (t_R)",

@@ -1,5 +1,7 @@
 #include "endatsim/master/delay_measurement.hpp"
 
+#include <algorithm>
+
 #include <boost/random/uniform_int_distribution.hpp>
 #include <cstdlib>
 
@@ -57,6 +59,15 @@ std::optional<Time> DelayMeasurement::take_count() {
   if (!captured_) return std::nullopt;
   counts_.push_back(*captured_);
   return counter_tick() * *captured_;
+}
+
+void DelayMeasurement::frame_recorded(Time start) {
+  recent_starts_.push_back(start);
+  while (recent_starts_.size() > std::max<std::size_t>(params_.count, 1)) recent_starts_.pop_front();
+}
+
+Time DelayMeasurement::round_start(Time now) const {
+  return recent_starts_.size() >= params_.count && params_.count != 0 ? recent_starts_.front() : now;
 }
 
 const DelayMeasurementResult& DelayMeasurement::finish_round(Time start) {

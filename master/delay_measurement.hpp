@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <vector>
@@ -67,6 +68,11 @@ class DelayMeasurement {
   // A measurement frame ended with a good answer: its count as a time, none without a count.
   std::optional<Time> take_count();
 
+  // Every frame the master recorded, by its start: a round's first frame is the count-th last.
+  void frame_recorded(Time start);
+  // Where the round that ends at `now` began: its first frame's start, or `now` when fewer frames
+  // than a round were recorded.
+  Time round_start(Time now) const;
   // The round is over (its first frame started at `start`): the verdict, kept in results().
   const DelayMeasurementResult& finish_round(Time start);
   // After a rejected round: whether another one may run (then it has begun); otherwise the
@@ -85,6 +91,7 @@ class DelayMeasurement {
   bool running_ = false;
   std::optional<std::int64_t> captured_;
   std::vector<DelayMeasurementResult> results_;
+  std::deque<Time> recent_starts_;  // of the last params_.count frames recorded
 };
 
 }  // namespace endatsim::master

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -61,6 +62,12 @@ inline constexpr std::array kDiagnosisNoteKinds{DiagnosisNoteKind::FunctionReser
                                                 DiagnosisNoteKind::TemperatureAboveThreshold,
                                                 DiagnosisNoteKind::TemperatureAboveMaximum, DiagnosisNoteKind::Warning,
                                                 DiagnosisNoteKind::Setup};
+static_assert([] {
+  for (std::size_t i = 0; i < kDiagnosisNoteKinds.size(); ++i)
+    if (kDiagnosisNoteKinds[i] != static_cast<DiagnosisNoteKind>(i)) return false;
+  return kDiagnosisNoteKinds.back() == DiagnosisNoteKind::Setup;
+}(), "kDiagnosisNoteKinds: every kind in the order of its value, up to the last one, Setup; a new kind goes "
+      "after it, in the list and in this check");
 std::string_view to_string(DiagnosisNoteKind k);  // "function_reserve_low", ...
 
 struct DiagnosisNote {

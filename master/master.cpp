@@ -83,8 +83,7 @@ void Master::next_operation() {
     finished_ = true;
     return;
   }
-  current_ = operations_.front();
-  operations_.pop_front();
+  current_ = operations_.take();
   const Time begin = std::max(current_->at.value_or(kernel_.now()), kernel_.now());
   switch (current_->kind) {
     case Operation::Kind::Wait:
@@ -143,7 +142,7 @@ FunctionContext Master::context() const {
 // The operations of a sequence run before what is queued.
 void Master::expand(Sequence s) {
   for (Operation& o : s.ops) o.expanded = true;
-  operations_.insert(operations_.begin(), s.ops.begin(), s.ops.end());
+  operations_.insert_front(s.ops);
   next_operation();
 }
 
@@ -190,15 +189,15 @@ bool Master::retry_frame(const FrameResult& f) {
   return true;
 }
 
-// Before the next frame: select the additional data again (the encoder lost them) and measure
-// t_D again (2.1.2); then the operation goes on where it was.
 // 2.3.2 t_b: a 2.1 memory or parameter frame waits t_b_wait after the previous frame's end.
 Time Master::time_between_cycles_left() const {
   const auto& c = protocol::info(current_->command);
-  if (delay_.active() || frame_count_ == 0 || c.version != protocol::EndatVersion::V2_1 || c.payload_bits == 0) return Time::zero();
+  if (delay_.active() || frames_.count() == 0 || c.version != protocol::EndatVersion::V2_1 || c.payload_bits == 0) return Time::zero();
   return std::max(Time::zero(), engine_.frame().end + params_.t_b_wait - kernel_.now());
 }
 
+// Before the next frame: select the additional data again (the encoder lost them) and measure
+// t_D again (2.1.2); then the operation goes on where it was.
 void Master::interrupt_for_measurement() {
   Operation rest = *current_;
   rest.count = frames_left_;
@@ -307,7 +306,7 @@ void Master::start_frame(std::uint64_t) {
 // The next frame of the current operation: a delay measurement's while one runs (2.1.2).
 FrameRequest Master::frame_request() {
   FrameRequest r;
-  r.index = frame_count_;
+  r.index = frames_.count();
   r.operation = current_->script_index;
   r.measurement = delay_.active();
   r.command = r.measurement ? ModeCommand::EncoderSendPositionValues : current_->command;
@@ -327,10 +326,8 @@ FrameRequest Master::frame_request() {
 void Master::answer_accepted(const FrameResult& f) { selection_.accepted(f); }
 
 void Master::record(const FrameResult& f) {
-  ++frame_count_;
-  if (frames_.size() < kept_frames_) frames_.push_back(f);
-  recent_starts_.push_back(f.start);
-  while (recent_starts_.size() > std::max<std::size_t>(params_.measurement.count, 1)) recent_starts_.pop_front();
+  frames_.add(f);
+  delay_.frame_recorded(f.start);
 }
 
 void Master::word_done(const FrameResult& f) {
@@ -383,10 +380,11 @@ Sequence Master::endat22_read_plan() {
   };
   const auto await = [&plan](P purpose, unsigned word) {
     Operation& o = plan.add(Operation::Kind::AwaitNotBusy);
-    // Polls 50 us apart until past t_ac max (2.3.2), with a 25 % margin.
+    // Polls 50 us apart (the model's choice) until past t_ac max (2.3.2), with a 25 % margin.
     constexpr Time kPollCycle = sim::us(50);
+    constexpr Time kPollUntil = protocol::limit::kMemoryAccessMax + protocol::limit::kMemoryAccessMax / 4;
     o.cycle = kPollCycle;
-    o.count = static_cast<unsigned>(protocol::limit::kMemoryAccessMax * 5 / 4 / kPollCycle);
+    o.count = static_cast<unsigned>(kPollUntil / kPollCycle);
     o.purpose = purpose;
     o.manufacturer_word = word;
   };
@@ -437,8 +435,7 @@ void Master::roll_additional_data_1(FrameRequest& request) {
 
 void Master::finish_measurement_round() {
   const auto& m = params_.measurement;
-  const auto& r = delay_.finish_round(recent_starts_.size() >= m.count && m.count != 0 ? recent_starts_.front()
-                                                                                     : kernel_.now());
+  const auto& r = delay_.finish_round(delay_.round_start(kernel_.now()));
   if (r.accepted) t_d_ = r.t_d;
   if (delay_.next_round()) {
     frames_left_ = m.count;

@@ -33,6 +33,7 @@
 #include "endatsim/master/parameter_book.hpp"
 #include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/protocol.hpp"
+#include "endatsim/sim/record_log.hpp"
 
 namespace endatsim::master {
 
@@ -48,19 +49,16 @@ class Master : private FrameClient {
   void add_observer(MasterObserver* o) { observers_.push_back(o); }
   // A function on top of the scheduler; functions see each frame in the order they were added.
   void add_function(MasterFunction& f) { functions_.push_back(&f); }
-  void enqueue(Operation op) {
-    op.script_index = enqueued_++;
-    operations_.push_back(op);
-  }
+  void enqueue(Operation op) { operations_.enqueue(std::move(op)); }
   void start();  // begins the queued operations at the current time
   bool finished() const { return finished_; }
 
   const MasterParams& params() const { return params_; }
   // The first frames recorded (every one unless keep_frames() said fewer): a long run streams
   // its results through MasterObserver::on_result instead of keeping them.
-  const std::vector<FrameResult>& frames() const { return frames_; }
-  void keep_frames(std::size_t n) { kept_frames_ = n; }
-  std::uint64_t frame_count() const { return frame_count_; }  // every frame and word recorded
+  const std::vector<FrameResult>& frames() const { return frames_.records(); }
+  void keep_frames(std::size_t n) { frames_.keep(n); }
+  std::uint64_t frame_count() const { return frames_.count(); }  // every frame and word recorded
   const std::vector<DelayMeasurementResult>& measurements() const { return delay_.results(); }
   std::optional<Time> t_d() const { return t_d_; }
   std::uint64_t cycle_overruns() const { return pacing_.cycle_overruns(); }
@@ -122,9 +120,8 @@ class Master : private FrameClient {
   sim::Timer operation_timer_;
 
   // Operations.
-  std::deque<Operation> operations_;
+  OperationQueue operations_;
   std::optional<Operation> current_;
-  std::size_t enqueued_ = 0;
   unsigned frames_left_ = 0;
   Pacing pacing_;
   bool finished_ = false;
@@ -138,10 +135,7 @@ class Master : private FrameClient {
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
 
   // What has been recorded.
-  std::vector<FrameResult> frames_;
-  std::size_t kept_frames_ = SIZE_MAX;
-  std::uint64_t frame_count_ = 0;
-  std::deque<Time> recent_starts_;  // of the last measurement.count frames (a measurement round's start)
+  sim::RecordLog<FrameResult> frames_{sim::RecordLog<FrameResult>::Keep::First};
 };
 
 }  // namespace endatsim::master

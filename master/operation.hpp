@@ -5,7 +5,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "endatsim/protocol/protocol.hpp"
@@ -86,6 +88,30 @@ struct Sequence {
     o.script_index = script_index;
     return o;
   }
+};
+
+// The operations still to run, in order: the script's, and in front of them what the master puts
+// there (a sequence an operation expands into, reads of words 0 and 1, a new measurement).
+class OperationQueue {
+ public:
+  // One of the script's operations, numbered in the order they came.
+  void enqueue(Operation op) {
+    op.script_index = enqueued_++;
+    ops_.push_back(std::move(op));
+  }
+  void push_front(Operation op) { ops_.push_front(std::move(op)); }
+  // A sequence's operations, in their order, before the rest.
+  void insert_front(const std::vector<Operation>& ops) { ops_.insert(ops_.begin(), ops.begin(), ops.end()); }
+  bool empty() const { return ops_.empty(); }
+  Operation take() {
+    Operation o = std::move(ops_.front());
+    ops_.pop_front();
+    return o;
+  }
+
+ private:
+  std::deque<Operation> ops_;
+  std::size_t enqueued_ = 0;
 };
 
 }  // namespace endatsim::master

@@ -220,10 +220,15 @@ void SafetyMonitor::run_crc_self_test(const CrcCheck& crc, unsigned position_bit
              (!good ? "rejected (the evaluation computes " + std::to_string(computed) + ")"
                     : "a CRC with one bit inverted was accepted"));
   }
+  // A parameter frame of known result: MRS B9h with the parameter 1234h has CRC 10 (A4).
+  constexpr std::uint16_t kKnownParameter = 0x1234;
+  constexpr std::uint8_t kKnownCrc = 10;
   const std::uint8_t b9 = mrs_of(protocol::MemoryArea::OperatingStatus);
-  const bool norm_ok = crc_passes(crc, 10, protocol::make_crc_norm(b9, 0x1234, crc.generator)) &&
-                       !crc_passes(crc, 11, protocol::make_crc_norm(b9, 0x1234, crc.generator));
-  if (!norm_ok) find(SafetyFunction::CrcSelfTest, now, "parameter CRC of B9h / 1234h (known 10) evaluated wrong");
+  const std::uint8_t computed = protocol::make_crc_norm(b9, kKnownParameter, crc.generator);
+  const bool norm_ok = crc_passes(crc, kKnownCrc, computed) && !crc_passes(crc, static_cast<std::uint8_t>(kKnownCrc ^ 0x01), computed);
+  if (!norm_ok)
+    find(SafetyFunction::CrcSelfTest, now,
+         "parameter CRC of B9h / 1234h (known " + std::to_string(kKnownCrc) + ") evaluated wrong");
 }
 
 void SafetyMonitor::begin_startup_positions() {

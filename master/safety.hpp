@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -41,6 +42,12 @@ inline constexpr std::array kSafetyFunctions{
     SafetyFunction::ErrorMessages,    SafetyFunction::PositionValue2, SafetyFunction::ForcedDynamicSampling,
     SafetyFunction::CrcSelfTest,      SafetyFunction::StartupPositions, SafetyFunction::Checksums,
     SafetyFunction::Acknowledgements, SafetyFunction::FollowingError, SafetyFunction::CommandSet};
+static_assert([] {
+  for (std::size_t i = 0; i < kSafetyFunctions.size(); ++i)
+    if (kSafetyFunctions[i] != static_cast<SafetyFunction>(i)) return false;
+  return kSafetyFunctions.back() == SafetyFunction::CommandSet;
+}(), "kSafetyFunctions: every safety function in the order of its value, up to the last one, CommandSet (names and "
+      "expectations follow it); a new function goes after it, in the list and in this check");
 std::string_view to_string(SafetyFunction f);  // "error_messages", ...
 
 // The motion the drive commands: the set-point the following error is measured against.

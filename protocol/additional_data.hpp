@@ -1,6 +1,7 @@
 // Additional data 1 and 2 (spec 2.3.5): information codes I4..I0 and the status byte, as data.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -100,11 +101,17 @@ constexpr std::uint8_t selection_mrs(Information i) { return static_cast<std::ui
 constexpr Information information_of_mrs(std::uint8_t mrs) { return static_cast<Information>(mrs & 0x1F); }
 // 2.3.5.1: position value 2 travels in words 1 .. 3 (I = 2, 3, 4), 16 bits each, as many as its
 // width needs.
+inline constexpr unsigned kPositionValue2WordsMax = 3;
+inline constexpr unsigned kPositionValue2BitsMax = 16 * kPositionValue2WordsMax;
+// The 48 bits a position value 2 may hold; the encoder counts it modulo this.
+inline constexpr std::uint64_t kPositionValue2Mask = (std::uint64_t{1} << kPositionValue2BitsMax) - 1;
 constexpr unsigned position_value2_words(unsigned bits) {
-  constexpr unsigned kWordsMax = 3, kBitsPerWord = 16;
+  constexpr unsigned kBitsPerWord = 16;
   const unsigned words = (bits + kBitsPerWord - 1) / kBitsPerWord;
-  return words < kWordsMax ? words : kWordsMax;
+  return words < kPositionValue2WordsMax ? words : kPositionValue2WordsMax;
 }
+// 2.3.5: a frame carries at most two additional data (additional data 1 and 2).
+inline constexpr std::size_t kAdditionalDataPerFrameMax = 2;
 // 3.9.3: EnDat 2.2 manufacturer word 1 bit 6, "position value 2" in additional data 2 (as
 // the asynchronous position value's codes, 2.3.5.2).
 constexpr std::uint16_t kPositionValue2InAdditionalData2 = 0x0040;

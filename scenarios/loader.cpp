@@ -175,27 +175,10 @@ void read_sensors(const Node& n, slave::Sensors& s) {
 
 // Memory areas given as arrays of words replace those of the default image (3.1).
 void read_memory(const Node& n, slave::EncoderParams& p) {
-  if (!n.raw().is_object()) n.fail("an object of memory area -> array of words");
   slave::MemoryImage image = p.memory.value_or(slave::default_memory_image(p));
-  for (const auto& [key, value] : n.raw().items()) {
-    const Node item(value, n.path() + "/" + key, n.file());
-    if (key == "section2_blocks") {
-      if (!value.is_array() || value.size() > protocol::kSection2BlocksMax)
-        item.fail("an array of at most " + std::to_string(protocol::kSection2BlocksMax) + " blocks of " +
-                  std::to_string(protocol::kAreaWordsMax) + " words");
-      image.section2_blocks.clear();
-      for (std::size_t i = 0; i < value.size(); ++i)
-        image.section2_blocks.push_back(
-            read_words(Node(value[i], item.path() + "/" + std::to_string(i), n.file()), protocol::kAreaWordsMax));
-      continue;
-    }
-    const auto area = protocol::memory_area_from_key(key);
-    if (!area || *area == protocol::MemoryArea::Section2 || *area == protocol::MemoryArea::AsynchronousPosition)
-      item.fail_raw("unknown memory area \"" + key + "\" (expected operating_status, manufacturer_1 .. 3, "
-                    "operating_parameters, oem_1 .. 4, compensation_1 .. 4, manufacturer_endat22, "
-                    "operating_parameters2 or section2_blocks)");
-    image.areas[*area] = read_words(item, protocol::kAreaWordsMax);
-  }
+  slave::read_memory_areas(n, image, "words", [](const Node& words, std::optional<protocol::MemoryArea>) {
+    return read_words(words, protocol::kAreaWordsMax);
+  });
   p.memory = image;
 }
 
@@ -374,7 +357,8 @@ FrameExpectation read_frame_expectation(const Node& n) {
   if (auto v = o.opt("echo_parameter")) e.echo_parameter = read_word16(*v);
   if (auto v = o.opt("test_value")) e.test_value = v->as_word((std::uint64_t{1} << protocol::kTestValueBits) - 1);
   if (auto v = o.opt("additional_data")) {
-    if (!v->raw().is_array() || v->raw().size() > 2) v->fail("an array of at most two additional data");
+    if (!v->raw().is_array() || v->raw().size() > protocol::kAdditionalDataPerFrameMax)
+      v->fail("an array of at most " + std::to_string(protocol::kAdditionalDataPerFrameMax) + " additional data");
     std::vector<AdditionalDataExpectation> list;
     for (std::size_t i = 0; i < v->raw().size(); ++i)
       list.push_back(read_additional_data_expectation(v->item(i)));

@@ -92,28 +92,17 @@ ParameterType type_of(const Parameter<Params>& p) {
   }
 }
 
-namespace parameter_detail {
-// "10 .. 30 us", "0 .. 100 ms", "200 ns .. 10 ms": one unit where both share it.
-inline std::string span_text(const std::string& lo, const std::string& hi, bool lo_zero) {
-  const auto unit = [](const std::string& t) { return t.substr(t.rfind(' ') + 1); };
-  if (lo_zero) return "0 .. " + hi;
-  if (unit(lo) == unit(hi)) return lo.substr(0, lo.rfind(' ')) + " .. " + hi;
-  return lo + " .. " + hi;
-}
-}  // namespace parameter_detail
-
 // "10 .. 30 us", "100 kHz .. 16 MHz", "1 .. 48", "0 .. 65535", "\"a\" | \"b\"", "true | false".
 template <class Params>
 std::string range_text(const Parameter<Params>& p) {
-  using parameter_detail::span_text;
   if (p.zero_allowed && p.min > 0) {
     Parameter<Params> nonzero = p;
     nonzero.zero_allowed = false;
     return "0 or " + range_text(nonzero);
   }
   switch (type_of(p)) {
-    case ParameterType::Duration: return span_text(format_time(Time{p.min}), format_time(Time{p.max}), p.min == 0);
-    case ParameterType::Frequency: return span_text(format_frequency(p.min), format_frequency(p.max), p.min == 0);
+    case ParameterType::Duration: return format_time_range(Time{p.min}, Time{p.max});
+    case ParameterType::Frequency: return format_frequency_range(p.min, p.max);
     case ParameterType::Number:
       return std::to_string(p.min) + " .. " + std::to_string(p.max) + std::string(std::get<NumberField<Params>>(p.field).unit);
     case ParameterType::Count: return std::to_string(p.min) + " .. " + std::to_string(p.max);

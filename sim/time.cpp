@@ -135,4 +135,19 @@ std::string format_time(Time t) { return format_quantity(t.count(), kTimeUnits);
 
 std::string format_frequency(Hertz f) { return format_quantity(f, kFrequencyUnits); }
 
+namespace {
+std::string span_text(const std::string& lo, const std::string& hi, bool lo_zero) {
+  const auto unit = [](const std::string& t) { return t.substr(t.rfind(' ') + 1); };
+  if (lo_zero) return "0 .. " + hi;
+  if (unit(lo) == unit(hi)) return lo.substr(0, lo.rfind(' ')) + " .. " + hi;
+  return lo + " .. " + hi;
+}
+}  // namespace
+
+std::string format_time_range(Time lo, Time hi) { return span_text(format_time(lo), format_time(hi), lo.count() == 0); }
+
+std::string format_frequency_range(Hertz lo, Hertz hi) {
+  return span_text(format_frequency(lo), format_frequency(hi), lo == 0);
+}
+
 }  // namespace endatsim::sim

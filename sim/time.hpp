@@ -41,5 +41,8 @@ Hertz parse_frequency(std::string_view text);
 // Human-readable, exact: "1.25 us", "62.5 ns", "7 ps".
 std::string format_time(Time t);
 std::string format_frequency(Hertz f);
+// A range with its unit once where both ends share it: "80 .. 120 ms", "0 .. 1 us", "200 ns .. 10 ms".
+std::string format_time_range(Time lo, Time hi);
+std::string format_frequency_range(Hertz lo, Hertz hi);
 
 }  // namespace endatsim::sim

@@ -174,7 +174,7 @@ std::uint16_t AdditionalData::position_value2(Time frame_start, std::uint64_t tr
   position2_latched_ = positions_.incremental() ? positions_.absolute_output(frame_start)
                        : s.position2_reversed   ? offset - true_position
                                                 : true_position + offset;
-  position2_latched_ = (position2_latched_ + static_cast<std::uint64_t>(s.position2_fault)) & 0xFFFF'FFFF'FFFFULL;
+  position2_latched_ = (position2_latched_ + static_cast<std::uint64_t>(s.position2_fault)) & protocol::kPositionValue2Mask;
   return word_of(position2_latched_, 0);
 }
 

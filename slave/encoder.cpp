@@ -95,18 +95,15 @@ void Encoder::begin_frame() {
   command_ = nullptr;
   pending_ = {};
   answer_.clear();
-  next_bit_ = 0;
   EncoderFrame f;
   f.start = kernel_.now();
   positions_.update_reference(f.start);
   positions_.check_multiturn_overflow(f.start);
   f.true_position = positions_.latched(f.start);
   f.position = positions_.sent(f.true_position);
-  if (frames_.size() >= 2 * kept_frames_) frames_.erase(frames_.begin(), frames_.end() - static_cast<std::ptrdiff_t>(kept_frames_ - 1));
-  frames_.push_back(f);
-  ++frame_count_;
+  frames_.add(f);
   errors_.latch();
-  frames_.back().error_present = errors_.error_present();
+  frames_.last().error_present = errors_.error_present();
   release();
 }
 
@@ -117,7 +114,7 @@ void Encoder::on_falling_edge() {
     return;
   }
   ++clock_;
-  EncoderFrame& f = frames_.back();
+  EncoderFrame& f = frames_.last();
   const unsigned payload = command_ != nullptr ? command_->payload_bits : 0;
   switch (state_) {
     case State::Type1:
@@ -147,7 +144,7 @@ void Encoder::on_falling_edge() {
 void Encoder::on_rising_edge() {
   recovery_timer_.start(recovery_time());
   if (state_ == State::Idle) return;  // a rising edge without a frame: nothing to do
-  EncoderFrame& f = frames_.back();
+  EncoderFrame& f = frames_.last();
   f.clocks = clock_;
   const bool bit = pins_.data_in.read();
   switch (state_) {
@@ -158,8 +155,7 @@ void Encoder::on_rising_edge() {
       if (clock_ == position::kLastModeBit) decode_mode_command();
       break;
     case State::Payload:
-      shift_ = shift_ << 1 | bit;
-      if (++shifted_ == protocol::kPayloadBits) answer_parameter_frame();
+      if (received_.take(bit)) answer_parameter_frame();
       break;
     case State::Answer:
       emit_answer_bit();
@@ -180,17 +176,13 @@ void Encoder::on_rising_edge() {
       // docs/model.md §4: the line floats (fail-safe HIGH) until the master drives its lead
       // bits, so the encoder waits for a LOW before it takes a HIGH as the start bit. Right
       // after its release it still sees its own last bit, so it ignores a few edges.
-      if (clock_ <= release_clock_ + params_.supplement_ignore_clocks) break;
-      if (!seen_low_) seen_low_ = !bit;
-      else if (bit) {
+      if (supplement_start_.found(clock_, bit, params_.supplement_ignore_clocks)) {
         state_ = State::Supplement;
-        shift_ = 0;
-        shifted_ = 0;
+        received_.clear();
       }
       break;
     case State::Supplement:
-      shift_ = shift_ << 1 | bit;
-      if (++shifted_ == protocol::kPayloadBits) process_supplement();
+      if (received_.take(bit)) process_supplement();
       break;
     case State::SupplementDone:
       clock_after_supplement();
@@ -204,7 +196,7 @@ void Encoder::on_rising_edge() {
 // necessary are sent, an error message is output compliant to Appendix A2": cause 2, type II, the
 // MRS code and block address acknowledged inverted; the selection does not take place.
 void Encoder::clock_after_supplement() {
-  EncoderFrame& f = frames_.back();
+  EncoderFrame& f = frames_.last();
   if (f.too_many_clocks) return;
   f.too_many_clocks = true;
   const auto address = protocol::payload_address(f.supplement.value_or(0));
@@ -218,7 +210,7 @@ void Encoder::clock_after_supplement() {
 }
 
 void Encoder::decode_mode_command() {
-  EncoderFrame& f = frames_.back();
+  EncoderFrame& f = frames_.last();
   f.mode_bits = mode_bits_;
   f.command = protocol::decode_mode_bits(mode_bits_);
   if (!f.command || (protocol::info(*f.command).version == EndatVersion::V2_2 && params_.version == EndatVersion::V2_1))
@@ -232,15 +224,14 @@ void Encoder::decode_mode_command() {
   }
   if (command_->payload_bits != 0) {
     state_ = State::Payload;
-    shift_ = 0;
-    shifted_ = 0;
+    received_.clear();
     return;
   }
   answer_position();
 }
 
 void Encoder::abort_type1(ErrorCause cause) {
-  EncoderFrame& f = frames_.back();
+  EncoderFrame& f = frames_.last();
   f.type1_error = true;  // appendix A2, type I: mode command disrupted or not supported
   f.error = cause;
   state_ = State::Type1;
@@ -263,35 +254,35 @@ void Encoder::written(const Selection& s, std::uint8_t address) {
 }
 
 void Encoder::answer_position() {
-  EncoderFrame& f = frames_.back();
+  EncoderFrame& f = frames_.last();
   state_ = State::Answer;
-  first_answer_clock_ = params_.earliest_start_bit_clock;
   const bool energy_saving = (memory_.instructions() & pm::kInstructionEnergySaving) != 0;  // 3.6.5
-  answer_not_before_ = f.start + params_.t_cal_for(command_->version, energy_saving);  // 2.3.2: t_cal runs from FE1
+  // 2.3.2: t_cal runs from FE1.
+  answer_.not_before(params_.earliest_start_bit_clock, f.start + params_.t_cal_for(command_->version, energy_saving));
   if (command_->answer == protocol::AnswerFormat::TestValues) {
     const auto it = params_.sensors.test_values.find(test_port_21_);
-    answer_ = protocol::encode_test_values(errors_.error_message_1(), it == params_.sensors.test_values.end() ? 0 : it->second,
-                                           params_.crc);
+    answer_.load(protocol::encode_test_values(errors_.error_message_1(),
+                                              it == params_.sensors.test_values.end() ? 0 : it->second, params_.crc));
     return;
   }
   if (readiness_.take_unsettled()) {  // a fault: a value from before the position settled (seeded by the frame)
     const std::uint64_t mask = (std::uint64_t{1} << positions_.position_bits()) - 1;
-    std::uint64_t z = (frame_count_ + 1) * 0x9E3779B97F4A7C15ULL;
+    std::uint64_t z = (frames_.count() + 1) * 0x9E3779B97F4A7C15ULL;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
     f.position = (z ^ (z >> 31)) & mask;
   }
   // 2.3.1: F2 is low-active; it is only sent with 2.2 mode commands.
-  answer_ = protocol::encode_position_frame(command_->version, positions_.position_bits(),
-                                            {errors_.error_message_1(), !errors_.error_message_2(), f.position}, params_.crc);
+  answer_.load(protocol::encode_position_frame(command_->version, positions_.position_bits(),
+                                               {errors_.error_message_1(), !errors_.error_message_2(), f.position}, params_.crc));
   if (command_->version == EndatVersion::V2_2)
-    additional_data_.append(answer_, f.additional_data_status, f.start, f.true_position, busy());
+    additional_data_.append(answer_.bits(), f.additional_data_status, f.start, f.true_position, busy());
 }
 
 void Encoder::answer_parameter_frame() {
-  EncoderFrame& f = frames_.back();
-  f.payload = shift_;
-  const auto address = protocol::payload_address(shift_);
-  const auto parameter = static_cast<std::uint16_t>(shift_);
+  EncoderFrame& f = frames_.last();
+  f.payload = received_.value();
+  const auto address = protocol::payload_address(received_.value());
+  const auto parameter = static_cast<std::uint16_t>(received_.value());
   std::uint16_t echo = parameter;
   std::optional<ErrorCause> error;
   Time t_ac{0};
@@ -361,33 +352,33 @@ void Encoder::answer_parameter_frame() {
     // (cause 6) is still carried out: that is what it is for (2.10).
     f.error = error;
     if (error != ErrorCause::DataDriverHighImpedanceBroadcast) pending_ = {};
-    answer_ = protocol::encode_parameter_frame(static_cast<std::uint8_t>(~address), static_cast<std::uint16_t>(~echo),
-                                               params_.crc);
+    answer_.load(protocol::encode_parameter_frame(static_cast<std::uint8_t>(~address), static_cast<std::uint16_t>(~echo),
+                                                  params_.crc));
   } else {
-    answer_ = protocol::encode_parameter_frame(address, echo, params_.crc);
+    answer_.load(protocol::encode_parameter_frame(address, echo, params_.crc));
   }
   state_ = State::Answer;
-  first_answer_clock_ = params_.earliest_start_bit_clock + protocol::kPayloadBits;
   if (!error && pending_.kind == Pending::Kind::Write)
     access_.begin_nvm_write(pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
   const bool in_frame = params_.t_ac_placement == MemoryAccessPlacement::InFrame;
-  answer_not_before_ = kernel_.now() + (in_frame && !error ? t_ac : Time::zero());
+  answer_.not_before(params_.earliest_start_bit_clock + protocol::kPayloadBits,
+                     kernel_.now() + (in_frame && !error ? t_ac : Time::zero()));
   if (!in_frame && !error && memory_access) access_.busy_until(kernel_.now() + t_ac);
 }
 
 void Encoder::emit_answer_bit() {
-  EncoderFrame& f = frames_.back();
-  if (next_bit_ == 0 && f.continuous_words == 0) {
+  EncoderFrame& f = frames_.last();
+  if (!answer_.started() && f.continuous_words == 0) {
     // docs/model.md §1: LOW until t_cal (or t_ac) has elapsed, start bit no earlier than RE11
     // (RE35 after a 2.1 parameter frame).
-    if (clock_ < first_answer_clock_ || kernel_.now() < answer_not_before_) {
+    if (!answer_.start_due(clock_, kernel_.now())) {
       drive(false);
       return;
     }
     f.start_bit_clock = clock_;
   }
-  if (next_bit_ < answer_.size()) {
-    drive(answer_[next_bit_++] != 0);
+  if (!answer_.sent()) {
+    drive(answer_.next());
     return;
   }
   if (command_->supplement) {
@@ -408,27 +399,25 @@ void Encoder::emit_answer_bit() {
 void Encoder::hand_over_for_supplement() {
   release();
   state_ = State::SupplementHunt;
-  release_clock_ = clock_;
-  seen_low_ = false;
+  supplement_start_.handed_over(clock_);
 }
 
 void Encoder::load_continuous_word() {
-  EncoderFrame& f = frames_.back();
-  answer_ = protocol::encode_position_frame(EndatVersion::V2_1, positions_.position_bits(),
-                                            {errors_.error_message_1(), true, f.continuous_positions.back()}, params_.crc);
-  next_bit_ = 0;
+  EncoderFrame& f = frames_.last();
+  answer_.load(protocol::encode_position_frame(EndatVersion::V2_1, positions_.position_bits(),
+                                               {errors_.error_message_1(), true, f.continuous_positions.back()}, params_.crc));
   state_ = State::Answer;
 }
 
 // ---- EnDat 2.2 command supplement and additional data ------------------------------------
 
 void Encoder::process_supplement() {
-  EncoderFrame& f = frames_.back();
-  f.supplement = shift_;
+  EncoderFrame& f = frames_.last();
+  f.supplement = received_.value();
   state_ = State::SupplementDone;
   end_marker_timer_.start(params_.supplement_end_marker_delay);
-  const auto address = protocol::payload_address(shift_);
-  const auto parameter = static_cast<std::uint16_t>(shift_);
+  const auto address = protocol::payload_address(received_.value());
+  const auto parameter = static_cast<std::uint16_t>(received_.value());
   const MC c = command_->command;
   const bool memory_access = c == MC::EncoderSendPositionValuesAndReceiveParameter ||
                              c == MC::EncoderSendPositionValuesAndSendParameter ||
@@ -496,7 +485,7 @@ void Encoder::on_recovery_time_elapsed() {
 }
 
 void Encoder::finish_frame() {
-  EncoderFrame& f = frames_.back();
+  EncoderFrame& f = frames_.last();
   // A 2.1 parameter frame that ends before its 8 + 16 bits are in (A2 cause 3).
   if (state_ == State::Payload) transmission_incomplete_ = true;
   state_ = State::Idle;

@@ -1,7 +1,7 @@
 // The EnDat encoder (D297403 2, 3): a frame engine, the bit-level state machine that only talks
 // through the line's encoder-side pins (the mode command on RE3 .. RE8, t_cal, the start bit,
 // the answers of 2.3 .. 2.10, the command supplement, t_m), and the parts it hands the contents to:
-// the memory with its areas and write protection (memory.hpp), the accesses to it with the area
+// the bits it sends and receives (frame_bits.hpp), the memory with its areas and write protection (memory.hpp), the accesses to it with the area
 // selected, Busy and the word being programmed (memory_access.hpp), the position source
 // (position_source.hpp), the additional data (additional_data.hpp), the error messages
 // (error_messages.hpp), its part in a bus (bus_addressing.hpp) and an EIB's initial commissioning
@@ -15,11 +15,13 @@
 
 #include "endatsim/line/line.hpp"
 #include "endatsim/protocol/protocol.hpp"
+#include "endatsim/sim/record_log.hpp"
 #include "endatsim/slave/additional_data.hpp"
 #include "endatsim/slave/bus_addressing.hpp"
 #include "endatsim/slave/eib.hpp"
 #include "endatsim/slave/encoder_params.hpp"
 #include "endatsim/slave/error_messages.hpp"
+#include "endatsim/slave/frame_bits.hpp"
 #include "endatsim/slave/memory.hpp"
 #include "endatsim/slave/memory_access.hpp"
 #include "endatsim/slave/position_source.hpp"
@@ -61,9 +63,9 @@ class Encoder final : private MemoryAccess::Client {
   const EncoderParams& params() const { return params_; }
   // The frames this encoder saw, oldest first: every one, or with keep_frames(n) only the last
   // n to 2n (a long run matches each master frame to a recent one and keeps its memory bounded).
-  const std::vector<EncoderFrame>& frames() const { return frames_; }
-  void keep_frames(std::size_t n) { kept_frames_ = std::max<std::size_t>(n, 1); }
-  std::uint64_t frame_count() const { return frame_count_; }
+  const std::vector<EncoderFrame>& frames() const { return frames_.records(); }
+  void keep_frames(std::size_t n) { frames_.keep(n); }
+  std::uint64_t frame_count() const { return frames_.count(); }
   std::uint64_t ignored_clock_edges() const { return readiness_.ignored_edges(); }
   bool idle() const { return state_ == State::Idle; }
   bool started() const { return !readiness_.running_up(); }
@@ -155,14 +157,9 @@ class Encoder final : private MemoryAccess::Client {
   unsigned clock_ = 0;  // index k of the current clock period: FE_k, RE_k
   std::uint8_t mode_bits_ = 0;
   const protocol::ModeCommandInfo* command_ = nullptr;
-  std::uint32_t shift_ = 0;
-  unsigned shifted_ = 0;
-  unsigned first_answer_clock_ = protocol::frame_position::kEarliestStartBit;  // docs/model.md §1 / §3: RE11, or RE35 after a payload
-  Time answer_not_before_{0};
-  bool seen_low_ = false;
-  unsigned release_clock_ = 0;  // RE at which the encoder handed DATA to the master's supplement
-  std::vector<std::uint8_t> answer_;
-  std::size_t next_bit_ = 0;
+  ReceivedBits received_;        // a 2.1 payload or a 2.2 command supplement
+  SupplementStart supplement_start_;
+  AnswerBits answer_;
   unsigned gap_low_bits_ = 0;
   Pending pending_;
 
@@ -170,9 +167,7 @@ class Encoder final : private MemoryAccess::Client {
   std::uint8_t test_port_21_ = 0;               // 2.8: port for "Encoder send test values"
   bool transmission_incomplete_ = false;        // A2 cause 3, for the next acknowledgment
 
-  std::vector<EncoderFrame> frames_;
-  std::size_t kept_frames_ = SIZE_MAX / 2;
-  std::uint64_t frame_count_ = 0;
+  sim::RecordLog<EncoderFrame> frames_{sim::RecordLog<EncoderFrame>::Keep::Recent};
 };
 
 }  // namespace endatsim::slave

@@ -6,7 +6,9 @@
 #include <utility>
 #include <string>
 
+#include "endatsim/protocol/diagnosis.hpp"
 #include "endatsim/protocol/parameters.hpp"
+#include "endatsim/protocol/timing.hpp"
 #include "endatsim/slave/eib.hpp"
 #include "endatsim/slave/reference.hpp"
 
@@ -14,6 +16,10 @@ namespace endatsim::slave {
 namespace {
 
 namespace position = protocol::frame_position;
+// 3.5.4: an EnDat 2.x encoder; word 8 keeps the integer part of the version only.
+constexpr unsigned kInterfaceVersion = 2;
+// 3.9.16's example of the maximum encoder temperature.
+constexpr double kDefaultMaxTemperatureCelsius = 115;
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
@@ -87,7 +93,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   const std::uint16_t function_init = p.short_t_m_selected ? kShortRecoveryTimeOn : kShortRecoveryTimeOff;
   img.areas[A::OperatingStatus] = {0, 0, protocol::factory_write_protection(), function_init};
   std::vector<std::uint16_t> m(protocol::kManufacturerWords, 0);
-  m[word::kVersion] = pm::encode_version(2);                       // 3.5.4
+  m[word::kVersion] = pm::encode_version(kInterfaceVersion);       // 3.5.4
   // 3.5.5: OEM areas 1 and 2 at addresses 0 .. 63; OEM areas 3 and 4 and the compensation values
   // not available.
   const pm::Partition oem{kDefaultOemArea}, none;
@@ -135,8 +141,9 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     e[word::kDiagnosticStatus] = static_cast<std::uint16_t>(
         protocol::diagnosis::kValuationNumberBits | (p.sensors.system_data.empty() ? 0 : protocol::diagnosis::kSystemSpecificDataBit));
     e[word::kErrorMessage2Support] = pm::kEveryErrorBit;                  // 3.9.8: support of error message 2
-    e[word::kMaxEncoderTemperature] = 3881;     // 3.9.16's example: 115 degC
-    e[word::kMaxClockFrequency] = 16000;        // 3.9.19: kHz
+    e[word::kMaxEncoderTemperature] =  // 3.9.16's example: 115 degC
+        static_cast<std::uint16_t>(protocol::diagnosis::tenth_kelvin_of_celsius(kDefaultMaxTemperatureCelsius));
+    e[word::kMaxClockFrequency] = static_cast<std::uint16_t>(protocol::limit::kFcMaxSpecial / sim::kHz(1));  // 3.9.19: kHz
     // 3.9.10: position value 2 in the steps of position value 1
     e[word::kPosition2MeasuringSteps] = m[word::kMeasuringSteps];
     e[word::kPosition2MeasuringSteps + 1] = m[word::kMeasuringSteps + 1];
@@ -192,7 +199,7 @@ const std::array kRows{
     Row{"version", choice<&EncoderParams::version, kEndatVersionNames>(), 0, 0, "2.1",
         "The interface version. A 2.1 encoder answers EnDat 2.2 mode commands as not supported (type I)."},
     Row{"position_bits", &EncoderParams::position_bits, 1, EncoderParams::kMaxPositionBits, "3.5.6", "Clock pulses for the position value (word 13)."},
-    Row{"multiturn_bits", &EncoderParams::multiturn_bits, 0, 47, "3.5.6",
+    Row{"multiturn_bits", &EncoderParams::multiturn_bits, 0, EncoderParams::kMaxPositionBits - 1, "3.5.6",
         "Upper bits of the position that count revolutions; needs kind \"multiturn\" and fewer than position_bits."},
     Row{"t_cal", &EncoderParams::t_cal, 0, kModelTimeMax, "2.3.2",
         "Position calculation time t_cal, FE1 to the start bit. The spec allows at most 1 ms; longer ones run and "
@@ -243,11 +250,12 @@ const std::array kRows{
         "length before the latch (a guess: the spec leaves it to the encoder's specifications)."},
     Row{"multiturn_overflow_error_bit", &EncoderParams::multiturn_overflow_error_bit, 0, 15, "3.4.4",
         "The word 0 bit (3.4.1) a latched multiturn overflow sets; the spec names none (a guess)."},
-    Row{"continuous_low_bits", &EncoderParams::continuous_low_bits, 1, 7, "2.3.1.1",
+    Row{"continuous_low_bits", &EncoderParams::continuous_low_bits, 1, limit::kContinuousClockMaxLowBits, "2.3.1.1",
         "LOW bits between position words with a continuous clock (\"a maximum of 7 Low Bits\")."},
     Row{"driver_enable_edge", &EncoderParams::driver_enable_edge, position::kTurnaround, position::kTurnaround + 1,
         "2.3", "The falling edge that turns the encoder's driver on (the turnaround clocks)."},
-    Row{"earliest_start_bit_clock", &EncoderParams::earliest_start_bit_clock, position::kTurnaround + 1, 32, "2.3.2",
+    Row{"earliest_start_bit_clock", &EncoderParams::earliest_start_bit_clock, position::kTurnaround + 1,
+        EncoderParams::kEarliestStartBitClockMax, "2.3.2",
         "The rising edge that may carry the start bit at the earliest (t_cal >= 10.5/f_c gives RE11); after "
         "driver_enable_edge."},
     Row{"type1_handling", choice<&EncoderParams::type1, kType1>(), 0, 0, "A2",

@@ -119,6 +119,8 @@ struct EncoderParams {
   unsigned position_bits = 25;                 // word 13: clock pulses for the position value
   static constexpr unsigned kMaxPositionBits = 48;  // the model's widest position (3.5.6 allows 63)
   static constexpr std::uint64_t kMaxPosition = (std::uint64_t{1} << kMaxPositionBits) - 1;
+  // The latest rising edge a scenario may put the earliest start bit on (the model's bound).
+  static constexpr unsigned kEarliestStartBitClockMax = 32;
   unsigned multiturn_bits = 0;                 // upper bits of the position that count revolutions
   Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
   // The model takes calculation times (and the encoder's other times) up to this, far beyond the

@@ -16,17 +16,18 @@ std::string area_key(Area a) { return std::string(protocol::info(a).key); }
 
 
 // Which partition word and byte describes an OEM or compensation area (3.5.5: words 9..12,
-// low byte the first area of the pair).
+// low byte the first area of the pair). The second member is the byte's shift in its word.
 std::optional<std::pair<unsigned, unsigned>> partition_of(Area a) {
+  constexpr unsigned kLowByte = 0, kHighByte = 8;
   switch (a) {
-    case Area::Oem1: return std::pair{word::kOemPartition, 0U};
-    case Area::Oem2: return std::pair{word::kOemPartition, 8U};
-    case Area::Oem3: return std::pair{word::kOemPartition + 1, 0U};
-    case Area::Oem4: return std::pair{word::kOemPartition + 1, 8U};
-    case Area::Compensation1: return std::pair{word::kCompensationPartition, 0U};
-    case Area::Compensation2: return std::pair{word::kCompensationPartition, 8U};
-    case Area::Compensation3: return std::pair{word::kCompensationPartition + 1, 0U};
-    case Area::Compensation4: return std::pair{word::kCompensationPartition + 1, 8U};
+    case Area::Oem1: return std::pair{word::kOemPartition, kLowByte};
+    case Area::Oem2: return std::pair{word::kOemPartition, kHighByte};
+    case Area::Oem3: return std::pair{word::kOemPartition + 1, kLowByte};
+    case Area::Oem4: return std::pair{word::kOemPartition + 1, kHighByte};
+    case Area::Compensation1: return std::pair{word::kCompensationPartition, kLowByte};
+    case Area::Compensation2: return std::pair{word::kCompensationPartition, kHighByte};
+    case Area::Compensation3: return std::pair{word::kCompensationPartition + 1, kLowByte};
+    case Area::Compensation4: return std::pair{word::kCompensationPartition + 1, kHighByte};
     default: return std::nullopt;
   }
 }

@@ -1,6 +1,7 @@
 #include "endatsim/slave/profile.hpp"
 
 #include "endatsim/input/json_input.hpp"
+#include "endatsim/input/parameter_input.hpp"
 #include "endatsim/input/suggest.hpp"
 #include "endatsim/slave/eib.hpp"
 #include "endatsim/slave/reference.hpp"
@@ -28,18 +29,17 @@ std::string hex4(unsigned w) {
 
 std::string word_string(std::uint16_t w) { return "0x" + hex4(w); }
 
-std::string kind_key(EncoderKind k) {
-  switch (k) {
-    case EncoderKind::Singleturn: return "singleturn";
-    case EncoderKind::Multiturn: return "multiturn";
-    case EncoderKind::Linear: return "linear";
-    case EncoderKind::TouchProbe: return "touch_probe";
-    case EncoderKind::Eib: return "eib";
-  }
-  return "singleturn";
-}
+std::string kind_key(EncoderKind k) { return std::string(kEncoderKindNames[static_cast<std::size_t>(k)]); }
 
-std::string version_key(EndatVersion v) { return v == EndatVersion::V2_1 ? "2.1" : "2.2"; }
+std::string version_key(EndatVersion v) { return std::string(kEndatVersionNames[static_cast<std::size_t>(v)]); }
+
+// The profile's encoder keys are the scenario's rows (encoder_parameters()): one type, range and
+// message for both.
+const sim::Parameter<EncoderParams>& encoder_row(std::string_view key) {
+  for (const auto& row : encoder_parameters())
+    if (row.key == key) return row;
+  throw std::logic_error("no encoder parameter row \"" + std::string(key) + "\"");
+}
 
 std::string area_path(Area a) { return "/memory/" + std::string(protocol::info(a).key); }
 
@@ -58,15 +58,6 @@ std::vector<std::uint16_t> as_words(const Node& n, std::size_t min, std::size_t 
 
 // How many words each area holds in the file: fixed ones, OEM and compensation areas as words
 // 9..12 make them (slave::Memory checks those), operating parameters 2 up to 256.
-// The index of the name a string value gives, as the scenario's rows name them.
-template <std::size_t N>
-std::size_t choice(const Node& n, const std::array<std::string_view, N>& names) {
-  if (n.raw().is_string())
-    for (std::size_t i = 0; i < N; ++i)
-      if (names[i] == n.raw().get_ref<const std::string&>()) return i;
-  n.fail_choice({names.begin(), names.end()});
-}
-
 std::pair<std::size_t, std::size_t> size_limits(Area a) {
   const std::size_t fixed = protocol::info(a).fixed_words;
   return fixed != 0 ? std::pair{fixed, fixed} : std::pair<std::size_t, std::size_t>{1, protocol::kAreaWordsMax};
@@ -89,31 +80,21 @@ EncoderProfile read_profile(const json& root, const std::string& file) {
   p.name = r.child("name").as_string();
   if (p.name.empty()) r.child("name").fail("a non-empty name");
   if (root.contains("description")) p.description = r.child("description").as_string();
-  p.version = static_cast<EndatVersion>(choice(r.child("version"), kEndatVersionNames));
-  p.kind = static_cast<EncoderKind>(choice(r.child("kind"), kEncoderKindNames));
-  p.position_bits = static_cast<unsigned>(r.child("position_bits").as_uint(1, EncoderParams::kMaxPositionBits));
-  if (root.contains("multiturn_bits")) p.multiturn_bits = static_cast<unsigned>(r.child("multiturn_bits").as_uint(0, p.position_bits - 1));
+  EncoderParams e;
+  for (const char* key : {"version", "kind", "position_bits", "multiturn_bits"})
+    if (root.contains(key)) input::read_parameter(r.child(key), encoder_row(key), e);
+  p.version = e.version;
+  p.kind = e.kind;
+  p.position_bits = e.position_bits;
+  p.multiturn_bits = e.multiturn_bits;
+  if (p.multiturn_bits >= p.position_bits)
+    r.child("multiturn_bits").fail("an integer 0 .. " + std::to_string(p.position_bits - 1) + " (fewer than position_bits)");
 
   const Node m = r.child("memory");
-  if (!m.raw().is_object()) m.fail("an object of memory area -> array of hex words");
-  for (const auto& [key, value] : m.raw().items()) {
-    const Node item = m.child(key);
-    if (key == "section2_blocks") {
-      if (!value.is_array() || value.size() > protocol::kSection2BlocksMax)
-        item.fail("an array of at most " + std::to_string(protocol::kSection2BlocksMax) + " blocks of " +
-                  std::to_string(protocol::kAreaWordsMax) + " hex words");
-      for (std::size_t i = 0; i < value.size(); ++i)
-        p.memory.section2_blocks.push_back(as_words(item.item(i), protocol::kAreaWordsMax, protocol::kAreaWordsMax));
-      continue;
-    }
-    const auto area = protocol::memory_area_from_key(key);
-    if (!area || *area == Area::Section2 || *area == Area::AsynchronousPosition)
-      item.fail_raw("unknown memory area \"" + key +
-                    "\" (expected operating_status, manufacturer_1 .. 3, operating_parameters, oem_1 .. 4, "
-                    "compensation_1 .. 4, manufacturer_endat22, operating_parameters2 or section2_blocks)");
-    const auto [min, max] = size_limits(*area);
-    p.memory.areas[*area] = as_words(item, min, max);
-  }
+  read_memory_areas(m, p.memory, "hex words", [](const Node& words, std::optional<Area> area) {
+    const auto [min, max] = area ? size_limits(*area) : std::pair{protocol::kAreaWordsMax, protocol::kAreaWordsMax};
+    return as_words(words, min, max);
+  });
   for (Area a : {Area::OperatingStatus, Area::Manufacturer1, Area::Manufacturer2, Area::Manufacturer3,
                  Area::OperatingParameters})
     if (!p.memory.areas.contains(a)) m.fail_raw("missing memory area \"" + std::string(protocol::info(a).key) + "\"");
@@ -155,6 +136,27 @@ void check_reference_marks(const EncoderProfile& p, const std::vector<std::uint1
 }
 
 }  // namespace
+
+void read_memory_areas(const input::Node& n, MemoryImage& image, std::string_view words_text, const AreaWordsReader& words) {
+  if (!n.raw().is_object()) n.fail("an object of memory area -> array of " + std::string(words_text));
+  for (const auto& [key, value] : n.raw().items()) {
+    const Node item = n.child(key);
+    if (key == "section2_blocks") {
+      if (!value.is_array() || value.size() > protocol::kSection2BlocksMax)
+        item.fail("an array of at most " + std::to_string(protocol::kSection2BlocksMax) + " blocks of " +
+                  std::to_string(protocol::kAreaWordsMax) + " " + std::string(words_text));
+      image.section2_blocks.clear();
+      for (std::size_t i = 0; i < value.size(); ++i) image.section2_blocks.push_back(words(item.item(i), std::nullopt));
+      continue;
+    }
+    const auto area = protocol::memory_area_from_key(key);
+    if (!area || *area == Area::Section2 || *area == Area::AsynchronousPosition)
+      item.fail_raw("unknown memory area \"" + key +
+                    "\" (expected operating_status, manufacturer_1 .. 3, operating_parameters, oem_1 .. 4, "
+                    "compensation_1 .. 4, manufacturer_endat22, operating_parameters2 or section2_blocks)");
+    image.areas[*area] = words(item, *area);
+  }
+}
 
 void EncoderProfile::apply(EncoderParams& p) const {
   p.kind = kind;

@@ -21,11 +21,15 @@
 // that a loaded profile saves byte for byte as it was.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
+#include "endatsim/input/json_input.hpp"
 #include "endatsim/protocol/parameters.hpp"
 #include "endatsim/slave/encoder.hpp"
 
@@ -54,6 +58,14 @@ struct EncoderProfile {
 };
 
 bool operator==(const EncoderProfile& a, const EncoderProfile& b);
+
+// One memory area's array of words in a file, read and checked as the file's kind needs (a
+// profile: the area's exact size in hex words; a scenario: up to 256 words that replace the
+// default image's). `area` is none for a block of section 2.
+using AreaWordsReader = std::function<std::vector<std::uint16_t>(const input::Node& words, std::optional<MemoryArea> area)>;
+// An object of memory area key (protocol::info(MemoryArea).key) -> array of words, and
+// "section2_blocks", read into `image` (3.1); `words_text` says what a word is ("hex words").
+void read_memory_areas(const input::Node& n, MemoryImage& image, std::string_view words_text, const AreaWordsReader& words);
 
 EncoderProfile load_profile(const std::string& path);
 EncoderProfile load_profile_text(const std::string& text, const std::string& file_name);
