@@ -1,0 +1,138 @@
+// The small parts the encoder and the master are built from, each on its own: the bits of a frame
+// (slave/frame_bits.hpp), the bounded frame log (sim/record_log.hpp), the master's operation queue
+// (master/operation.hpp) and where a delay-measurement round began (master/delay_measurement.hpp).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "endatsim/master/delay_measurement.hpp"
+#include "endatsim/master/operation.hpp"
+#include "endatsim/sim/record_log.hpp"
+#include "endatsim/slave/frame_bits.hpp"
+
+namespace endatsim {
+namespace {
+
+using sim::Time;
+
+TEST(AnswerBits, StartsNoEarlierThanItsClockAndTime) {
+  slave::AnswerBits a;
+  a.load({1, 0, 1});
+  a.not_before(11, sim::us(5));
+  EXPECT_FALSE(a.start_due(10, sim::us(6)));  // RE10: before RE11
+  EXPECT_FALSE(a.start_due(11, sim::us(5) - Time{1}));  // t_cal not over by 1 ps
+  EXPECT_TRUE(a.start_due(11, sim::us(5)));
+  EXPECT_FALSE(a.started());
+}
+
+TEST(AnswerBits, SendsEachBitOnceInOrderAndAppendedBitsFollow) {
+  slave::AnswerBits a;
+  a.load({1, 0});
+  a.bits().push_back(1);  // additional data appended after the CRC (2.3.5)
+  std::vector<bool> sent;
+  while (!a.sent()) sent.push_back(a.next());
+  EXPECT_EQ(sent, (std::vector<bool>{true, false, true}));
+  EXPECT_TRUE(a.started());
+  a.clear();
+  EXPECT_FALSE(a.started());
+  EXPECT_TRUE(a.sent());  // nothing left to send
+}
+
+TEST(ReceivedBits, TakesTwentyFourBitsMsbFirst) {
+  slave::ReceivedBits r;
+  const std::uint32_t payload = 0xB9'1234;  // MRS B9h, parameter 1234h
+  for (int i = static_cast<int>(protocol::kPayloadBits) - 1; i >= 0; --i) {
+    const bool last = r.take(((payload >> i) & 1U) != 0);
+    EXPECT_EQ(last, i == 0) << "bit " << i;
+  }
+  EXPECT_EQ(r.value(), payload);
+  r.clear();
+  EXPECT_FALSE(r.take(true));
+  EXPECT_EQ(r.value(), 1U);
+}
+
+TEST(SupplementStart, IgnoresTheFirstEdgesThenTakesTheHighAfterALow) {
+  slave::SupplementStart s;
+  s.handed_over(40);
+  EXPECT_FALSE(s.found(41, false, 3));  // ignored: the encoder's own last bit fades
+  EXPECT_FALSE(s.found(43, true, 3));
+  EXPECT_FALSE(s.found(44, true, 3));   // the floating line reads HIGH: no LOW seen yet
+  EXPECT_FALSE(s.found(45, false, 3));  // the master's lead bits
+  EXPECT_TRUE(s.found(46, true, 3));    // the start bit
+  s.handed_over(50);
+  EXPECT_FALSE(s.found(54, true, 3));   // a new hand-over waits for a LOW again
+}
+
+TEST(RecordLog, KeepFirstKeepsTheFirstNAndCountsEveryRecord) {
+  sim::RecordLog<int> log(sim::RecordLog<int>::Keep::First);
+  log.keep(3);
+  for (int i = 0; i < 10; ++i) log.add(i);
+  EXPECT_EQ(log.records(), (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(log.count(), 10U);
+}
+
+TEST(RecordLog, KeepFirstZeroKeepsNothing) {
+  sim::RecordLog<int> log(sim::RecordLog<int>::Keep::First);
+  log.keep(0);
+  log.add(1);
+  EXPECT_TRUE(log.records().empty());
+  EXPECT_EQ(log.count(), 1U);
+}
+
+TEST(RecordLog, KeepRecentKeepsTheLastNToTwoNAndTheLastRecordAlways) {
+  sim::RecordLog<int> log(sim::RecordLog<int>::Keep::Recent);
+  log.keep(3);
+  for (int i = 0; i < 6; ++i) log.add(i);
+  EXPECT_EQ(log.records(), (std::vector<int>{0, 1, 2, 3, 4, 5}));  // 2n: not trimmed yet
+  log.add(6);
+  EXPECT_EQ(log.records(), (std::vector<int>{4, 5, 6}));
+  log.last() = 60;
+  EXPECT_EQ(log.records().back(), 60);
+  EXPECT_EQ(log.count(), 7U);
+  log.keep(0);  // at least the record being written: one to two kept
+  log.add(7);
+  EXPECT_EQ(log.records(), (std::vector<int>{7}));
+  log.add(8);
+  EXPECT_EQ(log.records(), (std::vector<int>{7, 8}));
+  log.add(9);
+  EXPECT_EQ(log.records(), (std::vector<int>{9}));
+}
+
+TEST(OperationQueue, NumbersTheScriptsOperationsAndRunsWhatIsPutInFrontFirst) {
+  master::OperationQueue q;
+  master::Operation a, b, front;
+  a.kind = master::Operation::Kind::ReadPosition;
+  b.kind = master::Operation::Kind::Wait;
+  front.kind = master::Operation::Kind::MeasureDelay;
+  q.enqueue(a);
+  q.enqueue(b);
+  std::vector<master::Operation> sequence(2);
+  sequence[0].kind = master::Operation::Kind::StartupRoutine;
+  sequence[1].kind = master::Operation::Kind::VerifyChecksum;
+  q.insert_front(sequence);
+  q.push_front(front);
+  EXPECT_EQ(q.take().kind, master::Operation::Kind::MeasureDelay);
+  EXPECT_EQ(q.take().kind, master::Operation::Kind::StartupRoutine);
+  EXPECT_EQ(q.take().kind, master::Operation::Kind::VerifyChecksum);
+  const master::Operation first = q.take();
+  EXPECT_EQ(first.kind, master::Operation::Kind::ReadPosition);
+  EXPECT_EQ(first.script_index, 0U);
+  EXPECT_EQ(q.take().script_index, 1U);
+  EXPECT_TRUE(q.empty());
+}
+
+TEST(DelayMeasurement, ARoundBeginsAtTheStartOfItsFirstFrame) {
+  master::DelayMeasurementParams p;
+  p.count = 3;
+  master::DelayMeasurement m(p, sim::MHz(8));
+  m.frame_recorded(sim::us(10));
+  m.frame_recorded(sim::us(20));
+  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(99));  // fewer frames than a round
+  m.frame_recorded(sim::us(30));
+  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(10));
+  m.frame_recorded(sim::us(40));
+  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(20));
+}
+
+}  // namespace
+}  // namespace endatsim
