@@ -12,6 +12,12 @@ std::string temperature_string(unsigned tenth_kelvin) {
   return text;
 }
 
+std::string kelvin_string(unsigned tenth_kelvin) {
+  char text[24];
+  std::snprintf(text, sizeof text, "%.1f K", kelvin(tenth_kelvin));
+  return text;
+}
+
 long tenth_kelvin_of_celsius(double celsius) { return std::lround(celsius * 10.0) + kZeroCelsiusTenthKelvin; }
 
 std::optional<double> temperature_scaling(std::uint16_t word4) {

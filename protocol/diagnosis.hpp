@@ -18,6 +18,7 @@ constexpr double kelvin(unsigned tenth_kelvin) { return static_cast<double>(tent
 // Rounded to 0.1 K; negative below 0 K.
 long tenth_kelvin_of_celsius(double celsius);
 std::string temperature_string(unsigned tenth_kelvin);  // "110.0 degC (383.1 K)"
+std::string kelvin_string(unsigned tenth_kelvin);       // "6553.5 K"
 
 // 3.9.6 word 4: bits 0..2 select the scaling factor; only 000b (0.1 K) is defined. Bit 15 is
 // the NVM bit. None: another, undefined scaling.

@@ -6,6 +6,7 @@
 #include "endatsim/protocol/crc_parameters.hpp"
 #include "endatsim/scenarios/bundled_profiles.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
+#include "endatsim/scenarios/list_keys.hpp"
 #include "endatsim/scenarios/operation_kinds.hpp"
 #include "endatsim/slave/profile.hpp"
 
@@ -31,16 +32,18 @@ using input::trimmed;
 // (0 degC = 273.1 K, as 3.9.6 scales it).
 std::uint16_t as_temperature(const Node& n) {
   const std::string what =
-      "a temperature: an integer in 0.1 K (or a hex string) or a string such as \"110 degC\" or \"383.1 K\" (0 .. 6553.5 K)";
-  if (!n.raw().is_string()) return static_cast<std::uint16_t>(n.as_uint(0, 0xFFFF));
+      "a temperature: an integer in 0.1 K (or a hex string) or a string such as \"110 degC\" or \"383.1 K\" (0 .. " +
+      protocol::diagnosis::kelvin_string(list_keys::kTemperatureMax) + ")";
+  if (!n.raw().is_string()) return static_cast<std::uint16_t>(n.as_uint(0, list_keys::kTemperatureMax));
   static const std::regex kTemperature(R"(^(-?[0-9]{1,5}(\.[0-9]{1,3})?) ?(K|degC)$)");
   std::smatch m;
   const std::string s = n.raw().get<std::string>();
-  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) return static_cast<std::uint16_t>(n.as_word(0xFFFF));
+  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X'))
+    return static_cast<std::uint16_t>(n.as_word(list_keys::kTemperatureMax));
   if (!std::regex_match(s, m, kTemperature) || (m[3].str() == "K" && s[0] == '-')) n.fail(what);  // no K below 0
   const double x = std::stod(m[1].str());
   const long tenth = m[3].str() == "degC" ? protocol::diagnosis::tenth_kelvin_of_celsius(x) : std::lround(x * 10.0);
-  if (tenth < 0 || tenth > 0xFFFF) n.fail(what);
+  if (tenth < 0 || tenth > list_keys::kTemperatureMax) n.fail(what);
   return static_cast<std::uint16_t>(tenth);
 }
 
@@ -205,7 +208,8 @@ void read_encoder(const Node& n, slave::EncoderParams& p) {
   input::read_parameters(o, slave::encoder_parameters(), p);
   if (auto v = o.opt("crc")) read_object(*v, protocol::crc_generator_parameters(), p.crc);
   if (auto v = o.opt("reference_marks")) {
-    if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > 1024) v->fail("an array of 1 .. 1024 positions");
+    if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > list_keys::kReferenceMarksMax)
+      v->fail("an array of 1 .. " + std::to_string(list_keys::kReferenceMarksMax) + " positions");
     p.reference_marks.clear();
     for (std::size_t i = 0; i < v->raw().size(); ++i)
       p.reference_marks.push_back(
@@ -284,7 +288,8 @@ protocol::ModeCommand read_command(const Node& n) {
 
 std::uint8_t read_mode_bits(const Node& n) {
   const std::string s = n.as_string();
-  if (s.size() != 6 || s.find_first_not_of("01") != std::string::npos) n.fail("six mode bits such as \"000111\"");
+  if (s.size() != protocol::frame_position::kModeBits || s.find_first_not_of("01") != std::string::npos)
+    n.fail("six mode bits such as \"000111\"");
   return static_cast<std::uint8_t>(std::stoul(s, nullptr, 2));
 }
 
@@ -615,7 +620,7 @@ void read_expect(const Node& n, Expectations& e) {
     if (auto s = d.opt("accepted")) de.accepted = s->as_bool();
     if (auto s = d.opt("max_error")) {
       if (s->raw().is_string() && s->raw().get<std::string>() == "T/8") de.max_error_is_eighth = true;
-      else de.max_error = s->as_duration(Time::zero(), sim::us(10));
+      else de.max_error = s->as_duration(Time::zero(), list_keys::kDelayErrorMax);
     }
     d.done();
     e.delay_measurement = de;
@@ -657,7 +662,7 @@ void read_expect(const Node& n, Expectations& e) {
       const Node item(v->raw()[i], v->path() + "/" + std::to_string(i), n.file());
       Object m(item);
       MemoryExpectation me;
-      if (auto x = m.opt("encoder")) me.encoder = static_cast<std::size_t>(x->as_uint(0, 31));
+      if (auto x = m.opt("encoder")) me.encoder = static_cast<std::size_t>(x->as_uint(0, list_keys::kBusEncodersMax));
       const Node area = m.req("area");
       const auto a = protocol::memory_area_from_key(area.as_string());
       if (!a) area.fail("a memory area name such as \"oem_1\"");
@@ -742,8 +747,8 @@ Scenario read_scenario(const json& root, const std::string& file, ScenarioKind k
   read_line(o.req("line"), s.line);
   if (auto v = o.opt("encoder")) read_encoder(*v, s.encoder);
   if (auto v = o.opt("bus")) {
-    if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > 31)
-      v->fail("an array of 1 .. 31 further encoders on the bus (2.10)");
+    if (!v->raw().is_array() || v->raw().empty() || v->raw().size() > list_keys::kBusEncodersMax)
+      v->fail("an array of 1 .. " + std::to_string(list_keys::kBusEncodersMax) + " further encoders on the bus (2.10)");
     for (std::size_t i = 0; i < v->raw().size(); ++i) {
       s.bus.emplace_back();
       read_encoder(v->item(i), s.bus.back());

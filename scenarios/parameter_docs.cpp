@@ -6,9 +6,13 @@
 #include "endatsim/checker/timing_checker.hpp"
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
+#include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/protocol/crc_parameters.hpp"
+#include "endatsim/protocol/diagnosis.hpp"
+#include "endatsim/protocol/memory_area.hpp"
 #include "endatsim/protocol/timing.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
+#include "endatsim/scenarios/list_keys.hpp"
 #include "endatsim/scenarios/operation_kinds.hpp"
 #include "endatsim/sim/parameter.hpp"
 #include "endatsim/slave/encoder_params.hpp"
@@ -204,6 +208,13 @@ std::string operation_description(const OperationKindRow& k) {
   return std::string(k.help) + (k.section.empty() ? "" : " D297403 " + std::string(k.section) + ".");
 }
 
+// An operation's "mode_bits": the six bits of a disturbed mode command (2.3: RE3 .. RE8).
+json mode_bits_property() {
+  return {{"description", "Six other bits to send (a disturbed mode command)."},
+          {"type", "string"},
+          {"pattern", "^[01]{" + std::to_string(protocol::frame_position::kModeBits) + "}$"}};
+}
+
 // The schema of the script's operations: "op" and "at" for all, and for each operation (the
 // operation's block in "allOf", in the rows' order) the properties its rows generate and the keys
 // it requires.
@@ -220,8 +231,10 @@ void add_operation_schema(json& out) {
       properties[std::string(row.key)] = property(row, k.defaults);
       if (row.required) required.push_back(std::string(row.key));
     }
-    for (const auto& other : k.other_keys)
+    for (const auto& other : k.other_keys) {
       if (other.required) required.push_back(std::string(other.key));
+      if (other.key == "mode_bits") properties["mode_bits"] = mode_bits_property();
+    }
     out["/$defs/operation/allOf/" + std::to_string(i) + "/then/properties"] = {{"properties", properties},
                                                                                {"required", required}};
   }
@@ -256,6 +269,69 @@ std::string operation_tables_markdown() {
 
 }  // namespace
 
+namespace {
+
+// The properties of the keys that hold lists, maps or values in a form of their own, where a bound
+// of theirs is checked by the loader: generated from the constants the loader uses
+// (scenarios/list_keys.hpp, protocol/), so that the schema cannot drift from it. They carry no
+// "required": their objects' required keys are the rows' or written by hand.
+void add_list_key_schema(json& out) {
+  namespace dg = protocol::diagnosis;
+  const auto add = [&out](const std::string& pointer, const std::string& key, json property) {
+    json& slot = out[pointer];
+    if (slot.is_null()) slot = {{"properties", json::object()}};
+    slot["properties"][key] = std::move(property);
+  };
+  const json temperature = {{"$ref", "#/$defs/temperature"}};
+  add("/$defs", "temperature",
+      {{"description", "A temperature: an integer in 0.1 K (3.9.6) or a string such as \"110 degC\" or \"383.1 K\" (0 degC = "
+                       "273.1 K as 3.9.6 scales it; at most " + dg::kelvin_string(list_keys::kTemperatureMax) + ")."},
+       {"oneOf", json::array({json{{"type", "integer"}, {"minimum", 0}, {"maximum", list_keys::kTemperatureMax}},
+                              json{{"type", "string"}, {"pattern", "^(-?[0-9]{1,5}(\\.[0-9]{1,3})? ?degC|[0-9]{1,5}(\\.[0-9]{1,3})? ?K)$"}},
+                              json{{"type", "string"}, {"pattern", "^0[xX][0-9a-fA-F]{1,4}$"}}})}});
+  add("/$defs", "words", {{"type", "array"}, {"maxItems", protocol::kAreaWordsMax}, {"items", {{"$ref", "#/$defs/word"}}}});
+  add("/properties", "bus",
+      {{"description", "Further encoders on the same bus (2.10), each with its own transceiver at the encoder end."},
+       {"type", "array"}, {"minItems", 1}, {"maxItems", list_keys::kBusEncodersMax}, {"items", {{"$ref", "#/$defs/encoder"}}}});
+  add("/$defs/encoder/properties", "reference_marks",
+      {{"description", "Incremental encoders (word 14): positions of the reference marks in measuring steps."},
+       {"type", "array"}, {"minItems", 1}, {"maxItems", list_keys::kReferenceMarksMax},
+       {"items", {{"type", "integer"}, {"minimum", 0}, {"maximum", slave::EncoderParams::kMaxPosition}}}});
+  const json additional_sensors = {{"type", "array"}, {"maxItems", dg::kAdditionalSensorAddresses}, {"items", temperature}};
+  const json valuation_numbers = {{"type", "array"}, {"minItems", dg::kValuationNumbers}, {"maxItems", dg::kValuationNumbers},
+                                  {"items", {{"$ref", "#/$defs/byte"}}}};
+  json described = additional_sensors;
+  described["description"] = "By address 0 .. " + std::to_string(dg::kAdditionalSensorAddresses - 1) +
+                             ", sent with a 115 K offset (3.9.6).";
+  add("/$defs/encoder/properties/sensors/properties", "additional_sensors", described);
+  described = valuation_numbers;
+  described["description"] = "Valuation numbers 1 .. " + std::to_string(dg::kValuationNumbers) +
+                             " (A3), sent as diagnosis where operating parameters word 3 activates them.";
+  add("/$defs/encoder/properties/sensors/properties", "valuation_numbers", described);
+  add("/$defs/event/properties/sensors/properties", "additional_sensors", additional_sensors);
+  add("/$defs/event/properties/sensors/properties", "valuation_numbers", valuation_numbers);
+  add("/$defs/encoder/properties/memory/properties", "section2_blocks",
+      {{"type", "array"}, {"maxItems", protocol::kSection2BlocksMax}, {"items", {{"$ref", "#/$defs/words"}}}});
+  add("/$defs/master/properties", "duty_cycle",
+      {{"description", "HIGH share of the period."}, {"type", "number"},
+       {"minimum", master::MasterParams::kHighPermilleMin / 1000.0}, {"maximum", master::MasterParams::kHighPermilleMax / 1000.0}});
+  add("/$defs/master/properties/diagnostics/properties", "valuation_numbers",
+      {{"description", "Valuation numbers to activate in operating parameters word 3 (default 1 .. " +
+                           std::to_string(dg::kValuationNumbers) + "), as far as word 5 supports them."},
+       {"type", "array"}, {"items", {{"type", "integer"}, {"minimum", 1}, {"maximum", dg::kValuationNumbers}}}});
+  add("/$defs/frame_expectation/properties", "additional_data",
+      {{"type", "array"}, {"maxItems", protocol::kAdditionalDataPerFrameMax},
+       {"items", {{"$ref", "#/$defs/additional_data_expectation"}}}});
+  add("/$defs/expect/properties/delay_measurement/properties", "max_error",
+      {{"description", "A duration (" + sim::format_time_range(sim::Time::zero(), list_keys::kDelayErrorMax) + ") or \"T/8\"."},
+       {"anyOf", json::array({json{{"const", "T/8"}}, json{{"$ref", "#/$defs/duration"}}})}});
+  add("/$defs/expect/properties/memory/items/properties", "encoder",
+      {{"description", "0: the encoder; k: the k-th of bus."}, {"type", "integer"}, {"minimum", 0},
+       {"maximum", list_keys::kBusEncodersMax}});
+}
+
+}  // namespace
+
 json parameter_schema() {
   json out = json::object();
   for_each_section([&](const auto& section, const auto& defaults) {
@@ -279,6 +355,7 @@ json parameter_schema() {
     if (auto p = event_kind_schema(k)) events[std::string(k.key)] = *p;
   out["/$defs/event/properties"] = {{"properties", events}, {"required", json::array()}};
   add_operation_schema(out);
+  add_list_key_schema(out);
   return out;
 }
 

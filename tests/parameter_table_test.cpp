@@ -16,6 +16,7 @@
 #include "endatsim/master/master.hpp"
 #include "endatsim/protocol/crc_parameters.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
+#include "endatsim/scenarios/list_keys.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/operation_kinds.hpp"
 #include "endatsim/scenarios/parameter_docs.hpp"
@@ -261,13 +262,16 @@ TEST(ParameterTables, TheCounterClockIsZeroOrAtLeastOneMegahertz) {
 }
 
 // Every object with parameter rows: the schema holds exactly the properties the rows generate,
-// and requires exactly the rows that are required.
+// and requires exactly the rows that are required; and the keys of lists and maps hold the
+// properties generated from the loader's bounds (their objects' "required" is not generated).
 TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
   const auto schema = json::parse(slurp("schema/scenario.schema.json"));
   const auto generated = scenarios::parameter_schema();
-  // The objects of the models, the events, and "op" and "at" and each operation of the script.
-  // (encoder.crc and master.crc share the generator's rows; master.crc adds the check's).
-  ASSERT_EQ(generated.size(), 17U + scenarios::operation_kinds().size());
+  // The objects of the models, the events, and "op" and "at" and each operation of the script
+  // (encoder.crc and master.crc share the generator's rows; master.crc adds the check's); then
+  // the seven objects that hold only lists and maps with generated bounds ($defs, the top level,
+  // encoder.memory, the sensors event, a frame's and the run's expectations).
+  ASSERT_EQ(generated.size(), 24U + scenarios::operation_kinds().size());
   for (const auto& [pointer, part] : generated.items()) {
     SCOPED_TRACE(pointer);
     const json::json_pointer at(pointer);
@@ -278,6 +282,7 @@ TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
           << key << ": schema/scenario.schema.json is out of date: regenerate with "
           << "`endatsim parameters --schema | tools/update_schema.py schema/scenario.schema.json`";
     }
+    if (!part.contains("required")) continue;
     const auto required = schema[at.parent_pointer()].value("required", json::array());
     EXPECT_EQ(required, part["required"]);
   }
@@ -302,6 +307,48 @@ std::string load_message(const json& op, const json& event = nullptr) {
     return e.what();
   }
   return "accepted";
+}
+
+// A list key at its bound and one past it: the loader takes the one and refuses the other, naming
+// the bound the schema states (both come from scenarios/list_keys.hpp).
+using ::testing::HasSubstr;
+
+std::string encoder_message(const json& encoder_keys) {
+  json s = {{"name", "lists"},
+            {"line", {{"cable_length_m", 10}}},
+            {"encoder", {{"version", "2.2"}, {"position_bits", 25}}},
+            {"master", {{"f_c", "2 MHz"}, {"position_bits", 25}}},
+            {"script", {{{"op", "read_position"}}}}};
+  s["encoder"].update(encoder_keys);
+  try {
+    scenarios::load_scenario_text(s.dump(), "lists.json");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(ListKeys, ReferenceMarksAreAcceptedUpToTheSchemasMaxItemsAndRefusedBeyond) {
+  const auto schema = json::parse(slurp("schema/scenario.schema.json"));
+  const auto max = schema["$defs"]["encoder"]["properties"]["reference_marks"]["maxItems"].get<std::size_t>();
+  ASSERT_EQ(max, scenarios::list_keys::kReferenceMarksMax);
+  json marks = json::array();
+  for (std::size_t i = 0; i < max; ++i) marks.push_back(1000 * i);
+  EXPECT_EQ(encoder_message({{"reference_marks", marks}}), "accepted");
+  marks.push_back(1000 * max);
+  EXPECT_THAT(encoder_message({{"reference_marks", marks}}),
+              HasSubstr("/encoder/reference_marks: expected an array of 1 .. " + std::to_string(max) + " positions"));
+}
+
+TEST(ListKeys, ATemperatureIsAcceptedUpToTheSchemasMaximumAndRefusedBeyond) {
+  const auto schema = json::parse(slurp("schema/scenario.schema.json"));
+  const auto max = schema["$defs"]["temperature"]["oneOf"][0]["maximum"].get<unsigned>();
+  ASSERT_EQ(max, scenarios::list_keys::kTemperatureMax);
+  EXPECT_EQ(encoder_message({{"sensors", {{"temperature_1", max}}}}), "accepted");
+  EXPECT_THAT(encoder_message({{"sensors", {{"temperature_1", max + 1}}}}),
+              HasSubstr("/encoder/sensors/temperature_1: expected an integer 0 .. " + std::to_string(max)));
+  EXPECT_EQ(encoder_message({{"sensors", {{"temperature_1", "6553.5 K"}}}}), "accepted");
+  EXPECT_THAT(encoder_message({{"sensors", {{"temperature_1", "6553.6 K"}}}}), HasSubstr("(0 .. 6553.5 K)"));
 }
 
 // The event keys the schema knows are the rows' and no others: the trigger keys and one per kind,

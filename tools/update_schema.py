@@ -77,7 +77,7 @@ def main():
                 sys.exit(f"{path}: no property {pointer}/{key} to replace; add it by hand first")
             edits.append((where[properties + (key,)], compact(prop)))
         required = properties[:-1] + ("required",)
-        if part["required"]:
+        if part.get("required"):
             if required not in where:
                 sys.exit(f"{path}: {'/'.join(required)} missing; add it by hand first")
             edits.append((where[required], compact(part["required"])))
