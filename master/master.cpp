@@ -362,44 +362,14 @@ void Master::frame_done(FrameResult& f) {
 
 // ---- the EnDat 2.2 area and additional data 1 ------------------------------------------------
 
-// 2.5.1: a word of the 2.2 area (MRS BD, selectable only with 2.2 mode commands) comes back in
-// additional data 1 as address | LSB (I = 5) and address | MSB (I = 6) once Busy is reset. An
-// encoder whose word 37 (read just before) lacks the 2.2 command set has no such area.
+// 2.5.1: the words of the 2.2 area the operation names (plan_endat22_read); a function that asked
+// for the whole area hears when the encoder has none.
 Sequence Master::endat22_read_plan() {
   book_.begin_endat22_read();
-  const std::uint64_t words = current_->endat22_words;
   const auto word37 = parameter(mrs_of(protocol::MemoryArea::Manufacturer3), protocol::word::manufacturer_address(protocol::word::kCommandSet));
   Sequence plan = sequence();
-  if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) {
-    if (words == ~std::uint64_t{0})
-      for (MasterFunction* function : functions_) function->endat22_area_read(context(), false);
-    return plan;
-  }
-  const auto frame = [&plan](MC c, std::uint8_t address, P purpose = P::None, unsigned word = 0) {
-    plan.frame(c, address, 0, purpose, word);
-  };
-  const auto await = [&plan](P purpose, unsigned word) {
-    Operation& o = plan.add(Operation::Kind::AwaitNotBusy);
-    // Polls 50 us apart (the model's choice) until past t_ac max (2.3.2), with a 25 % margin.
-    constexpr Time kPollCycle = sim::us(50);
-    constexpr Time kPollUntil = protocol::limit::kMemoryAccessMax + protocol::limit::kMemoryAccessMax / 4;
-    o.cycle = kPollCycle;
-    o.count = static_cast<unsigned>(kPollUntil / kPollCycle);
-    o.purpose = purpose;
-    o.manufacturer_word = word;
-  };
-  const auto select = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
-  frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
-  frame(select, mrs_of(protocol::MemoryArea::ManufacturerEndat22));
-  await(P::None, 0);
-  for (unsigned w = 0; w < protocol::kEndat22Words; ++w) {
-    if (((words >> w) & 1U) == 0) continue;
-    frame(MC::EncoderSendPositionValuesAndSendParameter, static_cast<std::uint8_t>(w));
-    await(P::Endat22Lsb, w);
-    frame(select, protocol::selection_mrs(I::MemoryParameterMsb));
-    frame(MC::EncoderSendPositionValuesWithAdditionalData, 0, P::Endat22Msb, w);
-    frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
-  }
+  if (!plan_endat22_read(plan, current_->endat22_words, word37) && current_->endat22_words == ~std::uint64_t{0})
+    for (MasterFunction* function : functions_) function->endat22_area_read(context(), false);
   return plan;
 }
 

@@ -1,5 +1,8 @@
 #include "endatsim/master/startup.hpp"
 
+#include "endatsim/protocol/parameters.hpp"
+#include "endatsim/protocol/timing.hpp"
+
 namespace endatsim::master {
 namespace {
 
@@ -82,6 +85,37 @@ void ChecksumVerification::note(const Operation& o, const FrameResult& f) {
   result_->complete = true;
   result_->stored = words_[word::kManufacturerChecksum];
   result_->computed = protocol::parameters::manufacturer_checksum(words_);
+}
+
+bool plan_endat22_read(Sequence& s, std::uint64_t words, std::optional<std::uint16_t> word37) {
+  using I = protocol::Information;
+  if (!word37 || !protocol::parameters::decode_command_set(*word37).endat22) return false;
+  const auto frame = [&s](MC c, std::uint8_t address, P purpose = P::None, unsigned w = 0) {
+    s.frame(c, address, 0, purpose, w);
+  };
+  const auto await = [&s](P purpose, unsigned w) {
+    Operation& o = s.add(Operation::Kind::AwaitNotBusy);
+    // Polls 50 us apart (the model's choice) until past t_ac max (2.3.2), with a 25 % margin.
+    constexpr sim::Time kPollCycle = sim::us(50);
+    constexpr sim::Time kPollUntil = protocol::limit::kMemoryAccessMax + protocol::limit::kMemoryAccessMax / 4;
+    o.cycle = kPollCycle;
+    o.count = static_cast<unsigned>(kPollUntil / kPollCycle);
+    o.purpose = purpose;
+    o.manufacturer_word = w;
+  };
+  const auto select = MC::EncoderSendPositionValuesAndSelectionOfMemoryArea;
+  frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
+  frame(select, protocol::mrs_of(protocol::MemoryArea::ManufacturerEndat22));
+  await(P::None, 0);
+  for (unsigned w = 0; w < protocol::kEndat22Words; ++w) {
+    if (((words >> w) & 1U) == 0) continue;
+    frame(MC::EncoderSendPositionValuesAndSendParameter, static_cast<std::uint8_t>(w));
+    await(P::Endat22Lsb, w);
+    frame(select, protocol::selection_mrs(I::MemoryParameterMsb));
+    frame(MC::EncoderSendPositionValuesWithAdditionalData, 0, P::Endat22Msb, w);
+    frame(select, protocol::selection_mrs(I::MemoryParameterLsb));
+  }
+  return true;
 }
 
 }  // namespace endatsim::master

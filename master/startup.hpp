@@ -1,7 +1,8 @@
-// Two routines that read the encoder's memory with EnDat 2.1 frames, each with what it found:
-// the German brochure's (older edition) start-up routine (StartupRoutine, docs/model.md §8) and the check of the
-// encoder manufacturer's checksum (ChecksumVerification, D297403 3.5.26). The master expands
-// them into frames (plan) and hands each frame of theirs back (note).
+// The routines that read the encoder's memory: with EnDat 2.1 frames, each with what it found, the
+// German brochure's (older edition) start-up routine (StartupRoutine, docs/model.md §8) and the
+// check of the encoder manufacturer's checksum (ChecksumVerification, D297403 3.5.26); with
+// EnDat 2.2 frames, the words of the EnDat 2.2 area (plan_endat22_read, 2.5.1). The master
+// expands them into frames (plan) and hands each frame of theirs back (note).
 #pragma once
 
 #include <cstdint>
@@ -58,5 +59,12 @@ class ChecksumVerification {
   std::vector<std::uint16_t> words_;
   unsigned read_ = 0;
 };
+
+// 2.5.1: the words of the EnDat 2.2 area (MRS BD, selectable only with 2.2 mode commands) whose
+// bits `words` sets (bit w: word w), each selected with its address and read back in additional
+// data 1 as address | LSB (I = 5) and address | MSB (I = 6) once Busy is reset. False, and
+// nothing planned, when word 37 (`word37`, read just before) lacks the 2.2 command set: such an
+// encoder has no 2.2 area.
+bool plan_endat22_read(Sequence& s, std::uint64_t words, std::optional<std::uint16_t> word37);
 
 }  // namespace endatsim::master
