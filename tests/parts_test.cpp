@@ -7,6 +7,8 @@
 
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/operation.hpp"
+#include "endatsim/master/startup.hpp"
+#include "endatsim/protocol/parameters.hpp"
 #include "endatsim/sim/record_log.hpp"
 #include "endatsim/slave/frame_bits.hpp"
 
@@ -132,6 +134,31 @@ TEST(DelayMeasurement, ARoundBeginsAtTheStartOfItsFirstFrame) {
   EXPECT_EQ(m.round_start(sim::us(99)), sim::us(10));
   m.frame_recorded(sim::us(40));
   EXPECT_EQ(m.round_start(sim::us(99)), sim::us(20));
+}
+
+TEST(Endat22AreaRead, NothingIsPlannedWithoutTheEndat22CommandSetInWord37) {
+  master::Sequence plan;
+  EXPECT_FALSE(master::plan_endat22_read(plan, ~std::uint64_t{0}, std::nullopt));  // word 37 unread
+  const protocol::parameters::CommandSet only21;  // 2.1 only: 002Ah
+  EXPECT_FALSE(master::plan_endat22_read(plan, ~std::uint64_t{0}, protocol::parameters::encode_command_set(only21)));
+  EXPECT_TRUE(plan.ops.empty());
+}
+
+TEST(Endat22AreaRead, EachWordIsSelectedAwaitedAndReadAsLsbAndMsb) {
+  protocol::parameters::CommandSet both;
+  both.endat22 = true;
+  master::Sequence plan;
+  ASSERT_TRUE(master::plan_endat22_read(plan, (std::uint64_t{1} << 3) | (std::uint64_t{1} << 40), protocol::parameters::encode_command_set(both)));
+  // Select memory parameter LSB and area BD, await; then per word: read, await, MSB, read, LSB.
+  ASSERT_EQ(plan.ops.size(), 3U + 2U * 5U);
+  EXPECT_EQ(plan.ops[1].address, protocol::mrs_of(protocol::MemoryArea::ManufacturerEndat22));
+  const master::Operation& await = plan.ops[2];
+  EXPECT_EQ(await.kind, master::Operation::Kind::AwaitNotBusy);
+  EXPECT_GE(await.cycle * await.count, protocol::limit::kMemoryAccessMax);  // polls past t_ac max (2.3.2)
+  EXPECT_EQ(plan.ops[3].address, 3U);
+  EXPECT_EQ(plan.ops[6].purpose, master::Operation::Purpose::Endat22Msb);
+  EXPECT_EQ(plan.ops[6].manufacturer_word, 3U);
+  EXPECT_EQ(plan.ops[8].address, 40U);
 }
 
 }  // namespace
