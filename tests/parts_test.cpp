@@ -1,6 +1,7 @@
 // The small parts the encoder and the master are built from, each on its own: the bits of a frame
 // (slave/frame_bits.hpp), the bounded frame log (sim/record_log.hpp), the master's operation queue
-// (master/operation.hpp) and where a delay-measurement round began (master/delay_measurement.hpp).
+// (master/operation.hpp), where a delay-measurement round began (master/delay_measurement.hpp) and
+// the frames that read the EnDat 2.2 area (master/startup.hpp).
 #include <gtest/gtest.h>
 
 #include <vector>
