@@ -22,15 +22,17 @@ class RecordLog {
   // Keep at most the first n, or the most recent n to 2n (at least one: the record being written).
   void keep(std::size_t n) { limit_ = keep_ == Keep::Recent ? std::max<std::size_t>(n, 1) : n; }
 
-  void add(Record r) {
+  // A record that is not kept is not copied.
+  template <class R>
+  void add(R&& r) {
     ++count_;
     if (keep_ == Keep::First) {
-      if (records_.size() < limit_) records_.push_back(std::move(r));
+      if (records_.size() < limit_) records_.push_back(std::forward<R>(r));
       return;
     }
     if (records_.size() >= 2 * limit_)
       records_.erase(records_.begin(), records_.end() - static_cast<std::ptrdiff_t>(limit_ - 1));
-    records_.push_back(std::move(r));
+    records_.push_back(std::forward<R>(r));
   }
 
   // The records kept, oldest first.
