@@ -42,7 +42,7 @@
 namespace endatsim::capture {
 namespace {
 
-constexpr std::int64_t kPsPerSecond = 1'000'000'000'000;
+using sim::kPsPerSecond;
 
 // The time-column units of libsigrok's csv output, indexed by k (1000^k per second).
 constexpr std::array<const char*, 7> kSigrokUnits{"samples",     "milliseconds", "microseconds", "nanoseconds",

@@ -29,7 +29,7 @@
 namespace endatsim::capture {
 namespace {
 
-constexpr std::int64_t kPsPerSecond = 1'000'000'000'000;
+using sim::kPsPerSecond;
 constexpr zip_uint64_t kMaxMetadata = 1 << 20;
 
 std::string trim(const std::string& s) {

@@ -7,9 +7,11 @@
 //   additional_data_selection.hpp  additional data 1 and 2 as the encoder accepted them (2.4.2.2)
 //   delay_measurement.hpp  the propagation-delay measurement and its verdict (2.1.2)
 //   parameter_book.hpp     the encoder's memory as read (2.4 .. 2.6)
-//   startup.hpp            the start-up routine and the checksum check (2.1 reads, 3.5.26)
+//   startup.hpp            the start-up routine and the checksum check (2.1 reads, 3.5.26), the
+//                          frames that read the EnDat 2.2 area (2.5.1)
 //   master_params.hpp      what the master is configured with
-//   frame_result.hpp       what a frame gave; operation.hpp what the master is asked to do
+//   frame_result.hpp       what a frame gave; operation.hpp what the master is asked to do, and
+//                          the OperationQueue of what is still to run
 // The functions on top of it (master_function.hpp, functions.hpp: the safety functions, the
 // diagnosis, additional data 1 in turn) plan the operations they own and see every frame.
 // It only talks through the line's master-side signals, all of which the frame engine drives.

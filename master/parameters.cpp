@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "endatsim/master/master.hpp"
+#include "endatsim/protocol/diagnosis.hpp"
 #include "endatsim/protocol/timing.hpp"
 
 namespace endatsim::master {
@@ -151,7 +152,7 @@ const std::array kDiagnostics{
     sim::Parameter<G>{"enabled", &G::enabled, 0, 0, "A3", "Collect the diagnosis for a service engineer."},
     sim::Parameter<G>{"temperatures", &G::temperatures, 0, 0, "2.3.5.1",
                       "Temperature 1 and 2 in the rotation of additional data 1."},
-    sim::Parameter<G>{"additional_sensors", &G::additional_sensors, 0, 16, "2.3.5.1",
+    sim::Parameter<G>{"additional_sensors", &G::additional_sensors, 0, protocol::diagnosis::kAdditionalSensorAddresses, "2.3.5.1",
                       "Interrogations of the additional sensors per round (a 4-bit address)."},
     sim::Parameter<G>{"reserve_limit", &G::reserve_limit, 0, 255, "A3",
                       "A valuation number below it is a low function reserve (a guess: A3 gives no scaling)."},

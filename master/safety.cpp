@@ -64,10 +64,8 @@ std::string_view to_string(SafetyFunction f) {
 std::uint64_t MotionSetpoint::at(Time t, unsigned position_bits) const {
   // Counted as the encoder counts a moving axis: whole steps toward minus infinity, so that a
   // negative velocity gives the same position on both sides between two steps.
-  constexpr sim::Int128 kPsPerSecond = 1'000'000'000'000;
   const sim::Int128 range = sim::Int128{1} << position_bits;
-  sim::Int128 p = static_cast<sim::Int128>(start) +
-                  sim::floor_div(static_cast<sim::Int128>(counts_per_s) * t.count(), kPsPerSecond);
+  sim::Int128 p = static_cast<sim::Int128>(start) + sim::counts_after(counts_per_s, t.count());
   p %= range;
   if (p < 0) p += range;
   return static_cast<std::uint64_t>(p);

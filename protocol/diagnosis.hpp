@@ -46,8 +46,10 @@ struct DiagnosisAddress {
   unsigned bit = 0;        // of operating parameters word 3 (and 3.9.7 word 5)
   unsigned area = 0;       // k of n + 16 k
 };
+// A3's addresses: 1 .. 64, four areas of 16 (n + 16 k, k = 0..3).
+constexpr unsigned kDiagnosisAddressMax = 64;
 constexpr std::optional<DiagnosisAddress> decode_diagnosis_address(unsigned address) {
-  if (address == 0 || address > 64) return std::nullopt;
+  if (address == 0 || address > kDiagnosisAddressMax) return std::nullopt;
   return DiagnosisAddress{(address - 1) % 16, (address - 1) / 16};
 }
 // The address at which an encoder sends valuation number n (1 .. 6): n, the first area of A3.

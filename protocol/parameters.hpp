@@ -53,6 +53,10 @@ constexpr unsigned kTouchProbeStatus = 2, kReferencing = 11;     // BB operating
 
 namespace endatsim::protocol::parameters {
 
+// A value of several parameter words (position value 2's offset, 3.9.24; the datum shift, 3.6.2):
+// its 16-bit word `index`, 0 the least significant.
+constexpr std::uint16_t word_of(std::uint64_t value, unsigned index) { return static_cast<std::uint16_t>(value >> (16 * index)); }
+
 // Bit 15 "is always set to logical high for NVM checking" in words 8, 13, 30, 31 (3.5.4,
 // 3.5.6, 3.5.16, 3.5.17); word 14 carries its NVM bit in bit 0 (3.5.7).
 constexpr std::uint16_t kNvmBit15 = 0x8000;

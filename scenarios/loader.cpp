@@ -149,11 +149,13 @@ void read_sensors(const Node& n, slave::Sensors& s) {
   if (values.valuation_numbers) s.valuation_numbers = *values.valuation_numbers;
   input::read_parameters(o, slave::sensor_parameters(), s);
   if (auto v = o.opt("system_data")) {
-    if (!v->raw().is_object()) v->fail("an object of A3 address (1 .. 64, not a valuation number's n + 16 k, n = 1 .. 6) -> 8-bit value");
+    if (!v->raw().is_object())
+      v->fail("an object of A3 address (1 .. " + std::to_string(dg::kDiagnosisAddressMax) +
+              ", not a valuation number's n + 16 k, n = 1 .. " + std::to_string(dg::kValuationNumbers) + ") -> 8-bit value");
     for (const auto& [address, value] : v->raw().items()) {
       const json key = address;
       const Node at(key, v->path() + "/" + address, n.file());
-      const auto a = static_cast<std::uint8_t>(at.as_word(64));
+      const auto a = static_cast<std::uint8_t>(at.as_word(dg::kDiagnosisAddressMax));
       const auto decoded = dg::decode_diagnosis_address(a);
       if (!decoded || decoded->bit < dg::kValuationNumbers)
         at.fail("an A3 address 1 .. 64 that is not a valuation number's (n + 16 k, n = 1 .. 6)");
@@ -590,12 +592,12 @@ DiagnosisExpectation read_diagnosis_expectation(const Node& n) {
   DiagnosisExpectation e;
   if (auto v = o.opt("notes")) read_count_map(*v, e.notes, names_of<master::kDiagnosisNoteKinds>());
   if (auto v = o.opt("valuation_numbers"))
-    read_address_map(*v, 1, 64, "8-bit valuation number (A3)",
+    read_address_map(*v, 1, dg::kDiagnosisAddressMax, "8-bit valuation number (A3)",
                      [&](unsigned a, const Node& x) { e.valuation_numbers[a] = static_cast<unsigned>(x.as_word(0xFF)); });
   if (auto v = o.opt("temperature_1")) e.temperature1 = as_temperature(*v);
   if (auto v = o.opt("temperature_2")) e.temperature2 = as_temperature(*v);
   if (auto v = o.opt("additional_sensors"))
-    read_address_map(*v, 0, 15, "temperature", [&](unsigned a, const Node& x) { e.additional_sensors[a] = as_temperature(x); });
+    read_address_map(*v, 0, dg::kAdditionalSensorAddresses - 1, "temperature", [&](unsigned a, const Node& x) { e.additional_sensors[a] = as_temperature(x); });
   if (auto v = o.opt("configuration")) e.configuration = static_cast<std::uint16_t>(v->as_word(0xFFFF));
   if (auto v = o.opt("warnings")) e.warnings = static_cast<std::uint16_t>(v->as_word(0xFFFF));
   if (auto v = o.opt("ignored_addresses")) e.ignored_addresses = as_count(*v);

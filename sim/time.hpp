@@ -11,6 +11,7 @@ namespace endatsim::sim {
 
 using Time = std::chrono::duration<std::int64_t, std::pico>;
 
+inline constexpr std::int64_t kPsPerSecond = 1'000'000'000'000;
 constexpr Time ps(std::int64_t v) { return Time{v}; }
 constexpr Time ns(std::int64_t v) { return Time{v * 1'000}; }
 constexpr Time us(std::int64_t v) { return Time{v * 1'000'000}; }

@@ -11,9 +11,7 @@ using protocol::ErrorCause;
 using I = Information;
 namespace pm = protocol::parameters;
 
-std::uint16_t word_of(std::uint64_t value, unsigned index) {  // 16-bit word `index` (0 = LSB word)
-  return static_cast<std::uint16_t>(value >> (16 * index));
-}
+using protocol::parameters::word_of;
 
 bool is_position_value2(Information i) { return i >= I::PositionValue2Word1 && i <= I::PositionValue2Word3; }
 

@@ -1,12 +1,13 @@
 // The EnDat encoder (D297403 2, 3): a frame engine, the bit-level state machine that only talks
 // through the line's encoder-side pins (the mode command on RE3 .. RE8, t_cal, the start bit,
 // the answers of 2.3 .. 2.10, the command supplement, t_m), and the parts it hands the contents to:
-// the bits it sends and receives (frame_bits.hpp), the memory with its areas and write protection (memory.hpp), the accesses to it with the area
+// the bits it sends and receives (frame_bits.hpp), whether it takes a clock edge (readiness.hpp), its
+// DATA driver (data_driver.hpp), the memory with its areas and write protection (memory.hpp), the accesses to it with the area
 // selected, Busy and the word being programmed (memory_access.hpp), the position source
 // (position_source.hpp), the additional data (additional_data.hpp), the error messages
 // (error_messages.hpp), its part in a bus (bus_addressing.hpp) and an EIB's initial commissioning
 // (eib.hpp). What an encoder is comes from EncoderParams (encoder_params.hpp); every frame leaves
-// an EncoderFrame as ground truth.
+// an EncoderFrame as ground truth, the recent ones kept in a bounded log (sim/record_log.hpp).
 #pragma once
 
 #include <cstdint>

@@ -6,6 +6,7 @@
 #include <utility>
 #include <string>
 
+#include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/protocol/diagnosis.hpp"
 #include "endatsim/protocol/parameters.hpp"
 #include "endatsim/protocol/timing.hpp"
@@ -27,9 +28,7 @@ void require(bool ok, const std::string& message) {
 
 constexpr protocol::parameters::AddressRange kDefaultOemArea{0, 63};  // OEM areas 1 and 2 of the default image
 
-std::uint16_t word_of(std::uint64_t value, unsigned index) {  // 16-bit word `index` (0 = LSB word)
-  return static_cast<std::uint16_t>(value >> (16 * index));
-}
+using protocol::parameters::word_of;
 
 }  // namespace
 
@@ -151,7 +150,7 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     for (unsigned k = 0; const unsigned v : {40U, 16U, 1U, 64U}) e[word::kPosition2Accuracy + k++] = static_cast<std::uint16_t>(v);
     e[word::kPosition2Direction] = p.sensors.position2_reversed ? 1 : 0;  // 3.9.13
     const auto offset = static_cast<std::uint64_t>(p.sensors.position2_offset);
-    for (unsigned k = 0; k < 3; ++k) e[word::kPosition2Offset + k] = word_of(offset, k);  // 3.9.24
+    for (unsigned k = 0; k < protocol::kPositionValue2WordsMax; ++k) e[word::kPosition2Offset + k] = word_of(offset, k);  // 3.9.24
     if (type == pm::EncoderType::TouchProbe) e[word::kTimestampUnit] = pm::encode_timestamp_unit(pm::TimestampUnit::Us1);  // 3.9.32
     e[word::kEndat22Checksum] = pm::endat22_checksum(e);  // 3.9.37
     img.areas[A::ManufacturerEndat22] = e;
@@ -295,7 +294,7 @@ const std::array kSensorRows{
                       "Position value 2 = offset - position."},
     sim::Parameter<S>{"position2_fault", &S::position2_fault, -k47, k47, "",
                       "A fault of the second position sensing: added to position value 2."},
-    sim::Parameter<S>{"commutation", &S::commutation, 0, 7, "2.3.5.2", "The commutation signals u v w, u the MSB."},
+    sim::Parameter<S>{"commutation", &S::commutation, 0, protocol::AdditionalData2Word::kCommutationBits, "2.3.5.2", "The commutation signals u v w, u the MSB."},
     sim::Parameter<S>{"acceleration", &S::acceleration, 0, 0xFFFF, "2.3.5.2", "The acceleration, as sent."},
     sim::Parameter<S>{"limit_position_1", &S::limit_position_1, 0, 0, "2.3.5.2", "Limit position signal 1."},
     sim::Parameter<S>{"limit_position_2", &S::limit_position_2, 0, 0, "2.3.5.2", "Limit position signal 2."},

@@ -18,8 +18,7 @@ sim::Int128 wrapped(sim::Int128 p, unsigned bits) {
 }  // namespace
 
 sim::Int128 MotionProfile::steps_by(Time t) const {
-  constexpr sim::Int128 kPsPerSecond = 1'000'000'000'000;
-  return sim::floor_div(static_cast<sim::Int128>(counts_per_s) * t.count(), kPsPerSecond);
+  return sim::counts_after(counts_per_s, t.count());
 }
 
 PositionSource::PositionSource(const EncoderParams& params, Memory& memory) : params_(params), memory_(memory) {}

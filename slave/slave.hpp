@@ -4,6 +4,7 @@
 // additional data.
 //   encoder_params.hpp   what an encoder is: EncoderParams, and the model's named choices
 //   encoder.hpp          the frame engine on the pins, and the ground truth of each frame
+//   frame_bits.hpp       the bits of a frame: the answer sent, the 8 + 16 received, the supplement's start
 //   memory.hpp           memory areas, write protection, activation on reset (3)
 //   memory_access.hpp    the area selected, Busy, 2.2 accesses, the word being programmed (2.4 .. 2.6)
 //   position_source.hpp  positions, multiturn, reference marks, touch probe (2.3.4)
