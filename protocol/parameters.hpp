@@ -3,8 +3,8 @@
 // decode functions for the words the spec defines with worked examples, and human-readable
 // strings for reports. Every function cites its section.
 //
-// Details the text extraction of the spec lost (tables with a missing column, figures) are
-// marked "UNCERTAIN" with what was assumed; tests/parameters_test.cpp reproduces every worked
+// Details the copy of D297403 this model was built from lacks (its figures, a column of some
+// tables; docs/model.md) are marked "UNCERTAIN" with what was assumed; tests/parameters_test.cpp reproduces every worked
 // example that survived.
 #pragma once
 
@@ -316,7 +316,7 @@ std::string command_set_string(std::uint16_t word);     // "2.2, communication c
 
 // ---- 3.5.24 word 39: maximum calculation time t_cal --------------------------------------------
 // Bits 15..13 the unit: 000 not supported, 001 us, 010 ms, 011 ns, 100 to be determined.
-// UNCERTAIN: the column header "unit of time" spans two columns in the extraction but the unit
+// UNCERTAIN: the column header "unit of time" spans two columns in the table as we have it but the unit
 // table has three bits, so the value is taken as bits 12..0 (0 .. 8191). The spec's example
 // ("linear encoder with calculation time of 1 ms") is a lost figure; this code stores 1 ms as
 // ms x 1 = 4001h (the coarsest unit that holds the value exactly).

@@ -125,8 +125,9 @@ TEST(MasterParameterAccess, AnInstructionWord21MarksUnsupportedTakesNoEffect) {
 }
 
 // 3.6.5 word 5 bit 0, "energy-saving mode": the spec names the instruction and nothing it changes
-// (docs/model-reference.md). The encoder stores and acknowledges it, reads it back, and goes on
-// answering with moving positions, the same frames on the wires as without it.
+// (docs/model-reference.md). An encoder that declares no t_cal_energy_saving (this one) stores and
+// acknowledges it, reads it back, and goes on answering with moving positions, the same frames on
+// the wires as without it.
 TEST(MasterParameterAccess, InstructionEnergySavingIsStoredAndChangesNothingOnTheWires) {
   auto read = op(MC::EncoderSendPositionValues);
   read.count = 3;

@@ -124,8 +124,9 @@ TEST(Parameters, OperatingParametersDatumShiftExamples) {
   EXPECT_EQ(encode_datum_shift32(old_value + add), (std::array<std::uint16_t, 2>{0xD840, 0xFFF6}));
   // 3.6.2 rotary, 8192 steps/rev: the manufacturer's 5 degrees read as FFFFFF8Eh (114 steps),
   // 20 degrees = 455 steps (FFFFFE39h), together 569 steps (FFFFFDC7h); EnDat-compliant with 4
-  // steps per period: 568 = 238h, written as FFFFFDC8h. (The extraction prints FFFFFFE39h and
-  // FFFFFD7h, one digit too many and one too few; the values here are the ones 569 implies.)
+  // steps per period: 568 = 238h, written as FFFFFDC8h. (The spec's text as we have it prints
+  // FFFFFFE39h and FFFFFD7h, one digit too many and one too few; the values here are the ones 569
+  // implies.)
   EXPECT_EQ(angle_to_steps(5.0, 8192), 114);
   EXPECT_EQ(decode_datum_shift32(0xFF8E, 0xFFFF), datum_shift_value(114));
   const auto twenty = angle_to_steps(20.0, 8192);

@@ -7,6 +7,7 @@
 // bundled files from the parameters below.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -540,4 +541,30 @@ TEST(Profile, TextThatParsesSilentlyIsRefused) {
   const std::string long_key = error_of(replace(good, "\"name\": ", "\"" + std::string(5000, 'k') + "\": 1, \"name\": "));
   EXPECT_LT(long_key.size(), 600U) << long_key.substr(0, 300);
   EXPECT_NE(long_key.find("unknown key"), std::string::npos) << long_key.substr(0, 300);
+}
+
+// Section 3: the OEM and compensation areas together hold at most 960 words; a profile whose
+// partition words (3.5.5) make them hold 961 is refused, one that makes them hold 960 is not.
+TEST(Profile, OemAndCompensationAreasOfAProfileHoldAtMost960Words) {
+  using A = protocol::MemoryArea;
+  const auto with_areas = [](unsigned comp2_end) {
+    EncoderProfile p = slave::load_profile(std::string(ENDATSIM_SOURCE_DIR) + "/profiles/rotary_singleturn_25bit.json");
+    auto& a1 = p.memory.areas.at(A::Manufacturer1);
+    const pm::Partition to255 = pm::AddressRange{0, 255};
+    a1[9] = pm::encode_partition_word(to255, to255);
+    a1[10] = pm::encode_partition_word(to255, std::nullopt);
+    a1[11] = pm::encode_partition_word(pm::AddressRange{0, 127}, pm::AddressRange{0, comp2_end});
+    a1[12] = pm::encode_partition_word(std::nullopt, std::nullopt);
+    for (A a : {A::Oem4, A::Compensation3, A::Compensation4}) p.memory.areas.erase(a);
+    for (A a : {A::Oem1, A::Oem2, A::Oem3}) p.memory.areas[a].assign(256, 0);
+    p.memory.areas[A::Compensation1].assign(128, 0);
+    p.memory.areas[A::Compensation2].assign(comp2_end + 1, 0);
+    return slave::check_profile(p);
+  };
+  const auto mentions_960 = [](const std::vector<std::string>& problems) {
+    return std::any_of(problems.begin(), problems.end(),
+                       [](const std::string& s) { return s.find("hold 961 words; section 3 allows at most 960") != std::string::npos; });
+  };
+  EXPECT_FALSE(mentions_960(with_areas(63)));  // 256 x 3 + 128 + 64 = 960
+  EXPECT_TRUE(mentions_960(with_areas(64)));
 }
