@@ -91,8 +91,7 @@ void FrameDecoder::begin_frame(Time t) {
   state_ = State::Header;
   rising_.clear();
   longest_high_ = Time::zero();
-  shift_ = 0;
-  shifted_ = 0;
+  received_.clear();
   seen_low_ = false;
   bits_.clear();
 }
@@ -161,27 +160,22 @@ void FrameDecoder::on_master_bit(unsigned clock, bool bit) {
       if (++frame_.mode_bits_seen == position::kModeBits) decode_mode_command();
       return;
     case State::Payload:
-      shift_ = shift_ << 1 | (bit ? 1U : 0U);
-      if (++shifted_ == protocol::kPayloadBits) {
-        frame_.payload = shift_;
+      if (received_.take(bit)) {
+        frame_.payload = received_.value();
         state_ = State::Hunt;
       }
       return;
     case State::SupplementHunt:
       // The line floats until the master drives its lead bits; the supplement's start bit is
       // the first HIGH after a LOW (2.3, command supplement).
-      if (clock <= release_clock_ + params_.supplement_ignore_clocks) return;
-      if (!seen_low_) seen_low_ = !bit;
-      else if (bit) {
+      if (supplement_start_.found(clock, bit, params_.supplement_ignore_clocks)) {
         state_ = State::Supplement;
-        shift_ = 0;
-        shifted_ = 0;
+        received_.clear();
       }
       return;
     case State::Supplement:
-      shift_ = shift_ << 1 | (bit ? 1U : 0U);
-      if (++shifted_ == protocol::kPayloadBits) {
-        frame_.supplement = shift_;
+      if (received_.take(bit)) {
+        frame_.supplement = received_.value();
         frame_.supplement_last_clock = clock;
         note_selection();
         frame_.complete = true;
@@ -203,8 +197,7 @@ void FrameDecoder::decode_mode_command() {
   layout_ = protocol::answer_layout(info, params_.position_bits);
   const bool additional_data = info.answer == protocol::AnswerFormat::Position && info.version == protocol::EndatVersion::V2_2;
   frame_.answer_bits = layout_.width() + (additional_data ? protocol::kAdditionalDatumBits * expected_additional_data() : 0);
-  shift_ = 0;
-  shifted_ = 0;
+  received_.clear();
   seen_low_ = false;
   state_ = info.payload_bits != 0 ? State::Payload : State::Hunt;
 }
@@ -342,8 +335,7 @@ void FrameDecoder::decode_answer(unsigned last_clock) {
     // The encoder releases DATA on the rising edge after its last bit's slot; the master sends
     // the supplement. Counted from the slot, not from the edges seen by the time the bit was
     // sampled: those depend on the clock-to-data delay against the period.
-    release_clock_ = last_clock + 1;
-    seen_low_ = false;
+    supplement_start_.handed_over(last_clock + 1);
     state_ = State::SupplementHunt;
     return;
   }

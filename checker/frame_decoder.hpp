@@ -18,6 +18,7 @@
 
 #include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/protocol/frame.hpp"
+#include "endatsim/protocol/master_bits.hpp"
 #include "endatsim/protocol/mode_command.hpp"
 #include "endatsim/protocol/timing.hpp"
 #include "endatsim/sim/time.hpp"
@@ -157,10 +158,9 @@ class FrameDecoder {
   bool base_level_ = true;  // DATA before the first change in data_
   std::deque<Sample> pending_;
   std::vector<std::uint8_t> bits_;
-  std::uint32_t shift_ = 0;
-  unsigned shifted_ = 0;
-  bool seen_low_ = false;
-  unsigned release_clock_ = 0;
+  protocol::ReceivedBits received_;  // a 2.1 payload or a 2.2 command supplement
+  protocol::SupplementStart supplement_start_;
+  bool seen_low_ = false;  // the LOW before the encoder's start bit
   protocol::Layout layout_{{}};
   bool selected_[2] = {false, false};
   std::optional<std::uint8_t> area_;  // MRS code of the memory area selected last

@@ -42,7 +42,7 @@ TEST(AnswerBits, SendsEachBitOnceInOrderAndAppendedBitsFollow) {
 }
 
 TEST(ReceivedBits, TakesTwentyFourBitsMsbFirst) {
-  slave::ReceivedBits r;
+  protocol::ReceivedBits r;
   const std::uint32_t payload = 0xB9'1234;  // MRS B9h, parameter 1234h
   for (int i = static_cast<int>(protocol::kPayloadBits) - 1; i >= 0; --i) {
     const bool last = r.take(((payload >> i) & 1U) != 0);
@@ -55,7 +55,7 @@ TEST(ReceivedBits, TakesTwentyFourBitsMsbFirst) {
 }
 
 TEST(SupplementStart, IgnoresTheFirstEdgesThenTakesTheHighAfterALow) {
-  slave::SupplementStart s;
+  protocol::SupplementStart s;
   s.handed_over(40);
   EXPECT_FALSE(s.found(41, false, 3));  // ignored: the encoder's own last bit fades
   EXPECT_FALSE(s.found(43, true, 3));
