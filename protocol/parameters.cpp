@@ -132,6 +132,20 @@ std::pair<Partition, Partition> decode_partition_word(std::uint16_t word) {
   return {decode_partition(static_cast<std::uint8_t>(word & 0xFF)), decode_partition(static_cast<std::uint8_t>(word >> 8))};
 }
 
+Partition partition_of(std::span<const std::uint16_t> manufacturer_words, MemoryArea a) {
+  const auto at = partition_byte(a);
+  if (!at || at->word >= manufacturer_words.size()) return std::nullopt;
+  return decode_partition(static_cast<std::uint8_t>(manufacturer_words[at->word] >> at->shift));
+}
+
+void encode_partition_words(std::span<std::uint16_t> manufacturer_words, std::span<const Partition, 4> oem,
+                            std::span<const Partition, 4> compensation) {
+  manufacturer_words[word::kOemPartition] = encode_partition_word(oem[0], oem[1]);
+  manufacturer_words[word::kOemPartition + 1] = encode_partition_word(oem[2], oem[3]);
+  manufacturer_words[word::kCompensationPartition] = encode_partition_word(compensation[0], compensation[1]);
+  manufacturer_words[word::kCompensationPartition + 1] = encode_partition_word(compensation[2], compensation[3]);
+}
+
 // 3.5.6
 std::uint16_t encode_position_bits(unsigned bits) {
   if (bits < 1 || bits > kPositionBitsMask)

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "endatsim/protocol/memory_area.hpp"
+
 namespace endatsim::protocol {
 // Word numbers in their memory areas (3.4, 3.5.1, 3.6.1, 3.9.1), used by encoder, master and checker.
 namespace word {
@@ -135,7 +137,7 @@ unsigned decode_version(std::uint16_t word);
 // Word 9 low byte = OEM area 1 (MRS A9), high byte = area 2 (AB); word 10: areas 3 (AD), 4 (AF);
 // words 11 and 12 likewise for the compensation areas B1, B3, B5, B7.
 // Example "256 words": words 9..12 = 20FFh, FF20h, FFFFh, 20FFh (OEM areas 2 and 3 and
-// compensation area 4 at addresses 0..63). The extracted bit rows of that example lost one
+// compensation area 4 at addresses 0..63). The bit rows of that example as we have them lack a
 // column each; the values follow from the text of the example and are unambiguous.
 struct AddressRange {
   unsigned start = 0;
@@ -149,6 +151,28 @@ std::uint8_t encode_partition(const Partition& p);                 // throws for
 Partition decode_partition(std::uint8_t byte);                     // none unless both nibbles are defined
 std::uint16_t encode_partition_word(const Partition& low_area, const Partition& high_area);
 std::pair<Partition, Partition> decode_partition_word(std::uint16_t word);  // {low byte, high byte}
+// The eight areas words 9..12 partition, in the order of their bytes: word 9 low (OEM 1) and high
+// (OEM 2), word 10 (OEM 3, 4), word 11 (compensation 1, 2), word 12 (compensation 3, 4).
+inline constexpr std::array<MemoryArea, 8> kPartitionedAreas{
+    MemoryArea::Oem1,          MemoryArea::Oem2,          MemoryArea::Oem3,          MemoryArea::Oem4,
+    MemoryArea::Compensation1, MemoryArea::Compensation2, MemoryArea::Compensation3, MemoryArea::Compensation4};
+// Where an area's partition lies: its word (9..12) and the byte's shift in it (0 low, 8 high).
+struct PartitionByte {
+  unsigned word = 0;
+  unsigned shift = 0;
+};
+constexpr std::optional<PartitionByte> partition_byte(MemoryArea a) {
+  for (unsigned i = 0; i < kPartitionedAreas.size(); ++i)
+    if (kPartitionedAreas[i] == a)
+      return PartitionByte{(i < 4 ? word::kOemPartition : word::kCompensationPartition) + i % 4 / 2, i % 2 == 0 ? 0U : 8U};
+  return std::nullopt;
+}
+// The area's partition as the manufacturer's words (indexed by word number) give it; none for
+// an area words 9..12 do not partition or make available.
+Partition partition_of(std::span<const std::uint16_t> manufacturer_words, MemoryArea a);
+// Words 9..12 from the partitions of the four OEM areas and the four compensation areas.
+void encode_partition_words(std::span<std::uint16_t> manufacturer_words, std::span<const Partition, 4> oem,
+                            std::span<const Partition, 4> compensation);
 
 // ---- 3.5.6 word 13: clock pulses for the position value -----------------------------------------
 // Example: 25-bit format = 19h, word 13 = 8019h (bit 15 = 1 for NVM checking). Start, error and

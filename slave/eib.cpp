@@ -20,10 +20,7 @@ bool eib_factory_word(unsigned manufacturer_word) {
 
 MemoryImage eib_factory_image(const EibFactoryData& d) {
   std::vector<std::uint16_t> m(protocol::kManufacturerWords, 0);
-  m[word::kOemPartition] = pm::encode_partition_word(d.oem[0], d.oem[1]);
-  m[word::kOemPartition + 1] = pm::encode_partition_word(d.oem[2], d.oem[3]);
-  m[word::kCompensationPartition] = pm::encode_partition_word(d.compensation[0], d.compensation[1]);
-  m[word::kCompensationPartition + 1] = pm::encode_partition_word(d.compensation[2], d.compensation[3]);
+  pm::encode_partition_words(m, d.oem, d.compensation);
   m[word::kEncoderType] = pm::encode_encoder_type(pm::EncoderType::ExternalInterfaceBox);
   const auto id = pm::encode_id_number(d.id);
   std::copy(id.begin(), id.end(), m.begin() + word::kIdNumber);
@@ -34,12 +31,7 @@ MemoryImage eib_factory_image(const EibFactoryData& d) {
   img.areas[A::OperatingStatus].assign(protocol::info(A::OperatingStatus).fixed_words, 0);
   set_manufacturer_words(img, m);
   img.areas[A::OperatingParameters].assign(protocol::info(A::OperatingParameters).fixed_words, 0);
-  const A oem[4] = {A::Oem1, A::Oem2, A::Oem3, A::Oem4};
-  const A comp[4] = {A::Compensation1, A::Compensation2, A::Compensation3, A::Compensation4};
-  for (unsigned i = 0; i < 4; ++i) {
-    if (d.oem[i]) img.areas[oem[i]].assign(d.oem[i]->end + 1, 0);
-    if (d.compensation[i]) img.areas[comp[i]].assign(d.compensation[i]->end + 1, 0);
-  }
+  add_partitioned_areas(img, m);
   img.areas[A::ManufacturerEndat22].assign(protocol::info(A::ManufacturerEndat22).fixed_words, 0);
   img.areas[A::OperatingParameters2].assign(protocol::kOperatingParameters2DefaultWords, 0);
   return img;

@@ -14,24 +14,6 @@ using Area = MemoryArea;
 
 std::string area_key(Area a) { return std::string(protocol::info(a).key); }
 
-
-// Which partition word and byte describes an OEM or compensation area (3.5.5: words 9..12,
-// low byte the first area of the pair). The second member is the byte's shift in its word.
-std::optional<std::pair<unsigned, unsigned>> partition_of(Area a) {
-  constexpr unsigned kLowByte = 0, kHighByte = 8;
-  switch (a) {
-    case Area::Oem1: return std::pair{word::kOemPartition, kLowByte};
-    case Area::Oem2: return std::pair{word::kOemPartition, kHighByte};
-    case Area::Oem3: return std::pair{word::kOemPartition + 1, kLowByte};
-    case Area::Oem4: return std::pair{word::kOemPartition + 1, kHighByte};
-    case Area::Compensation1: return std::pair{word::kCompensationPartition, kLowByte};
-    case Area::Compensation2: return std::pair{word::kCompensationPartition, kHighByte};
-    case Area::Compensation3: return std::pair{word::kCompensationPartition + 1, kLowByte};
-    case Area::Compensation4: return std::pair{word::kCompensationPartition + 1, kHighByte};
-    default: return std::nullopt;
-  }
-}
-
 std::size_t fixed_size(Area a) { return protocol::info(a).fixed_words; }
 
 bool factory_protected(Area a) {
@@ -56,6 +38,11 @@ void set_manufacturer_words(MemoryImage& image, const std::vector<std::uint16_t>
   for (unsigned first = 0; first < protocol::kManufacturerWords; first += protocol::kManufacturerWordsPerArea)
     image.areas[protocol::manufacturer_area(first)].assign(words48.begin() + first,
                                                            words48.begin() + first + protocol::kManufacturerWordsPerArea);
+}
+
+void add_partitioned_areas(MemoryImage& image, const std::vector<std::uint16_t>& words48) {
+  for (const Area a : protocol::parameters::kPartitionedAreas)
+    if (const auto range = protocol::parameters::partition_of(words48, a)) image.areas[a].assign(range->end + 1, 0);
 }
 
 std::vector<std::uint16_t> manufacturer_words(const MemoryImage& image) {
@@ -84,29 +71,27 @@ Memory::Memory(MemoryImage image) : image_(std::move(image)) {
       throw std::invalid_argument("memory area operating_parameters2 must have 1 .. " + std::to_string(protocol::kAreaWordsMax) + " words");
     if (a == Area::Section2 || a == Area::AsynchronousPosition)
       throw std::invalid_argument("memory area " + area_key(a) + " is not given as words of its own");
-    if (const auto p = partition_of(a)) {
+    if (const auto p = protocol::parameters::partition_byte(a)) {
       const auto range = address_range({a, 0});
       if (!range) throw std::invalid_argument("memory area " + area_key(a) + " is not available per word " +
-                                              std::to_string(p->first) + " (3.5.5)");
+                                              std::to_string(p->word) + " (3.5.5)");
       if (w.size() != range->second + 1)
         throw std::invalid_argument("memory area " + area_key(a) + " must have " + std::to_string(range->second + 1) +
                                     " words (addresses up to " + std::to_string(range->second) + ", word " +
-                                    std::to_string(p->first) + "), got " + std::to_string(w.size()));
+                                    std::to_string(p->word) + "), got " + std::to_string(w.size()));
     }
   }
   std::size_t partitioned = 0;
-  for (Area a : {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4, Area::Compensation1, Area::Compensation2,
-                 Area::Compensation3, Area::Compensation4})
+  for (Area a : protocol::parameters::kPartitionedAreas)
     if (const auto it = image_.areas.find(a); it != image_.areas.end()) partitioned += it->second.size();
   if (partitioned > protocol::kPartitionedWordsMax)
     throw std::invalid_argument("the OEM and compensation areas hold " + std::to_string(partitioned) +
                                 " words; section 3 allows at most " + std::to_string(protocol::kPartitionedWordsMax) +
                                 " in total (words 9 .. 12, 3.5.5)");
-  for (Area a : {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4, Area::Compensation1, Area::Compensation2,
-                 Area::Compensation3, Area::Compensation4})
+  for (Area a : protocol::parameters::kPartitionedAreas)
     if (address_range({a, 0}) && !image_.areas.contains(a))
       throw std::invalid_argument("memory area " + area_key(a) + " is available per word " +
-                                  std::to_string(partition_of(a)->first) + " (3.5.5) but has no words");
+                                  std::to_string(protocol::parameters::partition_byte(a)->word) + " (3.5.5) but has no words");
   const unsigned blocks = image_.areas.contains(Area::ManufacturerEndat22) ? endat22_word(word::kSection2Blocks) : 0;
   if (image_.section2_blocks.size() != blocks)
     throw std::invalid_argument("section 2 memory has " + std::to_string(image_.section2_blocks.size()) +
@@ -141,8 +126,8 @@ std::uint16_t Memory::operating_parameter(unsigned n) const {
 }
 
 std::optional<std::pair<unsigned, unsigned>> Memory::address_range(const Selection& s) const {
-  if (const auto p = partition_of(s.area)) {
-    const auto range = protocol::parameters::decode_partition(static_cast<std::uint8_t>(manufacturer_word(p->first) >> p->second));
+  if (const auto p = protocol::parameters::partition_byte(s.area)) {
+    const auto range = protocol::parameters::decode_partition(static_cast<std::uint8_t>(manufacturer_word(p->word) >> p->shift));
     if (!range || range->start > range->end) return std::nullopt;
     return std::pair{range->start, range->end};
   }

@@ -36,6 +36,9 @@ using protocol::parameters::kShortRecoveryTimeOn;
 void set_manufacturer_words(MemoryImage& image, const std::vector<std::uint16_t>& words48);
 // ... and gathered again: words 0..3 and those of a missing or short area read 0.
 std::vector<std::uint16_t> manufacturer_words(const MemoryImage& image);
+// The OEM and compensation areas that the manufacturer's words 9..12 (`words48`) make available,
+// each with as many words as its partition holds, all 0 (3.5.5).
+void add_partitioned_areas(MemoryImage& image, const std::vector<std::uint16_t>& words48);
 
 // What a memory area selection points at.
 struct Selection {

@@ -198,16 +198,10 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
                                           "0 (words 0..3 of A1 are not used; 3.5.1 starts at word 4)", a1[i]);
   const auto m = p.manufacturer_words();
   // 3.5.5: an OEM or compensation area is in the image exactly when words 9..12 make it available.
-  const Area partitioned[8] = {Area::Oem1,          Area::Oem2,          Area::Oem3,          Area::Oem4,
-                               Area::Compensation1, Area::Compensation2, Area::Compensation3, Area::Compensation4};
-  for (unsigned i = 0; i < 8; ++i) {
-    const unsigned word = word::kOemPartition + i / 2;  // 9 and 10 for the OEM, 11 and 12 for compensation
-    const auto pair = pm::decode_partition_word(m[word]);
-    const bool available = (i % 2 == 0 ? pair.first : pair.second).has_value();
-    if (available && !p.memory.areas.contains(partitioned[i]))
-      problems.push_back("/memory: expected area " + std::string(protocol::info(partitioned[i]).key) +
-                         ", which word " + std::to_string(word) + " makes available (3.5.5)");
-  }
+  for (const Area a : pm::kPartitionedAreas)
+    if (pm::partition_of(m, a) && !p.memory.areas.contains(a))
+      problems.push_back("/memory: expected area " + std::string(protocol::info(a).key) + ", which word " +
+                         std::to_string(pm::partition_byte(a)->word) + " makes available (3.5.5)");
   const auto type = pm::decode_encoder_type(m[word::kEncoderType]);
   const bool multiturn_type = type == pm::EncoderType::MultiturnBattery || type == pm::EncoderType::MultiturnGears;
   const bool probe_type = type == pm::EncoderType::TouchProbe;
@@ -372,10 +366,7 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   profile.multiturn_bits = p.multiturn_bits;
   std::vector<std::uint16_t> m(protocol::kManufacturerWords, 0);
   m[word::kVersion] = pm::encode_version(p.interface_version);
-  m[word::kOemPartition] = pm::encode_partition_word(p.oem[0], p.oem[1]);
-  m[word::kOemPartition + 1] = pm::encode_partition_word(p.oem[2], p.oem[3]);
-  m[word::kCompensationPartition] = pm::encode_partition_word(p.compensation[0], p.compensation[1]);
-  m[word::kCompensationPartition + 1] = pm::encode_partition_word(p.compensation[2], p.compensation[3]);
+  pm::encode_partition_words(m, p.oem, p.compensation);
   m[word::kPositionFormat] = pm::encode_position_bits(p.position_bits);
   m[word::kEncoderType] = pm::encode_encoder_type(p.type);
   const auto period = pm::encode_signal_period(p.signal_period);
@@ -416,12 +407,7 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   op[word::kDatumShift + 1] = shift[1];
   if (pm::datum_shift_has_48_bits(p.position_bits)) op[word::kDatumShift + 2] = shift[2];
   areas[Area::OperatingParameters] = op;
-  const Area oem[4] = {Area::Oem1, Area::Oem2, Area::Oem3, Area::Oem4};
-  const Area comp[4] = {Area::Compensation1, Area::Compensation2, Area::Compensation3, Area::Compensation4};
-  for (unsigned i = 0; i < 4; ++i) {
-    if (p.oem[i]) areas[oem[i]].assign(p.oem[i]->end + 1, 0);
-    if (p.compensation[i]) areas[comp[i]].assign(p.compensation[i]->end + 1, 0);
-  }
+  add_partitioned_areas(profile.memory, m);
   if (p.version == EndatVersion::V2_2) {
     std::vector<std::uint16_t> e(protocol::kEndat22Words, 0);
     e[word::kAdditionalData1Support] = pm::encode_additional_data_1(p.additional_data_1);

@@ -20,6 +20,26 @@ TEST(Parameters, Word8VersionExample) {
   EXPECT_THROW(encode_version(0x8000), std::invalid_argument);
 }
 
+TEST(Parameters, Words9To12PartitionTheAreasOfTheExampleByte) {
+  // 3.5.5 "Example 256 words": words 9..12 = 20FFh, FF20h, FFFFh, 20FFh make OEM areas 2 and 3 and
+  // compensation area 4 available at 0..63; word 9's high byte is OEM area 2, word 12's is
+  // compensation area 4.
+  using A = endatsim::protocol::MemoryArea;
+  std::vector<std::uint16_t> m(endatsim::protocol::kManufacturerWords, 0);
+  const Partition none, a0_63 = AddressRange{0, 63};
+  const std::array<Partition, 4> oem{none, a0_63, a0_63, none}, compensation{none, none, none, a0_63};
+  encode_partition_words(m, oem, compensation);
+  EXPECT_EQ((std::vector<std::uint16_t>(m.begin() + 9, m.begin() + 13)), (std::vector<std::uint16_t>{0x20FF, 0xFF20, 0xFFFF, 0x20FF}));
+  for (std::size_t i = 0; i < kPartitionedAreas.size(); ++i)
+    EXPECT_EQ(partition_of(m, kPartitionedAreas[i]), i < 4 ? oem[i] : compensation[i - 4]) << i;
+  EXPECT_EQ(partition_byte(A::Oem2)->word, 9U);
+  EXPECT_EQ(partition_byte(A::Oem2)->shift, 8U);
+  EXPECT_EQ(partition_byte(A::Compensation3)->word, 12U);
+  EXPECT_EQ(partition_byte(A::Compensation3)->shift, 0U);
+  EXPECT_FALSE(partition_byte(A::OperatingParameters));
+  EXPECT_EQ(partition_of(m, A::Manufacturer1), std::nullopt);
+}
+
 TEST(Parameters, Words9To12MemoryAllocationExample) {
   // 3.5.5 "Example 256 words": OEM areas 2 and 3 and compensation area 4 at 0..63.
   const Partition none;
