@@ -78,4 +78,14 @@ constexpr const ErrorCauseRow& row_of(ErrorCause c) { return kErrorCauses[static
 constexpr ErrorType error_type(ErrorCause c) { return row_of(c).type; }
 constexpr std::string_view describe(ErrorCause c) { return row_of(c).text; }
 
+// A2 type II: "the address or parameter is returned inverted" in the acknowledgment of an access
+// that raised an error; as sent when it raised none. For 2.1 and 2.2 frames alike (the 2.2
+// acknowledgment in additional data 1 carries both, as the 2.1 frame does; docs/model.md §3).
+constexpr std::uint8_t acknowledged_address(std::uint8_t address, bool error) {
+  return error ? static_cast<std::uint8_t>(~address) : address;
+}
+constexpr std::uint16_t acknowledged_parameter(std::uint16_t parameter, bool error) {
+  return error ? static_cast<std::uint16_t>(~parameter) : parameter;
+}
+
 }  // namespace endatsim::protocol

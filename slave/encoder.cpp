@@ -204,8 +204,8 @@ void Encoder::clock_after_supplement() {
       protocol::selects_additional_data(address) || f.supplement_ignored)
     return;
   f.error = ErrorCause::MrsFrameDisrupted;
-  additional_data_.acknowledge_mrs(static_cast<std::uint8_t>(~address),
-                                   static_cast<std::uint8_t>(~static_cast<std::uint8_t>(f.supplement.value_or(0))));
+  additional_data_.acknowledge_mrs(protocol::acknowledged_address(address, true),
+                                   protocol::acknowledged_address(protocol::lsb_of(protocol::payload_parameter(f.supplement.value_or(0))), true));
   access_.cancel_selection();
 }
 
@@ -282,7 +282,7 @@ void Encoder::answer_parameter_frame() {
   EncoderFrame& f = frames_.last();
   f.payload = received_.value();
   const auto address = protocol::payload_address(received_.value());
-  const auto parameter = static_cast<std::uint16_t>(received_.value());
+  const auto parameter = protocol::payload_parameter(received_.value());
   std::uint16_t echo = parameter;
   std::optional<ErrorCause> error;
   Time t_ac{0};
@@ -352,11 +352,9 @@ void Encoder::answer_parameter_frame() {
     // (cause 6) is still carried out: that is what it is for (2.10).
     f.error = error;
     if (error != ErrorCause::DataDriverHighImpedanceBroadcast) pending_ = {};
-    answer_.load(protocol::encode_parameter_frame(static_cast<std::uint8_t>(~address), static_cast<std::uint16_t>(~echo),
-                                                  params_.crc));
-  } else {
-    answer_.load(protocol::encode_parameter_frame(address, echo, params_.crc));
   }
+  answer_.load(protocol::encode_parameter_frame(protocol::acknowledged_address(address, error.has_value()),
+                                                protocol::acknowledged_parameter(echo, error.has_value()), params_.crc));
   state_ = State::Answer;
   if (!error && pending_.kind == Pending::Kind::Write)
     access_.begin_nvm_write(pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
@@ -417,7 +415,7 @@ void Encoder::process_supplement() {
   state_ = State::SupplementDone;
   end_marker_timer_.start(params_.supplement_end_marker_delay);
   const auto address = protocol::payload_address(received_.value());
-  const auto parameter = static_cast<std::uint16_t>(received_.value());
+  const auto parameter = protocol::payload_parameter(received_.value());
   const MC c = command_->command;
   const bool memory_access = c == MC::EncoderSendPositionValuesAndReceiveParameter ||
                              c == MC::EncoderSendPositionValuesAndSendParameter ||
@@ -433,13 +431,13 @@ void Encoder::process_supplement() {
         additional_data_.select(address);
         break;
       }
-      const auto block = static_cast<std::uint8_t>(parameter);  // block address: low byte (docs/model-reference.md, guess)
+      const auto block = protocol::lsb_of(parameter);  // block address: low byte (docs/model-reference.md, guess)
       auto error = eib_.refuses(protocol::memory_area_from_mrs(address));  // A2 cause 5
       if (!error) error = memory_.check_selection(address, block, true);
       f.error = error;
       // A2 type II: the MRS code (block address) is acknowledged inverted.
-      if (error) additional_data_.acknowledge_mrs(static_cast<std::uint8_t>(~address), static_cast<std::uint8_t>(~block));
-      else additional_data_.acknowledge_mrs(address, block);
+      additional_data_.acknowledge_mrs(protocol::acknowledged_address(address, error.has_value()),
+                                       protocol::acknowledged_address(block, error.has_value()));
       if (!error) access_.start_selection({*protocol::memory_area_from_mrs(address), block}, address, parameter, params_.t_ac_read);
       break;
     }

@@ -83,10 +83,8 @@ void MemoryAccess::on_access_done() {
   }
   // A2 type II (4.2.2): "the address or parameter is returned inverted", for 2.1 and 2.2 alike:
   // both, as the 2.1 acknowledgment returns them (docs/model.md §3).
-  if (done.error)
-    additional_data_.acknowledge_memory_access(static_cast<std::uint8_t>(~done.address), static_cast<std::uint16_t>(~done.value));
-  else
-    additional_data_.acknowledge_memory_access(done.address, done.value);
+  additional_data_.acknowledge_memory_access(protocol::acknowledged_address(done.address, done.error),
+                                             protocol::acknowledged_parameter(done.value, done.error));
 }
 
 void MemoryAccess::restart() {

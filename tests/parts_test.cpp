@@ -9,6 +9,7 @@
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/operation.hpp"
 #include "endatsim/master/startup.hpp"
+#include "endatsim/protocol/error_handling.hpp"
 #include "endatsim/protocol/parameters.hpp"
 #include "endatsim/sim/record_log.hpp"
 #include "endatsim/slave/frame_bits.hpp"
@@ -160,6 +161,14 @@ TEST(Endat22AreaRead, EachWordIsSelectedAwaitedAndReadAsLsbAndMsb) {
   EXPECT_EQ(plan.ops[6].purpose, master::Operation::Purpose::Endat22Msb);
   EXPECT_EQ(plan.ops[6].manufacturer_word, 3U);
   EXPECT_EQ(plan.ops[8].address, 40U);
+}
+
+TEST(TypeTwoAcknowledgment, ReturnsTheAddressAndParameterInvertedOnlyWithAnError) {
+  // A2 type II: "the address or parameter is returned inverted".
+  EXPECT_EQ(protocol::acknowledged_address(0xA1, true), 0x5E);
+  EXPECT_EQ(protocol::acknowledged_parameter(0x1234, true), 0xEDCB);
+  EXPECT_EQ(protocol::acknowledged_address(0xA1, false), 0xA1);
+  EXPECT_EQ(protocol::acknowledged_parameter(0x1234, false), 0x1234);
 }
 
 }  // namespace
