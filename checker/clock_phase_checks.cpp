@@ -114,9 +114,10 @@ void TimingChecker::check_on_off_ratio(const PinFrame& f) {
     if (wires_only_ && measurement_seen_) return;  // the wires cannot tell it is uncompensated
     const double cable = cable_length_m();
     const Time t_d = limit::data_delay_max(cable);
-    if (2 * t_d <= sim::period_of(limit::kFcMaxWithoutCompensation)) return;  // 2 MHz bounds f_c: t_HI, t_LO
+    const Time period_min = limit::uncompensated_period_min(cable);  // 2 t_D max, or 2 MHz's period
+    if (period_min <= sim::period_of(limit::kFcMaxWithoutCompensation)) return;  // 2 MHz bounds f_c: t_HI, t_LO
     // A period shorter than 2 t_D is the f_c row's; this row adds what a 1:1 clock would not show.
-    if (f.header.f_c <= 0 || sim::period_of(f.header.f_c) < 2 * t_d) return;
+    if (f.header.f_c <= 0 || sim::period_of(f.header.f_c) < period_min) return;
     min = t_d;
     bound = ">= t_D max = " + format_time(t_d) + " for the cable";
     spec = "2.1.1 note 4, Figure 2 (another duty cycle: f_c <= 1 / (2 t_min), without delay compensation)";

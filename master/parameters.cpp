@@ -14,7 +14,8 @@ namespace endatsim::master {
 namespace {
 
 constexpr std::int64_t ps(Time t) { return t.count(); }
-constexpr std::int64_t k48BitMax = (std::int64_t{1} << 48) - 1;
+// The widest position the models take, and a range of positions or steps as wide.
+constexpr std::int64_t kPositionMax = (std::int64_t{1} << protocol::kPositionBitsMax) - 1;
 
 using sim::enum_choice;
 
@@ -36,7 +37,7 @@ const std::array kMaster{
                       "Measure t_D and sample each bit t_D after its falling edge."},
     sim::Parameter<M>{"fixed_t_d", &M::fixed_t_d, 0, ps(sim::us(10)), "2.1.2",
                       "A delay set by hand instead of measured; compensation uses it from the first frame."},
-    sim::Parameter<M>{"position_bits", &M::position_bits, 1, 48, "3.5.6", "Word 13 as the master has it configured."},
+    sim::Parameter<M>{"position_bits", &M::position_bits, 1, protocol::kPositionBitsMax, "3.5.6", "Word 13 as the master has it configured."},
     sim::Parameter<M>{"extra_clock_after_last_bit", &M::extra_clock_after_last_bit, 0, 0, "2.3",
                       "One more clock pulse after the last bit, whose falling edge samples it; false: the last bit is "
                       "sampled half a period after the last rising edge."},
@@ -136,13 +137,13 @@ const std::array kSafety{
                       "Consecutive values that must agree before release (a comparison needs two)."},
     sim::Parameter<S>{"startup_max_reads", &S::startup_max_reads, 2, 10'000, "",
                       "Reads before the axis stays blocked; at least startup_repetitions."},
-    sim::Parameter<S>{"startup_tolerance", &S::startup_tolerance, 0, k48BitMax, "",
+    sim::Parameter<S>{"startup_tolerance", &S::startup_tolerance, 0, kPositionMax, "",
                       "LSB two consecutive values may differ by, beyond the set-point's motion."},
     sim::Parameter<S>{"checksums", &S::checksums, 0, 0, "3.5.26", "Words 47 (3.5.26) and 63 (3.9.37) verified."},
     sim::Parameter<S>{"acknowledgements", &S::acknowledgements, 0, 0, "2.6.1",
                       "Echoes (2.6) and I = 5 / 6 acknowledgments compared with what was written."},
     sim::Parameter<S>{"following_error", &S::following_error, 0, 0, "", "Servo lag against the set-point."},
-    sim::Parameter<S>{"following_error_limit", &S::following_error_limit, 1, k48BitMax, "", "The servo lag allowed, in LSB."},
+    sim::Parameter<S>{"following_error_limit", &S::following_error_limit, 1, kPositionMax, "", "The servo lag allowed, in LSB."},
     sim::Parameter<S>{"command_set", &S::command_set, 0, 0, "2.3",
                       "Word 37 read at start-up; an encoder supporting the communication command is refused (3.5.22)."},
 };
@@ -164,7 +165,7 @@ const std::array kDiagnostics{
 const std::array kCrcCheck{
     sim::Parameter<CrcCheck>{"endat22_rule_for_21", &CrcCheck::endat22_rule_for_21, 0, 0, "A4",
                              "2.1 frames checked with F2 included, as 2.2 frames are (a fault)."},
-    sim::Parameter<CrcCheck>{"table_fault_width", &CrcCheck::table_fault_width, 0, 48, "",
+    sim::Parameter<CrcCheck>{"table_fault_width", &CrcCheck::table_fault_width, 0, protocol::kPositionBitsMax, "",
                              "A table-driven CRC whose loop ends one bit early at this position width; 0: none (a "
                              "fault)."},
     sim::Parameter<CrcCheck>{"accept_any", &CrcCheck::accept_any, 0, 0, "",
@@ -172,9 +173,9 @@ const std::array kCrcCheck{
 };
 
 const std::array kSetpoint{
-    sim::Parameter<MotionSetpoint>{"start", &MotionSetpoint::start, 0, k48BitMax, "",
+    sim::Parameter<MotionSetpoint>{"start", &MotionSetpoint::start, 0, kPositionMax, "",
                                    "The commanded position at time 0, in measuring steps."},
-    sim::Parameter<MotionSetpoint>{"counts_per_s", &MotionSetpoint::counts_per_s, -(k48BitMax + 1), k48BitMax + 1, "",
+    sim::Parameter<MotionSetpoint>{"counts_per_s", &MotionSetpoint::counts_per_s, -(kPositionMax + 1), kPositionMax + 1, "",
                                    "The commanded velocity in measuring steps per second."},
 };
 

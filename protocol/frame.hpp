@@ -14,6 +14,11 @@
 
 namespace endatsim::protocol {
 
+// The widest position value the models take, in clock pulses (word 13 allows 63, 3.5.6): as wide as
+// position value 2 and the datum shift may be (48 bits, 3.9.24, 3.6.2), so that every position
+// fits them and the 64-bit arithmetic of the models.
+inline constexpr unsigned kPositionBitsMax = 48;
+
 enum class Field : std::uint8_t {
   StartBit,
   Error1,

@@ -17,7 +17,7 @@ constexpr std::array<std::string_view, 2> kEnds{"master", "encoder"};  // line::
 static_assert(static_cast<int>(line::Wire::Clock) == 0 && static_cast<int>(line::Wire::Data) == 1);
 static_assert(static_cast<int>(line::ObservationPoint::MasterPins) == 0 &&
               static_cast<int>(line::ObservationPoint::EncoderPins) == 1);
-constexpr std::int64_t kMaxSteps = std::int64_t{1} << 47;
+constexpr std::int64_t kMaxSteps = std::int64_t{1} << (protocol::kPositionBitsMax - 1);  // a signed jump
 constexpr std::int64_t kMaxFaultTime = slave::Encoder::kMaxFaultTime.count();
 
 const std::array kTrigger{

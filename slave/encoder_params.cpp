@@ -284,7 +284,10 @@ const std::array kRows{
     Row{"warning_sources", &EncoderParams::warning_sources, 0, 0xFFFF, "3.4.2", "Word 1 bits a fault keeps setting."},
 };
 
-constexpr std::int64_t k47 = std::int64_t{1} << 47, k48 = std::int64_t{1} << 48;
+// Position value 2's offset is a signed 48-bit value (3.9.24); positions and velocities as wide as
+// the widest position.
+constexpr std::int64_t k47 = std::int64_t{1} << (protocol::kPositionValue2BitsMax - 1);
+constexpr std::int64_t k48 = std::int64_t{1} << EncoderParams::kMaxPositionBits;
 
 using S = Sensors;
 const std::array kSensorRows{

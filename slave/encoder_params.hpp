@@ -117,7 +117,7 @@ struct EncoderParams {
   EncoderKind kind = EncoderKind::Singleturn;
   EndatVersion version = EndatVersion::V2_2;  // a 2.1 encoder answers 2.2 commands as not supported
   unsigned position_bits = 25;                 // word 13: clock pulses for the position value
-  static constexpr unsigned kMaxPositionBits = 48;  // the model's widest position (3.5.6 allows 63)
+  static constexpr unsigned kMaxPositionBits = protocol::kPositionBitsMax;  // the model's widest position
   static constexpr std::uint64_t kMaxPosition = (std::uint64_t{1} << kMaxPositionBits) - 1;
   // The latest rising edge a scenario may put the earliest start bit on (the model's bound).
   static constexpr unsigned kEarliestStartBitClockMax = 32;
