@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "endatsim/protocol/indexed_table.hpp"
 #include "endatsim/master/frame_result.hpp"
 #include "endatsim/master/master_function.hpp"
 #include "endatsim/protocol/diagnosis.hpp"
@@ -62,12 +63,9 @@ inline constexpr std::array kDiagnosisNoteKinds{DiagnosisNoteKind::FunctionReser
                                                 DiagnosisNoteKind::TemperatureAboveThreshold,
                                                 DiagnosisNoteKind::TemperatureAboveMaximum, DiagnosisNoteKind::Warning,
                                                 DiagnosisNoteKind::Setup};
-static_assert([] {
-  for (std::size_t i = 0; i < kDiagnosisNoteKinds.size(); ++i)
-    if (kDiagnosisNoteKinds[i] != static_cast<DiagnosisNoteKind>(i)) return false;
-  return kDiagnosisNoteKinds.back() == DiagnosisNoteKind::Setup;
-}(), "kDiagnosisNoteKinds: every kind in the order of its value, up to the last one, Setup; a new kind goes "
-      "after it, in the list and in this check");
+static_assert(protocol::lists_in_order(kDiagnosisNoteKinds, DiagnosisNoteKind::Setup),
+              "kDiagnosisNoteKinds: every kind in the order of its value, up to the last one, Setup; a new kind goes "
+              "after it, in the list and in this check");
 std::string_view to_string(DiagnosisNoteKind k);  // "function_reserve_low", ...
 
 struct DiagnosisNote {

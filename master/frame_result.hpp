@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "endatsim/protocol/indexed_table.hpp"
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/sim/time.hpp"
 
@@ -26,12 +27,9 @@ enum class FrameOutcome : std::uint8_t { Ok, CrcError, NoStartBit, Type1Error, T
 inline constexpr std::array kFrameOutcomes{FrameOutcome::Ok,         FrameOutcome::CrcError,   FrameOutcome::NoStartBit,
                                            FrameOutcome::Type1Error, FrameOutcome::Type2Error, FrameOutcome::EchoMismatch,
                                            FrameOutcome::TooFewClocks};
-static_assert([] {
-  for (std::size_t i = 0; i < kFrameOutcomes.size(); ++i)
-    if (kFrameOutcomes[i] != static_cast<FrameOutcome>(i)) return false;
-  return kFrameOutcomes.back() == FrameOutcome::TooFewClocks;
-}(), "kFrameOutcomes: the outcomes in the order of their values up to the last one, TooFewClocks (tables are "
-      "indexed by them); a new outcome goes after it, in the list and in this check");
+static_assert(protocol::lists_in_order(kFrameOutcomes, FrameOutcome::TooFewClocks),
+              "kFrameOutcomes: the outcomes in the order of their values up to the last one, TooFewClocks (tables are "
+              "indexed by them); a new outcome goes after it, in the list and in this check");
 std::string_view to_string(FrameOutcome o);
 
 // One additional datum as received (2.3.5).

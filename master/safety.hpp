@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "endatsim/protocol/indexed_table.hpp"
 #include "endatsim/master/frame_result.hpp"
 #include "endatsim/master/master_function.hpp"
 #include "endatsim/master/operation.hpp"
@@ -42,12 +43,9 @@ inline constexpr std::array kSafetyFunctions{
     SafetyFunction::ErrorMessages,    SafetyFunction::PositionValue2, SafetyFunction::ForcedDynamicSampling,
     SafetyFunction::CrcSelfTest,      SafetyFunction::StartupPositions, SafetyFunction::Checksums,
     SafetyFunction::Acknowledgements, SafetyFunction::FollowingError, SafetyFunction::CommandSet};
-static_assert([] {
-  for (std::size_t i = 0; i < kSafetyFunctions.size(); ++i)
-    if (kSafetyFunctions[i] != static_cast<SafetyFunction>(i)) return false;
-  return kSafetyFunctions.back() == SafetyFunction::CommandSet;
-}(), "kSafetyFunctions: every safety function in the order of its value, up to the last one, CommandSet (names and "
-      "expectations follow it); a new function goes after it, in the list and in this check");
+static_assert(protocol::lists_in_order(kSafetyFunctions, SafetyFunction::CommandSet),
+              "kSafetyFunctions: every safety function in the order of its value, up to the last one, CommandSet (names and "
+              "expectations follow it); a new function goes after it, in the list and in this check");
 std::string_view to_string(SafetyFunction f);  // "error_messages", ...
 
 // The motion the drive commands: the set-point the following error is measured against.

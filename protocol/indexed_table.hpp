@@ -15,4 +15,13 @@ constexpr bool indexed_by(const Table& table, Enum Row::*member, Enum last) {
   return true;
 }
 
+// A list of enumerators names each one once, in the enum's order, up to `last`.
+template <class List, class Enum>
+constexpr bool lists_in_order(const List& list, Enum last) {
+  if (list.size() != static_cast<std::size_t>(last) + 1) return false;
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (static_cast<std::size_t>(list[i]) != i) return false;
+  return true;
+}
+
 }  // namespace endatsim::protocol
