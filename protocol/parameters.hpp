@@ -229,6 +229,8 @@ constexpr std::uint32_t decode_signal_period(std::uint16_t w15, std::uint16_t w1
 // Example 2048 = 0800h; 65535 means "see word 34 of the EnDat 2.2 area".
 std::uint16_t encode_revolutions(std::uint32_t revolutions);  // above 65535: 65535
 constexpr std::uint16_t kRevolutionsSeeEndat22Word34 = 0xFFFF;
+// Revolutions word 17 holds itself: 2^16 and more read as "see word 34" (encode_revolutions).
+constexpr unsigned kRevolutionBitsMax = 16;
 
 // ---- 3.5.12 words 20/21: measuring step (nm, linear) or measuring steps per revolution ---------
 // Examples: 100 nm = 0064h / 0000h; 1 800 000 steps per revolution = 1B7740h = 7740h / 001Bh.

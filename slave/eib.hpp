@@ -34,8 +34,7 @@ bool eib_commissioning_area(MemoryArea area);
 bool eib_factory_word(unsigned manufacturer_word);
 
 struct EibFactoryData {
-  protocol::parameters::Partition oem[4] = {protocol::parameters::AddressRange{0, 63},
-                                            protocol::parameters::AddressRange{0, 63}};  // words 9, 10
+  protocol::parameters::Partition oem[4] = {image_default::kOemArea, image_default::kOemArea};  // words 9, 10
   protocol::parameters::Partition compensation[4];                                      // words 11, 12
   protocol::parameters::IdNumber id{1'000'000, {'0', '1'}};                             // words 24..26
   protocol::parameters::SerialNumber serial{' ', 10'000'001, ' '};                      // words 27..29

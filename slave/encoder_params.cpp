@@ -17,8 +17,6 @@ namespace endatsim::slave {
 namespace {
 
 namespace position = protocol::frame_position;
-// 3.5.4: an EnDat 2.x encoder; word 8 keeps the integer part of the version only.
-constexpr unsigned kInterfaceVersion = 2;
 // 3.9.16's example of the maximum encoder temperature.
 constexpr double kDefaultMaxTemperatureCelsius = 115;
 
@@ -26,7 +24,7 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-constexpr protocol::parameters::AddressRange kDefaultOemArea{0, 63};  // OEM areas 1 and 2 of the default image
+using image_default::kOemArea;
 
 using protocol::parameters::word_of;
 
@@ -92,10 +90,10 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   const std::uint16_t function_init = p.short_t_m_selected ? kShortRecoveryTimeOn : kShortRecoveryTimeOff;
   img.areas[A::OperatingStatus] = {0, 0, protocol::factory_write_protection(), function_init};
   std::vector<std::uint16_t> m(protocol::kManufacturerWords, 0);
-  m[word::kVersion] = pm::encode_version(kInterfaceVersion);       // 3.5.4
+  m[word::kVersion] = pm::encode_version(image_default::kInterfaceVersion);       // 3.5.4
   // 3.5.5: OEM areas 1 and 2 at addresses 0 .. 63; OEM areas 3 and 4 and the compensation values
   // not available.
-  const pm::Partition oem{kDefaultOemArea}, none;
+  const pm::Partition oem{kOemArea}, none;
   m[word::kOemPartition] = pm::encode_partition_word(oem, oem);
   m[word::kOemPartition + 1] = pm::encode_partition_word(none, none);
   m[word::kCompensationPartition] = m[word::kCompensationPartition + 1] = pm::encode_partition_word(none, none);
@@ -119,17 +117,17 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   m[word::kMeasuringSteps] = steps[0];
   m[word::kMeasuringSteps + 1] = steps[1];
   m[word::kMaxVelocity] = p.kind == EncoderKind::Linear ? 120 : 12000;
-  // 3.5.19: c_1 = 40, a_1 = 16 LSB (the spec's example), c_2 = 1, a_2 = 64 LSB; a 2.2 encoder keeps
-  // them in words 11 .. 14 of its 2.2 area.
-  m[word::kAccuracy] = v22 ? pm::kAccuracySeeEndat22 : pm::encode_accuracy_range(40, 16);
-  m[word::kAccuracy + 1] = v22 ? pm::kAccuracySeeEndat22 : pm::encode_accuracy_range(1, 64);
+  // 3.5.19: the example's accuracy ranges; a 2.2 encoder keeps them in words 11 .. 14 of its 2.2 area.
+  using namespace image_default;
+  m[word::kAccuracy] = v22 ? pm::kAccuracySeeEndat22 : pm::encode_accuracy_range(kAccuracyC1, kAccuracyA1);
+  m[word::kAccuracy + 1] = v22 ? pm::kAccuracySeeEndat22 : pm::encode_accuracy_range(kAccuracyC2, kAccuracyA2);
   m[word::kSupportedErrors] = pm::kEveryErrorBit;
   m[word::kSupportedWarnings] = pm::kEveryWarningBit;
   m[word::kManufacturerChecksum] = pm::manufacturer_checksum(m);  // 3.5.26
   set_manufacturer_words(img, m);
   img.areas[A::OperatingParameters].assign(protocol::kOperatingParametersWords, 0);
-  img.areas[A::Oem1].assign(kDefaultOemArea.end + 1, 0);
-  img.areas[A::Oem2].assign(kDefaultOemArea.end + 1, 0);
+  img.areas[A::Oem1].assign(kOemArea.end + 1, 0);
+  img.areas[A::Oem2].assign(kOemArea.end + 1, 0);
   if (v22) {
     std::vector<std::uint16_t> e(protocol::kEndat22Words, 0);
     e[word::kAdditionalData1Support] = pm::kSupportsEveryAdditionalData1;  // 3.9.2
@@ -146,8 +144,9 @@ MemoryImage default_memory_image(const EncoderParams& p) {
     // 3.9.10: position value 2 in the steps of position value 1
     e[word::kPosition2MeasuringSteps] = m[word::kMeasuringSteps];
     e[word::kPosition2MeasuringSteps + 1] = m[word::kMeasuringSteps + 1];
-    // 3.9.11: c1 = 40, a1 = 16 LSB; c2 = 1, a2 = 64 LSB
-    for (unsigned k = 0; const unsigned v : {40U, 16U, 1U, 64U}) e[word::kPosition2Accuracy + k++] = static_cast<std::uint16_t>(v);
+    // 3.9.11: the same accuracy ranges, c_1, a_1, c_2, a_2 in words 11 .. 14
+    for (unsigned k = 0; const unsigned v : {kAccuracyC1, kAccuracyA1, kAccuracyC2, kAccuracyA2})
+      e[word::kPosition2Accuracy + k++] = static_cast<std::uint16_t>(v);
     e[word::kPosition2Direction] = p.sensors.position2_reversed ? 1 : 0;  // 3.9.13
     const auto offset = static_cast<std::uint64_t>(p.sensors.position2_offset);
     for (unsigned k = 0; k < protocol::kPositionValue2WordsMax; ++k) e[word::kPosition2Offset + k] = word_of(offset, k);  // 3.9.24

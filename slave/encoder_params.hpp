@@ -34,6 +34,16 @@ static_assert(static_cast<std::size_t>(EncoderKind::Eib) == kEncoderKindNames.si
 inline constexpr std::array<std::string_view, 2> kEndatVersionNames{"2.1", "2.2"};
 static_assert(static_cast<std::size_t>(protocol::EndatVersion::V2_2) == kEndatVersionNames.size() - 1);
 
+// What the default memory image (default_memory_image) and the bundled profiles take where a
+// scenario gives nothing: an EnDat 2.x interface (3.5.4: word 8 keeps the integer part of the
+// version), OEM areas 1 and 2 at addresses 0 .. 63 (3.5.5), and the accuracy ranges of 3.5.19's
+// example (c_1 = 40 for a_1 = 16 LSB, c_2 = 1 for a_2 = 64 LSB; 3.9.11 for the 2.2 area).
+namespace image_default {
+inline constexpr unsigned kInterfaceVersion = 2;
+inline constexpr protocol::parameters::AddressRange kOemArea{0, 63};
+inline constexpr unsigned kAccuracyC1 = 40, kAccuracyA1 = 16, kAccuracyC2 = 1, kAccuracyA2 = 64;
+}  // namespace image_default
+
 // What the encoder puts on DATA after a mode command with a broken redundancy or one it does
 // not support (type I, appendix A2). The wire behaviour was in A2's Figures 55/56, which are
 // lost (docs/model.md §10): A = abort with DATA HIGH until CLOCK stays HIGH for t_m;

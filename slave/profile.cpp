@@ -41,6 +41,11 @@ const sim::Parameter<EncoderParams>& encoder_row(std::string_view key) {
   throw std::logic_error("no encoder parameter row \"" + std::string(key) + "\"");
 }
 
+// 3.5.9 word 17 of a multiturn encoder with `multiturn_bits` bits of revolutions.
+std::uint16_t revolutions_word(unsigned multiturn_bits) {
+  return pm::encode_revolutions(1U << std::min(multiturn_bits, pm::kRevolutionBitsMax));
+}
+
 std::string area_path(Area a) { return "/memory/" + std::string(protocol::info(a).key); }
 
 // The JSON path of word n of the encoder manufacturer (3.5.1: A1 words 0..15, A3 16..31, A5 32..47).
@@ -63,19 +68,27 @@ std::pair<std::size_t, std::size_t> size_limits(Area a) {
   return fixed != 0 ? std::pair{fixed, fixed} : std::pair<std::size_t, std::size_t>{1, protocol::kAreaWordsMax};
 }
 
+// A profile's keys, in the order its file and messages give them; all but two are required.
+const std::vector<std::string> kProfileKeys{"name", "description", "version", "kind", "position_bits", "multiturn_bits", "memory"};
+bool optional_profile_key(const std::string& key) { return key == "description" || key == "multiturn_bits"; }
+
+// "name, description, ... and memory" (`last` "and") or "... or memory".
+std::string profile_keys_text(const std::string& last) {
+  std::string text;
+  for (std::size_t i = 0; i < kProfileKeys.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == kProfileKeys.size() ? " " + last + " " : ", ") + kProfileKeys[i];
+  return text;
+}
+
 EncoderProfile read_profile(const json& root, const std::string& file) {
   const Node r(root, "", file);
-  if (!root.is_object()) r.fail("a profile object with name, description, version, kind, position_bits, "
-                                "multiturn_bits and memory");
-  static const std::vector<std::string> kKeys{"name", "description", "version", "kind", "position_bits",
-                                              "multiturn_bits", "memory"};
+  if (!root.is_object()) r.fail("a profile object with " + profile_keys_text("and"));
   for (const auto& [key, value] : root.items())
-    if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end())
-      Node(value, "/" + key, file).fail_raw("unknown key \"" + input::trimmed(key) + "\" (" + input::did_you_mean(key, kKeys) +
-                                            "expected name, description, version, kind, position_bits, "
-                                            "multiturn_bits or memory)");
-  for (const char* key : {"name", "version", "kind", "position_bits", "memory"})
-    if (!root.contains(key)) r.fail_raw(std::string("missing key \"") + key + "\"");
+    if (std::find(kProfileKeys.begin(), kProfileKeys.end(), key) == kProfileKeys.end())
+      Node(value, "/" + key, file).fail_raw("unknown key \"" + input::trimmed(key) + "\" (" + input::did_you_mean(key, kProfileKeys) +
+                                            "expected " + profile_keys_text("or") + ")");
+  for (const auto& key : kProfileKeys)
+    if (!optional_profile_key(key) && !root.contains(key)) r.fail_raw("missing key \"" + key + "\"");
   EncoderProfile p;
   p.name = r.child("name").as_string();
   if (p.name.empty()) r.child("name").fail("a non-empty name");
@@ -230,8 +243,7 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
            m[word::kCommandSet]);
     check_reference_marks(p, m, problems);
   }
-  const std::uint16_t revolutions =
-      p.kind == EncoderKind::Multiturn ? pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U)) : 0;
+  const std::uint16_t revolutions = p.kind == EncoderKind::Multiturn ? revolutions_word(p.multiturn_bits) : 0;
   expect(m[word::kDistinguishableRevolutions] == revolutions, manufacturer_path(word::kDistinguishableRevolutions),
          hex4(revolutions) + "h distinguishable revolutions (3.5.9)", m[word::kDistinguishableRevolutions]);
   if (p.kind != EncoderKind::Linear) {
@@ -372,7 +384,7 @@ EncoderProfile build_profile(const ProfileParameters& p) {
   const auto period = pm::encode_signal_period(p.signal_period);
   m[word::kSignalPeriod] = period[0];
   m[word::kSignalPeriod + 1] = period[1];
-  if (p.kind == EncoderKind::Multiturn) m[word::kDistinguishableRevolutions] = pm::encode_revolutions(1U << std::min(p.multiturn_bits, 16U));
+  if (p.kind == EncoderKind::Multiturn) m[word::kDistinguishableRevolutions] = revolutions_word(p.multiturn_bits);
   m[word::kReferenceMarkDistance] = p.reference_mark_increment;
   std::uint32_t steps = p.measuring_steps;
   // 2.3.4.4: a touch probe sends a trigger status, not measuring steps.

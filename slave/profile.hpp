@@ -95,7 +95,7 @@ struct ProfileParameters {
   protocol::parameters::EncoderType type = protocol::parameters::EncoderType::Singleturn;
   unsigned position_bits = 25;
   unsigned multiturn_bits = 0;
-  unsigned interface_version = 2;                        // word 8
+  unsigned interface_version = image_default::kInterfaceVersion;  // word 8
   protocol::parameters::Partition oem[4];               // words 9, 10
   protocol::parameters::Partition compensation[4];      // words 11, 12
   std::uint32_t signal_period = 0;                      // words 15/16
