@@ -257,19 +257,8 @@ void Master::push_status_reads(const Operation& base) {
 }
 
 void Master::operation_frame_done(const FrameResult& f) {
-  if (current_->kind == Operation::Kind::AwaitNotBusy) {
-    // 2.5.1 / 2.6.1: poll additional data 1 until the busy bit is reset.
-    const auto& ai = f.additional_data;
-    const bool ok = f.outcome == FrameOutcome::Ok;
-    const auto is_1 = [](const AdditionalDatum& d) { return !protocol::is_additional_data_2(d.information()); };
-    const bool ready = ok && std::any_of(ai.begin(), ai.end(), [&](const AdditionalDatum& d) { return is_1(d) && !d.busy(); });
-    const bool unreadable = ok && std::none_of(ai.begin(), ai.end(), is_1);
-    if (ready) frames_left_ = 1;
-    else if (unreadable) {
-      ++busy_unreadable_;
-      frames_left_ = 1;
-    } else if (frames_left_ == 1) ++busy_timeouts_;
-  }
+  if (current_->kind == Operation::Kind::AwaitNotBusy && busy_polling_.poll_ends_wait(f, frames_left_ == 1))
+    frames_left_ = 1;
   for (MasterFunction* function : functions_)
     if (function->ends_operation(f, context(), frames_left_ == 1)) frames_left_ = 1;
   careful_.frame_done(f);

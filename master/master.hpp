@@ -3,6 +3,7 @@
 // (cycles, recovery waits, t_b, retries) and hands each frame to its parts:
 //   frame_engine.hpp       one frame on the wire: clock, mode command, sampling, CRC checks
 //   pacing.hpp             when the next frame is due: the operation's cycle, the encoder's waits
+//   busy_polling.hpp       await_not_busy: polls until Busy is reset, and how the waits ended
 //   careful_policy.hpp     retries and new measurements when frames fail (a careful master)
 //   additional_data_selection.hpp  additional data 1 and 2 as the encoder accepted them (2.4.2.2)
 //   delay_measurement.hpp  the propagation-delay measurement and its verdict (2.1.2)
@@ -24,6 +25,7 @@
 
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/additional_data_selection.hpp"
+#include "endatsim/master/busy_polling.hpp"
 #include "endatsim/master/careful_policy.hpp"
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/frame_engine.hpp"
@@ -64,11 +66,11 @@ class Master : private FrameClient {
   const std::vector<DelayMeasurementResult>& measurements() const { return delay_.results(); }
   std::optional<Time> t_d() const { return t_d_; }
   std::uint64_t cycle_overruns() const { return pacing_.cycle_overruns(); }
-  std::uint64_t busy_timeouts() const { return busy_timeouts_; }
+  std::uint64_t busy_timeouts() const { return busy_polling_.timeouts(); }
   // await_not_busy operations given up at once because a poll frame came back (without error)
   // carrying no additional data 1, where the busy bit travels (D297403 2.5.1, 2.6.1): polling
   // on could never see it reset.
-  std::uint64_t busy_unreadable() const { return busy_unreadable_; }
+  std::uint64_t busy_unreadable() const { return busy_polling_.unreadable(); }
   const StartupInfo& startup() const { return routine_.info(); }
   const std::optional<ChecksumCheck>& checksum() const { return checksum_.result(); }
   std::uint64_t retries() const { return careful_.retries(); }
@@ -127,8 +129,7 @@ class Master : private FrameClient {
   unsigned frames_left_ = 0;
   Pacing pacing_;
   bool finished_ = false;
-  std::uint64_t busy_timeouts_ = 0;
-  std::uint64_t busy_unreadable_ = 0;
+  BusyPolling busy_polling_;  // await_not_busy (2.5.1, 2.6.1)
   StartupRoutine routine_;
   ChecksumVerification checksum_;
   CarefulPolicy careful_;

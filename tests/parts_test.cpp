@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "endatsim/master/busy_polling.hpp"
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/operation.hpp"
 #include "endatsim/master/startup.hpp"
@@ -169,6 +170,34 @@ TEST(TypeTwoAcknowledgment, ReturnsTheAddressAndParameterInvertedOnlyWithAnError
   EXPECT_EQ(protocol::acknowledged_parameter(0x1234, true), 0xEDCB);
   EXPECT_EQ(protocol::acknowledged_address(0xA1, false), 0xA1);
   EXPECT_EQ(protocol::acknowledged_parameter(0x1234, false), 0x1234);
+}
+
+// 2.5.1 / 2.6.1: additional data 1 carries the busy bit an await_not_busy polls for.
+master::FrameResult poll(std::optional<protocol::Information> information, bool busy, master::FrameOutcome outcome) {
+  master::FrameResult f;
+  f.outcome = outcome;
+  if (information) {
+    master::AdditionalDatum d;
+    d.status = static_cast<std::uint8_t>(static_cast<std::uint8_t>(*information) | (busy ? protocol::AdditionalDataStatus::kBusy : 0));
+    f.additional_data.push_back(d);
+  }
+  return f;
+}
+
+TEST(BusyPolling, AWaitEndsWhenBusyIsResetOrCannotBeSeenAndTimesOutOnTheLastPoll) {
+  using I = protocol::Information;
+  using O = master::FrameOutcome;
+  master::BusyPolling polling;
+  EXPECT_FALSE(polling.poll_ends_wait(poll(I::MemoryParameterLsb, true, O::Ok), false));
+  EXPECT_FALSE(polling.poll_ends_wait(poll(I::MemoryParameterLsb, false, O::CrcError), false));  // not read
+  EXPECT_TRUE(polling.poll_ends_wait(poll(I::MemoryParameterLsb, false, O::Ok), false));
+  EXPECT_EQ(polling.timeouts(), 0U);
+  EXPECT_EQ(polling.unreadable(), 0U);
+  EXPECT_TRUE(polling.poll_ends_wait(poll(std::nullopt, false, O::Ok), false));  // no additional data 1
+  EXPECT_TRUE(polling.poll_ends_wait(poll(I::Commutation, false, O::Ok), false));  // additional data 2 only
+  EXPECT_EQ(polling.unreadable(), 2U);
+  EXPECT_FALSE(polling.poll_ends_wait(poll(I::MemoryParameterLsb, true, O::Ok), true));
+  EXPECT_EQ(polling.timeouts(), 1U);
 }
 
 }  // namespace
