@@ -21,17 +21,17 @@ struct FittedFrequency {
   sim::Int128 num = 0;  // period = num / den [ps]; f = 1e12 * den / num [Hz]
   sim::Int128 den = 0;
   std::int64_t uncertainty_ppm = 0;
-  sim::Hertz hertz() const { return static_cast<sim::Hertz>((sim::Int128{1'000'000'000'000} * den + num / 2) / num); }
+  sim::Hertz hertz() const { return static_cast<sim::Hertz>((sim::Int128{sim::kPsPerSecond} * den + num / 2) / num); }
   // f above (or below) bound by more than `ppm` parts per million plus the fit's uncertainty.
   bool above(sim::Hertz bound, std::int64_t ppm) const {
-    return sim::Int128{1'000'000'000'000} * den * 1'000'000 > sim::Int128{bound} * (1'000'000 + ppm + uncertainty_ppm) * num;
+    return sim::Int128{sim::kPsPerSecond} * den * 1'000'000 > sim::Int128{bound} * (1'000'000 + ppm + uncertainty_ppm) * num;
   }
   // The period shorter than `min` by more than `ppm` plus the fit's uncertainty.
   bool period_below(sim::Time min, std::int64_t ppm) const {
     return num * 1'000'000 < sim::Int128{min.count()} * den * (1'000'000 - ppm - uncertainty_ppm);
   }
   bool below(sim::Hertz bound, std::int64_t ppm) const {
-    return sim::Int128{1'000'000'000'000} * den * 1'000'000 < sim::Int128{bound} * (1'000'000 - ppm - uncertainty_ppm) * num;
+    return sim::Int128{sim::kPsPerSecond} * den * 1'000'000 < sim::Int128{bound} * (1'000'000 - ppm - uncertainty_ppm) * num;
   }
 };
 

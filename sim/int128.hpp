@@ -5,6 +5,8 @@
 
 #include <cstdint>
 
+#include "endatsim/sim/time.hpp"
+
 namespace endatsim::sim {
 
 __extension__ typedef __int128 Int128;
@@ -15,8 +17,7 @@ constexpr Int128 floor_div(Int128 x, Int128 d) { return x >= 0 ? x / d : -((-x +
 // The whole counts a rate of `per_second` has made after `picoseconds`, toward minus infinity: a
 // moving axis counts a step when it crosses it, whichever way it moves.
 constexpr Int128 counts_after(std::int64_t per_second, std::int64_t picoseconds) {
-  constexpr Int128 kPicosecondsPerSecond = 1'000'000'000'000;
-  return floor_div(static_cast<Int128>(per_second) * picoseconds, kPicosecondsPerSecond);
+  return floor_div(static_cast<Int128>(per_second) * picoseconds, kPsPerSecond);
 }
 
 }  // namespace endatsim::sim

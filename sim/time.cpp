@@ -119,12 +119,12 @@ std::string format_quantity(std::int64_t value, const std::array<Unit, N>& units
 
 Time period_of(Hertz f) {
   if (f <= 0) throw std::invalid_argument("frequency must be positive");
-  return Time{(1'000'000'000'000 + f / 2) / f};
+  return Time{(kPsPerSecond + f / 2) / f};
 }
 
 Hertz frequency_of(Time t) {
   if (t.count() <= 0) throw std::invalid_argument("period must be positive");
-  return (1'000'000'000'000 + t.count() / 2) / t.count();
+  return (kPsPerSecond + t.count() / 2) / t.count();
 }
 
 Time parse_duration(std::string_view text) { return Time{parse_quantity(text, kTimeUnits, "duration")}; }
