@@ -1,4 +1,5 @@
 #include "endatsim/capture/capture.hpp"
+#include "endatsim/sim/text.hpp"
 
 #include <sys/stat.h>
 
@@ -48,10 +49,7 @@ std::string printable(std::string_view text) {
       i += n;
       continue;
     }
-    constexpr char kHex[] = "0123456789ABCDEF";
-    out += "\\x";
-    out += kHex[b >> 4];
-    out += kHex[b & 0xF];
+    out += "\\x" + sim::hex_digits(b, 2);
     ++i;
   }
   return out;

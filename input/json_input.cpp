@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -244,12 +245,95 @@ std::uint64_t Node::as_word(std::uint64_t max) const {
   const std::string s = j_.get<std::string>();
   const bool hex = s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
   const std::string digits = hex ? s.substr(2) : s;
-  if (digits.empty() || digits.size() > 16 ||
+  if (digits.empty() || digits.size() > kWordStringDigits ||
       digits.find_first_not_of(hex ? "0123456789abcdefABCDEF" : "0123456789") != std::string::npos)
     fail(what);
   const std::uint64_t v = std::stoull(digits, nullptr, hex ? 16 : 10);
   if (v > max) fail(what);
   return v;
+}
+
+namespace {
+
+// One digit in a regular expression: a hex letter in either case.
+std::string digit_pattern(unsigned d) {
+  if (d < 10) return std::string(1, static_cast<char>('0' + d));
+  return std::string("[") + static_cast<char>('a' + d - 10) + static_cast<char>('A' + d - 10) + "]";
+}
+
+// The digits first .. last inside a character class: "0-4", "5-9a-cA-C".
+std::string class_runs(unsigned first, unsigned last) {
+  const auto one = [](unsigned d, bool upper) {
+    return static_cast<char>(d < 10 ? '0' + d : (upper ? 'A' : 'a') + d - 10);
+  };
+  const auto run = [&](unsigned a, unsigned b, bool upper) {
+    std::string r(1, one(a, upper));
+    if (b > a) r += std::string(b > a + 1 ? "-" : "") + one(b, upper);
+    return r;
+  };
+  std::string out;
+  if (first < 10) out += run(first, std::min(last, 9U), true);
+  if (last >= 10) {
+    const unsigned a = std::max(first, 10U);
+    out += run(a, last, false) + run(a, last, true);
+  }
+  return out;
+}
+
+// Any digit of `base`, `count` times.
+std::string any_digits(unsigned base, std::size_t count) {
+  if (count == 0) return "";
+  const std::string any = base == 16 ? "[0-9a-fA-F]" : "[0-9]";
+  return count == 1 ? any : any + "{" + std::to_string(count) + "}";
+}
+
+// The numbers lo .. hi of one length (digits most significant first), the classic way: a common
+// first digit, else the part below the first whole block, the whole blocks, the part above.
+std::string range_pattern(const std::vector<unsigned>& lo, const std::vector<unsigned>& hi, unsigned base) {
+  if (lo.size() == 1) return lo[0] == hi[0] ? digit_pattern(lo[0]) : "[" + class_runs(lo[0], hi[0]) + "]";
+  const std::vector<unsigned> lo_rest(lo.begin() + 1, lo.end()), hi_rest(hi.begin() + 1, hi.end());
+  if (lo[0] == hi[0]) return digit_pattern(lo[0]) + "(?:" + range_pattern(lo_rest, hi_rest, base) + ")";
+  const bool lo_whole = std::all_of(lo_rest.begin(), lo_rest.end(), [](unsigned d) { return d == 0; });
+  const bool hi_whole = std::all_of(hi_rest.begin(), hi_rest.end(), [base](unsigned d) { return d == base - 1; });
+  std::vector<std::string> parts;
+  if (!lo_whole) parts.push_back(digit_pattern(lo[0]) + "(?:" + range_pattern(lo_rest, std::vector<unsigned>(lo_rest.size(), base - 1), base) + ")");
+  const unsigned first = lo_whole ? lo[0] : lo[0] + 1, last = hi_whole ? hi[0] : hi[0] - 1;
+  if (first <= last)
+    parts.push_back((first == last ? digit_pattern(first) : "[" + class_runs(first, last) + "]") + any_digits(base, lo_rest.size()));
+  if (!hi_whole) parts.push_back(digit_pattern(hi[0]) + "(?:" + range_pattern(std::vector<unsigned>(hi_rest.size(), 0), hi_rest, base) + ")");
+  std::string out;
+  for (const auto& part : parts) out += (out.empty() ? "" : "|") + part;
+  return out;
+}
+
+std::vector<unsigned> digits_of(std::uint64_t v, unsigned base) {
+  std::vector<unsigned> digits;
+  for (std::uint64_t x = v; digits.empty() || x != 0; x /= base) digits.insert(digits.begin(), static_cast<unsigned>(x % base));
+  return digits;
+}
+
+// The values min .. max written in `base`, each with as many leading zeros as the digit limit leaves.
+std::string values_pattern(std::uint64_t min, std::uint64_t max, unsigned base) {
+  std::string out;
+  for (std::uint64_t from = min;;) {
+    const std::vector<unsigned> lo = digits_of(from, base);
+    std::uint64_t top = 1;  // base^length - 1: the largest value of this length
+    for (std::size_t i = 0; i < lo.size(); ++i) top *= base;
+    const std::uint64_t to = std::min(max, top - 1);
+    out += (out.empty() ? "" : "|") + ("0{0," + std::to_string(kWordStringDigits - lo.size()) + "}(?:" +
+                                       range_pattern(lo, digits_of(to, base), base) + ")");
+    if (to == max) return out;
+    from = to + 1;
+  }
+}
+
+}  // namespace
+
+std::string word_string_pattern(std::uint64_t min, std::uint64_t max) {
+  if (min > max || digits_of(max, 10).size() > kWordStringDigits)
+    throw std::invalid_argument("word_string_pattern: " + std::to_string(min) + " .. " + std::to_string(max) +
+                                " is empty or beyond " + std::to_string(kWordStringDigits) + " digits");
+  return "^(?:0[xX](?:" + values_pattern(min, max, 16) + ")|(?:" + values_pattern(min, max, 10) + "))$";
 }
 
 std::uint16_t Node::as_hex_word() const {

@@ -45,6 +45,12 @@ std::string read_file(const std::string& path, FileKind kind);
 json parse(const std::string& text, const std::string& file);
 
 // A value in the document and its JSON path.
+inline constexpr std::size_t kWordStringDigits = 16;
+
+// The strings Node::as_word reads as a value in min .. max, as one ECMAScript regular expression:
+// the JSON Schema's form of the check on keys such as addresses ("7", "0x07", "0X0007").
+std::string word_string_pattern(std::uint64_t min, std::uint64_t max);
+
 class Node {
  public:
   Node(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {}
@@ -65,7 +71,8 @@ class Node {
   sim::Time as_duration(sim::Time min, sim::Time max) const;
   // `or_zero`: 0 is allowed besides min .. max.
   sim::Hertz as_frequency(sim::Hertz min, sim::Hertz max, bool or_zero = false) const;
-  // An integer given as a number or as a string in hex ("0xA5B4") or decimal.
+  // An integer given as a number or as a string in hex ("0xA5B4") or decimal, of at most
+  // kWordStringDigits digits (leading zeros allowed).
   std::uint64_t as_word(std::uint64_t max) const;
   // A 16-bit word written only as a hex string such as "0x8019" (memory images).
   std::uint16_t as_hex_word() const;

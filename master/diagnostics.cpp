@@ -8,6 +8,7 @@
 #include "endatsim/master/parameter_book.hpp"
 #include "endatsim/protocol/diagnosis.hpp"
 #include "endatsim/protocol/parameters.hpp"
+#include "endatsim/sim/text.hpp"
 
 namespace endatsim::master {
 namespace {
@@ -18,12 +19,7 @@ using P = Operation::Purpose;
 using K = DiagnosisNoteKind;
 namespace dg = protocol::diagnosis;
 
-std::string hex(std::uint16_t v) {
-  static constexpr char kDigits[] = "0123456789ABCDEF";
-  std::string s = "0000h";
-  for (int i = 3; i >= 0; --i, v >>= 4) s[static_cast<std::size_t>(i)] = kDigits[v & 0xF];
-  return s;
-}
+std::string hex(std::uint16_t v) { return sim::hex_h(v, 4); }
 
 namespace word = protocol::word;
 // Words the setup reads from the EnDat 2.2 area (3.9.2, 3.9.6, 3.9.7, 3.9.16) ...

@@ -1,4 +1,5 @@
 #include "endatsim/master/master.hpp"
+#include "endatsim/sim/parameter.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -14,9 +15,7 @@ using MC = protocol::ModeCommand;
 using I = protocol::Information;
 using P = Operation::Purpose;
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw std::invalid_argument(message);
-}
+using sim::require;
 
 // The operations the scheduler leaves to the functions on top of it.
 const char* name_of_function_operation(Operation::Kind k) {

@@ -1,6 +1,7 @@
 // The safety functions of the master (safety.hpp): the start-up checks before the axis is
 // released and the checks of every frame read afterwards.
 #include "endatsim/master/safety.hpp"
+#include "endatsim/sim/parameter.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -21,13 +22,11 @@ using MC = protocol::ModeCommand;
 using I = protocol::Information;
 using P = Operation::Purpose;
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw std::invalid_argument(message);
-}
+using sim::require;
 
 // a - b as a signed distance on a ring of 2^bits positions.
 std::int64_t ring_distance(std::uint64_t a, std::uint64_t b, unsigned bits) {
-  const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
+  const std::uint64_t mask = protocol::position_mask(bits);
   const std::uint64_t d = (a - b) & mask;
   const std::uint64_t half = std::uint64_t{1} << (bits - 1);
   return d >= half ? static_cast<std::int64_t>(d) - static_cast<std::int64_t>(half) * 2 : static_cast<std::int64_t>(d);

@@ -18,6 +18,11 @@ namespace endatsim::protocol {
 // position value 2 and the datum shift may be (48 bits, 3.9.24, 3.6.2), so that every position
 // fits them and the 64-bit arithmetic of the models.
 inline constexpr unsigned kPositionBitsMax = 48;
+// The n low bits set: a position of n bits modulo 2^n ("after the zero position follows
+// 2^x - 1", 3.5.16).
+constexpr std::uint64_t position_mask(unsigned bits) {
+  return bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
+}
 
 enum class Field : std::uint8_t {
   StartBit,
@@ -91,6 +96,7 @@ std::vector<std::uint8_t> encode_parameter_frame(std::uint8_t address, std::uint
 
 // 2.9: S F1 test value (40 bits, LSB first) CRC = MakeCrcPos over 40 bits (A4.4.2).
 constexpr unsigned kTestValueBits = 40;
+constexpr std::uint64_t kTestValueMax = (std::uint64_t{1} << kTestValueBits) - 1;
 // 2.3.4.4: a touch probe sends 16 bits, the LSB its trigger status.
 constexpr unsigned kTouchProbeBits = 16;
 Layout test_values_layout();

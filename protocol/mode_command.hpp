@@ -46,7 +46,10 @@ struct ModeCommandInfo {
   bool supplement;          // 2.2: 8 + 16 bits from the master after the encoder's data (docs/model.md §4)
 };
 
-constexpr unsigned kPayloadBits = 24;  // address / MRS code / port (8) + parameter (16)
+// The bits after the mode bits of a 2.1 parameter command, and of a 2.2 command supplement (2.3):
+// address / MRS code / port first, then the parameter.
+constexpr unsigned kPayloadAddressBits = 8, kPayloadParameterBits = 16;
+constexpr unsigned kPayloadBits = kPayloadAddressBits + kPayloadParameterBits;
 
 std::span<const ModeCommandInfo> mode_commands();
 const ModeCommandInfo& info(ModeCommand command);

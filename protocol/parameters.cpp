@@ -494,18 +494,30 @@ std::string calculation_time_string(const CalculationTime& t) {
 }
 
 // 3.5.25
+namespace {
+constexpr std::string_view kOrderingPrefix = "EnDat";  // the five characters word 40 does not store
+bool graphic(char c) { return c > 0x20 && c < 0x7F; }  // a visible ASCII character
+}
+
 std::uint16_t encode_ordering_designation(std::string_view designation) {
-  if (designation.size() != 7 || designation.substr(0, 5) != "EnDat" || !printable(designation[5]) ||
-      !printable(designation[6]))
+  const std::size_t n = kOrderingPrefix.size();
+  if (designation.size() != n + 2 || designation.substr(0, n) != kOrderingPrefix || !graphic(designation[n]) ||
+      !graphic(designation[n + 1]))
     throw std::invalid_argument("word 40 (3.5.25): an ordering designation is \"EnDat\" and two characters, such as "
                                 "\"EnDat22\", got \"" +
                                 std::string(designation) + "\"");
-  return u16(static_cast<unsigned char>(designation[5]) << 8 | static_cast<unsigned char>(designation[6]));
+  return u16(static_cast<unsigned char>(designation[n]) << 8 | static_cast<unsigned char>(designation[n + 1]));
 }
+
+bool ordering_designation_visible(std::uint16_t word) {
+  return graphic(static_cast<char>(word >> 8)) && graphic(static_cast<char>(word & 0xFF));
+}
+
+bool ordering_designation_needs_endat22(std::uint16_t word) { return (word & 0xFF) == '2'; }
 
 std::optional<std::string> decode_ordering_designation(std::uint16_t word) {
   if (word == 0) return std::nullopt;
-  std::string s = "EnDat";
+  std::string s(kOrderingPrefix);
   s += static_cast<char>(word >> 8);
   s += static_cast<char>(word & 0xFF);
   return s;

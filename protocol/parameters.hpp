@@ -84,6 +84,10 @@ constexpr std::uint16_t kWarningCyclicOperation = 0x0020;           // word 1 bi
 constexpr std::uint16_t kWarningReferencePointNotReached = 0x0010;  // word 1 bit 4 (3.4.2)
 std::string bits_string(std::uint16_t word, std::span<const std::string_view> names);  // "lighting, position" or "none"
 
+// ---- 3.10.3 operating parameters 2 word 2: status of touch probes ----------------------------------
+// UNCERTAIN (3.10.1 names the word, not its bits): the model keeps the trigger status in bit 0.
+constexpr std::uint16_t kTouchProbeTriggered = 0x0001;
+
 // ---- 3.10.5 operating parameters 2 word 11: referencing ------------------------------------------
 // Bit 0 = 1 and bit 1 = 0 reset RM of an incremental encoder (and set the warning "reference
 // point not reached").
@@ -364,8 +368,12 @@ std::string calculation_time_string(const CalculationTime& t);  // "5 us", "1 ms
 // 0000h = not supported yet. EnDat01/EnDat02 with, EnDat21/EnDat22 without incremental signals.
 // UNCERTAIN: the overview lists the designation against words 40..42 but 3.5.25 describes only
 // word 40; words 41 and 42 are left 0.
-std::uint16_t encode_ordering_designation(std::string_view designation);  // "EnDat22"; throws otherwise
+std::uint16_t encode_ordering_designation(std::string_view designation);  // "EnDat22"; throws otherwise (a space too)
 std::optional<std::string> decode_ordering_designation(std::uint16_t word);  // none for 0000h
+bool ordering_designation_visible(std::uint16_t word);  // both characters visible ASCII (no space)
+// The second character '2' (EnDat02, EnDat22) names the EnDat 2.2 command set (HEIDENHAIN's
+// newer brochure editions).
+bool ordering_designation_needs_endat22(std::uint16_t word);
 
 // ---- 3.5.26 / 3.9.37: checksums -------------------------------------------------------------------
 // Word 47 = word 4 + ... + word 46; EnDat 2.2 word 63 = word 0 + ... + word 62; overflow ignored.

@@ -11,6 +11,7 @@
 #include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/report.hpp"
+#include "endatsim/sim/text.hpp"
 
 namespace endatsim::scenarios {
 namespace {
@@ -213,14 +214,7 @@ class Replay {
   bool encoder_on_ = false;
 };
 
-std::string hex(std::uint64_t v, int digits) {
-  std::ostringstream s;
-  s << std::uppercase << std::hex;
-  s.width(digits);
-  s.fill('0');
-  s << v << "h";
-  return s.str();
-}
+using sim::hex_h;
 
 }  // namespace
 
@@ -313,13 +307,13 @@ std::string frame_log_line(const checker::WireFrame& f) {
   std::ostringstream out;
   out << "#" << f.index << " " << sim::format_time(f.fe1) << " ";
   if (!f.command) {
-    out << "mode bits " << (f.mode_bits_seen == protocol::frame_position::kModeBits ? hex(f.mode_bits, 2) : "incomplete")
+    out << "mode bits " << (f.mode_bits_seen == protocol::frame_position::kModeBits ? hex_h(f.mode_bits, 2) : "incomplete")
         << " (no mode command), " << f.clocks << " clocks\n";
     return out.str();
   }
   const auto& info = protocol::info(*f.command);
   out << info.key;
-  if (f.payload) out << " address " << hex(protocol::payload_address(*f.payload), 2) << " parameter " << hex(protocol::payload_parameter(*f.payload), 4);
+  if (f.payload) out << " address " << hex_h(protocol::payload_address(*f.payload), 2) << " parameter " << hex_h(protocol::payload_parameter(*f.payload), 4);
   if (f.start_bit_clock == 0) {
     out << ": no start bit, " << f.clocks << " clocks\n";
     return out.str();
@@ -337,17 +331,17 @@ std::string frame_log_line(const checker::WireFrame& f) {
       if (info.version == protocol::EndatVersion::V2_2) out << " F2 " << field(Field::Error2);
       out << ", position " << field(Field::Position);
       break;
-    case protocol::AnswerFormat::TestValues: out << ", test value " << hex(field(Field::TestValue), 10); break;
+    case protocol::AnswerFormat::TestValues: out << ", test value " << hex_h(field(Field::TestValue), 10); break;
     case protocol::AnswerFormat::Parameter:
-      out << ", echo " << hex(field(Field::Address), 2) << " " << hex(field(Field::Parameter), 4);
+      out << ", echo " << hex_h(field(Field::Address), 2) << " " << hex_h(field(Field::Parameter), 4);
       if (f.refused()) out << " (type II, A2: the address returned inverted, the access refused)";
       break;
   }
   out << ", CRC " << (f.crc_ok ? "ok" : "BAD");
   for (const auto& d : f.additional_data)
-    out << ", additional data I=" << (d.status & protocol::AdditionalDataStatus::kInformation) << " status " << hex(d.status, 2) << " data " << hex(d.data, 4)
+    out << ", additional data I=" << (d.status & protocol::AdditionalDataStatus::kInformation) << " status " << hex_h(d.status, 2) << " data " << hex_h(d.data, 4)
         << " CRC " << (d.crc_ok ? "ok" : "BAD");
-  if (f.supplement) out << ", supplement " << hex(protocol::payload_address(*f.supplement), 2) << " " << hex(protocol::payload_parameter(*f.supplement), 4);
+  if (f.supplement) out << ", supplement " << hex_h(protocol::payload_address(*f.supplement), 2) << " " << hex_h(protocol::payload_parameter(*f.supplement), 4);
   if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";
   if (f.learnt_position_bits != 0)
     out << "; word 13" << (f.command == protocol::ModeCommand::EncoderReceiveReset ? " as written, now active" : "")

@@ -2,6 +2,7 @@
 
 #include "endatsim/protocol/timing.hpp"
 #include "endatsim/scenarios/xml.hpp"
+#include "endatsim/sim/text.hpp"
 
 #include <unistd.h>
 
@@ -420,13 +421,12 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     svg.field(axis.x(fe(fp::kFirstModeBit)), axis.x(fe(fp::kTurnaround)), row_y("endat.master_data") - 22, "mode bits " + bits, bits);
     svg.field(axis.x(fe(fp::kFrameStart)), axis.x(fe(fp::kFirstModeBit)), row_y("endat.master_data") - 22, "turnaround", "");
     // 2.1 parameter frames: 8 bits of address / MRS code / port and 16 bits after the mode bits.
-    constexpr unsigned kAddressEnd = fp::kTurnaround + 8, kPayloadEnd = fp::kTurnaround + protocol::kPayloadBits;
+    constexpr unsigned kAddressEnd = fp::kTurnaround + protocol::kPayloadAddressBits, kPayloadEnd = fp::kTurnaround + protocol::kPayloadBits;
     if (frame->payload && m_fe.size() >= kPayloadEnd) {
-      char text[48];
-      std::snprintf(text, sizeof text, "address 0x%02X", static_cast<unsigned>(protocol::payload_address(*frame->payload)));
-      svg.field(axis.x(fe(fp::kTurnaround)), axis.x(fe(kAddressEnd)), row_y("endat.master_data") - 22, text, "address");
-      std::snprintf(text, sizeof text, "parameter 0x%04X", static_cast<unsigned>(protocol::payload_parameter(*frame->payload)));
-      svg.field(axis.x(fe(kAddressEnd)), axis.x(fe(kPayloadEnd)), row_y("endat.master_data") - 22, text, "parameter");
+      svg.field(axis.x(fe(fp::kTurnaround)), axis.x(fe(kAddressEnd)), row_y("endat.master_data") - 22,
+                "address " + sim::hex_0x(protocol::payload_address(*frame->payload), 2), "address");
+      svg.field(axis.x(fe(kAddressEnd)), axis.x(fe(kPayloadEnd)), row_y("endat.master_data") - 22,
+                "parameter " + sim::hex_0x(protocol::payload_parameter(*frame->payload), 4), "parameter");
     }
   }
   if (e_start != kNone && frame != nullptr && launch >= 1) {
@@ -468,9 +468,8 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     const T64 on = m_en.first(e_start, to, 1);
     const T64 off = on != kNone ? m_en.first(on, to, 0) : kNone;
     if (on != kNone) {
-      char text[64];
-      std::snprintf(text, sizeof text, "command supplement 0x%02X 0x%04X", static_cast<unsigned>(protocol::payload_address(*frame->supplement)),
-                    static_cast<unsigned>(protocol::payload_parameter(*frame->supplement)));
+      const std::string text = "command supplement " + sim::hex_0x(protocol::payload_address(*frame->supplement), 2) + " " +
+                               sim::hex_0x(protocol::payload_parameter(*frame->supplement), 4);
       svg.field(axis.x(on), axis.x(off != kNone ? off : to), row_y("endat.master_data") - 22, text, "supplement");
     }
   }

@@ -158,7 +158,8 @@ void read_sensors(const Node& n, slave::Sensors& s) {
       const auto a = static_cast<std::uint8_t>(at.as_word(dg::kDiagnosisAddressMax));
       const auto decoded = dg::decode_diagnosis_address(a);
       if (!decoded || decoded->bit < dg::kValuationNumbers)
-        at.fail("an A3 address 1 .. 64 that is not a valuation number's (n + 16 k, n = 1 .. 6)");
+        at.fail("an A3 address 1 .. " + std::to_string(dg::kDiagnosisAddressMax) + " that is not a valuation number's (n + 16 k, n = 1 .. " +
+                std::to_string(dg::kValuationNumbers) + ")");
       s.system_data[a] = static_cast<std::uint8_t>(Node(value, v->path() + "/" + address, n.file()).as_word(0xFF));
     }
   }
@@ -167,7 +168,7 @@ void read_sensors(const Node& n, slave::Sensors& s) {
     for (const auto& [port, value] : v->raw().items()) {
       const json key = port;
       const auto a = static_cast<std::uint8_t>(Node(key, v->path() + "/" + port, n.file()).as_word(0xFF));
-      s.test_values[a] = Node(value, v->path() + "/" + port, n.file()).as_word((std::uint64_t{1} << protocol::kTestValueBits) - 1);
+      s.test_values[a] = Node(value, v->path() + "/" + port, n.file()).as_word(protocol::kTestValueMax);
     }
   }
   if (auto v = o.opt("not_updatable")) {
@@ -362,7 +363,7 @@ FrameExpectation read_frame_expectation(const Node& n) {
   if (auto v = o.opt("error1")) e.error1 = v->as_bool();
   if (auto v = o.opt("echo_address")) e.echo_address = read_byte(*v);
   if (auto v = o.opt("echo_parameter")) e.echo_parameter = read_word16(*v);
-  if (auto v = o.opt("test_value")) e.test_value = v->as_word((std::uint64_t{1} << protocol::kTestValueBits) - 1);
+  if (auto v = o.opt("test_value")) e.test_value = v->as_word(protocol::kTestValueMax);
   if (auto v = o.opt("additional_data")) {
     if (!v->raw().is_array() || v->raw().size() > protocol::kAdditionalDataPerFrameMax)
       v->fail("an array of at most " + std::to_string(protocol::kAdditionalDataPerFrameMax) + " additional data");

@@ -4,11 +4,13 @@
 #include <string_view>
 
 #include "endatsim/checker/timing_checker.hpp"
+#include "endatsim/input/json_input.hpp"
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
 #include "endatsim/protocol/additional_data.hpp"
 #include "endatsim/protocol/crc_parameters.hpp"
 #include "endatsim/protocol/diagnosis.hpp"
+#include "endatsim/protocol/frame.hpp"
 #include "endatsim/protocol/memory_area.hpp"
 #include "endatsim/protocol/timing.hpp"
 #include "endatsim/scenarios/event_kinds.hpp"
@@ -289,6 +291,18 @@ void add_list_key_schema(json& out) {
        {"oneOf", json::array({json{{"type", "integer"}, {"minimum", 0}, {"maximum", list_keys::kTemperatureMax}},
                               json{{"type", "string"}, {"pattern", "^(-?[0-9]{1,5}(\\.[0-9]{1,3})? ?degC|[0-9]{1,5}(\\.[0-9]{1,3})? ?K)$"}},
                               json{{"type", "string"}, {"pattern", "^0[xX][0-9a-fA-F]{1,4}$"}}})}});
+  add("/$defs", "a3_address", {{"description", "An A3 diagnosis address 1 .. " + std::to_string(dg::kDiagnosisAddressMax) + "."},
+                                {"type", "string"}, {"pattern", input::word_string_pattern(1, dg::kDiagnosisAddressMax)}});
+  add("/$defs/encoder/properties/sensors/properties", "test_values",
+      {{"description", "By port address: the " + std::to_string(protocol::kTestValueBits) + "-bit test value the port sends (2.9)."},
+       {"type", "object"}, {"propertyNames", {{"pattern", input::word_string_pattern(0, 0xFF)}}},
+       {"additionalProperties", {{"oneOf", json::array({json{{"type", "integer"}, {"minimum", 0}, {"maximum", protocol::kTestValueMax}},
+                                                        json{{"type", "string"}, {"pattern", "^(0[xX][0-9a-fA-F]{1," + std::to_string((protocol::kTestValueBits + 3) / 4) + "}|[0-9]{1," +
+                                                                                  std::to_string(std::to_string(protocol::kTestValueMax).size()) + "})$"}}})}}}});
+  add("/$defs/expect/properties/diagnosis/properties", "additional_sensors",
+      {{"description", "By address 0 .. " + std::to_string(dg::kAdditionalSensorAddresses - 1) + ": the temperature last read."},
+       {"type", "object"}, {"propertyNames", {{"pattern", input::word_string_pattern(0, dg::kAdditionalSensorAddresses - 1)}}},
+       {"additionalProperties", temperature}});
   add("/$defs", "words", {{"type", "array"}, {"maxItems", protocol::kAreaWordsMax}, {"items", {{"$ref", "#/$defs/word"}}}});
   add("/properties", "bus",
       {{"description", "Further encoders on the same bus (2.10), each with its own transceiver at the encoder end."},

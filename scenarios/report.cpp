@@ -1,6 +1,7 @@
 #include "endatsim/scenarios/report.hpp"
 
 #include "endatsim/protocol/parameters.hpp"
+#include "endatsim/sim/text.hpp"
 
 #include <map>
 #include <set>
@@ -37,12 +38,7 @@ std::string frame_line(const ScenarioResult& r, const master::FrameResult& f) {
 
 }  // namespace
 
-std::string hex4(std::uint16_t v) {
-  static constexpr char kDigits[] = "0123456789ABCDEF";
-  std::string s;
-  for (int i = 3; i >= 0; --i) s += kDigits[(v >> (4 * i)) & 0xF];
-  return s + "h";
-}
+std::string hex4(std::uint16_t v) { return sim::hex_h(v, 4); }
 
 // What the master's start-up routine (docs/model.md §8) read, decoded (3.4, 3.5.6, 3.5.22).
 void write_startup(std::ostream& out, const master::StartupInfo& s) {

@@ -13,6 +13,7 @@
 
 #include "endatsim/master/functions.hpp"
 #include "endatsim/sim/vcd.hpp"
+#include "endatsim/sim/text.hpp"
 
 namespace endatsim::scenarios {
 namespace {
@@ -81,12 +82,7 @@ void judge_delay(const Scenario& s, ScenarioResult& r) {
   }
 }
 
-std::string hex(std::uint64_t v, int digits) {
-  static constexpr char kDigits[] = "0123456789ABCDEF";
-  std::string s;
-  for (int i = digits - 1; i >= 0; --i) s += kDigits[(v >> (4 * i)) & 0xF];
-  return "0x" + s;
-}
+using sim::hex_0x;
 
 // One operation's "expect", against the last frame the operation sent.
 void judge_operation(std::size_t index, const FrameExpectation& e, ScenarioResult& r) {
@@ -104,9 +100,9 @@ void judge_operation(std::size_t index, const FrameExpectation& e, ScenarioResul
   if (e.outcome) differ("outcome", std::string(master::to_string(f->outcome)), *e.outcome);
   if (e.position) differ("position", std::to_string(f->position), std::to_string(*e.position));
   if (e.error1) differ("F1", std::to_string(f->error1), std::to_string(*e.error1));
-  if (e.echo_address) differ("echo address", hex(f->echo_address, 2), hex(*e.echo_address, 2));
-  if (e.echo_parameter) differ("echo parameter", hex(f->echo_parameter, 4), hex(*e.echo_parameter, 4));
-  if (e.test_value) differ("test value", hex(f->test_value, 10), hex(*e.test_value, 10));
+  if (e.echo_address) differ("echo address", hex_0x(f->echo_address, 2), hex_0x(*e.echo_address, 2));
+  if (e.echo_parameter) differ("echo parameter", hex_0x(f->echo_parameter, 4), hex_0x(*e.echo_parameter, 4));
+  if (e.test_value) differ("test value", hex_0x(f->test_value, 10), hex_0x(*e.test_value, 10));
   if (e.additional_data) {
     differ("additional data count", std::to_string(f->additional_data.size()), std::to_string(e.additional_data->size()));
     for (std::size_t i = 0; i < e.additional_data->size() && i < f->additional_data.size(); ++i) {
@@ -115,7 +111,7 @@ void judge_operation(std::size_t index, const FrameExpectation& e, ScenarioResul
       const std::string at = "additional data " + std::to_string(i) + " ";
       differ(at + "information", std::string(protocol::info(got.information()).key),
              std::string(protocol::info(want.information).key));
-      if (want.data) differ(at + "data", hex(got.data, 4), hex(*want.data, 4));
+      if (want.data) differ(at + "data", hex_0x(got.data, 4), hex_0x(*want.data, 4));
       if (want.busy) differ(at + "busy", std::to_string(got.busy()), std::to_string(*want.busy));
       if (want.rm)
         differ(at + "RM", std::to_string((got.status & protocol::AdditionalDataStatus::kReferenceMark) != 0),
@@ -129,7 +125,7 @@ void judge_operation(std::size_t index, const FrameExpectation& e, ScenarioResul
 
 void judge_memory(const Scenario& s, ScenarioResult& r) {
   for (const auto& m : s.expect.memory) {
-    std::string name = "memory." + std::string(protocol::info(m.area).key) + "/" + hex(m.address, 2);
+    std::string name = "memory." + std::string(protocol::info(m.area).key) + "/" + hex_0x(m.address, 2);
     if (m.encoder > 0) name = "bus/" + std::to_string(m.encoder - 1) + "/" + name;
     if (m.encoder > r.bus_memory.size()) {
       r.expectations.push_back({name, false, "there is no such encoder on the bus"});
@@ -148,7 +144,7 @@ void judge_memory(const Scenario& s, ScenarioResult& r) {
       continue;
     }
     const std::uint16_t v = (*words)[m.address];
-    r.expectations.push_back({name, v == m.value, hex(v, 4) + " (expected " + hex(m.value, 4) + ")"});
+    r.expectations.push_back({name, v == m.value, hex_0x(v, 4) + " (expected " + hex_0x(m.value, 4) + ")"});
   }
 }
 
@@ -161,7 +157,7 @@ void judge_startup(const StartupExpectation& e, ScenarioResult& r) {
                         const std::optional<std::uint16_t>& read) {
     if (!want) return;
     r.expectations.push_back({std::string("startup.") + name, read == want,
-                              (read ? hex(*read, 4) : std::string("not read")) + " (expected " + hex(*want, 4) + ")"});
+                              (read ? hex_0x(*read, 4) : std::string("not read")) + " (expected " + hex_0x(*want, 4) + ")"});
   };
   word("errors", e.errors, got.errors);
   word("warnings", e.warnings, got.warnings);

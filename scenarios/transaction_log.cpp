@@ -7,6 +7,7 @@
 
 #include "endatsim/protocol/frame.hpp"
 #include "endatsim/scenarios/streamed_outputs.hpp"
+#include "endatsim/sim/text.hpp"
 
 namespace endatsim::scenarios {
 namespace {
@@ -15,11 +16,7 @@ using nlohmann::ordered_json;
 
 std::string mode_bits_text(std::uint8_t bits) { return std::bitset<protocol::frame_position::kModeBits>(bits).to_string(); }
 
-std::string hex(std::uint64_t value, int digits) {
-  char buf[24];
-  std::snprintf(buf, sizeof buf, "0x%0*llX", digits, static_cast<unsigned long long>(value));
-  return buf;
-}
+using sim::hex_0x;
 
 std::string value_text(const ordered_json& v) {
   if (v.is_string()) return v.get<std::string>();
@@ -72,12 +69,12 @@ ordered_json transaction_of(const master::FrameResult& f, std::span<const checke
   if (f.measurement) sent["delay_measurement"] = true;
   if (f.compensated) sent["t_d"] = sim::format_time(f.t_d_used);
   if (f.payload) {  // 2.1 parameter frames: address / MRS code / port, then 16 bits
-    sent["address"] = hex(protocol::payload_address(*f.payload), 2);
-    sent["parameter"] = hex(protocol::payload_parameter(*f.payload), 4);
+    sent["address"] = hex_0x(protocol::payload_address(*f.payload), 2);
+    sent["parameter"] = hex_0x(protocol::payload_parameter(*f.payload), 4);
   }
   if (f.supplement) {  // 2.2 command supplement
-    sent["supplement_address"] = hex(protocol::payload_address(*f.supplement), 2);
-    sent["supplement_parameter"] = hex(protocol::payload_parameter(*f.supplement), 4);
+    sent["supplement_address"] = hex_0x(protocol::payload_address(*f.supplement), 2);
+    sent["supplement_parameter"] = hex_0x(protocol::payload_parameter(*f.supplement), 4);
   }
   t["sent"] = sent;
 
@@ -94,11 +91,11 @@ ordered_json transaction_of(const master::FrameResult& f, std::span<const checke
         break;
       case protocol::AnswerFormat::TestValues:
         received["F1"] = f.error1 ? 1 : 0;
-        received["test_value"] = hex(f.test_value, 10);
+        received["test_value"] = hex_0x(f.test_value, 10);
         break;
       case protocol::AnswerFormat::Parameter:
-        received["address"] = hex(f.echo_address, 2);
-        received["parameter"] = hex(f.echo_parameter, 4);
+        received["address"] = hex_0x(f.echo_address, 2);
+        received["parameter"] = hex_0x(f.echo_parameter, 4);
         break;
     }
     received["crc"] = f.crc_received;
@@ -116,7 +113,7 @@ ordered_json transaction_of(const master::FrameResult& f, std::span<const checke
   if (word)
     for (const auto& d : f.additional_data) {
       const std::string key(protocol::info(d.information()).key);
-      additional[key] = hex(d.data, 4);
+      additional[key] = hex_0x(d.data, 4);
       if (!d.crc_ok) additional[key + ".crc_ok"] = false;
       if (d.busy()) additional[key + ".busy"] = true;
       if ((d.status & protocol::AdditionalDataStatus::kWarning) != 0) additional[key + ".warning"] = true;

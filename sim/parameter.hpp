@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -19,6 +20,11 @@
 #include "endatsim/sim/time.hpp"
 
 namespace endatsim::sim {
+
+// How a model refuses parameters it cannot run with: std::invalid_argument with `message`.
+inline void require(bool ok, const std::string& message) {
+  if (!ok) throw std::invalid_argument(message);
+}
 
 // A choice between named behaviours (an enum field), reached through its index in `names`.
 template <class Params>

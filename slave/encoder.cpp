@@ -1,4 +1,5 @@
 #include "endatsim/slave/encoder.hpp"
+#include "endatsim/sim/parameter.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -14,9 +15,7 @@ namespace position = protocol::frame_position;
 using MC = ModeCommand;
 using I = Information;
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw std::invalid_argument(message);
-}
+using sim::require;
 
 
 using protocol::parameters::EncoderFunction;
@@ -266,7 +265,7 @@ void Encoder::answer_position() {
     return;
   }
   if (readiness_.take_unsettled()) {  // a fault: a value from before the position settled (seeded by the frame)
-    const std::uint64_t mask = (std::uint64_t{1} << positions_.position_bits()) - 1;
+    const std::uint64_t mask = protocol::position_mask(positions_.position_bits());
     std::uint64_t z = (frames_.count() + 1) * 0x9E3779B97F4A7C15ULL;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
     f.position = (z ^ (z >> 31)) & mask;

@@ -1,4 +1,5 @@
 #include "endatsim/slave/encoder_params.hpp"
+#include "endatsim/sim/parameter.hpp"
 
 #include <array>
 #include <stdexcept>
@@ -20,9 +21,7 @@ namespace position = protocol::frame_position;
 // 3.9.16's example of the maximum encoder temperature.
 constexpr double kDefaultMaxTemperatureCelsius = 115;
 
-void require(bool ok, const std::string& message) {
-  if (!ok) throw std::invalid_argument(message);
-}
+using sim::require;
 
 using image_default::kOemArea;
 
@@ -52,8 +51,8 @@ void EncoderParams::validate() const {
   require(sensors.additional_sensors.size() <= protocol::diagnosis::kAdditionalSensorAddresses,
           "at most 16 additional sensors (4-bit address, 2.3.5.1)");
   for (const auto& [port, value] : sensors.test_values)
-    require(value < (std::uint64_t{1} << protocol::kTestValueBits),
-            "test value of port " + std::to_string(port) + " must fit 40 bits (2.9)");
+    require(value <= protocol::kTestValueMax,
+            "test value of port " + std::to_string(port) + " must fit " + std::to_string(protocol::kTestValueBits) + " bits (2.9)");
   if (memory) {
     const Memory m(*memory);
     // 3.5.7: an EIB saves word 13 only at initial commissioning; until then position_bits is

@@ -283,8 +283,10 @@ void NvmProgramming::interrupt(Memory& memory, sim::Time now, bool torn) {
     if (!w.applied) memory.force(w.selection, w.address, w.new_value);
     return;
   }
+  // A torn word (encoder.interrupted_nvm_write "torn", 3.4.3): the high byte new, the low byte old.
+  constexpr std::uint16_t kHighByte = 0xFF00;
   memory.force(w.selection, w.address,
-               torn ? static_cast<std::uint16_t>((w.new_value & 0xFF00) | (w.old_value & 0x00FF)) : w.old_value);
+               torn ? static_cast<std::uint16_t>((w.new_value & kHighByte) | (w.old_value & ~kHighByte)) : w.old_value);
 }
 
 }  // namespace endatsim::slave

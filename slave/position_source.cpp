@@ -121,7 +121,7 @@ void PositionSource::set_probe_deflected(bool deflected, Time now) {
   // bit 0 follows the trigger status.
   const Selection status{MemoryArea::OperatingParameters2, 0};
   if (const auto read = memory_.read(status, word::kTouchProbeStatus))
-    memory_.force(status, word::kTouchProbeStatus, static_cast<std::uint16_t>((read.value & ~1U) | (deflected ? 1U : 0U)));
+    memory_.force(status, word::kTouchProbeStatus, static_cast<std::uint16_t>((read.value & ~pm::kTouchProbeTriggered) | (deflected ? pm::kTouchProbeTriggered : 0U)));
 }
 
 std::uint16_t PositionSource::timestamp(Time frame_start) const {
@@ -146,7 +146,7 @@ std::uint64_t PositionSource::measured(Time t) const {
 // the zero position follows 2^x - 1").
 std::uint64_t PositionSource::output(std::uint64_t measured) const {
   const unsigned n = position_bits_;
-  const std::uint64_t mask = n >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1;
+  const std::uint64_t mask = protocol::position_mask(n);
   const bool falling = pm::decode_direction_falling(memory_.manufacturer_word(word::kDirection));
   const std::uint64_t p = falling ? (0 - measured) & mask : measured;
   const auto& op = memory_.active_operating_parameters();

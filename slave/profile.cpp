@@ -5,6 +5,7 @@
 #include "endatsim/input/suggest.hpp"
 #include "endatsim/slave/eib.hpp"
 #include "endatsim/slave/reference.hpp"
+#include "endatsim/sim/text.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -21,13 +22,7 @@ using input::json;
 using input::Node;
 using Area = MemoryArea;
 
-std::string hex4(unsigned w) {
-  char b[8];
-  std::snprintf(b, sizeof b, "%04X", w & 0xFFFFU);
-  return b;
-}
-
-std::string word_string(std::uint16_t w) { return "0x" + hex4(w); }
+std::string word_string(std::uint16_t w) { return sim::hex_0x(w, 4); }
 
 std::string kind_key(EncoderKind k) { return std::string(kEncoderKindNames[static_cast<std::size_t>(k)]); }
 
@@ -198,7 +193,7 @@ bool operator==(const EncoderProfile& a, const EncoderProfile& b) {
 std::vector<std::string> check_profile(const EncoderProfile& p) {
   std::vector<std::string> problems;
   const auto expect = [&](bool ok, const std::string& path, const std::string& expected, std::uint16_t got) {
-    if (!ok) problems.push_back(path + ": expected " + expected + ", got " + hex4(got) + "h");
+    if (!ok) problems.push_back(path + ": expected " + expected + ", got " + sim::hex_h(got, 4));
   };
   try {
     const Memory memory(p.memory);
@@ -245,7 +240,7 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
   }
   const std::uint16_t revolutions = p.kind == EncoderKind::Multiturn ? revolutions_word(p.multiturn_bits) : 0;
   expect(m[word::kDistinguishableRevolutions] == revolutions, manufacturer_path(word::kDistinguishableRevolutions),
-         hex4(revolutions) + "h distinguishable revolutions (3.5.9)", m[word::kDistinguishableRevolutions]);
+         sim::hex_h(revolutions, 4) + " distinguishable revolutions (3.5.9)", m[word::kDistinguishableRevolutions]);
   if (p.kind != EncoderKind::Linear) {
     const std::uint64_t steps = pm::steps_per_revolution(m, p.endat22_words()).value_or(0);
     const std::uint64_t expected = std::uint64_t{1} << (p.position_bits - p.multiturn_bits);
@@ -253,16 +248,13 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
       problems.push_back(manufacturer_path(word::kMeasuringSteps) + ": expected " + std::to_string(expected) +
                          " measuring steps per revolution in words 20/21 (3.5.12), got " + std::to_string(steps));
   }
-  if (const auto d = pm::decode_ordering_designation(m[word::kOrderingDesignation])) {
-    constexpr std::size_t kFirst = std::string_view("EnDat").size();  // the two characters after "EnDat"
-    const auto printable_char = [](char c) { return c > 0x20 && c < 0x7F; };
-    const bool printable = printable_char((*d)[kFirst]) && printable_char((*d)[kFirst + 1]);
-    const bool needs22 = (*d)[kFirst + 1] == '2';  // EnDat02 / EnDat22: command set 2.2 (the German brochure, newer edition)
-    expect(printable && (!needs22 || p.version == EndatVersion::V2_2), manufacturer_path(word::kOrderingDesignation),
+  if (const std::uint16_t d = m[word::kOrderingDesignation]; d != 0) {
+    const bool needs22 = pm::ordering_designation_needs_endat22(d);
+    expect(pm::ordering_designation_visible(d) && (!needs22 || p.version == EndatVersion::V2_2), manufacturer_path(word::kOrderingDesignation),
            "\"EnDat\" and two printable characters, x2 only with version 2.2 (3.5.25)", m[word::kOrderingDesignation]);
   }
   expect(pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum], manufacturer_path(word::kManufacturerChecksum),
-         hex4(pm::manufacturer_checksum(m)) + "h = word 4 + ... + word 46 (3.5.26)", m[word::kManufacturerChecksum]);
+         sim::hex_h(pm::manufacturer_checksum(m), 4) + " = word 4 + ... + word 46 (3.5.26)", m[word::kManufacturerChecksum]);
   const auto e = p.endat22_words();
   if (p.version == EndatVersion::V2_2 && e.empty())
     problems.push_back("/memory: expected area manufacturer_endat22 for version 2.2 (3.9)");
@@ -270,7 +262,7 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
     problems.push_back(area_path(Area::ManufacturerEndat22) + ": expected no EnDat 2.2 area for version 2.1 (3.9)");
   if (!e.empty())
     expect(pm::endat22_checksum(e) == e[word::kEndat22Checksum], area_path(Area::ManufacturerEndat22) + "/" + std::to_string(word::kEndat22Checksum),
-           hex4(pm::endat22_checksum(e)) + "h = word 0 + ... + word 62 (3.9.37)", e[word::kEndat22Checksum]);
+           sim::hex_h(pm::endat22_checksum(e), 4) + " = word 0 + ... + word 62 (3.9.37)", e[word::kEndat22Checksum]);
   return problems;
 }
 

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <regex>
 
+#include "endatsim/input/json_input.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/runner.hpp"
 
@@ -215,4 +217,35 @@ TEST(ExpectViolations, TheWildcardIsOnlyAKeyOfViolations) {
   } catch (const ScenarioError& e) {
     EXPECT_NE(std::string(e.what()).find("/expect/outcomes/*"), std::string::npos) << e.what();
   }
+}
+
+// The schema's pattern for keys such as A3 addresses matches a string exactly when the loader reads
+// it as a number in the range: decimal or hex, either case, leading zeros up to 16 digits.
+TEST(WordStringPattern, MatchesExactlyTheStringsTheLoaderReadsInTheRange) {
+  const auto reads_in = [](const std::string& text, std::uint64_t min, std::uint64_t max) {
+    const nlohmann::json j = text;
+    try {
+      return input::Node(j, "/k", "f.json").as_word(max) >= min;
+    } catch (const std::exception&) {
+      return false;
+    }
+  };
+  for (const auto& [min, max] : {std::pair<std::uint64_t, std::uint64_t>{1, 64}, {0, 15}, {0, 255}, {7, 300}, {0, 0}, {16, 16}}) {
+    const std::regex pattern(input::word_string_pattern(min, max));
+    std::vector<std::string> texts = {"", "0x", "x1", "-1", "1 ", " 1", "0x0x1", "1e1", "0b1", "00000000000000001", "0x00000000000000001",
+                                      "0000000000000001", "0x000000000000000F"};
+    for (std::uint64_t v = 0; v <= 320; ++v) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%llu", static_cast<unsigned long long>(v));
+      texts.push_back(buf);
+      texts.push_back(std::string("00") + buf);
+      std::snprintf(buf, sizeof buf, "0x%llx", static_cast<unsigned long long>(v));
+      texts.push_back(buf);
+      std::snprintf(buf, sizeof buf, "0X%03llX", static_cast<unsigned long long>(v));
+      texts.push_back(buf);
+    }
+    for (const auto& t : texts)
+      EXPECT_EQ(std::regex_match(t, pattern), reads_in(t, min, max)) << "\"" << t << "\" in " << min << " .. " << max;
+  }
+  EXPECT_THROW(input::word_string_pattern(5, 4), std::invalid_argument);
 }

@@ -269,9 +269,10 @@ TEST(ParameterTables, SchemaHoldsTheGeneratedProperties) {
   const auto generated = scenarios::parameter_schema();
   // The objects of the models, the events, and "op" and "at" and each operation of the script
   // (encoder.crc and master.crc share the generator's rows; master.crc adds the check's); then
-  // the seven objects that hold only lists and maps with generated bounds ($defs, the top level,
-  // encoder.memory, the sensors event, a frame's and the run's expectations).
-  ASSERT_EQ(generated.size(), 24U + scenarios::operation_kinds().size());
+  // the eight objects that hold only lists and maps with generated bounds ($defs, the top level,
+  // encoder.memory, the sensors event, a frame's and the run's expectations, the diagnosis
+  // expectation).
+  ASSERT_EQ(generated.size(), 25U + scenarios::operation_kinds().size());
   for (const auto& [pointer, part] : generated.items()) {
     SCOPED_TRACE(pointer);
     const json::json_pointer at(pointer);

@@ -292,6 +292,17 @@ TEST(Parameters, Word40OrderingDesignationExample) {
   EXPECT_EQ(decode_ordering_designation(0), std::nullopt);
   EXPECT_THROW(encode_ordering_designation("EnDat2"), std::invalid_argument);
   EXPECT_THROW(encode_ordering_designation("Endat22"), std::invalid_argument);
+  EXPECT_THROW(encode_ordering_designation("EnDat2 "), std::invalid_argument);
+}
+
+TEST(Parameters, Word40SecondCharacterTwoNamesTheEndat22CommandSet) {
+  EXPECT_TRUE(ordering_designation_needs_endat22(encode_ordering_designation("EnDat22")));
+  EXPECT_TRUE(ordering_designation_needs_endat22(encode_ordering_designation("EnDat02")));
+  EXPECT_FALSE(ordering_designation_needs_endat22(encode_ordering_designation("EnDat21")));
+  EXPECT_FALSE(ordering_designation_needs_endat22(encode_ordering_designation("EnDat01")));
+  EXPECT_TRUE(ordering_designation_visible(0x3232));
+  EXPECT_FALSE(ordering_designation_visible(0x3220));  // "EnDat2 "
+  EXPECT_FALSE(ordering_designation_visible(0x0132));
 }
 
 TEST(Parameters, ChecksumsIgnoreOverflow) {
