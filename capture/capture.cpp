@@ -72,6 +72,13 @@ std::string list(const std::vector<std::string>& names, std::size_t at_most) {
 
 }  // namespace
 
+bool starts_like_zip(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<char, 4> magic{};
+  in.read(magic.data(), magic.size());
+  return in.gcount() == 4 && magic[0] == 'P' && magic[1] == 'K' && magic[2] == 3 && magic[3] == 4;
+}
+
 std::unique_ptr<Reader> open(const std::string& path) {
   // Looked at before it is opened: opening a FIFO would wait for a writer.
   struct stat st {};
@@ -79,10 +86,7 @@ std::unique_ptr<Reader> open(const std::string& path) {
   if (!S_ISREG(st.st_mode)) throw CaptureError(path + ": not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CaptureError(path + ": cannot open the capture for reading: " + std::strerror(errno));
-  std::array<char, 4> magic{};
-  in.read(magic.data(), magic.size());
-  const bool zip = in.gcount() == 4 && magic[0] == 'P' && magic[1] == 'K' && magic[2] == 3 && magic[3] == 4;
-  if (zip) return open_sigrok(path);
+  if (starts_like_zip(path)) return open_sigrok(path);
   std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".csv") return open_csv(path);

@@ -89,6 +89,9 @@ class Reader {
 // (.csv). Throws CaptureError naming the file when it cannot be read or is of no known format.
 std::unique_ptr<Reader> open(const std::string& path);
 
+// Whether the file begins like a zip archive (a sigrok session): its first local header's "PK\3\4".
+bool starts_like_zip(const std::string& path);
+
 // Readers of each format (open() picks one of them).
 std::unique_ptr<Reader> open_vcd(const std::string& path);
 std::unique_ptr<Reader> open_sigrok(const std::string& path);

@@ -44,14 +44,6 @@ bool whole_number(const std::string& s, std::uint64_t& out) {
   return !s.empty() && ec == std::errc() && p == s.data() + s.size();
 }
 
-// A zip's first local header begins with "PK\3\4".
-bool starts_like_zip(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::array<char, 4> magic{};
-  in.read(magic.data(), magic.size());
-  return in.gcount() == 4 && magic[0] == 'P' && magic[1] == 'K' && magic[2] == 3 && magic[3] == 4;
-}
-
 std::string zip_message(int code) {
   zip_error_t error;
   zip_error_init_with_code(&error, code);

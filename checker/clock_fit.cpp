@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "endatsim/protocol/timing.hpp"
+
 namespace endatsim::checker {
 
 FittedFrequency fit_frequency(const std::vector<Time>& rising) {
-  const std::int64_t m = std::min<std::int64_t>(static_cast<std::int64_t>(rising.size()) - 1, kMaxFitEdges);
-  const Time origin = rising[1];
-  const auto y = [&](std::int64_t i) { return __int128{(rising[static_cast<std::size_t>(i + 1)] - origin).count()}; };
+  constexpr std::size_t kFirst = protocol::frame_position::edge_index(protocol::frame_position::kFirstSteadyRise);
+  const std::int64_t m = std::min<std::int64_t>(static_cast<std::int64_t>(rising.size() - kFirst), kMaxFitEdges);
+  const Time origin = rising[kFirst];
+  const auto y = [&](std::int64_t i) { return __int128{(rising[kFirst + static_cast<std::size_t>(i)] - origin).count()}; };
   __int128 sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (std::int64_t i = 0; i < m; ++i) {
     sx += i;

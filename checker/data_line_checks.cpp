@@ -104,7 +104,7 @@ void TimingChecker::on_encoder_driver(std::uint64_t enabled) {
     }
     // Read from FE9, after which the master has released DATA; the alternative reading starts
     // at FE10 and would allow one more period.
-    const Time t_oe = now - current_.falling[turnaround - 1];
+    const Time t_oe = now - current_.falling[position::edge_index(turnaround)];
     report_unless_passed(at_most(t_oe, period, params_.resolution),
         {.check = std::string(check::kDriverOn),
          .spec = "2.3.2 t_OE (clock low to data active)",
@@ -174,11 +174,11 @@ void TimingChecker::first_start_bit() {
 void TimingChecker::start_bit_from_decoder(unsigned clock) {
   refresh_wire_header();
   start_clock_ = word_start_clock_ = clock;
-  if (params_.round_trip_observable && clock <= master_rising_.size() && last_data_rise_ > master_rising_[clock - 1]) {
-    const StartBitInFlight s{last_data_rise_, master_rising_[clock - 1], current_.header.index, clock,
+  if (params_.round_trip_observable && clock <= master_rising_.size() && last_data_rise_ > master_rising_[position::edge_index(clock)]) {
+    const StartBitInFlight s{last_data_rise_, master_rising_[position::edge_index(clock)], current_.header.index, clock,
                              current_.header.compensated, current_.header.t_d_used,
                              sim::period_of(current_.header.f_c), measures_delay(current_.header)};
-    check_data_delay(s, last_data_rise_ - master_rising_[clock - 1]);
+    check_data_delay(s, last_data_rise_ - master_rising_[position::edge_index(clock)]);
   }
   if (current_.header.payload_bits != 0) {
     check_memory_access_time();
@@ -192,7 +192,7 @@ void TimingChecker::start_bit_from_decoder(unsigned clock) {
 // first rising edge after its calculation), so that edge must come within t_cal max of FE1.
 void TimingChecker::check_calculation_time_maximum() {
   judge(protocol::check::row_index(check::kCalculationTime));
-  const Time t_cal = current_.rising[start_clock_ - 1] - current_.fe1;
+  const Time t_cal = current_.rising[position::edge_index(start_clock_)] - current_.fe1;
   const Time bound = limit::kCalculationTimeMax + sim::period_of(current_.header.f_c);
   report_unless_passed(at_most(t_cal, bound, params_.resolution),
       {.check = std::string(check::kCalculationTime),
@@ -258,7 +258,7 @@ void TimingChecker::check_memory_access_time() {
   const unsigned last_payload = position::kTurnaround - 1 + current_.header.payload_bits;
   if (start_clock_ <= last_payload) return;
   judge(protocol::check::row_index(check::kMemoryAccess));
-  const Time t_ac = current_.rising[start_clock_ - 1] - current_.rising[last_payload - 1];
+  const Time t_ac = current_.rising[position::edge_index(start_clock_)] - current_.rising[position::edge_index(last_payload)];
   const Time bound = limit::kMemoryAccessMax + sim::period_of(current_.header.f_c);
   report_unless_passed(at_most(t_ac, bound, params_.resolution),
       {.check = std::string(check::kMemoryAccess),
@@ -281,7 +281,7 @@ void TimingChecker::note_start_bit_for_t_d() {
   if (clock > master_rising_.size()) return;  // an edge the master never sent (a glitch at the encoder pins)
   const auto& lp = line_.params();
   start_bits_in_flight_.push_back({kernel_.now() + lp.cable_delay() + lp.master.receiver_delay,
-                                   master_rising_[clock - 1], current_.header.index + word_, clock,
+                                   master_rising_[position::edge_index(clock)], current_.header.index + word_, clock,
                                    current_.header.compensated, current_.header.t_d_used,
                                    sim::period_of(current_.header.f_c), word_ == 0 && measures_delay(current_.header)});
   drop_given_up_start_bits();
@@ -500,7 +500,7 @@ void TimingChecker::check_start_bit_polling(const PinFrame& f) {
   }
   const unsigned last_payload = position::kTurnaround - 1 + f.header.payload_bits;
   if (f.rising.size() <= last_payload) return;  // the clock stopped inside the payload: clock_count says so
-  judge_polling(f, f.rising[last_payload - 1],
+  judge_polling(f, f.rising[position::edge_index(last_payload)],
                 {check::kMemoryAccess, "2.3.2 t_ac (start-bit polling through the memory access)", "t_ac",
                  encoder_.t_ac, limit::kMemoryAccessMax});
 }

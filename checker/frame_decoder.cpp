@@ -13,6 +13,7 @@ namespace endatsim::checker {
 namespace {
 
 namespace position = protocol::frame_position;
+using N = protocol::AdditionalDataNumber;
 using MC = protocol::ModeCommand;
 
 // The CRC over a word's bits between its first bit (start bit or leading LOW) and its CRC: in
@@ -98,7 +99,7 @@ void FrameDecoder::begin_frame(Time t) {
 
 void FrameDecoder::end_frame() {
   // 2.7: a reset ends every selection of additional data.
-  if (frame_.command == MC::EncoderReceiveReset) selected_[0] = selected_[1] = false;
+  if (frame_.command == MC::EncoderReceiveReset) selected_.clear();
   follow_parameter_reads();
   finished_.push_back(frame_);
   in_frame_ = false;
@@ -256,7 +257,9 @@ void FrameDecoder::learn_width(unsigned bits) {
   width_learnt_at_ = frame_.index;
 }
 
-unsigned FrameDecoder::expected_additional_data() const { return (selected_[0] ? 1U : 0U) + (selected_[1] ? 1U : 0U); }
+unsigned FrameDecoder::expected_additional_data() const {
+  return (selected_[N::One] ? 1U : 0U) + (selected_[N::Two] ? 1U : 0U);
+}
 
 // The encoder drives LOW after the turnaround until its answer is ready; the start bit is the
 // first HIGH after that LOW (2.3). With a continuous clock the next word follows the same way.
@@ -328,8 +331,8 @@ void FrameDecoder::decode_answer(unsigned last_clock) {
   const auto& info = protocol::info(*frame_.command);
   const bool additional_data = info.answer == protocol::AnswerFormat::Position && info.version == protocol::EndatVersion::V2_2;
   if (additional_data) {  // what the encoder sent tells what is selected
-    selected_[0] = selected_[1] = false;
-    for (const auto& d : frame_.additional_data) selected_[d.additional_data_2() ? 1 : 0] = true;
+    selected_.clear();
+    for (const auto& d : frame_.additional_data) selected_[d.number()] = true;
   }
   if (info.supplement) {
     // The encoder releases DATA on the rising edge after its last bit's slot; the master sends
@@ -353,8 +356,7 @@ void FrameDecoder::note_selection() {
   if (frame_.command != MC::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
   const auto mrs = protocol::payload_address(*frame_.supplement);
   if (!protocol::selects_additional_data(mrs)) return;
-  const unsigned which = protocol::is_additional_data_2(protocol::information_of_mrs(mrs)) ? 1 : 0;
-  selected_[which] = mrs != protocol::kStopAdditionalData1 && mrs != protocol::kStopAdditionalData2;
+  selected_[protocol::additional_data_number(protocol::information_of_mrs(mrs))] = !protocol::stops_additional_data(mrs);
 }
 
 }  // namespace endatsim::checker

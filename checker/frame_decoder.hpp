@@ -43,8 +43,8 @@ struct DecodedDatum {
   std::uint16_t data = 0;
   bool crc_ok = false;
   bool busy() const { return (status & protocol::AdditionalDataStatus::kBusy) != 0; }
-  bool additional_data_2() const {
-    return protocol::is_additional_data_2(
+  protocol::AdditionalDataNumber number() const {
+    return protocol::additional_data_number(
         static_cast<protocol::Information>(status & protocol::AdditionalDataStatus::kInformation));
   }
 };
@@ -108,8 +108,6 @@ class FrameDecoder {
   const WireFrame* current() const { return in_frame_ ? &frame_ : nullptr; }
   // Frames that ended since the last call.
   std::vector<WireFrame> take_finished();
-  // Additional data 1 and 2 as the selections seen so far leave them (2.4.2.2).
-  bool selected(unsigned which) const { return selected_[which]; }
   // The position's width the decoder reads answers with: as declared, until a read of word 13
   // shows the encoder's own (3.5.6) or a reset activates a written one.
   unsigned position_bits() const { return params_.position_bits; }
@@ -162,7 +160,7 @@ class FrameDecoder {
   protocol::SupplementStart supplement_start_;
   bool seen_low_ = false;  // the LOW before the encoder's start bit
   protocol::Layout layout_{{}};
-  bool selected_[2] = {false, false};
+  protocol::PerAdditionalData<bool> selected_;
   std::optional<std::uint8_t> area_;  // MRS code of the memory area selected last
   std::optional<std::uint64_t> width_learnt_at_;
   std::optional<unsigned> written_width_;  // word 13 written, active after the next reset

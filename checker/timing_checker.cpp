@@ -38,6 +38,7 @@ using sim::format_frequency;
 using sim::format_time;
 
 namespace limit = protocol::limit;
+namespace position = protocol::frame_position;
 
 }  // namespace
 
@@ -459,13 +460,13 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
       const WireFrame* w = decoder_.current();
       if (w != nullptr && w->start_bit_clock != 0) start_bit_from_decoder(w->start_bit_clock);
     }
-    if (wires_only_ && !recovery_checked_ && current_.rising.size() == protocol::frame_position::kLastModeBit + 1) {
+    if (wires_only_ && !recovery_checked_ && current_.rising.size() == position::kLastModeBit + 1) {
       recovery_checked_ = true;
       refresh_wire_header();
       check_recovery(current_);
     }
     // 2.3.3: a frame that carries a mode command is a request.
-    if (wires_only_ && current_.rising.size() == protocol::frame_position::kLastModeBit) {
+    if (wires_only_ && current_.rising.size() == position::kLastModeBit) {
       power_on_request(current_.header.index, current_.fe1);
       wire_request_seen_ = true;
     }
@@ -517,7 +518,7 @@ void TimingChecker::begin_wire_frame(Time now) {
     if (last_wire_ && last_wire_->index == current_.header.index && last_wire_->command) {
       const WireFrame& w = *last_wire_;
       const auto ai1 = std::find_if(w.additional_data.begin(), w.additional_data.end(),
-                                    [](const DecodedDatum& d) { return !d.additional_data_2(); });
+                                    [](const DecodedDatum& d) { return d.number() == protocol::AdditionalDataNumber::One; });
       const bool data_ok = std::all_of(w.additional_data.begin(), w.additional_data.end(),
                                        [](const DecodedDatum& d) { return d.crc_ok; });
       if (w.answer_complete && w.crc_ok) settings_.on_frame(*w.command, w.payload, w.supplement);
@@ -569,7 +570,7 @@ void TimingChecker::refresh_wire_header() {
       h.f_c = fit.hertz();
       h.compensated = fit.above(limit::kFcMaxWithoutCompensation, params_.f_c_tolerance_ppm);
     }
-  } else if (rising.size() == 2 && rising[1] > rising[0]) {
+  } else if (rising.size() == 2 && rising[1] > rising[0]) {  // RE1 and RE2 only: one period
     h.f_c = sim::frequency_of(rising[1] - rising[0]);
     h.compensated = h.f_c > limit::kFcMaxWithoutCompensation;
   }
@@ -595,7 +596,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   if (fit.num <= 0) return;
   const sim::Hertz fc = fit.hertz();
   const std::int64_t tol = params_.f_c_tolerance_ppm;
-  const Time at = f.rising[1];
+  const Time at = f.rising[position::edge_index(position::kFirstSteadyRise)];
   judge(f.header.measurement ? protocol::check::row_index(check::kMeasurementClock) : protocol::check::row_index(check::kClockFrequency));
   if (measures_delay(f.header)) measurement_seen_ = true;
   const auto note_range = [&](std::string_view row, sim::Hertz lo, sim::Hertz hi) {
@@ -699,7 +700,7 @@ void TimingChecker::check_frequency_for_cable(const PinFrame& f, const FittedFre
   report({.check = std::string(check::kClockFrequency),
           .spec = "2.1.1 note 4, Figure 2 (without delay compensation: f_c <= 1 / (2 t_D(L)))",
           .where = ObservationPoint::EncoderPins,
-          .time = f.rising[1],
+          .time = f.rising[position::edge_index(position::kFirstSteadyRise)],
           .frame = f.header.index,
           .clock = std::nullopt,
           .measured = format_frequency(fc) + " over " + format_length(cable),
@@ -716,7 +717,7 @@ void TimingChecker::check_frequency_for_cable(const PinFrame& f, const FittedFre
 void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedFrequency& fit) {
   const sim::Hertz fc = fit.hertz();
   const std::int64_t tol = params_.f_c_tolerance_ppm;
-  const Time at = f.rising[1];
+  const Time at = f.rising[position::edge_index(position::kFirstSteadyRise)];
   const auto exceeds = [&](sim::Hertz bound, std::string spec, std::string message) {
     report({.check = std::string(check::kClockFrequency),
             .spec = std::move(spec),

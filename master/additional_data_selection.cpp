@@ -6,29 +6,30 @@
 
 namespace endatsim::master {
 
+using N = protocol::AdditionalDataNumber;
+
 void AdditionalDataSelection::accepted(const FrameResult& f) {
   if (f.command == protocol::ModeCommand::EncoderReceiveReset) {
-    mrs_ = {};
+    mrs_.clear();
     return;
   }
   if (f.command != protocol::ModeCommand::EncoderSendPositionValuesAndSelectionOfMemoryArea) return;
   const auto mrs = protocol::payload_address(*f.supplement);
   if (!protocol::selects_additional_data(mrs)) return;
-  const unsigned which = protocol::is_additional_data_2(protocol::information_of_mrs(mrs)) ? 1 : 0;
-  const bool stop = mrs == protocol::kStopAdditionalData1 || mrs == protocol::kStopAdditionalData2;
-  mrs_[which] = stop ? std::nullopt : std::optional{mrs};
+  const N which = protocol::additional_data_number(protocol::information_of_mrs(mrs));
+  mrs_[which] = protocol::stops_additional_data(mrs) ? std::nullopt : std::optional{mrs};
 }
 
 std::optional<protocol::Information> AdditionalDataSelection::additional_data_1() const {
-  if (!mrs_[0]) return std::nullopt;
-  return protocol::information_of_mrs(*mrs_[0]);
+  if (!mrs_[N::One]) return std::nullopt;
+  return protocol::information_of_mrs(*mrs_[N::One]);
 }
 
 std::vector<std::uint8_t> AdditionalDataSelection::take() {
   std::vector<std::uint8_t> codes;
-  for (unsigned i : {1U, 0U})
-    if (mrs_[i]) codes.push_back(*mrs_[i]);
-  mrs_ = {};
+  for (const N which : {N::Two, N::One})
+    if (mrs_[which]) codes.push_back(*mrs_[which]);
+  mrs_.clear();
   return codes;
 }
 

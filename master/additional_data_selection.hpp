@@ -19,13 +19,15 @@ class AdditionalDataSelection {
  public:
   // A frame the encoder accepted: a selection of additional data, a stop code, or a reset.
   void accepted(const FrameResult& f);
-  unsigned count() const { return (mrs_[0] ? 1U : 0U) + (mrs_[1] ? 1U : 0U); }
+  unsigned count() const {
+    return (mrs_[protocol::AdditionalDataNumber::One] ? 1U : 0U) + (mrs_[protocol::AdditionalDataNumber::Two] ? 1U : 0U);
+  }
   std::optional<protocol::Information> additional_data_1() const;
   // The MRS codes to select again, additional data 2 first; the selection is empty afterwards.
   std::vector<std::uint8_t> take();
 
  private:
-  std::array<std::optional<std::uint8_t>, 2> mrs_;  // of additional data 1 and 2
+  protocol::PerAdditionalData<std::optional<std::uint8_t>> mrs_;
 };
 
 }  // namespace endatsim::master

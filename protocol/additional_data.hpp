@@ -1,6 +1,7 @@
 // Additional data 1 and 2 (spec 2.3.5): information codes I4..I0 and the status byte, as data.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -95,6 +96,25 @@ const InformationInfo& info(Information code);
 std::optional<Information> information_from_key(std::string_view key);
 
 constexpr bool is_additional_data_2(Information i) { return static_cast<std::uint8_t>(i) >= 16; }
+
+// Additional data 1 and additional data 2 (2.3.5): which of them an information belongs to.
+enum class AdditionalDataNumber : std::uint8_t { One, Two };
+constexpr AdditionalDataNumber additional_data_number(Information i) {
+  return is_additional_data_2(i) ? AdditionalDataNumber::Two : AdditionalDataNumber::One;
+}
+
+// Something kept once for additional data 1 and once for additional data 2.
+template <class T>
+class PerAdditionalData {
+ public:
+  T& operator[](AdditionalDataNumber n) { return values_[static_cast<std::size_t>(n)]; }
+  const T& operator[](AdditionalDataNumber n) const { return values_[static_cast<std::size_t>(n)]; }
+  // Both back to T{} (nothing selected).
+  void clear() { values_ = {}; }
+
+ private:
+  std::array<T, 2> values_{};
+};
 // 2.4.2.2: the MRS code that selects `i`.
 constexpr std::uint8_t selection_mrs(Information i) { return static_cast<std::uint8_t>(0x40 | static_cast<std::uint8_t>(i)); }
 // The code an MRS code 0x40..0x5F selects.

@@ -97,5 +97,6 @@ constexpr bool is_endat22_mrs_code(std::uint8_t mrs) { return (mrs & 0xE0) == 0x
 constexpr bool selects_additional_data(std::uint8_t mrs) { return (mrs & 0xE0) == 0x40; }
 constexpr std::uint8_t kStopAdditionalData1 = 0x4F;
 constexpr std::uint8_t kStopAdditionalData2 = 0x5F;
+constexpr bool stops_additional_data(std::uint8_t mrs) { return mrs == kStopAdditionalData1 || mrs == kStopAdditionalData2; }
 
 }  // namespace endatsim::protocol

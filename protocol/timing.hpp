@@ -23,6 +23,9 @@ namespace endatsim::protocol {
 namespace frame_position {
 // FE1: the frame begins; the encoder releases DATA (t_z runs from here).
 inline constexpr unsigned kFrameStart = 1;
+// RE2: the first rising edge a whole clock period after the one before it; the first period of a
+// frame holds t_ST (2.3.2 note 8), so f_c is measured from RE2 on.
+inline constexpr unsigned kFirstSteadyRise = 2;
 // FE2: the master drives DATA (the dummy bit before the mode command, 2.3).
 inline constexpr unsigned kMasterDrives = 2;
 // RE3 .. RE8: the encoder takes the six mode bits M2 M1 M0 (M2) (M1) (M0) (2.3).
@@ -35,6 +38,9 @@ inline constexpr unsigned kTurnaround = 9;
 // RE11: the earliest start bit; t_cal minimum 10.5/f_c counted from FE1 with a half-period
 // first LOW phase ends on it, so the row is judged as a count for any duty cycle or t_ST.
 inline constexpr unsigned kEarliestStartBit = 11;
+
+// Where edge n (FEn or REn, counted from 1 as the spec does) is kept in a frame's list of edges.
+constexpr std::size_t edge_index(unsigned n) { return n - 1; }
 }  // namespace frame_position
 
 // What the encoder model is by default where the spec leaves it to the encoder or its figures are

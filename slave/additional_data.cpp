@@ -17,15 +17,17 @@ bool is_position_value2(Information i) { return i >= I::PositionValue2Word1 && i
 
 }  // namespace
 
+using N = protocol::AdditionalDataNumber;
+
 AdditionalData::AdditionalData(const EncoderParams& params, const Memory& memory, const PositionSource& positions)
     : params_(params), memory_(memory), positions_(positions) {}
 
 // 2.4.2.2; the selection is acknowledged with its MRS code and block address 0 (I = 7).
 void AdditionalData::select(std::uint8_t mrs) {
-  const unsigned which = protocol::is_additional_data_2(protocol::information_of_mrs(mrs)) ? 1 : 0;
+  const N which = protocol::additional_data_number(protocol::information_of_mrs(mrs));
   mrs_ = mrs;
   block_ = 0;
-  if (mrs == protocol::kStopAdditionalData1 || mrs == protocol::kStopAdditionalData2) {
+  if (protocol::stops_additional_data(mrs)) {
     selection_[which].reset();
     type3_[which].reset();
     return;
@@ -33,7 +35,7 @@ void AdditionalData::select(std::uint8_t mrs) {
   const Information i = protocol::information_of_mrs(mrs);
   selection_[which] = i;
   type3_[which] = type3_cause(i, which);
-  if (which == 0 && selection_[1]) type3_[1] = type3_cause(*selection_[1], 1);
+  if (which == N::One && selection_[N::Two]) type3_[N::Two] = type3_cause(*selection_[N::Two], N::Two);
 }
 
 void AdditionalData::acknowledge_mrs(std::uint8_t mrs, std::uint8_t block) {
@@ -48,10 +50,8 @@ void AdditionalData::acknowledge_memory_access(std::uint8_t address, std::uint16
 
 void AdditionalData::restart() {
   asynchronous_time_delay_ = 0;
-  selection_[0].reset();
-  selection_[1].reset();
-  type3_[0].reset();
-  type3_[1].reset();
+  selection_.clear();
+  type3_.clear();
   test_port_ = 0;
   sensor_address_ = 0;
   diagnosis_index_ = 0;
@@ -59,17 +59,17 @@ void AdditionalData::restart() {
 
 void AdditionalData::append(std::vector<std::uint8_t>& answer, std::vector<std::uint8_t>& statuses, Time frame_start,
                             std::uint64_t true_position, bool busy) {
-  if (selection_[1]) append_datum(answer, statuses, 1, frame_start, true_position, busy);
-  if (selection_[0]) append_datum(answer, statuses, 0, frame_start, true_position, busy);
+  for (const N which : {N::Two, N::One})
+    if (selection_[which]) append_datum(answer, statuses, which, frame_start, true_position, busy);
 }
 
 void AdditionalData::append_datum(std::vector<std::uint8_t>& answer, std::vector<std::uint8_t>& statuses,
-                                  unsigned which, Time frame_start, std::uint64_t true_position, bool busy) {
+                                  N which, Time frame_start, std::uint64_t true_position, bool busy) {
   const Information selected = *selection_[which];
   Information code = selected;
   std::uint16_t data = 0;
-  if (type3_[which]) code = which == 0 ? I::Type3Error1 : I::Type3Error2;  // A2 type III
-  else if (answers_nop(selected)) code = which == 0 ? I::Nop1 : I::Nop2;   // A2 type IV
+  if (type3_[which]) code = which == N::One ? I::Type3Error1 : I::Type3Error2;  // A2 type III
+  else if (answers_nop(selected)) code = which == N::One ? I::Nop1 : I::Nop2;   // A2 type IV
   else data = content(selected, frame_start, true_position);
   const std::uint8_t status = status_byte(code, busy);
   statuses.push_back(status);
@@ -86,18 +86,18 @@ bool AdditionalData::answers_nop(Information i) const {
          (is_position_value2(i) && !(positions_.valid() && positions_.absolute_known()));
 }
 
-std::optional<ErrorCause> AdditionalData::type3_cause(Information i, unsigned which) const {
+std::optional<ErrorCause> AdditionalData::type3_cause(Information i, N which) const {
   const auto& code = protocol::info(i);
   if (!code.selectable) return ErrorCause::ImpermissibleAdditionalData;  // A2 cause 13
   if (code.support_bit) {
-    const auto support = memory_.endat22_word(which == 0 ? word::kAdditionalData1Support : word::kAdditionalData2Support);
+    const auto support = memory_.endat22_word(which == N::One ? word::kAdditionalData1Support : word::kAdditionalData2Support);
     if (((support >> *code.support_bit) & 1U) == 0) return ErrorCause::UnsupportedAdditionalData;  // cause 14
   }
   // A2 cause 15 (interpretation): position value 2 requested through both additional data.
   const bool pos2_in_ai2 = i >= I::AsynchronousPositionWord1 && i <= I::AsynchronousPositionWord3 &&
                            (memory_.endat22_word(word::kAdditionalData2Support) & protocol::kPositionValue2InAdditionalData2) != 0;
-  const bool pos2_in_ai1 = selection_[0] && is_position_value2(*selection_[0]);
-  if (which == 1 && pos2_in_ai2 && pos2_in_ai1) return ErrorCause::DuplicateAdditionalData;
+  const bool pos2_in_ai1 = selection_[N::One] && is_position_value2(*selection_[N::One]);
+  if (which == N::Two && pos2_in_ai2 && pos2_in_ai1) return ErrorCause::DuplicateAdditionalData;
   return std::nullopt;
 }
 

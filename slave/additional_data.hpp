@@ -21,8 +21,8 @@ class AdditionalData {
   // The three belong to the encoder and outlive this part.
   AdditionalData(const EncoderParams& params, const Memory& memory, const PositionSource& positions);
 
-  // What additional data 1 (which = 0) or 2 (which = 1) carries; none: not selected.
-  std::optional<Information> selected(unsigned which) const { return selection_[which]; }
+  // What additional data 1 or 2 carries; none: not selected.
+  std::optional<Information> selected(protocol::AdditionalDataNumber which) const { return selection_[which]; }
   // 2.4.2.2: an MRS code 40h .. 5Fh selects an information or stops additional data 1 or 2.
   void select(std::uint8_t mrs);
   // I = 7: the MRS code and block address as acknowledged (inverted after an error, A2 type II).
@@ -44,9 +44,9 @@ class AdditionalData {
               std::uint64_t true_position, bool busy);
 
  private:
-  void append_datum(std::vector<std::uint8_t>& answer, std::vector<std::uint8_t>& statuses, unsigned which,
+  void append_datum(std::vector<std::uint8_t>& answer, std::vector<std::uint8_t>& statuses, protocol::AdditionalDataNumber which,
                     Time frame_start, std::uint64_t true_position, bool busy);
-  std::optional<protocol::ErrorCause> type3_cause(Information i, unsigned which) const;
+  std::optional<protocol::ErrorCause> type3_cause(Information i, protocol::AdditionalDataNumber which) const;
   bool answers_nop(Information i) const;
   std::uint8_t status_byte(Information i, bool busy) const;
   std::uint16_t content(Information i, Time frame_start, std::uint64_t true_position);
@@ -57,8 +57,8 @@ class AdditionalData {
   const EncoderParams& params_;
   const Memory& memory_;
   const PositionSource& positions_;
-  std::optional<Information> selection_[2];
-  std::optional<protocol::ErrorCause> type3_[2];  // A2: answered with I = 15 / 31 until reselected
+  protocol::PerAdditionalData<std::optional<Information>> selection_;
+  protocol::PerAdditionalData<std::optional<protocol::ErrorCause>> type3_;  // A2: answered with I = 15 / 31 until reselected
   std::uint8_t mrs_ = 0, block_ = 0;              // I = 7
   std::uint8_t test_port_ = 0;                    // I = 8; forced dynamic sampling (3.5.3)
   std::uint8_t memory_address_ = 0;               // I = 5 / 6

@@ -31,7 +31,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
       memory_((params.validate(), params.memory.value_or(default_memory_image(params)))),
       positions_(params_, memory_), additional_data_(params_, memory_, positions_),
       errors_(params_, memory_, positions_, additional_data_), eib_(params_, memory_),
-      access_(kernel, memory_, additional_data_, *this),
+      access_(kernel, memory_, additional_data_, *this), commands_(params_, memory_, access_, eib_, bus_),
       driver_(kernel, pins_, params.output_delay),
       recovery_timer_(kernel, sim::bind<&Encoder::on_recovery_time_elapsed>(this)),
       end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
@@ -92,7 +92,7 @@ void Encoder::begin_frame() {
   clock_ = 1;
   mode_bits_ = 0;
   command_ = nullptr;
-  pending_ = {};
+  commands_.forget_pending();
   answer_.clear();
   EncoderFrame f;
   f.start = kernel_.now();
@@ -259,7 +259,7 @@ void Encoder::answer_position() {
   // 2.3.2: t_cal runs from FE1.
   answer_.not_before(params_.earliest_start_bit_clock, f.start + params_.t_cal_for(command_->version, energy_saving));
   if (command_->answer == protocol::AnswerFormat::TestValues) {
-    const auto it = params_.sensors.test_values.find(test_port_21_);
+    const auto it = params_.sensors.test_values.find(commands_.test_port());
     answer_.load(protocol::encode_test_values(errors_.error_message_1(),
                                               it == params_.sensors.test_values.end() ? 0 : it->second, params_.crc));
     return;
@@ -280,87 +280,15 @@ void Encoder::answer_position() {
 void Encoder::answer_parameter_frame() {
   EncoderFrame& f = frames_.last();
   f.payload = received_.value();
-  const auto address = protocol::payload_address(received_.value());
-  const auto parameter = protocol::payload_parameter(received_.value());
-  std::uint16_t echo = parameter;
-  std::optional<ErrorCause> error;
-  Time t_ac{0};
-  const bool memory_access = command_->command != MC::EncoderReceiveTestCommand &&
-                             command_->command != MC::EncoderReceiveCommunicationCommand;
-  const bool selection = command_->command == MC::SelectionOfMemoryArea;
-  const bool parameter_access = selection || command_->command == MC::EncoderReceiveParameters ||
-                                command_->command == MC::EncoderSendParameters;
-  const auto area = selection ? protocol::memory_area_from_mrs(address)
-                              : access_.selection() ? std::optional{access_.selection()->area} : std::nullopt;
-  if (const auto refused = parameter_access ? eib_.refuses(area) : std::nullopt) {
-    error = refused;  // A2 cause 5; a reset still works: it completes the commissioning
-  } else if (transmission_incomplete_) {
-    // A2 cause 3: a transmission was not completed; "the error handling will be transferred with
-    // the next query", the first that has an acknowledgment to carry it. The access is discarded.
-    error = ErrorCause::TransmissionNotCompleted;
-    transmission_incomplete_ = false;
-  } else if (memory_access && busy()) {
-    // 2.3.1 note 1: a 2.1 access or reset with Busy = 1 gets type II; A2 cause 8 names it ("with
-    // still set active busy bit").
-    error = ErrorCause::ImpermissibleAddress;
-  } else {
-    switch (command_->command) {
-      case MC::SelectionOfMemoryArea:  // 2.4.1
-        error = memory_.check_selection(address, 0, false);
-        pending_ = {Pending::Kind::Select, {protocol::memory_area_from_mrs(address).value_or(MemoryArea{}), 0}, address,
-                    parameter};
-        t_ac = params_.t_ac_read;
-        break;
-      case MC::EncoderReceiveParameters:  // 2.6
-        error = access_.check_write(address, parameter);
-        pending_ = {Pending::Kind::Write, access_.selection().value_or(Selection{}), address, parameter};
-        t_ac = params_.t_ac_write;
-        break;
-      case MC::EncoderSendParameters:  // 2.5
-        if (const auto read = access_.read(address)) echo = read.value;
-        else error = read.error;
-        t_ac = params_.t_ac_read;
-        break;
-      case MC::EncoderReceiveReset:  // 2.7
-        pending_ = {Pending::Kind::Reset, {}, address, parameter};
-        break;
-      case MC::EncoderReceiveTestCommand:  // 2.8
-        test_port_21_ = address;
-        break;
-      case MC::EncoderReceiveCommunicationCommand: {  // 2.10
-        using Instructions = BusAddressing::Reaction::Instructions;
-        const auto own = static_cast<std::uint8_t>(memory_.operating_parameter(word::kEncoderAddress));
-        const auto r = bus_.communication_command(address, parameter, own, params_.communication_command_permitted);
-        error = r.error;
-        if (r.silent) {
-          state_ = State::Type1;  // not addressed: stays silent
-          return;
-        }
-        if (r.instructions == Instructions::TakeNow)
-          memory_.write({MemoryArea::OperatingParameters, 0}, word::kInstructions, parameter);
-        else if (r.instructions == Instructions::TakeAfterAcknowledgment)
-          pending_ = {Pending::Kind::Write, {MemoryArea::OperatingParameters, 0}, word::kInstructions, parameter};
-        break;
-      }
-      default:
-        break;
-    }
+  const auto d = commands_.decide(command_->command, received_.value(), kernel_.now());
+  if (d.silent) {
+    state_ = State::Type1;  // 2.10: another encoder is addressed
+    return;
   }
-  if (error) {
-    // A2 type II: "the address or parameter is returned inverted". The high-impedance broadcast
-    // (cause 6) is still carried out: that is what it is for (2.10).
-    f.error = error;
-    if (error != ErrorCause::DataDriverHighImpedanceBroadcast) pending_ = {};
-  }
-  answer_.load(protocol::encode_parameter_frame(protocol::acknowledged_address(address, error.has_value()),
-                                                protocol::acknowledged_parameter(echo, error.has_value()), params_.crc));
+  if (d.error) f.error = d.error;
+  answer_.load(protocol::encode_parameter_frame(d.address, d.parameter, params_.crc));
   state_ = State::Answer;
-  if (!error && pending_.kind == Pending::Kind::Write)
-    access_.begin_nvm_write(pending_.selection, pending_.address, pending_.value, kernel_.now() + t_ac);
-  const bool in_frame = params_.t_ac_placement == MemoryAccessPlacement::InFrame;
-  answer_.not_before(params_.earliest_start_bit_clock + protocol::kPayloadBits,
-                     kernel_.now() + (in_frame && !error ? t_ac : Time::zero()));
-  if (!in_frame && !error && memory_access) access_.busy_until(kernel_.now() + t_ac);
+  answer_.not_before(params_.earliest_start_bit_clock + protocol::kPayloadBits, kernel_.now() + d.start_delay);
 }
 
 void Encoder::emit_answer_bit() {
@@ -484,24 +412,26 @@ void Encoder::on_recovery_time_elapsed() {
 void Encoder::finish_frame() {
   EncoderFrame& f = frames_.last();
   // A 2.1 parameter frame that ends before its 8 + 16 bits are in (A2 cause 3).
-  if (state_ == State::Payload) transmission_incomplete_ = true;
+  if (state_ == State::Payload) commands_.transmission_cut_short();
   state_ = State::Idle;
   end_marker_timer_.cancel();
   bus_.frame_ended();
   drive(false);
   enable();
   readiness_.frame_ended(params_.t_r);
-  if (f.too_many_clocks && pending_.kind != Pending::Kind::None) {
+  using Pending = ParameterCommands::Pending;
+  const Pending pending = commands_.take_pending();
+  if (f.too_many_clocks && pending.kind != Pending::Kind::None) {
     f.error = ErrorCause::MrsFrameDisrupted;  // the access is discarded
     access_.discard_nvm_write();
     return;
   }
-  switch (pending_.kind) {
+  switch (pending.kind) {
     case Pending::Kind::Select:
-      access_.select(pending_.selection);
+      access_.select(pending.selection);
       break;
     case Pending::Kind::Write:
-      access_.write(pending_.selection, pending_.address, pending_.value);
+      access_.write(pending.selection, pending.address, pending.value);
       break;
     case Pending::Kind::Reset:
       reset();
@@ -509,7 +439,6 @@ void Encoder::finish_frame() {
     case Pending::Kind::None:
       break;
   }
-  pending_ = {};
 }
 
 void Encoder::reset() {
@@ -527,7 +456,7 @@ void Encoder::restart_state() {
   // 3.5.7: an EIB becomes the connected encoder at reset or power-on (EibActivation::Reset).
   commissioned(eib_.completes_at_reset());
   positions_.restart_reference_search(kernel_.now());
-  test_port_21_ = 0;
+  commands_.restart();
   readiness_.restart_settling(params_.unsettled_positions);
 }
 
@@ -559,7 +488,7 @@ void Encoder::power_interruption(Time duration) {
   state_ = State::Idle;
   recovery_timer_.cancel();
   end_marker_timer_.cancel();
-  pending_ = {};
+  commands_.forget_pending();
   restart_state();  // 2.7: a reset is "the same reaction as switching the power off and on"
   // 3.6.4: only switching the power off and on, with word 4 at 0000h, clears error bit 1.
   errors_.power_cycled();

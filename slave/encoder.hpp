@@ -25,6 +25,7 @@
 #include "endatsim/slave/frame_bits.hpp"
 #include "endatsim/slave/memory.hpp"
 #include "endatsim/slave/memory_access.hpp"
+#include "endatsim/slave/parameter_commands.hpp"
 #include "endatsim/slave/position_source.hpp"
 #include "endatsim/slave/data_driver.hpp"
 #include "endatsim/slave/readiness.hpp"
@@ -72,7 +73,7 @@ class Encoder final : private MemoryAccess::Client {
   bool started() const { return !readiness_.running_up(); }
   bool busy() const { return access_.busy(); }
   const Memory& memory() const { return memory_; }
-  std::optional<Information> additional_data_1() const { return additional_data_.selected(0); }
+  std::optional<Information> additional_data_1() const { return additional_data_.selected(protocol::AdditionalDataNumber::One); }
   // The transfer format in use: word 13 as activated (an EIB's changes at commissioning).
   unsigned position_bits() const { return positions_.position_bits(); }
   bool referenced() const { return positions_.reference_mark(); }  // RM (2.3.4.3); always for absolute encoders
@@ -99,13 +100,6 @@ class Encoder final : private MemoryAccess::Client {
   enum class State : std::uint8_t {
     Idle, Header, Payload, Answer, EndOfData, ContinuousGap, Type1, HandoverLevel, SupplementHunt, Supplement,
     SupplementDone
-  };
-  // A memory operation decided during a frame and carried out when it completes.
-  struct Pending {
-    enum class Kind : std::uint8_t { None, Select, Write, Reset } kind = Kind::None;
-    Selection selection;
-    std::uint8_t address = 0;
-    std::uint16_t value = 0;
   };
 
   void on_clock(std::uint64_t level);
@@ -148,6 +142,7 @@ class Encoder final : private MemoryAccess::Client {
   EibCommissioning eib_;
   MemoryAccess access_;
   BusAddressing bus_;
+  ParameterCommands commands_;  // 2.1 commands with 8 + 16 bits: decisions, test port, A2 cause 3
   DataDriver driver_;
   sim::Timer recovery_timer_;
   sim::Timer end_marker_timer_;
@@ -162,11 +157,6 @@ class Encoder final : private MemoryAccess::Client {
   SupplementStart supplement_start_;
   AnswerBits answer_;
   unsigned gap_low_bits_ = 0;
-  Pending pending_;
-
-  // Encoder state that outlives frames.
-  std::uint8_t test_port_21_ = 0;               // 2.8: port for "Encoder send test values"
-  bool transmission_incomplete_ = false;        // A2 cause 3, for the next acknowledgment
 
   sim::RecordLog<EncoderFrame> frames_{sim::RecordLog<EncoderFrame>::Keep::Recent};
 };

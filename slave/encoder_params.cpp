@@ -107,17 +107,17 @@ MemoryImage default_memory_image(const EncoderParams& p) {
   }
   m[word::kOrderingDesignation] = pm::encode_ordering_designation(v22 ? "EnDat22" : "EnDat01");  // 3.5.25
   // What the safety comparison of position value 2 needs (3.5.12, 3.5.18, 3.5.19): steps per
-  // revolution (rotary) or a 100 nm step (linear, a model default), 12 000 rpm or 120 m/min,
+  // revolution (rotary) or a measuring step (linear, a model default), the maximum velocity,
   // and the accuracy ranges of the spec's example (c1 = 40, a1 = 16 LSB) plus c2 = 1, a2 = 64 LSB
   // up to the maximum; a 2.2 encoder keeps them in words 11 .. 14 of its 2.2 area (65535 here).
+  using namespace image_default;
+  const bool linear = p.kind == EncoderKind::Linear;
   const unsigned singleturn = p.position_bits - p.multiturn_bits;
-  const auto steps = pm::encode_measuring_steps(
-      p.kind == EncoderKind::Linear || singleturn > 31 ? 100 : std::uint32_t{1} << singleturn);
+  const auto steps = pm::encode_measuring_steps(linear || singleturn > kStepsPerRevolutionBitsMax ? kLinearMeasuringStepNm
+                                                                                                  : std::uint32_t{1} << singleturn);
   m[word::kMeasuringSteps] = steps[0];
   m[word::kMeasuringSteps + 1] = steps[1];
-  m[word::kMaxVelocity] = p.kind == EncoderKind::Linear ? 120 : 12000;
-  // 3.5.19: the example's accuracy ranges; a 2.2 encoder keeps them in words 11 .. 14 of its 2.2 area.
-  using namespace image_default;
+  m[word::kMaxVelocity] = linear ? kMaxVelocityMetresPerMinute : kMaxVelocityRpm;
   m[word::kAccuracy] = v22 ? pm::kAccuracySeeEndat22 : pm::encode_accuracy_range(kAccuracyC1, kAccuracyA1);
   m[word::kAccuracy + 1] = v22 ? pm::kAccuracySeeEndat22 : pm::encode_accuracy_range(kAccuracyC2, kAccuracyA2);
   m[word::kSupportedErrors] = pm::kEveryErrorBit;

@@ -42,6 +42,12 @@ namespace image_default {
 inline constexpr unsigned kInterfaceVersion = 2;
 inline constexpr protocol::parameters::AddressRange kOemArea{0, 63};
 inline constexpr unsigned kAccuracyC1 = 40, kAccuracyA1 = 16, kAccuracyC2 = 1, kAccuracyA2 = 64;
+// A linear encoder's measuring step in nm (words 20/21, 3.5.12), and what a rotary encoder whose
+// steps per revolution do not fit words 20/21's 32 bits declares instead.
+inline constexpr std::uint32_t kLinearMeasuringStepNm = 100;
+inline constexpr unsigned kStepsPerRevolutionBitsMax = 31;
+// Word 32's maximum velocity (3.5.18): 12 000 rpm rotary, 120 m/min linear.
+inline constexpr std::uint16_t kMaxVelocityRpm = 12000, kMaxVelocityMetresPerMinute = 120;
 }  // namespace image_default
 
 // What the encoder puts on DATA after a mode command with a broken redundancy or one it does

@@ -1,7 +1,9 @@
 // The small parts the encoder and the master are built from, each on its own: the bits of a frame
 // (slave/frame_bits.hpp), the bounded frame log (sim/record_log.hpp), the master's operation queue
-// (master/operation.hpp), where a delay-measurement round began (master/delay_measurement.hpp) and
-// the frames that read the EnDat 2.2 area (master/startup.hpp).
+// (master/operation.hpp), where a delay-measurement round began (master/delay_measurement.hpp),
+// the frames that read the EnDat 2.2 area (master/startup.hpp), a busy wait's polls
+// (master/busy_polling.hpp) and the encoder's decisions on 2.1 parameter commands
+// (slave/parameter_commands.hpp).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -13,7 +15,10 @@
 #include "endatsim/protocol/error_handling.hpp"
 #include "endatsim/protocol/parameters.hpp"
 #include "endatsim/sim/record_log.hpp"
+#include "endatsim/slave/encoder_params.hpp"
 #include "endatsim/slave/frame_bits.hpp"
+#include "endatsim/slave/parameter_commands.hpp"
+#include "endatsim/slave/position_source.hpp"
 
 namespace endatsim {
 namespace {
@@ -198,6 +203,59 @@ TEST(BusyPolling, AWaitEndsWhenBusyIsResetOrCannotBeSeenAndTimesOutOnTheLastPoll
   EXPECT_EQ(polling.unreadable(), 2U);
   EXPECT_FALSE(polling.poll_ends_wait(poll(I::MemoryParameterLsb, true, O::Ok), true));
   EXPECT_EQ(polling.timeouts(), 1U);
+}
+
+// The encoder's decisions on 2.1 commands with 8 + 16 bits, without its frame engine.
+struct ParameterCommandsFixture : ::testing::Test {
+  struct NoClient : slave::MemoryAccess::Client {
+    void written(const slave::Selection&, std::uint8_t) override {}
+  };
+  sim::Kernel kernel;
+  slave::EncoderParams params;
+  slave::Memory memory{slave::default_memory_image(params)};
+  slave::PositionSource positions{params, memory};
+  slave::AdditionalData additional_data{params, memory, positions};
+  NoClient client;
+  slave::MemoryAccess access{kernel, memory, additional_data, client};
+  slave::EibCommissioning eib{params, memory};
+  slave::BusAddressing bus;
+  slave::ParameterCommands commands{params, memory, access, eib, bus};
+  using Kind = slave::ParameterCommands::Pending::Kind;
+  static std::uint32_t payload(std::uint8_t address, std::uint16_t parameter) { return protocol::make_payload(address, parameter); }
+};
+
+TEST_F(ParameterCommandsFixture, ASelectionIsAcknowledgedAndCarriedOutOnceWhenTheFrameCompletes) {
+  const auto mrs = protocol::mrs_of(protocol::MemoryArea::OperatingParameters);
+  const auto d = commands.decide(protocol::ModeCommand::SelectionOfMemoryArea, payload(mrs, 0x1234), kernel.now());
+  EXPECT_FALSE(d.error);
+  EXPECT_FALSE(d.silent);
+  EXPECT_EQ(d.address, mrs);  // 2.4.1: the MRS code and parameter echoed
+  EXPECT_EQ(d.parameter, 0x1234);
+  EXPECT_EQ(d.start_delay, params.t_ac_read);  // in frame: the start bit waits for t_ac
+  const auto p = commands.take_pending();
+  EXPECT_EQ(p.kind, Kind::Select);
+  EXPECT_EQ(p.selection.area, protocol::MemoryArea::OperatingParameters);
+  EXPECT_EQ(commands.take_pending().kind, Kind::None);
+}
+
+TEST_F(ParameterCommandsFixture, AFrameCutShortMakesTheNextAcknowledgmentATypeTwoErrorOnce) {
+  commands.transmission_cut_short();
+  const auto mrs = protocol::mrs_of(protocol::MemoryArea::OperatingParameters);
+  const auto d = commands.decide(protocol::ModeCommand::SelectionOfMemoryArea, payload(mrs, 0x1234), kernel.now());
+  EXPECT_EQ(d.error, protocol::ErrorCause::TransmissionNotCompleted);  // A2 cause 3
+  EXPECT_EQ(d.address, protocol::acknowledged_address(mrs, true));
+  EXPECT_EQ(d.parameter, protocol::acknowledged_parameter(0x1234, true));
+  EXPECT_EQ(d.start_delay, sim::Time::zero());
+  EXPECT_EQ(commands.take_pending().kind, Kind::None);  // the access is discarded
+  EXPECT_FALSE(commands.decide(protocol::ModeCommand::SelectionOfMemoryArea, payload(mrs, 0), kernel.now()).error);
+}
+
+TEST_F(ParameterCommandsFixture, TheTestCommandSetsThePortUntilARestart) {
+  EXPECT_EQ(commands.test_port(), 0);
+  EXPECT_FALSE(commands.decide(protocol::ModeCommand::EncoderReceiveTestCommand, payload(0x5A, 0), kernel.now()).error);
+  EXPECT_EQ(commands.test_port(), 0x5A);
+  commands.restart();
+  EXPECT_EQ(commands.test_port(), 0);
 }
 
 }  // namespace
