@@ -38,6 +38,7 @@
 #include <sys/stat.h>
 
 #include "endatsim/capture/queued_reader.hpp"
+#include "endatsim/sim/text.hpp"
 
 namespace endatsim::capture {
 namespace {
@@ -48,11 +49,7 @@ using sim::kPsPerSecond;
 constexpr std::array<const char*, 7> kSigrokUnits{"samples",     "milliseconds", "microseconds", "nanoseconds",
                                                   "picoseconds", "femtoseconds", "attoseconds"};
 
-std::string trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return std::string(s);
-}
+std::string trim(std::string_view s) { return std::string(sim::trim(s)); }
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -25,6 +25,7 @@
 #include <sys/stat.h>
 
 #include "endatsim/capture/capture.hpp"
+#include "endatsim/sim/text.hpp"
 
 namespace endatsim::capture {
 namespace {
@@ -32,16 +33,12 @@ namespace {
 using sim::kPsPerSecond;
 constexpr zip_uint64_t kMaxMetadata = 1 << 20;
 
-std::string trim(const std::string& s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
-}
+std::string trim(const std::string& s) { return std::string(sim::trim(s)); }
 
 bool whole_number(const std::string& s, std::uint64_t& out) {
-  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-  return !s.empty() && ec == std::errc() && p == s.data() + s.size();
+  const auto v = sim::whole_number(s);
+  if (v) out = *v;
+  return v.has_value();
 }
 
 std::string zip_message(int code) {

@@ -20,16 +20,16 @@ using sim::Time;
 // ("this encoder") and against the spec's envelope, what any compliant encoder may do (D297403
 // 2.3.2: t_m up to 30 us, t_cal up to 1 ms ...).
 struct EncoderDeclaration {
-  unsigned position_bits = 25;         // word 13 (the decoder's width for position answers)
-  Time output_delay = sim::ns(60);     // CLOCK in to DATA out inside the encoder (its share of t_D)
-  Time t_cal = sim::us(5);             // 2.3.2 note 7, word 39: the longest calculation time
+  unsigned position_bits = protocol::encoder_default::kPositionBits;  // word 13 (the decoder's width for position answers)
+  Time output_delay = protocol::encoder_default::kClockToData;  // CLOCK in to DATA out inside the encoder (its share of t_D)
+  Time t_cal = protocol::encoder_default::kCalculationTime;  // 2.3.2 note 7, word 39: the longest calculation time
   std::optional<Time> t_cal_22;        // ... for EnDat 2.2 mode commands where it differs
   std::optional<Time> t_cal_energy_saving;  // ... while energy-saving mode is on (3.6.5), if it differs
   std::optional<Time> t_ac;            // 2.3.2: the longest memory access time (<= 12 ms), if declared
   Time t_m = protocol::encoder_default::kRecoveryTime;  // 2.3.2 recovery time I, as declared (10 .. 30 us)
   std::optional<Time> t_m_short;       // 1.25 .. 3.75 us where word 3 may select it (3.4.4)
   bool short_t_m_selected = false;     // word 3 selected it before the capture or run began
-  Time t_r = sim::ns(500);             // 2.3.2 recovery time II
+  Time t_r = protocol::encoder_default::kRecoveryTime2;  // 2.3.2 recovery time II
   std::optional<Time> t_st_max;        // 2.3.2 t_ST maximum: "see encoder specifications"
   std::optional<Time> t_lo_max;        // 2.3.2 t_LO maximum: "see encoder specifications"
   std::optional<Hertz> f_c_max;        // word 25 (3.5.10): the encoder's highest clock
@@ -41,7 +41,7 @@ struct EncoderDeclaration {
 // What a cooperating master declares about itself: the rows that need it (sampling window,
 // t_D used, the delay-measurement procedure) are judged only with it.
 struct MasterDeclaration {
-  unsigned position_bits = 25;   // as configured (word 13)
+  unsigned position_bits = protocol::encoder_default::kPositionBits;  // as configured (word 13)
   Hertz f_c = sim::MHz(1);       // the intended clock
   Hertz f_e = 0;                 // 2.1.2 delay counter clock; 0: eight times f_c
   unsigned measurements = protocol::limit::kMeasurementsMin;  // 2.1.2 delay measurements averaged

@@ -254,7 +254,6 @@ std::optional<unsigned> FrameDecoder::position_format_word() const {
 void FrameDecoder::learn_width(unsigned bits) {
   params_.position_bits = bits;
   frame_.learnt_position_bits = bits;
-  width_learnt_at_ = frame_.index;
 }
 
 unsigned FrameDecoder::expected_additional_data() const {
@@ -321,11 +320,11 @@ void FrameDecoder::decode_answer(unsigned last_clock) {
   for (std::size_t at = layout_.width(); at + protocol::kAdditionalDatumBits <= bits_.size();
        at += protocol::kAdditionalDatumBits) {
     const auto word = std::span(bits_).subspan(at, protocol::kAdditionalDatumBits);
-    const auto v = protocol::additional_datum_layout().decode(word);
+    const auto r = protocol::decode_additional_datum(word);
     DecodedDatum d;
-    d.status = static_cast<std::uint8_t>(v[static_cast<std::size_t>(protocol::Field::Status)]);
-    d.data = static_cast<std::uint16_t>(v[static_cast<std::size_t>(protocol::Field::AdditionalData)]);
-    d.crc_ok = word[0] == 0 && crc_matches(word);
+    d.status = r.status;
+    d.data = r.data;
+    d.crc_ok = r.leading_low && crc_matches(word);
     frame_.additional_data.push_back(d);
   }
   const auto& info = protocol::info(*frame_.command);

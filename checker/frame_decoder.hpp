@@ -28,9 +28,9 @@ namespace endatsim::checker {
 using sim::Time;
 
 struct DecoderParams {
-  unsigned position_bits = 25;
+  unsigned position_bits = protocol::encoder_default::kPositionBits;
   // CLOCK edge at the encoder pins -> DATA edge at the encoder pins (receiver, logic, driver).
-  Time clock_to_data = sim::ns(60);
+  Time clock_to_data = protocol::encoder_default::kClockToData;
   // The encoder's recovery time I: a HIGH phase this long ends any frame (2.3.2).
   Time t_m = protocol::limit::kRecoveryTimeMin;
   // Rising edges the encoder lets pass after releasing DATA before it hunts for the
@@ -111,8 +111,6 @@ class FrameDecoder {
   // The position's width the decoder reads answers with: as declared, until a read of word 13
   // shows the encoder's own (3.5.6) or a reset activates a written one.
   unsigned position_bits() const { return params_.position_bits; }
-  // The frame (index) that set position_bits(): a read of word 13 or the reset after a write.
-  std::optional<std::uint64_t> width_learnt_at() const { return width_learnt_at_; }
 
  private:
   enum class State : std::uint8_t { Header, Payload, Hunt, Answer, MoreData, SupplementHunt, Supplement, Done };
@@ -162,7 +160,6 @@ class FrameDecoder {
   protocol::Layout layout_{{}};
   protocol::PerAdditionalData<bool> selected_;
   std::optional<std::uint8_t> area_;  // MRS code of the memory area selected last
-  std::optional<std::uint64_t> width_learnt_at_;
   std::optional<unsigned> written_width_;  // word 13 written, active after the next reset
   std::vector<WireFrame> finished_;
 };

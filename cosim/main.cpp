@@ -6,6 +6,7 @@
 #include <string>
 
 #include "endatsim/cosim/report.hpp"
+#include "endatsim/scenarios/exit_status.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/limits.hpp"
 #include "endatsim/scenarios/loader.hpp"
@@ -68,7 +69,7 @@ int run_bench(int argc, const char* const* argv, const std::function<void(Bench&
     bench_file = scenarios::load_scenario_file(o.bench, scenarios::ScenarioKind::Bench);
   } catch (const std::exception& e) {
     std::cerr << "endatsim: " << e.what() << std::endl;
-    return 2;
+    return scenarios::exit_status::kBadInput;
   }
   try {
     Bench bench(bench_file, o.bench_options);
@@ -76,7 +77,7 @@ int run_bench(int argc, const char* const* argv, const std::function<void(Bench&
     return report(bench.finish(), o.outputs, o.verbose, std::cout, std::cerr);
   } catch (const std::exception& e) {  // an output that cannot be opened, a model that cannot be connected
     std::cerr << "endatsim: " << e.what() << std::endl;
-    return 2;
+    return scenarios::exit_status::kBadInput;
   }
 }
 

@@ -1,12 +1,15 @@
 #include "endatsim/cosim/report.hpp"
 
 #include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/exit_status.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/junit.hpp"
 #include "endatsim/scenarios/output_file.hpp"
 #include "endatsim/scenarios/report.hpp"
 
 namespace endatsim::cosim {
+
+namespace exit_status = scenarios::exit_status;
 namespace {
 
 nlohmann::json reported_json(const std::vector<Reported>& reported) {
@@ -104,11 +107,11 @@ int report(const BenchResult& r, const OutputPaths& outputs, bool verbose, std::
     }
   } catch (const std::exception& e) {
     err << "endatsim: " << e.what() << std::endl;
-    return 2;
+    return exit_status::kBadInput;
   }
-  if (r.interrupted != 0) return 128 + r.interrupted;
-  if (!r.incomplete.empty()) return 3;
-  return r.passed() ? 0 : 1;
+  if (r.interrupted != 0) return exit_status::interrupted(r.interrupted);
+  if (!r.incomplete.empty()) return exit_status::kIncomplete;
+  return r.passed() ? exit_status::kPass : exit_status::kFail;
 }
 
 }  // namespace endatsim::cosim

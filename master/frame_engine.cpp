@@ -303,16 +303,14 @@ void FrameEngine::decode_answer() {
 
 // Additional data 2 and 1 after the position (2.3.5), each with its own CRC.
 void FrameEngine::decode_additional_data(bool& ok) {
-  using protocol::Field;
-  const auto ai_layout = protocol::additional_datum_layout();
   for (std::size_t at = layout_.width(); at < rx_bits_.size(); at += protocol::kAdditionalDatumBits) {
-    const auto v = ai_layout.decode(std::span(rx_bits_).subspan(at));
+    const auto r = protocol::decode_additional_datum(std::span(rx_bits_).subspan(at));
     AdditionalDatum d;
-    d.status = static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Status)]);
-    d.data = static_cast<std::uint16_t>(v[static_cast<std::size_t>(Field::AdditionalData)]);
-    d.crc_received = static_cast<std::uint8_t>(v[static_cast<std::size_t>(Field::Crc)]);
+    d.status = r.status;
+    d.data = r.data;
+    d.crc_received = r.crc;
     d.crc_expected = protocol::make_crc_norm(d.status, d.data, params_.crc.generator);
-    d.crc_ok = crc_passes(params_.crc, d.crc_received, d.crc_expected) && v[static_cast<std::size_t>(Field::LeadingLow)] == 0;
+    d.crc_ok = crc_passes(params_.crc, d.crc_received, d.crc_expected) && r.leading_low;
     ok = ok && d.crc_ok;
     frame_.additional_data.push_back(d);
   }

@@ -62,7 +62,7 @@ struct MasterParams {
   // A delay value set by hand instead of measured (compensation uses it from the first frame).
   std::optional<Time> fixed_t_d;
   DelayMeasurementParams measurement;
-  unsigned position_bits = 25;   // word 13 as the master has it configured
+  unsigned position_bits = protocol::encoder_default::kPositionBits;  // word 13 as the master has it configured
   // docs/model.md §5: one more clock pulse after the last bit (its falling edge samples the
   // last bit) — or none, sampling the last bit half a period after the last rising edge.
   bool extra_clock_after_last_bit = true;

@@ -13,7 +13,7 @@
 namespace endatsim::master {
 namespace {
 
-constexpr std::int64_t ps(Time t) { return t.count(); }
+using sim::row_bound;
 // The widest position the models take, and a range of positions or steps as wide.
 constexpr std::int64_t kPositionMax = (std::int64_t{1} << protocol::kPositionBitsMax) - 1;
 
@@ -29,34 +29,34 @@ const std::array kMaster{
     sim::Parameter<M>{"f_c", sim::FrequencyField<M>{&M::f_c}, M::kMinFc, M::kMaxFc, "2.3.2 note 4",
                       "The clock frequency of the frames (16 MHz is the model's limit; the checker judges the spec's).",
                       true},
-    sim::Parameter<M>{"t_st", &M::t_st, 0, ps(sim::ms(1)), "2.3.2 note 8",
+    sim::Parameter<M>{"t_st", &M::t_st, 0, row_bound(sim::ms(1)), "2.3.2 note 8",
                       "The first LOW phase stretched to this t_ST; 0: not stretched."},
-    sim::Parameter<M>{"jitter", &M::jitter, 0, ps(sim::us(100)), "",
+    sim::Parameter<M>{"jitter", &M::jitter, 0, row_bound(sim::us(100)), "",
                       "Peak edge jitter, uniform and seeded; below half the shorter clock phase."},
     sim::Parameter<M>{"delay_compensation", &M::delay_compensation, 0, 0, "2.1.2",
                       "Measure t_D and sample each bit t_D after its falling edge."},
-    sim::Parameter<M>{"fixed_t_d", &M::fixed_t_d, 0, ps(sim::us(10)), "2.1.2",
+    sim::Parameter<M>{"fixed_t_d", &M::fixed_t_d, 0, row_bound(sim::us(10)), "2.1.2",
                       "A delay set by hand instead of measured; compensation uses it from the first frame."},
     sim::Parameter<M>{"position_bits", &M::position_bits, 1, protocol::kPositionBitsMax, "3.5.6", "Word 13 as the master has it configured."},
     sim::Parameter<M>{"extra_clock_after_last_bit", &M::extra_clock_after_last_bit, 0, 0, "2.3",
                       "One more clock pulse after the last bit, whose falling edge samples it; false: the last bit is "
                       "sampled half a period after the last rising edge."},
-    sim::Parameter<M>{"t_m_wait", &M::t_m_wait, 0, ps(sim::ms(100)), "2.3.2",
+    sim::Parameter<M>{"t_m_wait", &M::t_m_wait, 0, row_bound(sim::ms(100)), "2.3.2",
                       "CLOCK held HIGH after a frame: at least the encoder's t_m."},
-    sim::Parameter<M>{"t_r_wait", &M::t_r_wait, 0, ps(sim::ms(100)), "2.3.2", "Then t_R before the next FE1."},
-    sim::Parameter<M>{"error_wait", &M::error_wait, 0, ps(sim::ms(100)), "A2",
+    sim::Parameter<M>{"t_r_wait", &M::t_r_wait, 0, row_bound(sim::ms(100)), "2.3.2", "Then t_R before the next FE1."},
+    sim::Parameter<M>{"error_wait", &M::error_wait, 0, row_bound(sim::ms(100)), "A2",
                       "The wait after an error handling (\"the maximum t_m of 30 us must be waited\")."},
-    sim::Parameter<M>{"reset_wait", &M::reset_wait, 0, ps(sim::ms(100)), "2.7",
+    sim::Parameter<M>{"reset_wait", &M::reset_wait, 0, row_bound(sim::ms(100)), "2.7",
                       "The wait after \"Encoder receive reset\" (the start-up routine of the German brochure, older edition, waits 50 ms)."},
-    sim::Parameter<M>{"t_b_wait", &M::t_b_wait, 0, ps(sim::ms(100)), "2.3.2",
+    sim::Parameter<M>{"t_b_wait", &M::t_b_wait, 0, row_bound(sim::ms(100)), "2.3.2",
                       "The wait before a 2.1 memory or parameter frame after the previous frame (t_b > 1 ms)."},
     sim::Parameter<M>{"adopt_word13", &M::adopt_word13, 0, 0, "3.5.6",
                       "The start-up routine reads word 13 and clocks that many position bits from then on."},
     sim::Parameter<M>{"startup_f_c", sim::FrequencyField<M>{&M::startup_f_c}, M::kMinFc, M::kMaxFc, "2.1.2",
                       "The clock of the start-up routine: before t_D is known only a slow clock is safe on a long cable."},
-    sim::Parameter<M>{"start_bit_timeout", &M::start_bit_timeout, 1, ps(sim::ms(100)), "2.3.2",
+    sim::Parameter<M>{"start_bit_timeout", &M::start_bit_timeout, 1, row_bound(sim::ms(100)), "2.3.2",
                       "Polling for the start bit gives up after this (t_cal max)."},
-    sim::Parameter<M>{"memory_access_timeout", &M::memory_access_timeout, 1, ps(sim::ms(100)), "2.3.2",
+    sim::Parameter<M>{"memory_access_timeout", &M::memory_access_timeout, 1, row_bound(sim::ms(100)), "2.3.2",
                       "2.1 parameter frames: polling after the 24 bits gives up after this (t_ac max + 1 ms)."},
     sim::Parameter<M>{"type1_detect_samples", &M::type1_detect_samples, 1, 64, "A2",
                       "HIGH samples after the turnaround without a LOW that mean a type I error handling."},
@@ -73,10 +73,10 @@ const std::array kMaster{
 
 using P = MasterParams::PowerOnSequence;
 const std::array kPowerOn{
-    sim::Parameter<P>{"t1_t2", &P::t1_t2, 0, ps(sim::ms(10'000)), "2.3.3",
+    sim::Parameter<P>{"t1_t2", &P::t1_t2, 0, row_bound(sim::ms(10'000)), "2.3.3",
                       "After switching on, CLOCK at a valid level (t1 >= 800 ms) and HIGH (t2 = 80 .. 120 ms)."},
-    sim::Parameter<P>{"pulse", &P::pulse, 1, ps(sim::ms(1)), "2.3.3", "Then at least one LOW pulse > 125 ns."},
-    sim::Parameter<P>{"t3", &P::t3, 0, ps(sim::ms(10'000)), "2.3.3",
+    sim::Parameter<P>{"pulse", &P::pulse, 1, row_bound(sim::ms(1)), "2.3.3", "Then at least one LOW pulse > 125 ns."},
+    sim::Parameter<P>{"t3", &P::t3, 0, row_bound(sim::ms(10'000)), "2.3.3",
                       "Then CLOCK HIGH for t3 = 380 .. 420 ms before the first request."},
 };
 
@@ -127,7 +127,7 @@ const std::array kSafety{
                       "The port address that forces error message 1 (the table lost a column)."},
     sim::Parameter<S>{"forced_error2_port", &S::forced_error2_port, 0, 0xFF, "3.5.3",
                       "The port address that forces error message 2."},
-    sim::Parameter<S>{"forced_sampling_deadline", &S::forced_sampling_deadline, 1, ps(sim::ms(100)), "3.5.3",
+    sim::Parameter<S>{"forced_sampling_deadline", &S::forced_sampling_deadline, 1, row_bound(sim::ms(100)), "3.5.3",
                       "A forced error must show \"with one of the next EnDat 2.2 queries (< 1 ms)\"."},
     sim::Parameter<S>{"crc_self_test", &S::crc_self_test, 0, 0, "A4",
                       "The master's CRC evaluation fed with sequences of known result."},
@@ -158,7 +158,7 @@ const std::array kDiagnostics{
     sim::Parameter<G>{"reserve_limit", &G::reserve_limit, 0, 255, "A3",
                       "A valuation number below it is a low function reserve (a guess: A3 gives no scaling)."},
     sim::Parameter<G>{"read_warnings", &G::read_warnings, 0, 0, "3.4.2", "WRN set: read word 1 of the operating status."},
-    sim::Parameter<G>{"warnings_interval", &G::warnings_interval, 0, ps(sim::ms(60'000)), "3.4.2",
+    sim::Parameter<G>{"warnings_interval", &G::warnings_interval, 0, row_bound(sim::ms(60'000)), "3.4.2",
                       "Read word 1 again this often while WRN stays set; 0: only when WRN appears."},
 };
 

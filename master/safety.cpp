@@ -242,7 +242,7 @@ bool SafetyMonitor::startup_position_read(const FrameResult& f, unsigned positio
   if (f.outcome != FrameOutcome::Ok || f.error_detected) {
     startup_agreeing_ = 0;
   } else if (const double moved = static_cast<double>(s.setpoint.counts_per_s) *
-                                  static_cast<double>((f.start - startup_previous_at_).count()) * 1e-12;
+                                  static_cast<double>((f.start - startup_previous_at_).count()) / static_cast<double>(sim::kPsPerSecond);
              startup_agreeing_ == 0 ||
              std::abs(static_cast<double>(ring_distance(f.position, startup_previous_, position_bits)) - moved) >
                  static_cast<double>(s.startup_tolerance)) {
@@ -452,7 +452,7 @@ void SafetyMonitor::check_position_value_2(const FrameResult& f) {
     if (k == 0) {
       double velocity = 0;
       if (last_good_ && f.start > last_good_->second)
-        velocity = static_cast<double>(ring_distance(f.position, last_good_->first, position_bits_)) * 1e12 /
+        velocity = static_cast<double>(ring_distance(f.position, last_good_->first, position_bits_)) * static_cast<double>(sim::kPsPerSecond) /
                    static_cast<double>((f.start - last_good_->second).count());
       position2_ = Position2Read{f.position, f.start, f.index, velocity, 0, 0};
     }

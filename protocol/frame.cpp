@@ -148,6 +148,14 @@ std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint
   return encode(additional_datum_layout(), v);
 }
 
+ReceivedDatum decode_additional_datum(std::span<const std::uint8_t> bits) {
+  const auto v = additional_datum_layout().decode(bits);
+  return {.leading_low = v[at(Field::LeadingLow)] == 0,
+          .status = static_cast<std::uint8_t>(v[at(Field::Status)]),
+          .data = static_cast<std::uint16_t>(v[at(Field::AdditionalData)]),
+          .crc = static_cast<std::uint8_t>(v[at(Field::Crc)])};
+}
+
 Layout answer_layout(const ModeCommandInfo& command, unsigned position_bits) {
   switch (command.answer) {
     case AnswerFormat::TestValues: return test_values_layout();

@@ -108,6 +108,14 @@ constexpr unsigned kAdditionalDatumBits = 30;
 constexpr unsigned kAdditionalDatumBusyBit = 3;
 Layout additional_datum_layout();
 std::vector<std::uint8_t> encode_additional_datum(std::uint8_t status, std::uint16_t data, const CrcConfig& crc = {});
+// One additional datum's fields as received, from its first bit (the LOW bit) on.
+struct ReceivedDatum {
+  bool leading_low = false;  // the bit before the status byte was LOW, as sent
+  std::uint8_t status = 0;
+  std::uint16_t data = 0;
+  std::uint8_t crc = 0;
+};
+ReceivedDatum decode_additional_datum(std::span<const std::uint8_t> bits);
 
 // The encoder's answer to `command` without additional data: position, test-value or parameter frame.
 Layout answer_layout(const ModeCommandInfo& command, unsigned position_bits);

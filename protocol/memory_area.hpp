@@ -97,6 +97,9 @@ constexpr bool is_endat22_mrs_code(std::uint8_t mrs) { return (mrs & 0xE0) == 0x
 constexpr bool selects_additional_data(std::uint8_t mrs) { return (mrs & 0xE0) == 0x40; }
 constexpr std::uint8_t kStopAdditionalData1 = 0x4F;
 constexpr std::uint8_t kStopAdditionalData2 = 0x5F;
+// 2.4.2.1: a 2.2 "selection of memory area" names the area's block in its supplement; the model
+// reads the block address from the parameter's low byte (docs/model-reference.md: a guess).
+constexpr std::uint8_t block_address_of(std::uint16_t parameter) { return static_cast<std::uint8_t>(parameter); }
 constexpr bool stops_additional_data(std::uint8_t mrs) { return mrs == kStopAdditionalData1 || mrs == kStopAdditionalData2; }
 
 }  // namespace endatsim::protocol

@@ -1,5 +1,6 @@
 #include "endatsim/protocol/mode_command.hpp"
 #include "endatsim/protocol/indexed_table.hpp"
+#include "endatsim/protocol/timing.hpp"
 
 #include <array>
 
@@ -62,6 +63,12 @@ std::optional<ModeCommand> mode_command_from_key(std::string_view key) {
   for (const auto& m : kModeCommands)
     if (m.key == key) return m.command;
   return std::nullopt;
+}
+
+std::string mode_bits_string(std::uint8_t bits) {
+  std::string text;
+  for (unsigned b = frame_position::kModeBits; b-- > 0;) text += ((bits >> b) & 1U) != 0 ? '1' : '0';
+  return text;
 }
 
 }  // namespace endatsim::protocol

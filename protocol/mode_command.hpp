@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace endatsim::protocol {
@@ -53,6 +54,8 @@ constexpr unsigned kPayloadBits = kPayloadAddressBits + kPayloadParameterBits;
 
 std::span<const ModeCommandInfo> mode_commands();
 const ModeCommandInfo& info(ModeCommand command);
+// Six mode bits as sent, M2 first: "000111".
+std::string mode_bits_string(std::uint8_t bits);
 // The command whose six mode bits are exactly `bits`; none when the redundancy is broken.
 std::optional<ModeCommand> decode_mode_bits(std::uint8_t bits);
 std::optional<ModeCommand> mode_command_from_key(std::string_view key);

@@ -32,7 +32,13 @@ constexpr unsigned kAdditionalData1Support = 0, kAdditionalData2Support = 1, kSe
 constexpr unsigned kEncoderAddress = 4, kInstructions = 5;       // A7, 3.6.4 / 3.6.5
 // 3.5.1: the encoder manufacturer's words 0..47 lie 16 to an area (A1, A3, A5); a word's address
 // within its area.
-constexpr std::uint8_t manufacturer_address(unsigned w) { return static_cast<std::uint8_t>(w % 16); }
+constexpr std::uint8_t manufacturer_address(unsigned w) { return static_cast<std::uint8_t>(w % kManufacturerWordsPerArea); }
+// The inverse: the manufacturer word at `address` of its area A1, A3 or A5.
+constexpr unsigned manufacturer_word(MemoryArea area, std::uint8_t address) {
+  return address + (area == MemoryArea::Manufacturer2   ? kManufacturerWordsPerArea
+                    : area == MemoryArea::Manufacturer3 ? 2 * kManufacturerWordsPerArea
+                                                        : 0U);
+}
 constexpr unsigned kDatumShift = 0;                              // A7 words 0..2, 3.6.2
 constexpr unsigned kDiagnosticsConfiguration = 3;                // A7, 3.6.3
 constexpr unsigned kTemperatureWarningThreshold = 6;             // A7, 3.6.6 (0.1 K)

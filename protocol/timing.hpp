@@ -52,6 +52,15 @@ inline constexpr sim::Time kRecoveryTime = sim::us(20);
 // lets this many rising edges pass, while its own last bit fades, before it hunts for the
 // supplement's start bit (the master's lead bits must be more).
 inline constexpr unsigned kSupplementIgnoredClocks = 3;
+// Word 13 (3.5.6): a 25-bit position, the width of the spec's examples.
+inline constexpr unsigned kPositionBits = 25;
+// 2.3.2 t_cal (note 7: per encoder, word 39): 5 us, well inside the 1 ms the spec allows.
+inline constexpr sim::Time kCalculationTime = sim::us(5);
+// 2.3.2 recovery time II, t_R: the 500 ns the table gives.
+inline constexpr sim::Time kRecoveryTime2 = sim::ns(500);
+// CLOCK edge at the encoder's pins to DATA edge there: its receiver, logic and driver, 20 ns each
+// (line/line.hpp's encoder transceiver and slave/encoder_params.hpp's output delay).
+inline constexpr sim::Time kClockToData = sim::ns(60);
 }  // namespace encoder_default
 
 namespace limit {

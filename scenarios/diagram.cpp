@@ -416,8 +416,7 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   namespace fp = protocol::frame_position;
   const auto fe = [&](unsigned k) { return m_fe[k - 1]; };  // FE_k
   if (frame != nullptr && m_fe.size() >= fp::kTurnaround) {
-    std::string bits;
-    for (int b = static_cast<int>(fp::kModeBits) - 1; b >= 0; --b) bits += ((frame->mode_bits >> b) & 1U) != 0 ? '1' : '0';
+    const std::string bits = protocol::mode_bits_string(frame->mode_bits);
     svg.field(axis.x(fe(fp::kFirstModeBit)), axis.x(fe(fp::kTurnaround)), row_y("endat.master_data") - 22, "mode bits " + bits, bits);
     svg.field(axis.x(fe(fp::kFrameStart)), axis.x(fe(fp::kFirstModeBit)), row_y("endat.master_data") - 22, "turnaround", "");
     // 2.1 parameter frames: 8 bits of address / MRS code / port and 16 bits after the mode bits.

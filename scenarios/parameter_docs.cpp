@@ -243,9 +243,7 @@ void add_operation_schema(json& out) {
 }
 
 std::string mode_bits_text(protocol::ModeCommand c) {
-  std::string bits;
-  for (int b = static_cast<int>(protocol::frame_position::kModeBits) - 1; b >= 0; --b) bits += ((protocol::info(c).bits >> b) & 1) != 0 ? '1' : '0';
-  return bits + " (" + std::string(protocol::info(c).key) + ")";
+  return protocol::mode_bits_string(protocol::info(c).bits) + " (" + std::string(protocol::info(c).key) + ")";
 }
 
 // The script's tables: "at", then each operation with what it does, its mode commands and keys.

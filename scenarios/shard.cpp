@@ -1,4 +1,5 @@
 #include "endatsim/scenarios/shard.hpp"
+#include "endatsim/sim/text.hpp"
 
 #include <charconv>
 #include <stdexcept>
@@ -8,12 +9,7 @@ namespace {
 
 using nlohmann::json;
 
-std::optional<std::size_t> whole_number(std::string_view text) {
-  std::size_t v = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;
-  return v;
-}
+using sim::whole_number;
 
 const json& member(const json& j, const char* key, json::value_t type, const char* expected) {
   const auto it = j.find(key);

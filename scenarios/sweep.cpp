@@ -1,6 +1,7 @@
 #include "endatsim/scenarios/sweep.hpp"
 
 #include "endatsim/scenarios/xml.hpp"
+#include "endatsim/sim/text.hpp"
 
 #include <algorithm>
 #include <array>
@@ -25,11 +26,7 @@ using nlohmann::json;
 
 constexpr std::size_t kMaxPoints = 1'000'000;
 
-std::string trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  return std::string(s.substr(first, s.find_last_not_of(" \t") - first + 1));
-}
+std::string trim(std::string_view s) { return std::string(sim::trim(s)); }
 
 std::vector<std::string> split(const std::string& s, char separator) {
   std::vector<std::string> parts;

@@ -14,7 +14,6 @@ namespace {
 
 using nlohmann::ordered_json;
 
-std::string mode_bits_text(std::uint8_t bits) { return std::bitset<protocol::frame_position::kModeBits>(bits).to_string(); }
 
 using sim::hex_0x;
 
@@ -61,10 +60,10 @@ ordered_json transaction_of(const master::FrameResult& f, std::span<const checke
   t["frame"] = f.index;
   t["word"] = f.word;
   t["command"] = protocol::info(f.command).key;
-  t["mode_bits"] = mode_bits_text(f.mode_bits);
+  t["mode_bits"] = protocol::mode_bits_string(f.mode_bits);
 
   ordered_json sent = ordered_json::object();
-  sent["mode_bits"] = mode_bits_text(f.mode_bits);
+  sent["mode_bits"] = protocol::mode_bits_string(f.mode_bits);
   sent["f_c"] = sim::format_frequency(f.f_c);
   if (f.measurement) sent["delay_measurement"] = true;
   if (f.compensated) sent["t_d"] = sim::format_time(f.t_d_used);

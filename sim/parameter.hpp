@@ -21,6 +21,9 @@
 
 namespace endatsim::sim {
 
+// A duration as a row's bound: whole picoseconds.
+constexpr std::int64_t row_bound(Time t) { return t.count(); }
+
 // How a model refuses parameters it cannot run with: std::invalid_argument with `message`.
 inline void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);

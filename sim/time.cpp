@@ -1,4 +1,5 @@
 #include "endatsim/sim/time.hpp"
+#include "endatsim/sim/text.hpp"
 
 #include <algorithm>
 #include <array>
@@ -20,12 +21,6 @@ constexpr std::array kTimeUnits{Unit{"ps", 1}, Unit{"ns", 1'000}, Unit{"us", 1'0
                                 Unit{"ms", 1'000'000'000}, Unit{"s", 1'000'000'000'000}};
 constexpr std::array kFrequencyUnits{Unit{"Hz", 1}, Unit{"kHz", 1'000}, Unit{"MHz", 1'000'000},
                                      Unit{"GHz", 1'000'000'000}};
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
 
 // Parses "<decimal> <unit>" exactly into an integer number of base units.
 template <std::size_t N>

@@ -150,7 +150,7 @@ std::uint16_t AdditionalData::content(Information i, Time frame_start, std::uint
     case I::LimitPositionSignalsAndAcceleration: return static_cast<std::uint16_t>(limits | (acceleration & W::kAccelerationBesideLimits));
     case I::AsynchronousPositionWord1: {
       // 2.4.2.3: the position "time delay k" before the latch; without oversampling only delay 0.
-      const bool oversampling = pm::function_activated(memory_.active_function_initialization(), pm::EncoderFunction::Oversampling);
+      const bool oversampling = memory_.function_activated(pm::EncoderFunction::Oversampling);
       const unsigned k = oversampling ? asynchronous_time_delay_ : 0;
       asynchronous_latched_ = positions_.latched(frame_start - std::min(frame_start, params_.asynchronous_time_delay_step * k));
       return word_of(asynchronous_latched_, 0);

@@ -1,9 +1,6 @@
 #include "endatsim/slave/encoder.hpp"
+
 #include "endatsim/sim/parameter.hpp"
-
-#include <algorithm>
-#include <stdexcept>
-
 #include "endatsim/protocol/parameters.hpp"
 #include "endatsim/slave/eib.hpp"
 
@@ -13,11 +10,7 @@ namespace {
 using protocol::ErrorCause;
 namespace position = protocol::frame_position;
 using MC = ModeCommand;
-using I = Information;
-
 using sim::require;
-
-
 using protocol::parameters::EncoderFunction;
 namespace pm = protocol::parameters;
 
@@ -204,7 +197,7 @@ void Encoder::clock_after_supplement() {
     return;
   f.error = ErrorCause::MrsFrameDisrupted;
   additional_data_.acknowledge_mrs(protocol::acknowledged_address(address, true),
-                                   protocol::acknowledged_address(protocol::lsb_of(protocol::payload_parameter(f.supplement.value_or(0))), true));
+                                   protocol::acknowledged_address(protocol::block_address_of(protocol::payload_parameter(f.supplement.value_or(0))), true));
   access_.cancel_selection();
 }
 
@@ -245,10 +238,8 @@ void Encoder::written(const Selection& s, std::uint8_t address) {
   // 3.10.5: bit 0 = 1 and bit 1 = 0 reset RM of an incremental encoder and set the warning
   // "reference point not reached"; "this does not influence position value and position value 2":
   // the reference found stays in use. A reference mark crossed from then on sets RM again.
-  namespace pm = protocol::parameters;
   if (s.area == MemoryArea::OperatingParameters2 && address == word::kReferencing &&
-      (memory_.image().areas.at(MemoryArea::OperatingParameters2).at(word::kReferencing) & pm::kReferencingMask) ==
-          pm::kReferencingResetRm)
+      (memory_.word(s, word::kReferencing) & pm::kReferencingMask) == pm::kReferencingResetRm)
     positions_.reset_reference_mark(kernel_.now());
 }
 
@@ -358,7 +349,7 @@ void Encoder::process_supplement() {
         additional_data_.select(address);
         break;
       }
-      const auto block = protocol::lsb_of(parameter);  // block address: low byte (docs/model-reference.md, guess)
+      const auto block = protocol::block_address_of(parameter);
       auto error = eib_.refuses(protocol::memory_area_from_mrs(address));  // A2 cause 5
       if (!error) error = memory_.check_selection(address, block, true);
       f.error = error;
@@ -399,7 +390,7 @@ Time Encoder::recovery_time() const {
   const bool v22 = state_ != State::Idle && command_ != nullptr && command_->version == EndatVersion::V2_2;
   // 3.4.4: word 3 bits 0/1 choose the short recovery time, for 2.2 mode commands only, and only
   // after the reset that activates word 3.
-  return v22 && function_activated(EncoderFunction::ShortRecoveryTime) && params_.t_m_short ? *params_.t_m_short : params_.t_m;
+  return v22 && memory_.function_activated(EncoderFunction::ShortRecoveryTime) && params_.t_m_short ? *params_.t_m_short : params_.t_m;
 }
 
 void Encoder::on_recovery_time_elapsed() {
@@ -521,9 +512,5 @@ void Encoder::set_sensor_values(const SensorValues& v) {
 // ---- word 3: function initialization (3.4.4) ----------------------------------------------------
 // Reference pulse initialization, multiturn error messages and diagnostics reset are decoded but
 // change nothing the model shows: "functions are initialized encoder-specifically".
-
-bool Encoder::function_activated(EncoderFunction f) const {
-  return protocol::parameters::function_activated(memory_.active_function_initialization(), f);
-}
 
 }  // namespace endatsim::slave

@@ -5,8 +5,8 @@
 // DATA driver (data_driver.hpp), the memory with its areas and write protection (memory.hpp), the accesses to it with the area
 // selected, Busy and the word being programmed (memory_access.hpp), the position source
 // (position_source.hpp), the additional data (additional_data.hpp), the error messages
-// (error_messages.hpp), its part in a bus (bus_addressing.hpp) and an EIB's initial commissioning
-// (eib.hpp). What an encoder is comes from EncoderParams (encoder_params.hpp); every frame leaves
+// (error_messages.hpp), its part in a bus (bus_addressing.hpp), its decisions on the 2.1 commands
+// with 8 + 16 bits (parameter_commands.hpp) and an EIB's initial commissioning (eib.hpp). What an encoder is comes from EncoderParams (encoder_params.hpp); every frame leaves
 // an EncoderFrame as ground truth, the recent ones kept in a bounded log (sim/record_log.hpp).
 #pragma once
 
@@ -122,7 +122,6 @@ class Encoder final : private MemoryAccess::Client {
   void restart_state();
   void adopt_encoder_type(unsigned position_bits);
   void commissioned(std::optional<unsigned> position_bits);
-  bool function_activated(protocol::parameters::EncoderFunction f) const;
   void written(const Selection& s, std::uint8_t address) override;
   void clock_after_supplement();
   void hand_over_for_supplement();

@@ -186,8 +186,8 @@ constexpr std::array<std::string_view, 2> kHandovers{"release", "end_level"};
 static_assert(static_cast<std::size_t>(SupplementHandover::EndLevel) == 1);
 static_assert(static_cast<std::size_t>(EibPositionBeforeCommissioning::NotSupported) == 1);
 
-constexpr std::int64_t ps(Time t) { return t.count(); }
-constexpr std::int64_t kModelTimeMax = ps(EncoderParams::kMaxModelTime);
+using sim::row_bound;
+constexpr std::int64_t kModelTimeMax = row_bound(EncoderParams::kMaxModelTime);
 
 const std::array kRows{
     Row{"kind", choice<&EncoderParams::kind, kEncoderKindNames>(), 0, 0, "3.5.7",
@@ -206,25 +206,25 @@ const std::array kRows{
     Row{"t_cal_energy_saving", &EncoderParams::t_cal_energy_saving, 0, kModelTimeMax, "3.6.5",
         "t_cal of every mode command while the instruction energy-saving mode (operating parameters word 5 bit 0) is "
         "in effect; none: unchanged (the spec does not say what the mode saves)."},
-    Row{"t_m", &EncoderParams::t_m, ps(limit::kRecoveryTimeMin), ps(limit::kRecoveryTimeMax), "2.3.2",
+    Row{"t_m", &EncoderParams::t_m, row_bound(limit::kRecoveryTimeMin), row_bound(limit::kRecoveryTimeMax), "2.3.2",
         "Recovery time I t_m: DATA HIGH after the last bit until the encoder is idle again."},
-    Row{"t_m_short", &EncoderParams::t_m_short, ps(limit::kShortRecoveryTimeMin), ps(limit::kShortRecoveryTimeMax),
+    Row{"t_m_short", &EncoderParams::t_m_short, row_bound(limit::kShortRecoveryTimeMin), row_bound(limit::kShortRecoveryTimeMax),
         "2.3.2 note 3", "The short recovery time I for 2.2 mode commands, if the encoder has one (word 3, 3.4.4)."},
     Row{"short_t_m_selected", &EncoderParams::short_t_m_selected, 0, 0, "3.4.4",
         "Word 3 selects the short recovery time at power-on; needs t_m_short."},
-    Row{"t_r", &EncoderParams::t_r, 0, ps(sim::us(100)), "2.3.2", "t_R: time before the next query can be received."},
-    Row{"t_st_max", &EncoderParams::t_st_max, ps(limit::kStartDelayAt16MHz), ps(sim::ms(10)), "2.3.2",
+    Row{"t_r", &EncoderParams::t_r, 0, row_bound(sim::us(100)), "2.3.2", "t_R: time before the next query can be received."},
+    Row{"t_st_max", &EncoderParams::t_st_max, row_bound(limit::kStartDelayAt16MHz), row_bound(sim::ms(10)), "2.3.2",
         "t_ST maximum from the encoder's datasheet (\"see encoder specifications\"); judged against this encoder."},
-    Row{"t_lo_max", &EncoderParams::t_lo_max, ps(limit::kPulseWidthMin), ps(sim::ms(10)), "2.3.2",
+    Row{"t_lo_max", &EncoderParams::t_lo_max, row_bound(limit::kPulseWidthMin), row_bound(sim::ms(10)), "2.3.2",
         "t_LO maximum from the encoder's datasheet (\"see encoder specifications\"); judged against this encoder."},
-    Row{"startup_time", &EncoderParams::startup_time, 0, ps(sim::ms(10'000)), "2.3.3",
+    Row{"startup_time", &EncoderParams::startup_time, 0, row_bound(sim::ms(10'000)), "2.3.3",
         "Run-up after switching on (about 1 s), DATA high-impedance and clocks ignored meanwhile; 0: the run starts "
         "with the encoder up."},
-    Row{"reset_time", &EncoderParams::reset_time, 0, ps(sim::ms(1000)), "2.7",
+    Row{"reset_time", &EncoderParams::reset_time, 0, row_bound(sim::ms(1000)), "2.7",
         "Restart after \"Encoder receive reset\" (a guess: the spec gives the same reaction as switching on)."},
-    Row{"t_ac_read", &EncoderParams::t_ac_read, 0, ps(limit::kMemoryAccessMax), "2.3.2",
+    Row{"t_ac_read", &EncoderParams::t_ac_read, 0, row_bound(limit::kMemoryAccessMax), "2.3.2",
         "Memory access time t_ac for reads and selections."},
-    Row{"t_ac_write", &EncoderParams::t_ac_write, 0, ps(limit::kMemoryAccessMax), "2.3.2",
+    Row{"t_ac_write", &EncoderParams::t_ac_write, 0, row_bound(limit::kMemoryAccessMax), "2.3.2",
         "Memory access time t_ac for writes."},
     Row{"t_ac_placement", choice<&EncoderParams::t_ac_placement, kPlacements>(), 0, 0, "2.3.1 note 1",
         "Where t_ac of a 2.1 parameter frame lies: in_frame (the acknowledgment waits for it) or after_frame (busy "
@@ -232,7 +232,7 @@ const std::array kRows{
     Row{"interrupted_nvm_write", choice<&EncoderParams::interrupted_nvm_write, kNvm>(), 0, 0, "3.4.3",
         "What a word holds when a power interruption cuts its write short: keep_old, or torn (high byte new, low "
         "byte old); stored write protection bits survive either way."},
-    Row{"supplement_end_marker_delay", &EncoderParams::supplement_end_marker_delay, 0, ps(sim::us(1)), "2.3",
+    Row{"supplement_end_marker_delay", &EncoderParams::supplement_end_marker_delay, 0, row_bound(sim::us(1)), "2.3",
         "After the master's command supplement, the encoder drives the HIGH end marker this long after its last "
         "bit (a guess, below the shortest t_m)."},
     Row{"supplement_ignore_clocks", &EncoderParams::supplement_ignore_clocks, 0, 16, "2.3",
@@ -241,8 +241,8 @@ const std::array kRows{
         "After the answer of a 2.2 command with a command supplement: release DATA at once for the master's "
         "supplement, or end_level: first drive the level that says nothing follows (HIGH) for one clock, then "
         "release; the figures are lost."},
-    Row{"output_delay", &EncoderParams::output_delay, 0, ps(sim::us(1)), "", "Clock input to data output inside the encoder."},
-    Row{"asynchronous_time_delay_step", &EncoderParams::asynchronous_time_delay_step, 0, ps(sim::ms(1)), "2.4.2.3",
+    Row{"output_delay", &EncoderParams::output_delay, 0, row_bound(sim::us(1)), "", "Clock input to data output inside the encoder."},
+    Row{"asynchronous_time_delay_step", &EncoderParams::asynchronous_time_delay_step, 0, row_bound(sim::ms(1)), "2.4.2.3",
         "With oversampling activated (word 3, 3.4.4), time delay k selects the position sampled k steps of this "
         "length before the latch (a guess: the spec leaves it to the encoder's specifications)."},
     Row{"multiturn_overflow_error_bit", &EncoderParams::multiturn_overflow_error_bit, 0, 15, "3.4.4",
@@ -301,7 +301,7 @@ const std::array kSensorRows{
     sim::Parameter<S>{"limit_position_2", &S::limit_position_2, 0, 0, "2.3.5.2", "Limit position signal 2."},
     sim::Parameter<S>{"operating_status_error_sources", &S::operating_status_error_sources, 0, 0xFFFF, "2.3.5.3",
                       "The operating status error sources, as sent."},
-    sim::Parameter<S>{"timestamp_unit", &S::timestamp_unit, ps(sim::ns(1)), ps(sim::ms(1)), "3.9.32",
+    sim::Parameter<S>{"timestamp_unit", &S::timestamp_unit, row_bound(sim::ns(1)), row_bound(sim::ms(1)), "3.9.32",
                       "The unit of the touch probe's timestamps."},
 };
 

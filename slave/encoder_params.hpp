@@ -113,7 +113,13 @@ struct Sensors {
   std::uint16_t operating_status_error_sources = 0;  // 2.3.5.3
   // A3: valuation numbers 1 .. 6 (addresses 1 .. 6), sent in turn as far as operating
   // parameters word 3 activates them (3.6.3).
-  std::array<std::uint8_t, 6> valuation_numbers{100, 100, 100, 100, 100, 100};
+  using ValuationNumbers = std::array<std::uint8_t, protocol::diagnosis::kValuationNumbers>;
+  static constexpr std::uint8_t kValuationNumberDefault = 100;  // a model default
+  ValuationNumbers valuation_numbers = [] {
+    ValuationNumbers v{};
+    v.fill(kValuationNumberDefault);
+    return v;
+  }();
   // A3 "system-specific data": address -> value, sent in turn after the valuation numbers while
   // word 3 bit 15 activates them; the subsequent electronics must ignore these addresses.
   std::map<std::uint8_t, std::uint8_t> system_data;
@@ -126,19 +132,19 @@ struct Sensors {
 struct SensorValues {
   std::optional<std::uint16_t> temperature1, temperature2;  // 0.1 K
   std::optional<std::vector<std::uint16_t>> additional_sensors;
-  std::optional<std::array<std::uint8_t, 6>> valuation_numbers;
+  std::optional<Sensors::ValuationNumbers> valuation_numbers;
 };
 
 struct EncoderParams {
   EncoderKind kind = EncoderKind::Singleturn;
   EndatVersion version = EndatVersion::V2_2;  // a 2.1 encoder answers 2.2 commands as not supported
-  unsigned position_bits = 25;                 // word 13: clock pulses for the position value
+  unsigned position_bits = protocol::encoder_default::kPositionBits;  // word 13: clock pulses for the position value
   static constexpr unsigned kMaxPositionBits = protocol::kPositionBitsMax;  // the model's widest position
   static constexpr std::uint64_t kMaxPosition = (std::uint64_t{1} << kMaxPositionBits) - 1;
   // The latest rising edge a scenario may put the earliest start bit on (the model's bound).
   static constexpr unsigned kEarliestStartBitClockMax = 32;
   unsigned multiturn_bits = 0;                 // upper bits of the position that count revolutions
-  Time t_cal = sim::us(5);                     // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
+  Time t_cal = protocol::encoder_default::kCalculationTime;  // 2.3.2: position calculation time, FE1 -> start bit (max 1 ms)
   // The model takes calculation times (and the encoder's other times) up to this, far beyond the
   // spec, so that an overrun shows.
   static constexpr Time kMaxModelTime = sim::ms(100);
@@ -156,7 +162,7 @@ struct EncoderParams {
   Time t_m = protocol::encoder_default::kRecoveryTime;  // 2.3.2: recovery time I, 10 .. 30 us
   std::optional<Time> t_m_short;               // 1.25 .. 3.75 us, 2.2 commands only (word 3, 3.4.4)
   bool short_t_m_selected = false;             // as if word 3 selected it at power-on
-  Time t_r = sim::ns(500);                     // 2.3.2: t_R, time before the next query can be received
+  Time t_r = protocol::encoder_default::kRecoveryTime2;  // 2.3.2: t_R, time before the next query can be received
   // 2.3.2 t_ST and t_LO maxima, "see encoder specifications": a datasheet's values, judged by the
   // checker against this encoder; the model itself takes any longer LOW phase.
   std::optional<Time> t_st_max;

@@ -10,7 +10,7 @@ namespace pm = protocol::parameters;
 }  // namespace
 
 void ErrorMessages::latch() {
-  const bool cyclic = pm::function_activated(memory_.active_function_initialization(), pm::EncoderFunction::CyclicOperation);
+  const bool cyclic = memory_.function_activated(pm::EncoderFunction::CyclicOperation);
   const auto warnings = params_.warning_sources | (cyclic ? pm::kWarningCyclicOperation : 0) |
                         (temperature_exceeded() ? pm::kWarningTemperatureExceeded : 0);
   memory_.latch_errors(params_.error_sources, static_cast<std::uint16_t>(warnings));

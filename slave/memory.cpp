@@ -215,9 +215,7 @@ std::optional<ErrorCause> Memory::check_write(const Selection& s, std::uint8_t a
   if (const auto word = read(s, address); !word) return word.error;
   if (commissioning_ && eib_commissioning_area(s.area)) {
     // 3.5.7: "other parameters must be saved during initial commissioning".
-    constexpr unsigned k = protocol::kManufacturerWordsPerArea;
-    const unsigned n = address + (s.area == Area::Manufacturer2 ? k : s.area == Area::Manufacturer3 ? 2 * k : 0U);
-    const bool factory = s.area != Area::ManufacturerEndat22 && eib_factory_word(n);
+    const bool factory = s.area != Area::ManufacturerEndat22 && eib_factory_word(word::manufacturer_word(s.area, address));
     return factory ? std::optional{ErrorCause::WriteProtected} : std::nullopt;
   }
   if (write_protected(s)) return ErrorCause::WriteProtected;

@@ -1,6 +1,6 @@
 // The encoder's memory (spec section 3): words per memory area as the MRS codes address them,
 // access rights, irreversible write protection (word 2), function initialisation (word 3) and
-// the checksums of the encoder manufacturer's areas.
+// what a reset activates.
 #pragma once
 
 #include <cstdint>
@@ -90,6 +90,10 @@ class Memory {
   // of slave/eib.hpp are writable except the words the box keeps (kEibFactoryWords).
   void set_initial_commissioning(bool open) { commissioning_ = open; }
   std::uint16_t active_function_initialization() const { return active_functions_; }
+  // Whether word 3 as activated switches `f` on (3.4.4).
+  bool function_activated(protocol::parameters::EncoderFunction f) const {
+    return protocol::parameters::function_activated(active_functions_, f);
+  }
   const std::vector<std::uint16_t>& active_operating_parameters() const { return active_operating_; }
 
  private:

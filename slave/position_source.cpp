@@ -48,7 +48,7 @@ void PositionSource::restart_reference_search(Time now) {
 }
 
 void PositionSource::apply_function_initialization(Time now) {
-  if (params_.multiturn_bits == 0 || !function_activated(EncoderFunction::MultiturnCounterReset)) return;
+  if (params_.multiturn_bits == 0 || !memory_.function_activated(EncoderFunction::MultiturnCounterReset)) return;
   const sim::Int128 steps_per_revolution = sim::Int128{1} << (position_bits_ - params_.multiturn_bits);
   counter_origin_ = sim::floor_div(unwrapped(now), steps_per_revolution) * steps_per_revolution;
 }
@@ -75,8 +75,8 @@ void PositionSource::update_reference(Time now) {
 // multiturn_overflow_error_bit) and stays until cleared as 3.4.1 says.
 void PositionSource::check_multiturn_overflow(Time now) {
   multiturn_overflow_ = false;
-  if (!function_activated(EncoderFunction::MultiturnOverflowErrorMessage) || !multiturn_overflowed(now)) return;
-  if (function_activated(EncoderFunction::MultiturnOverflowLatch))
+  if (!memory_.function_activated(EncoderFunction::MultiturnOverflowErrorMessage) || !multiturn_overflowed(now)) return;
+  if (memory_.function_activated(EncoderFunction::MultiturnOverflowLatch))
     memory_.latch_errors(static_cast<std::uint16_t>(1U << params_.multiturn_overflow_error_bit), 0);
   else
     multiturn_overflow_ = true;
@@ -159,10 +159,6 @@ std::uint64_t PositionSource::output(std::uint64_t measured) const {
 bool PositionSource::multiturn_overflowed(Time t) const {
   const sim::Int128 p = unwrapped(t) - counter_origin_;
   return params_.multiturn_bits > 0 && (p < 0 || p >= (sim::Int128{1} << position_bits_));
-}
-
-bool PositionSource::function_activated(EncoderFunction f) const {
-  return pm::function_activated(memory_.active_function_initialization(), f);
 }
 
 }  // namespace endatsim::slave

@@ -73,7 +73,6 @@ class PositionSource {
   std::uint64_t measured(Time t) const;
   std::uint64_t output(std::uint64_t measured) const;
   bool multiturn_overflowed(Time t) const;
-  bool function_activated(protocol::parameters::EncoderFunction f) const;
 
   const EncoderParams& params_;
   Memory& memory_;

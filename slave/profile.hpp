@@ -45,7 +45,7 @@ struct EncoderProfile {
   std::string description;
   EndatVersion version = EndatVersion::V2_2;
   EncoderKind kind = EncoderKind::Singleturn;
-  unsigned position_bits = 25;
+  unsigned position_bits = protocol::encoder_default::kPositionBits;
   unsigned multiturn_bits = 0;
   MemoryImage memory;
 
@@ -93,7 +93,7 @@ struct ProfileParameters {
   EndatVersion version = EndatVersion::V2_2;
   EncoderKind kind = EncoderKind::Singleturn;
   protocol::parameters::EncoderType type = protocol::parameters::EncoderType::Singleturn;
-  unsigned position_bits = 25;
+  unsigned position_bits = protocol::encoder_default::kPositionBits;
   unsigned multiturn_bits = 0;
   unsigned interface_version = image_default::kInterfaceVersion;  // word 8
   protocol::parameters::Partition oem[4];               // words 9, 10

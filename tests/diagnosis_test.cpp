@@ -8,7 +8,6 @@
 #include "endatsim/protocol/diagnosis.hpp"
 #include "scenario_support.hpp"
 #include "endatsim/scenarios/loader.hpp"
-#include "endatsim/scenarios/transaction_log.hpp"
 #include "endatsim/slave/encoder.hpp"
 
 using namespace endatsim;
@@ -290,20 +289,6 @@ TEST(MasterDiagnosis, AnEndat21EncoderHasNoDiagnosisThroughAdditionalData) {
   ASSERT_TRUE(r.diagnosis.has_value());
   ASSERT_EQ(r.diagnosis->count(DiagnosisNoteKind::Setup), 1U);
   EXPECT_NE(r.diagnosis->notes[0].message.find("word 37"), std::string::npos);
-}
-
-TEST(TransactionLog, DecodesDiagnosisValues) {
-  master::FrameResult f;
-  f.command = ModeCommand::EncoderSendPositionValuesWithAdditionalData;
-  f.outcome = master::FrameOutcome::Ok;
-  f.additional_data = {{static_cast<std::uint8_t>(protocol::Information::Temperature2), 3831, true},
-                       {static_cast<std::uint8_t>(protocol::Information::Diagnosis), 0x0314, true},
-                       {static_cast<std::uint8_t>(protocol::Information::AdditionalSensors), 0x1902, true}};
-  const auto t = scenarios::transactions({f}, {});
-  ASSERT_EQ(t.size(), 1U);
-  EXPECT_EQ(t[0]["additional"]["temperature_2.decoded"], "110.0degC");
-  EXPECT_EQ(t[0]["additional"]["diagnosis.decoded"], "3:20");
-  EXPECT_EQ(t[0]["additional"]["additional_sensors.decoded"], "1:72.5degC");
 }
 
 namespace {

@@ -290,6 +290,20 @@ struct MeasurementBench {
 
 }  // namespace
 
+// The part on its own (master/delay_measurement.hpp): where a measurement round began.
+TEST(MasterDelayMeasurement, ARoundBeginsAtTheStartOfItsFirstFrame) {
+  master::DelayMeasurementParams p;
+  p.count = 3;
+  master::DelayMeasurement m(p, sim::MHz(8));
+  m.frame_recorded(sim::us(10));
+  m.frame_recorded(sim::us(20));
+  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(99));  // fewer frames than a round
+  m.frame_recorded(sim::us(30));
+  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(10));
+  m.frame_recorded(sim::us(40));
+  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(20));
+}
+
 TEST(MasterDelayMeasurement, AValueFartherThanAnEighthPeriodFromTheMeanIsRejectedAndRemeasured) {
   MeasurementBench b(3);
   b.run_with_swap_after_first_frame();

@@ -1,15 +1,13 @@
 // The small parts the encoder and the master are built from, each on its own: the bits of a frame
 // (slave/frame_bits.hpp), the bounded frame log (sim/record_log.hpp), the master's operation queue
-// (master/operation.hpp), where a delay-measurement round began (master/delay_measurement.hpp),
-// the frames that read the EnDat 2.2 area (master/startup.hpp), a busy wait's polls
-// (master/busy_polling.hpp) and the encoder's decisions on 2.1 parameter commands
-// (slave/parameter_commands.hpp).
+// (master/operation.hpp), the frames that read the EnDat 2.2 area (master/startup.hpp), a busy
+// wait's polls (master/busy_polling.hpp) and the encoder's decisions on 2.1 parameter commands
+// (slave/parameter_commands.hpp). The delay measurement's part test is with the master's.
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "endatsim/master/busy_polling.hpp"
-#include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/operation.hpp"
 #include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/error_handling.hpp"
@@ -129,19 +127,6 @@ TEST(OperationQueue, NumbersTheScriptsOperationsAndRunsWhatIsPutInFrontFirst) {
   EXPECT_EQ(first.script_index, 0U);
   EXPECT_EQ(q.take().script_index, 1U);
   EXPECT_TRUE(q.empty());
-}
-
-TEST(DelayMeasurement, ARoundBeginsAtTheStartOfItsFirstFrame) {
-  master::DelayMeasurementParams p;
-  p.count = 3;
-  master::DelayMeasurement m(p, sim::MHz(8));
-  m.frame_recorded(sim::us(10));
-  m.frame_recorded(sim::us(20));
-  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(99));  // fewer frames than a round
-  m.frame_recorded(sim::us(30));
-  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(10));
-  m.frame_recorded(sim::us(40));
-  EXPECT_EQ(m.round_start(sim::us(99)), sim::us(20));
 }
 
 TEST(Endat22AreaRead, NothingIsPlannedWithoutTheEndat22CommandSetInWord37) {

@@ -53,10 +53,10 @@ namespace {
 
 using tools::kBadInput;
 using tools::report_failure;
-constexpr int kPass = 0;
-constexpr int kFail = 1;
-constexpr int kIncomplete = 3;
-int interrupted_status(int signal) { return 128 + signal; }
+using scenarios::exit_status::kFail;
+using scenarios::exit_status::kIncomplete;
+using scenarios::exit_status::kPass;
+constexpr int interrupted_status(int signal) { return scenarios::exit_status::interrupted(signal); }
 
 const char* const kRunUsage =
     "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH [--junit-cases scenario|expectation]]\n"

@@ -5,11 +5,12 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "endatsim/scenarios/exit_status.hpp"
+
 namespace endatsim::tools {
 
-constexpr int kBadInput = 2;
-// sysexits.h's EX_SOFTWARE: an internal error, not the input's fault.
-constexpr int kInternalError = 70;
+using scenarios::exit_status::kBadInput;
+using scenarios::exit_status::kInternalError;
 
 // Says what went wrong on `err` and returns the exit status. Every error the input can cause is a
 // std::runtime_error (ScenarioError, CaptureError, ProfileError, a file that cannot be written...)

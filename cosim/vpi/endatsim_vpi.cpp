@@ -51,6 +51,7 @@
 #include "endatsim/cosim/report.hpp"
 #include "endatsim/input/json_input.hpp"
 #include "endatsim/scenarios/capture_check.hpp"
+#include "endatsim/scenarios/exit_status.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/limits.hpp"
 #include "endatsim/scenarios/loader.hpp"
@@ -61,7 +62,7 @@ namespace {
 using endatsim::sim::Time;
 namespace cosim = endatsim::cosim;
 
-constexpr int kExitBadInput = 2;
+constexpr int kExitBadInput = endatsim::scenarios::exit_status::kBadInput;
 // GHDL reports the end of time (TIME'HIGH) when a simulation ran out of events.
 constexpr std::uint64_t kEndOfTime = std::uint64_t{1} << 62;
 

@@ -169,6 +169,20 @@ TEST(Diagram, WindowsAndBadRequests) {
   }
 }
 
+TEST(TransactionLog, DecodesDiagnosisValues) {
+  master::FrameResult f;
+  f.command = protocol::ModeCommand::EncoderSendPositionValuesWithAdditionalData;
+  f.outcome = master::FrameOutcome::Ok;
+  f.additional_data = {{static_cast<std::uint8_t>(protocol::Information::Temperature2), 3831, true},
+                       {static_cast<std::uint8_t>(protocol::Information::Diagnosis), 0x0314, true},
+                       {static_cast<std::uint8_t>(protocol::Information::AdditionalSensors), 0x1902, true}};
+  const auto t = scenarios::transactions({f}, {});
+  ASSERT_EQ(t.size(), 1U);
+  EXPECT_EQ(t[0]["additional"]["temperature_2.decoded"], "110.0degC");
+  EXPECT_EQ(t[0]["additional"]["diagnosis.decoded"], "3:20");
+  EXPECT_EQ(t[0]["additional"]["additional_sensors.decoded"], "1:72.5degC");
+}
+
 TEST(TransactionLog, ParameterFramesAndAdditionalDataAreFields) {
   const auto params = run_bundled("parameters_endat21_write_read");
   bool parameter_frame = false;
