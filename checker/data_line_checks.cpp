@@ -196,7 +196,7 @@ void TimingChecker::check_calculation_time_maximum() {
   const Time bound = limit::kCalculationTimeMax + sim::period_of(current_.header.f_c);
   report_unless_passed(at_most(t_cal, bound, params_.resolution),
       {.check = std::string(check::kCalculationTime),
-       .spec = "2.3.2 t_cal maximum 1 ms",
+       .spec = "2.3.2 t_cal maximum " + sim::format_time(limit::kCalculationTimeMax),
        .where = ObservationPoint::EncoderPins,
        .time = kernel_.now(),
        .frame = current_.header.index,
@@ -223,7 +223,8 @@ void TimingChecker::next_word_start_bit(unsigned clock) {
   const unsigned low_bits = clock - low_clock_;
   if (low_bits <= limit::kContinuousClockMaxLowBits) return;
   report({.check = std::string(check::kCalculationTime),
-          .spec = "2.3.1.1 continuous clock: at most 7 LOW bits before the next word (in place of t_cal)",
+          .spec = "2.3.1.1 continuous clock: at most " + std::to_string(limit::kContinuousClockMaxLowBits) +
+                  " LOW bits before the next word (in place of t_cal)",
           .where = ObservationPoint::EncoderPins,
           .time = kernel_.now(),
           .frame = current_.header.index + word_,
@@ -262,7 +263,7 @@ void TimingChecker::check_memory_access_time() {
   const Time bound = limit::kMemoryAccessMax + sim::period_of(current_.header.f_c);
   report_unless_passed(at_most(t_ac, bound, params_.resolution),
       {.check = std::string(check::kMemoryAccess),
-       .spec = "2.3.2 t_ac maximum 12 ms",
+       .spec = "2.3.2 t_ac maximum " + sim::format_time(limit::kMemoryAccessMax),
        .where = ObservationPoint::EncoderPins,
        .time = kernel_.now(),
        .frame = current_.header.index,
@@ -350,7 +351,7 @@ void TimingChecker::check_delay_tolerance(const StartBitInFlight& start, Time t_
   note(check::kDataDelayTolerance, at_most(error, tenth, Time::zero()));
   if (error > tenth)
     report({.check = std::string(check::kDataDelayTolerance),
-            .spec = "2.3 (data delay time within +/-10 % of the period)",
+            .spec = "2.3 (data delay time within +/-" + std::to_string(limit::kDataDelayTolerancePercent) + " % of the period)",
             .where = ObservationPoint::MasterPins,
             .time = kernel_.now(),
             .frame = start.frame,

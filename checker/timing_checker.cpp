@@ -627,7 +627,8 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   if (short_tm &&
       fit.below(limit::kShortRecoveryTimeFcMin, tol))
     report({.check = std::string(check::kShortRecoveryClock),
-            .spec = "2.3.2 note 3 (t_m 1.25 .. 3.75 us only with f_c >= 1 MHz)",
+            .spec = "2.3.2 note 3 (t_m " + sim::format_time_range(limit::kShortRecoveryTimeMin, limit::kShortRecoveryTimeMax) +
+                    " only with f_c >= " + format_frequency(limit::kShortRecoveryTimeFcMin) + ")",
             .where = ObservationPoint::EncoderPins,
             .time = at,
             .frame = f.header.index,
@@ -660,7 +661,8 @@ void TimingChecker::check_frequency(const PinFrame& f) {
             .message = "clock frequency outside the table's range"});
   } else if (fit.above(max, tol)) {
     report({.check = std::string(check::kClockFrequency),
-            .spec = "2.1.2 (8 .. 16 MHz for special applications)",
+            .spec = "2.1.2 (" + sim::format_frequency_range(limit::kFcMaxWithCompensation, limit::kFcMaxSpecial) +
+                    " for special applications)",
             .where = ObservationPoint::EncoderPins,
             .time = at,
             .frame = f.header.index,
@@ -745,7 +747,8 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
   const double cable = cable_length_m();
   if (f.header.compensated && cable > limit::kCompensatedCableMaxMetres && fit.above(limit::kFcMaxWithoutCompensation, tol))
     report({.check = std::string(check::kClockFrequency),
-            .spec = "2.1.2 (with delay compensation up to 100 m of cable)",
+            .spec = "2.1.2 (with delay compensation up to " + std::to_string(static_cast<int>(limit::kCompensatedCableMaxMetres)) +
+                    " m of cable)",
             .where = ObservationPoint::EncoderPins,
             .time = at,
             .frame = f.header.index,
@@ -767,7 +770,7 @@ void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_ri
   const Time gap = next.fe1 - last_rise;
   report_unless_passed(more_than(gap, limit::kTimeBetweenCyclesMin, params_.resolution),
       {.check = std::string(check::kTimeBetweenCycles),
-       .spec = "2.3.2 t_b (EnDat 2.1 commands: t_b > 1 ms)",
+       .spec = "2.3.2 t_b (EnDat 2.1 commands: t_b > " + format_time(limit::kTimeBetweenCyclesMin) + ")",
        .where = ObservationPoint::EncoderPins,
        .time = next.fe1,
        .frame = next.header.index,

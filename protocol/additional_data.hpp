@@ -106,6 +106,8 @@ constexpr AdditionalDataNumber additional_data_number(Information i) {
 // Something kept once for additional data 1 and once for additional data 2.
 template <class T>
 class PerAdditionalData {
+  static_assert(static_cast<std::size_t>(AdditionalDataNumber::Two) == 1, "additional data 1 and 2 index two slots");
+
  public:
   T& operator[](AdditionalDataNumber n) { return values_[static_cast<std::size_t>(n)]; }
   const T& operator[](AdditionalDataNumber n) const { return values_[static_cast<std::size_t>(n)]; }

@@ -24,7 +24,7 @@ Encoder::Encoder(sim::Kernel& kernel, line::Line::EncoderSide pins, const Encode
       memory_((params.validate(), params.memory.value_or(default_memory_image(params)))),
       positions_(params_, memory_), additional_data_(params_, memory_, positions_),
       errors_(params_, memory_, positions_, additional_data_), eib_(params_, memory_),
-      access_(kernel, memory_, additional_data_, *this), commands_(params_, memory_, access_, eib_, bus_),
+      access_(kernel, memory_, additional_data_, *this), commands_(params_, memory_, access_, additional_data_, eib_, bus_),
       driver_(kernel, pins_, params.output_delay),
       recovery_timer_(kernel, sim::bind<&Encoder::on_recovery_time_elapsed>(this)),
       end_marker_timer_(kernel, sim::bind<&Encoder::on_end_marker_due>(this)),
@@ -196,9 +196,7 @@ void Encoder::clock_after_supplement() {
       protocol::selects_additional_data(address) || f.supplement_ignored)
     return;
   f.error = ErrorCause::MrsFrameDisrupted;
-  additional_data_.acknowledge_mrs(protocol::acknowledged_address(address, true),
-                                   protocol::acknowledged_address(protocol::block_address_of(protocol::payload_parameter(f.supplement.value_or(0))), true));
-  access_.cancel_selection();
+  commands_.selection_disrupted(f.supplement.value_or(0));
 }
 
 void Encoder::decode_mode_command() {
@@ -332,50 +330,9 @@ void Encoder::process_supplement() {
   f.supplement = received_.value();
   state_ = State::SupplementDone;
   end_marker_timer_.start(params_.supplement_end_marker_delay);
-  const auto address = protocol::payload_address(received_.value());
-  const auto parameter = protocol::payload_parameter(received_.value());
-  const MC c = command_->command;
-  const bool memory_access = c == MC::EncoderSendPositionValuesAndReceiveParameter ||
-                             c == MC::EncoderSendPositionValuesAndSendParameter ||
-                             (c == MC::EncoderSendPositionValuesAndSelectionOfMemoryArea &&
-                              !protocol::selects_additional_data(address));
-  if (memory_access && busy()) {
-    f.supplement_ignored = true;  // 2.3.1 note 1: "ignored" with 2.2 commands
-    return;
-  }
-  switch (c) {
-    case MC::EncoderSendPositionValuesAndSelectionOfMemoryArea: {  // 2.4.2
-      if (protocol::selects_additional_data(address)) {
-        additional_data_.select(address);
-        break;
-      }
-      const auto block = protocol::block_address_of(parameter);
-      auto error = eib_.refuses(protocol::memory_area_from_mrs(address));  // A2 cause 5
-      if (!error) error = memory_.check_selection(address, block, true);
-      f.error = error;
-      // A2 type II: the MRS code (block address) is acknowledged inverted.
-      additional_data_.acknowledge_mrs(protocol::acknowledged_address(address, error.has_value()),
-                                       protocol::acknowledged_address(block, error.has_value()));
-      if (!error) access_.start_selection({*protocol::memory_area_from_mrs(address), block}, address, parameter, params_.t_ac_read);
-      break;
-    }
-    case MC::EncoderSendPositionValuesAndReceiveParameter: {  // 2.6.1
-      f.error = access_.start_write(address, parameter, params_.t_ac_write);
-      break;
-    }
-    case MC::EncoderSendPositionValuesAndSendParameter: {  // 2.5.1
-      f.error = access_.start_read(address, parameter, params_.t_ac_read);
-      break;
-    }
-    case MC::EncoderSendPositionValuesAndReceiveErrorReset:  // 2.7.1
-      memory_.clear_errors_and_warnings();
-      break;
-    case MC::EncoderSendPositionValuesAndReceiveTestCommand:  // 2.8.1, 3.5.3
-      additional_data_.set_test_port(address);
-      break;
-    default:
-      break;
-  }
+  const auto d = commands_.decide_supplement(command_->command, received_.value());
+  f.supplement_ignored = d.ignored;
+  if (d.memory_access) f.error = d.error;
 }
 
 void Encoder::on_end_marker_due() {
@@ -460,7 +417,7 @@ void Encoder::set_error_sources(std::uint16_t errors, std::uint16_t warnings) {
 
 void Encoder::set_memory_access_times(Time read, Time write) {
   require(read >= Time::zero() && read <= kMaxFaultTime && write >= Time::zero() && write <= kMaxFaultTime,
-          "memory access times must be 0 .. 10 s");
+          "memory access times must be " + sim::format_time_range(Time::zero(), kMaxFaultTime));
   params_.t_ac_read = read;
   params_.t_ac_write = write;
 }
@@ -474,7 +431,7 @@ void Encoder::set_t_cal(Time t_cal) {
 }
 
 void Encoder::power_interruption(Time duration) {
-  require(duration > Time::zero() && duration <= kMaxFaultTime, "a power interruption lasts 0 .. 10 s");
+  require(duration > Time::zero() && duration <= kMaxFaultTime, "a power interruption lasts " + sim::format_time_range(Time::zero(), kMaxFaultTime));
   access_.power_interrupted(params_.interrupted_nvm_write == InterruptedNvmWrite::Torn);
   state_ = State::Idle;
   recovery_timer_.cancel();

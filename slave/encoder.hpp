@@ -94,7 +94,7 @@ class Encoder final : private MemoryAccess::Client {
   void set_position2_fault(std::int64_t deviation);
   // What the sensors measure from now on (diagnosis, appendix A3): temperatures, valuation numbers.
   void set_sensor_values(const SensorValues& values);
-  static constexpr Time kMaxFaultTime = sim::ms(10'000);
+  static constexpr Time kMaxFaultTime = EncoderParams::kMaxFaultTime;
 
  private:
   enum class State : std::uint8_t {

@@ -217,7 +217,7 @@ const std::array kRows{
         "t_ST maximum from the encoder's datasheet (\"see encoder specifications\"); judged against this encoder."},
     Row{"t_lo_max", &EncoderParams::t_lo_max, row_bound(limit::kPulseWidthMin), row_bound(sim::ms(10)), "2.3.2",
         "t_LO maximum from the encoder's datasheet (\"see encoder specifications\"); judged against this encoder."},
-    Row{"startup_time", &EncoderParams::startup_time, 0, row_bound(sim::ms(10'000)), "2.3.3",
+    Row{"startup_time", &EncoderParams::startup_time, 0, row_bound(EncoderParams::kMaxFaultTime), "2.3.3",
         "Run-up after switching on (about 1 s), DATA high-impedance and clocks ignored meanwhile; 0: the run starts "
         "with the encoder up."},
     Row{"reset_time", &EncoderParams::reset_time, 0, row_bound(sim::ms(1000)), "2.7",

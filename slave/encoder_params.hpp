@@ -148,6 +148,8 @@ struct EncoderParams {
   // The model takes calculation times (and the encoder's other times) up to this, far beyond the
   // spec, so that an overrun shows.
   static constexpr Time kMaxModelTime = sim::ms(100);
+  // The longest run-up, power interruption or fault time (t_ac set by an event) the model takes.
+  static constexpr Time kMaxFaultTime = sim::ms(10'000);
   // ... for EnDat 2.2 mode commands, where it differs (the German brochure, both editions: absolute linear
   // encoders take other calculation times for 2.1 and 2.2 mode commands); none: t_cal.
   std::optional<Time> t_cal_22;

@@ -11,8 +11,8 @@ namespace word = protocol::word;
 }  // namespace
 
 ParameterCommands::ParameterCommands(const EncoderParams& params, Memory& memory, MemoryAccess& access,
-                                     const EibCommissioning& eib, BusAddressing& bus)
-    : params_(params), memory_(memory), access_(access), eib_(eib), bus_(bus) {}
+                                     AdditionalData& additional_data, const EibCommissioning& eib, BusAddressing& bus)
+    : params_(params), memory_(memory), access_(access), additional_data_(additional_data), eib_(eib), bus_(bus) {}
 
 ParameterCommands::Decision ParameterCommands::decide(MC command, std::uint32_t payload, Time now) {
   const auto address = protocol::payload_address(payload);
@@ -99,6 +99,51 @@ std::optional<ErrorCause> ParameterCommands::carry_out(MC command, std::uint8_t 
     default:
       return std::nullopt;
   }
+}
+
+ParameterCommands::SupplementDecision ParameterCommands::decide_supplement(MC command, std::uint32_t supplement) {
+  const auto address = protocol::payload_address(supplement);
+  const auto parameter = protocol::payload_parameter(supplement);
+  const bool memory_access = command == MC::EncoderSendPositionValuesAndReceiveParameter ||
+                             command == MC::EncoderSendPositionValuesAndSendParameter ||
+                             (command == MC::EncoderSendPositionValuesAndSelectionOfMemoryArea &&
+                              !protocol::selects_additional_data(address));
+  if (memory_access && access_.busy()) return {.memory_access = false, .error = std::nullopt, .ignored = true};
+  switch (command) {
+    case MC::EncoderSendPositionValuesAndSelectionOfMemoryArea: {  // 2.4.2
+      if (protocol::selects_additional_data(address)) {
+        additional_data_.select(address);
+        return {};
+      }
+      const auto block = protocol::block_address_of(parameter);
+      auto error = eib_.refuses(protocol::memory_area_from_mrs(address));  // A2 cause 5
+      if (!error) error = memory_.check_selection(address, block, true);
+      // A2 type II: the MRS code (block address) is acknowledged inverted.
+      additional_data_.acknowledge_mrs(protocol::acknowledged_address(address, error.has_value()),
+                                       protocol::acknowledged_address(block, error.has_value()));
+      if (!error) access_.start_selection({*protocol::memory_area_from_mrs(address), block}, address, parameter, params_.t_ac_read);
+      return {.memory_access = true, .error = error, .ignored = false};
+    }
+    case MC::EncoderSendPositionValuesAndReceiveParameter:  // 2.6.1
+      return {.memory_access = true, .error = access_.start_write(address, parameter, params_.t_ac_write), .ignored = false};
+    case MC::EncoderSendPositionValuesAndSendParameter:  // 2.5.1
+      return {.memory_access = true, .error = access_.start_read(address, parameter, params_.t_ac_read), .ignored = false};
+    case MC::EncoderSendPositionValuesAndReceiveErrorReset:  // 2.7.1
+      memory_.clear_errors_and_warnings();
+      return {};
+    case MC::EncoderSendPositionValuesAndReceiveTestCommand:  // 2.8.1, 3.5.3
+      additional_data_.set_test_port(address);
+      return {};
+    default:
+      return {};
+  }
+}
+
+void ParameterCommands::selection_disrupted(std::uint32_t supplement) {
+  additional_data_.acknowledge_mrs(
+      protocol::acknowledged_address(protocol::payload_address(supplement), true),
+      protocol::acknowledged_address(protocol::block_address_of(protocol::payload_parameter(supplement)), true));
+  access_.cancel_selection();
 }
 
 ParameterCommands::Pending ParameterCommands::take_pending() {

@@ -26,7 +26,8 @@ PositionSource::PositionSource(const EncoderParams& params, Memory& memory) : pa
 void PositionSource::adopt(pm::EncoderType type, unsigned position_bits) {
   touch_probe_ = type == pm::EncoderType::TouchProbe;
   if (touch_probe_ && position_bits != protocol::kTouchProbeBits)
-    throw std::invalid_argument("a touch probe (word 14 type 5) sends 16 bits (2.3.4.4), but position_bits is " +
+    throw std::invalid_argument("a touch probe (word 14 type 5) sends " + std::to_string(protocol::kTouchProbeBits) +
+                                " bits (2.3.4.4), but position_bits is " +
                                 std::to_string(position_bits));
   reference_ = slave::reference_scheme(memory_, params_.reference_marks, params_.selected_reference_mark, position_bits);
   position_bits_ = position_bits;

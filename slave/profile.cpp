@@ -254,7 +254,8 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
            "\"EnDat\" and two printable characters, x2 only with version 2.2 (3.5.25)", m[word::kOrderingDesignation]);
   }
   expect(pm::manufacturer_checksum(m) == m[word::kManufacturerChecksum], manufacturer_path(word::kManufacturerChecksum),
-         sim::hex_h(pm::manufacturer_checksum(m), 4) + " = word 4 + ... + word 46 (3.5.26)", m[word::kManufacturerChecksum]);
+         sim::hex_h(pm::manufacturer_checksum(m), 4) + " = word " + std::to_string(pm::kManufacturerChecksumFirstWord) +
+             " + ... + word " + std::to_string(word::kManufacturerChecksum - 1) + " (3.5.26)", m[word::kManufacturerChecksum]);
   const auto e = p.endat22_words();
   if (p.version == EndatVersion::V2_2 && e.empty())
     problems.push_back("/memory: expected area manufacturer_endat22 for version 2.2 (3.9)");
@@ -262,7 +263,8 @@ std::vector<std::string> check_profile(const EncoderProfile& p) {
     problems.push_back(area_path(Area::ManufacturerEndat22) + ": expected no EnDat 2.2 area for version 2.1 (3.9)");
   if (!e.empty())
     expect(pm::endat22_checksum(e) == e[word::kEndat22Checksum], area_path(Area::ManufacturerEndat22) + "/" + std::to_string(word::kEndat22Checksum),
-           sim::hex_h(pm::endat22_checksum(e), 4) + " = word 0 + ... + word 62 (3.9.37)", e[word::kEndat22Checksum]);
+           sim::hex_h(pm::endat22_checksum(e), 4) + " = word 0 + ... + word " + std::to_string(word::kEndat22Checksum - 1) +
+               " (3.9.37)", e[word::kEndat22Checksum]);
   return problems;
 }
 

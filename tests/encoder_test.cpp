@@ -39,6 +39,20 @@ slave::EncoderParams encoder_params(protocol::EndatVersion v, unsigned bits, std
 
 // Hand-derived from spec 2.3 and docs/model.md §1/§2: slots 9 and 10 LOW (turnaround),
 // start bit at RE11, F1, position LSB first, CRC, then DATA HIGH (end of data).
+// The defaults the checker's declarations and decoder take for an encoder they are not told
+// about (protocol::encoder_default) are those of the encoder model and its line.
+TEST(EncoderDefaults, AreWhatTheDeclarationsAndTheDecoderAssume) {
+  const slave::EncoderParams e;
+  const line::LineParams l;
+  namespace d = protocol::encoder_default;
+  EXPECT_EQ(l.encoder.receiver_delay + e.output_delay + l.encoder.driver_delay, d::kClockToData);
+  EXPECT_EQ(e.position_bits, d::kPositionBits);
+  EXPECT_EQ(e.t_cal, d::kCalculationTime);
+  EXPECT_EQ(e.t_r, d::kRecoveryTime2);
+  EXPECT_EQ(d::kRecoveryTime2, protocol::limit::kRecoveryTime2Min);  // 2.3.2: t_R 500 ns
+  EXPECT_EQ(e.t_m, d::kRecoveryTime);
+}
+
 TEST(EncoderPositionFrame, EnDat21FrameIsBitExact) {
   Bench b(encoder_params(protocol::EndatVersion::V2_1, 8, 0xA5));
   ScriptedClock clock(b.k, b.line, us(1), 27, 0b000111);

@@ -204,7 +204,7 @@ struct ParameterCommandsFixture : ::testing::Test {
   slave::MemoryAccess access{kernel, memory, additional_data, client};
   slave::EibCommissioning eib{params, memory};
   slave::BusAddressing bus;
-  slave::ParameterCommands commands{params, memory, access, eib, bus};
+  slave::ParameterCommands commands{params, memory, access, additional_data, eib, bus};
   using Kind = slave::ParameterCommands::Pending::Kind;
   static std::uint32_t payload(std::uint8_t address, std::uint16_t parameter) { return protocol::make_payload(address, parameter); }
 };
@@ -233,6 +233,20 @@ TEST_F(ParameterCommandsFixture, AFrameCutShortMakesTheNextAcknowledgmentATypeTw
   EXPECT_EQ(d.start_delay, sim::Time::zero());
   EXPECT_EQ(commands.take_pending().kind, Kind::None);  // the access is discarded
   EXPECT_FALSE(commands.decide(protocol::ModeCommand::SelectionOfMemoryArea, payload(mrs, 0), kernel.now()).error);
+}
+
+TEST_F(ParameterCommandsFixture, ASupplementSelectsAdditionalDataAndAMemoryAccessMeetingBusyIsIgnored) {
+  using MC = protocol::ModeCommand;
+  const auto mrs = protocol::selection_mrs(protocol::Information::Temperature1);
+  const auto d = commands.decide_supplement(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, payload(mrs, 0));
+  EXPECT_FALSE(d.memory_access);
+  EXPECT_FALSE(d.ignored);
+  EXPECT_EQ(additional_data.selected(protocol::AdditionalDataNumber::One), protocol::Information::Temperature1);
+  access.busy_until(kernel.now() + sim::us(1));  // 2.3.1 note 1: a 2.2 access meeting Busy is ignored
+  const auto area = protocol::mrs_of(protocol::MemoryArea::OperatingParameters);
+  const auto busy = commands.decide_supplement(MC::EncoderSendPositionValuesAndSelectionOfMemoryArea, payload(area, 0));
+  EXPECT_TRUE(busy.ignored);
+  EXPECT_FALSE(busy.error);
 }
 
 TEST_F(ParameterCommandsFixture, TheTestCommandSetsThePortUntilARestart) {
