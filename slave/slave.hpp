@@ -11,7 +11,7 @@
 //   additional_data.hpp  additional data 1 and 2 and their rolling values (2.3.5)
 //   error_messages.hpp   F1 and F2 and the operating status words 0 and 1 (2.3.1, 3.4.1, 3.4.2)
 //   bus_addressing.hpp   the encoder's part in a bus: addressed or not, driver on or off (2.10)
-//   parameter_commands.hpp  the 2.1 commands with 8 + 16 bits: acknowledgment, type II, test port (2.4 .. 2.10)
+//   parameter_commands.hpp  commands with 8 + 16 bits (2.1 payload, 2.2 supplement): answers, type II, test port
 //   readiness.hpp        whether a clock edge is taken: run-up (2.3.3), t_R (2.3.2)
 //   data_driver.hpp      the level the encoder sends on DATA and whether its driver is on (2.3)
 //   reference.hpp        reference mark schemes (2.3.4.3)
