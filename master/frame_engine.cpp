@@ -1,7 +1,6 @@
 #include "endatsim/master/frame_engine.hpp"
 
 #include <algorithm>
-#include <boost/random/uniform_int_distribution.hpp>
 
 namespace endatsim::master {
 namespace {
@@ -43,7 +42,7 @@ bool crc_passes(const CrcCheck& check, std::uint8_t received, std::uint8_t expec
 FrameEngine::FrameEngine(sim::Kernel& kernel, line::Line::MasterSide pins, const MasterParams& params,
                          DelayMeasurement& delay, FrameClient& client, const std::vector<MasterObserver*>& observers)
     : kernel_(kernel), pins_(pins), params_(params), delay_(delay), client_(client), observers_(observers),
-      rng_(params.seed), sample_strobe_(kernel, "master_sample", false), frame_active_(kernel, "master_frame", false),
+      timing_(params), sample_strobe_(kernel, "master_sample", false), frame_active_(kernel, "master_frame", false),
       edge_timer_(kernel, sim::bind<&FrameEngine::clock_edge>(this)),
       layout_(protocol::position_frame_layout(protocol::EndatVersion::V2_1, params.position_bits)) {
   pins_.data_in.on_change(sim::bind<&FrameEngine::on_data_in>(this));
@@ -68,9 +67,7 @@ void FrameEngine::start(const FrameRequest& request) {
   supplement_start_ = 0;
   supplement_due_ = false;
   clock_adjust_ = request.clock_adjust;
-  const Time period = sim::period_of(frame_.f_c);
-  high_ = period * params_.high_permille / 1000;
-  low_ = period - high_;
+  timing_.begin(frame_.f_c, kernel_.now());
   layout_ = protocol::answer_layout(*command_, request.position_bits);
   frame_.answer_bits = answer_width();
   frame_.position_bits = request.position_bits;
@@ -85,19 +82,12 @@ void FrameEngine::start(const FrameRequest& request) {
   words_left_ = request.continuous_words;
   poll_start_ = kernel_.now();
   ++epoch_;
-  delay_.frame_started(request.measurement, rng_);
+  delay_.frame_started(request.measurement, timing_.rng());
   frame_running_ = true;
 
   frame_active_.write(true);
   for (auto* o : observers_) o->on_frame_start(frame_);
-  nominal_ = kernel_.now();
   falling_edge();
-}
-
-Time FrameEngine::jittered(Time nominal) {
-  if (params_.jitter == Time::zero()) return nominal;
-  boost::random::uniform_int_distribution<std::int64_t> d(-params_.jitter.count(), params_.jitter.count());
-  return std::max(kernel_.now(), nominal + Time{d(rng_)});
 }
 
 // ---- the clock and what the master sends ---------------------------------------------------
@@ -136,9 +126,7 @@ void FrameEngine::falling_edge() {
       kernel_.schedule(frame_.t_d_used, sim::bind<&FrameEngine::sample>(this, sample_tag(epoch_, slot)));
     else sample_now(slot);
   }
-  // 2.3.2 note 8: the first LOW phase is stretched to t_ST.
-  nominal_ += clock_ == position::kFrameStart ? std::max(low_, params_.t_st) : low_;
-  edge_timer_.start(jittered(nominal_) - kernel_.now());
+  edge_timer_.start(timing_.after_falling(clock_, kernel_.now()) - kernel_.now());
 }
 
 void FrameEngine::rising_edge() {
@@ -159,24 +147,23 @@ void FrameEngine::rising_edge() {
   // encoder can rely on: the last bit is held that long too (or half this frame's period, if
   // shorter), and the master is off the line long before the encoder takes DATA back for t_m.
   if (supplement_start_ != 0 && clock_ == last_clock_)
-    kernel_.schedule(std::min(high_, sim::period_of(MasterParams::kMaxFc) / 2),
+    kernel_.schedule(std::min(timing_.high(), sim::period_of(MasterParams::kMaxFc) / 2),
                      sim::bind<&FrameEngine::release_supplement>(this));
   const bool answered = rx_ == Rx::Done && !supplement_due_ && (last_clock_ == 0 || clock_ >= last_clock_);
   if (answered || (last_clock_ != 0 && clock_ >= last_clock_ && words_left_ == 0)) {
     clocking_done_ = true;
     if (!params_.extra_clock_after_last_bit && rx_ == Rx::Receiving) {
       // No further pulse: the last bit is taken where the next falling edge would be.
-      const Time at = high_ + frame_.t_d_used;
+      const Time at = timing_.high() + frame_.t_d_used;
       kernel_.schedule(at, sim::bind<&FrameEngine::sample>(this, sample_tag(epoch_, clock_)));
     }
     // Too few pulses (a fault): the answer stays incomplete once the last sample is due.
     if (rx_ == Rx::Receiving)
-      kernel_.schedule(high_ + frame_.t_d_used + low_, sim::bind<&FrameEngine::incomplete>(this, sample_tag(epoch_, 0)));
+      kernel_.schedule(timing_.high() + frame_.t_d_used + timing_.low(), sim::bind<&FrameEngine::incomplete>(this, sample_tag(epoch_, 0)));
     maybe_complete_frame();
     return;
   }
-  nominal_ += high_;
-  edge_timer_.start(jittered(nominal_) - kernel_.now());
+  edge_timer_.start(timing_.after_rising(kernel_.now()) - kernel_.now());
 }
 
 void FrameEngine::drive_supplement_bit() {

@@ -10,9 +10,8 @@
 #include <optional>
 #include <vector>
 
-#include <boost/random/mersenne_twister.hpp>
-
 #include "endatsim/line/line.hpp"
+#include "endatsim/master/clock_timing.hpp"
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/frame_result.hpp"
 #include "endatsim/master/master_params.hpp"
@@ -90,7 +89,6 @@ class FrameEngine {
   void drive_supplement_bit();
   void release_supplement();
   unsigned answer_width() const;
-  Time jittered(Time nominal);
 
   sim::Kernel& kernel_;
   line::Line::MasterSide pins_;
@@ -98,7 +96,7 @@ class FrameEngine {
   DelayMeasurement& delay_;
   FrameClient& client_;
   const std::vector<MasterObserver*>& observers_;
-  boost::random::mt19937_64 rng_;  // the clock's jitter and the delay counter's phase
+  ClockTiming timing_;  // when each edge is due; its generator also draws the delay counter's phase
   sim::Signal sample_strobe_;
   sim::Signal frame_active_;
   sim::Timer edge_timer_;
@@ -106,8 +104,6 @@ class FrameEngine {
   FrameResult frame_;
   bool frame_running_ = false;
   int clock_adjust_ = 0;
-  Time high_{0}, low_{0};
-  Time nominal_{0};
   bool clock_low_ = false;
   unsigned clock_ = 0;
   unsigned last_clock_ = 0;  // 0 while unknown (start bit not found yet)

@@ -1,13 +1,15 @@
 // The small parts the encoder and the master are built from, each on its own: the bits of a frame
 // (slave/frame_bits.hpp), the bounded frame log (sim/record_log.hpp), the master's operation queue
 // (master/operation.hpp), the frames that read the EnDat 2.2 area (master/startup.hpp), a busy
-// wait's polls (master/busy_polling.hpp) and the encoder's decisions on 2.1 parameter commands
+// wait's polls (master/busy_polling.hpp), when the master's clock edges are due
+// (master/clock_timing.hpp) and the encoder's decisions on commands with 8 + 16 bits
 // (slave/parameter_commands.hpp). The delay measurement's part test is with the master's.
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "endatsim/master/busy_polling.hpp"
+#include "endatsim/master/clock_timing.hpp"
 #include "endatsim/master/operation.hpp"
 #include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/error_handling.hpp"
@@ -188,6 +190,38 @@ TEST(BusyPolling, AWaitEndsWhenBusyIsResetOrCannotBeSeenAndTimesOutOnTheLastPoll
   EXPECT_EQ(polling.unreadable(), 2U);
   EXPECT_FALSE(polling.poll_ends_wait(poll(I::MemoryParameterLsb, true, O::Ok), true));
   EXPECT_EQ(polling.timeouts(), 1U);
+}
+
+TEST(ClockTiming, PhasesFollowTheDutyCycleAndTheFirstLowPhaseIsStretchedToTst) {
+  master::MasterParams p;
+  p.high_permille = 400;
+  p.t_st = sim::us(2);
+  master::ClockTiming t(p);
+  t.begin(sim::MHz(1), sim::us(10));  // FE1 at 10 us
+  EXPECT_EQ(t.high(), sim::ns(400));
+  EXPECT_EQ(t.low(), sim::ns(600));
+  EXPECT_EQ(t.after_falling(1, sim::us(10)), sim::us(12));  // 2.3.2 note 8: t_ST after FE1
+  EXPECT_EQ(t.after_rising(sim::us(12)), sim::ns(12400));
+  EXPECT_EQ(t.after_falling(2, sim::ns(12400)), sim::us(13));
+}
+
+TEST(ClockTiming, JitterMovesEachEdgeAroundItsNominalTimeWithoutAccumulating) {
+  master::MasterParams p;
+  p.jitter = sim::ns(5);
+  master::ClockTiming t(p);
+  t.begin(sim::MHz(1), Time::zero());
+  Time nominal = Time::zero(), now = Time::zero();
+  bool moved = false;
+  for (unsigned clock = 1; clock < 200; ++clock) {
+    nominal += clock == 1 ? std::max(t.low(), p.t_st) : t.low();
+    now = t.after_falling(clock, now);
+    EXPECT_LE(now > nominal ? now - nominal : nominal - now, p.jitter);
+    moved = moved || now != nominal;
+    nominal += t.high();
+    now = t.after_rising(now);
+    EXPECT_LE(now > nominal ? now - nominal : nominal - now, p.jitter);
+  }
+  EXPECT_TRUE(moved);
 }
 
 // The encoder's decisions on 2.1 commands with 8 + 16 bits, without its frame engine.
