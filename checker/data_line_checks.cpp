@@ -16,6 +16,29 @@ using sim::format_time;
 namespace limit = protocol::limit;
 namespace position = protocol::frame_position;
 
+// The spec's words for findings, from the limits; built once (some rows report in every frame).
+const std::string& t_cal_max_spec() {
+  static const std::string text = "2.3.2 t_cal maximum " + sim::format_time(limit::kCalculationTimeMax);
+  return text;
+}
+
+const std::string& continuous_low_bits_spec() {
+  static const std::string text = "2.3.1.1 continuous clock: at most " + std::to_string(limit::kContinuousClockMaxLowBits) +
+                                  " LOW bits before the next word (in place of t_cal)";
+  return text;
+}
+
+const std::string& t_ac_max_spec() {
+  static const std::string text = "2.3.2 t_ac maximum " + sim::format_time(limit::kMemoryAccessMax);
+  return text;
+}
+
+const std::string& data_delay_tolerance_spec() {
+  static const std::string text =
+      "2.3 (data delay time within +/-" + std::to_string(limit::kDataDelayTolerancePercent) + " % of the period)";
+  return text;
+}
+
 }  // namespace
 
 void TimingChecker::start_data_line_checks() {
@@ -196,7 +219,7 @@ void TimingChecker::check_calculation_time_maximum() {
   const Time bound = limit::kCalculationTimeMax + sim::period_of(current_.header.f_c);
   report_unless_passed(at_most(t_cal, bound, params_.resolution),
       {.check = std::string(check::kCalculationTime),
-       .spec = "2.3.2 t_cal maximum " + sim::format_time(limit::kCalculationTimeMax),
+       .spec = t_cal_max_spec(),
        .where = ObservationPoint::EncoderPins,
        .time = kernel_.now(),
        .frame = current_.header.index,
@@ -223,8 +246,7 @@ void TimingChecker::next_word_start_bit(unsigned clock) {
   const unsigned low_bits = clock - low_clock_;
   if (low_bits <= limit::kContinuousClockMaxLowBits) return;
   report({.check = std::string(check::kCalculationTime),
-          .spec = "2.3.1.1 continuous clock: at most " + std::to_string(limit::kContinuousClockMaxLowBits) +
-                  " LOW bits before the next word (in place of t_cal)",
+          .spec = continuous_low_bits_spec(),
           .where = ObservationPoint::EncoderPins,
           .time = kernel_.now(),
           .frame = current_.header.index + word_,
@@ -263,7 +285,7 @@ void TimingChecker::check_memory_access_time() {
   const Time bound = limit::kMemoryAccessMax + sim::period_of(current_.header.f_c);
   report_unless_passed(at_most(t_ac, bound, params_.resolution),
       {.check = std::string(check::kMemoryAccess),
-       .spec = "2.3.2 t_ac maximum " + sim::format_time(limit::kMemoryAccessMax),
+       .spec = t_ac_max_spec(),
        .where = ObservationPoint::EncoderPins,
        .time = kernel_.now(),
        .frame = current_.header.index,
@@ -351,7 +373,7 @@ void TimingChecker::check_delay_tolerance(const StartBitInFlight& start, Time t_
   note(check::kDataDelayTolerance, at_most(error, tenth, Time::zero()));
   if (error > tenth)
     report({.check = std::string(check::kDataDelayTolerance),
-            .spec = "2.3 (data delay time within +/-" + std::to_string(limit::kDataDelayTolerancePercent) + " % of the period)",
+            .spec = data_delay_tolerance_spec(),
             .where = ObservationPoint::MasterPins,
             .time = kernel_.now(),
             .frame = start.frame,

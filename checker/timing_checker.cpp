@@ -40,6 +40,31 @@ using sim::format_time;
 namespace limit = protocol::limit;
 namespace position = protocol::frame_position;
 
+// The spec's words for findings, from the limits; built once (some rows report in every frame).
+const std::string& short_t_m_spec() {
+  static const std::string text = "2.3.2 note 3 (t_m " +
+                                  sim::format_time_range(limit::kShortRecoveryTimeMin, limit::kShortRecoveryTimeMax) +
+                                  " only with f_c >= " + format_frequency(limit::kShortRecoveryTimeFcMin) + ")";
+  return text;
+}
+
+const std::string& special_fc_spec() {
+  static const std::string text =
+      "2.1.2 (" + sim::format_frequency_range(limit::kFcMaxWithCompensation, limit::kFcMaxSpecial) + " for special applications)";
+  return text;
+}
+
+const std::string& compensated_cable_spec() {
+  static const std::string text = "2.1.2 (with delay compensation up to " +
+                                  std::to_string(static_cast<int>(limit::kCompensatedCableMaxMetres)) + " m of cable)";
+  return text;
+}
+
+const std::string& t_b_spec() {
+  static const std::string text = "2.3.2 t_b (EnDat 2.1 commands: t_b > " + format_time(limit::kTimeBetweenCyclesMin) + ")";
+  return text;
+}
+
 }  // namespace
 
 std::span<const std::string_view> check::all() { return protocol::check::kAll; }
@@ -627,8 +652,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   if (short_tm &&
       fit.below(limit::kShortRecoveryTimeFcMin, tol))
     report({.check = std::string(check::kShortRecoveryClock),
-            .spec = "2.3.2 note 3 (t_m " + sim::format_time_range(limit::kShortRecoveryTimeMin, limit::kShortRecoveryTimeMax) +
-                    " only with f_c >= " + format_frequency(limit::kShortRecoveryTimeFcMin) + ")",
+            .spec = short_t_m_spec(),
             .where = ObservationPoint::EncoderPins,
             .time = at,
             .frame = f.header.index,
@@ -661,8 +685,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
             .message = "clock frequency outside the table's range"});
   } else if (fit.above(max, tol)) {
     report({.check = std::string(check::kClockFrequency),
-            .spec = "2.1.2 (" + sim::format_frequency_range(limit::kFcMaxWithCompensation, limit::kFcMaxSpecial) +
-                    " for special applications)",
+            .spec = special_fc_spec(),
             .where = ObservationPoint::EncoderPins,
             .time = at,
             .frame = f.header.index,
@@ -747,8 +770,7 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
   const double cable = cable_length_m();
   if (f.header.compensated && cable > limit::kCompensatedCableMaxMetres && fit.above(limit::kFcMaxWithoutCompensation, tol))
     report({.check = std::string(check::kClockFrequency),
-            .spec = "2.1.2 (with delay compensation up to " + std::to_string(static_cast<int>(limit::kCompensatedCableMaxMetres)) +
-                    " m of cable)",
+            .spec = compensated_cable_spec(),
             .where = ObservationPoint::EncoderPins,
             .time = at,
             .frame = f.header.index,
@@ -770,7 +792,7 @@ void TimingChecker::check_time_between_cycles(const PinFrame& next, Time last_ri
   const Time gap = next.fe1 - last_rise;
   report_unless_passed(more_than(gap, limit::kTimeBetweenCyclesMin, params_.resolution),
       {.check = std::string(check::kTimeBetweenCycles),
-       .spec = "2.3.2 t_b (EnDat 2.1 commands: t_b > " + format_time(limit::kTimeBetweenCyclesMin) + ")",
+       .spec = t_b_spec(),
        .where = ObservationPoint::EncoderPins,
        .time = next.fe1,
        .frame = next.header.index,
