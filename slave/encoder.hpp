@@ -141,7 +141,7 @@ class Encoder final : private MemoryAccess::Client {
   EibCommissioning eib_;
   MemoryAccess access_;
   BusAddressing bus_;
-  ParameterCommands commands_;  // 2.1 commands with 8 + 16 bits: decisions, test port, A2 cause 3
+  ParameterCommands commands_;  // commands with 8 + 16 bits (2.1 payload, 2.2 supplement): decisions, test port
   DataDriver driver_;
   sim::Timer recovery_timer_;
   sim::Timer end_marker_timer_;
