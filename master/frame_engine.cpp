@@ -75,9 +75,7 @@ void FrameEngine::start(const FrameRequest& request) {
   last_clock_ = 0;
   clocking_done_ = false;
   rx_ = Rx::Polling;
-  seen_low_ = false;
-  require_low_ = params_.start_bit_detection == StartBitDetection::WaitLowThenHigh;
-  high_samples_ = 0;
+  hunt_.begin(params_.start_bit_detection == StartBitDetection::WaitLowThenHigh);
   rx_bits_.clear();
   words_left_ = request.continuous_words;
   poll_start_ = kernel_.now();
@@ -201,17 +199,17 @@ void FrameEngine::sample_now(unsigned clock) {
   bool in_data = rx_ == Rx::Receiving;
   switch (rx_) {
     case Rx::Polling:
-      // Fail-safe receivers read HIGH on the undriven line: wait for LOW, then the start bit.
-      if (!seen_low_ && require_low_) {
-        seen_low_ = !value;
-        if (value && ++high_samples_ >= params_.type1_detect_samples) {
+      switch (hunt_.sample(value, params_.type1_detect_samples)) {
+        case StartBitHunt::Result::Type1Error:
           for (auto* o : observers_) o->on_sample(frame_, clock, value, false);
           end_reception(FrameOutcome::Type1Error);
           return;
-        }
-      } else if (value) {
-        in_data = true;
-        begin_answer(clock);
+        case StartBitHunt::Result::StartBit:
+          in_data = true;
+          begin_answer(clock);
+          break;
+        case StartBitHunt::Result::Waiting:
+          break;
       }
       break;
     case Rx::Receiving:
@@ -328,9 +326,7 @@ void FrameEngine::word_received(FrameOutcome outcome) {
   ++frame_.index;
   frame_.start_bit_clock = 0;
   rx_ = Rx::Polling;
-  seen_low_ = false;
-  require_low_ = true;  // the HIGH bit after the CRC is not a start bit
-  high_samples_ = 0;
+  hunt_.begin(true);  // the HIGH bit after the CRC is not a start bit
   rx_bits_.clear();
   last_clock_ = 0;
   poll_start_ = kernel_.now();

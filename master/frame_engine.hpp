@@ -15,6 +15,7 @@
 #include "endatsim/master/delay_measurement.hpp"
 #include "endatsim/master/frame_result.hpp"
 #include "endatsim/master/master_params.hpp"
+#include "endatsim/master/start_bit_hunt.hpp"
 #include "endatsim/protocol/protocol.hpp"
 
 namespace endatsim::master {
@@ -115,11 +116,9 @@ class FrameEngine {
   bool supplement_due_ = false;
   protocol::Layout layout_;
   Rx rx_ = Rx::Off;
-  bool seen_low_ = false;
-  bool require_low_ = true;
+  StartBitHunt hunt_;
   unsigned words_left_ = 0;
   Time poll_start_{0};
-  unsigned high_samples_ = 0;
   std::vector<std::uint8_t> rx_bits_;
   std::uint64_t epoch_ = 0;
 };

@@ -2,7 +2,7 @@
 // (slave/frame_bits.hpp), the bounded frame log (sim/record_log.hpp), the master's operation queue
 // (master/operation.hpp), the frames that read the EnDat 2.2 area (master/startup.hpp), a busy
 // wait's polls (master/busy_polling.hpp), when the master's clock edges are due
-// (master/clock_timing.hpp) and the encoder's decisions on commands with 8 + 16 bits
+// (master/clock_timing.hpp), its search for the start bit (master/start_bit_hunt.hpp) and the encoder's decisions on commands with 8 + 16 bits
 // (slave/parameter_commands.hpp). The delay measurement's part test is with the master's.
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include "endatsim/master/busy_polling.hpp"
 #include "endatsim/master/clock_timing.hpp"
 #include "endatsim/master/operation.hpp"
+#include "endatsim/master/start_bit_hunt.hpp"
 #include "endatsim/master/startup.hpp"
 #include "endatsim/protocol/error_handling.hpp"
 #include "endatsim/protocol/parameters.hpp"
@@ -190,6 +191,23 @@ TEST(BusyPolling, AWaitEndsWhenBusyIsResetOrCannotBeSeenAndTimesOutOnTheLastPoll
   EXPECT_EQ(polling.unreadable(), 2U);
   EXPECT_FALSE(polling.poll_ends_wait(poll(I::MemoryParameterLsb, true, O::Ok), true));
   EXPECT_EQ(polling.timeouts(), 1U);
+}
+
+TEST(StartBitHunt, AHighCountsOnlyAfterALowAndHighsBeforeAnyLowAreATypeOneError) {
+  using R = master::StartBitHunt::Result;
+  master::StartBitHunt h;
+  h.begin(true);
+  EXPECT_EQ(h.sample(true, 3), R::Waiting);  // the fail-safe HIGH of the undriven line
+  EXPECT_EQ(h.sample(false, 3), R::Waiting);  // the LOW
+  EXPECT_EQ(h.sample(false, 3), R::Waiting);
+  EXPECT_EQ(h.sample(true, 3), R::StartBit);
+  h.begin(true);
+  EXPECT_EQ(h.sample(true, 3), R::Waiting);
+  EXPECT_EQ(h.sample(true, 3), R::Waiting);
+  EXPECT_EQ(h.sample(true, 3), R::Type1Error);  // A2 type I: DATA held HIGH
+  h.begin(false);  // the first HIGH is the start bit
+  EXPECT_EQ(h.sample(false, 3), R::Waiting);
+  EXPECT_EQ(h.sample(true, 3), R::StartBit);
 }
 
 TEST(ClockTiming, PhasesFollowTheDutyCycleAndTheFirstLowPhaseIsStretchedToTst) {
