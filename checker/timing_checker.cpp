@@ -246,13 +246,13 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
       margins_(protocol::timing_rows().size()),
       power_on_(params.resolution) {
   if (encoder.switched_on_in_run) power_on_.switched_on(kernel.now());
-  line.master().clock_out.on_change(sim::bind<&TimingChecker::on_master_clock>(this));
+  line.master().clock_out.on_change_monitor(sim::bind<&TimingChecker::on_master_clock>(this));
   auto encoder_pins = line.pins(ObservationPoint::EncoderPins);
-  encoder_pins.clock.on_change(sim::bind<&TimingChecker::on_encoder_clock>(this));
-  encoder_pins.driver_enable.on_change(sim::bind<&TimingChecker::on_encoder_driver>(this));
-  encoder_pins.data.on_change(sim::bind<&TimingChecker::on_encoder_data>(this));
-  line.master().data_in.on_change(sim::bind<&TimingChecker::on_master_data>(this));
-  line.pins(ObservationPoint::MasterPins).data_driven.on_change(sim::bind<&TimingChecker::on_master_driven>(this));
+  encoder_pins.clock.on_change_monitor(sim::bind<&TimingChecker::on_encoder_clock>(this));
+  encoder_pins.driver_enable.on_change_monitor(sim::bind<&TimingChecker::on_encoder_driver>(this));
+  encoder_pins.data.on_change_monitor(sim::bind<&TimingChecker::on_encoder_data>(this));
+  line.master().data_in.on_change_monitor(sim::bind<&TimingChecker::on_master_data>(this));
+  line.pins(ObservationPoint::MasterPins).data_driven.on_change_monitor(sim::bind<&TimingChecker::on_master_driven>(this));
   // Contentions that began before the checker (those the line has logged) are judged too.
   for (const line::Contention& c : line.contentions())
     if (contentions_reported() && (!params_.recorded_at || c.where == *params_.recorded_at))

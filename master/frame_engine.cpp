@@ -12,6 +12,10 @@ constexpr unsigned kFirstPolledClock = position::kTurnaround;
 // Sample tags carry the frame's epoch in the upper and the clock slot in the lower 32 bits.
 std::uint64_t sample_tag(std::uint64_t epoch, unsigned clock) { return epoch << 32 | clock; }
 
+// A note's data: the clock slot, the value sampled and whether it was a bit of the answer below,
+// the recorded frame's place from here up.
+constexpr unsigned kNoteFrameShift = 40;
+
 }  // namespace
 
 std::string_view to_string(FrameOutcome o) {
@@ -84,6 +88,7 @@ void FrameEngine::start(const FrameRequest& request) {
   frame_running_ = true;
 
   frame_active_.write(true);
+  note(Note::Start);
   for (auto* o : observers_) o->on_frame_start(frame_);
   falling_edge();
 }
@@ -201,6 +206,7 @@ void FrameEngine::sample_now(unsigned clock) {
     case Rx::Polling:
       switch (hunt_.sample(value, params_.type1_detect_samples)) {
         case StartBitHunt::Result::Type1Error:
+          note(Note::Sample, clock | std::uint64_t{value} << 32);
           for (auto* o : observers_) o->on_sample(frame_, clock, value, false);
           end_reception(FrameOutcome::Type1Error);
           return;
@@ -219,6 +225,7 @@ void FrameEngine::sample_now(unsigned clock) {
     case Rx::Done:
       return;
   }
+  note(Note::Sample, clock | std::uint64_t{value} << 32 | std::uint64_t{in_data} << 33);
   for (auto* o : observers_) o->on_sample(frame_, clock, value, in_data);
   if (rx_ == Rx::Receiving && rx_bits_.size() == answer_width()) decode_answer();
 }
@@ -282,7 +289,10 @@ void FrameEngine::decode_answer() {
     supplement_due_ = true;
     frame_.supplement = supplement_word_;
   }
-  if (outcome == FrameOutcome::Ok) client_.answer_accepted(frame_);
+  if (outcome == FrameOutcome::Ok) {
+    note(Note::Accepted);
+    client_.answer_accepted(frame_);
+  }
   word_received(outcome);
 }
 
@@ -320,6 +330,7 @@ void FrameEngine::word_received(FrameOutcome outcome) {
   // starts with its start bit, without a new mode command.
   frame_.outcome = outcome;
   frame_.end = kernel_.now();
+  note(Note::WordDone);
   client_.word_done(frame_);
   --words_left_;
   ++frame_.word;
@@ -354,7 +365,54 @@ void FrameEngine::maybe_complete_frame() {
   frame_active_.write(false);
   if (frame_.measurement && frame_.outcome == FrameOutcome::Ok)
     if (const auto count = delay_.take_count()) frame_.delay_count_time = *count;
+  note(Note::Done);
   client_.frame_done(frame_);
+}
+
+// ---- the frame-level fast path ------------------------------------------------------------
+
+void FrameEngine::note(Note n, std::uint64_t data) {
+  sim::Tape* tape = kernel_.tape();
+  if (tape == nullptr) return;
+  if (recorded_.empty() || !(recorded_.back() == frame_)) recorded_.push_back(frame_);
+  // The frame as it was then, by its place among the recorded ones, above the note's data.
+  tape->add(sim::TapeItem::Kind::Model, kernel_.now(), this, static_cast<std::uint32_t>(n),
+            data | std::uint64_t{recorded_.size() - 1} << kNoteFrameShift);
+}
+
+void FrameEngine::replay(const sim::TapeItem& item, const std::vector<FrameResult>& frames, Time shift,
+                         std::uint64_t index_shift) {
+  const Note n = static_cast<Note>(item.index);
+  if (n == Note::Start) replayed_ = nullptr;
+  const FrameResult& recorded = frames.at(item.value >> kNoteFrameShift);
+  if (&recorded != replayed_) {
+    frame_ = recorded;
+    frame_.index += index_shift;
+    frame_.start += shift;
+    if (frame_.end != Time::zero()) frame_.end += shift;  // zero: no rising edge yet
+    replayed_ = &recorded;
+  }
+  switch (n) {
+    case Note::Start:
+      frame_running_ = true;
+      ++epoch_;
+      for (auto* o : observers_) o->on_frame_start(frame_);
+      return;
+    case Note::Sample: {
+      const auto clock = static_cast<unsigned>(item.value & 0xFFFF'FFFF);
+      const bool value = ((item.value >> 32) & 1U) != 0;
+      const bool in_data = ((item.value >> 33) & 1U) != 0;
+      for (auto* o : observers_) o->on_sample(frame_, clock, value, in_data);
+      return;
+    }
+    case Note::Accepted: client_.answer_accepted(frame_); return;
+    case Note::WordDone: client_.word_done(frame_); return;
+    case Note::Done:
+      frame_running_ = false;
+      replayed_ = nullptr;  // the client may change the frame (error_detected)
+      client_.frame_done(frame_);
+      return;
+  }
 }
 
 // The delay counter saves its value at a rising edge of DATA (2.1.2: at the start bit's).

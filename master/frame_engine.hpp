@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "endatsim/line/line.hpp"
@@ -17,6 +18,7 @@
 #include "endatsim/master/master_params.hpp"
 #include "endatsim/master/start_bit_hunt.hpp"
 #include "endatsim/protocol/protocol.hpp"
+#include "endatsim/sim/tape.hpp"
 
 namespace endatsim::master {
 
@@ -70,7 +72,16 @@ class FrameEngine {
   sim::Signal& sample_strobe() { return sample_strobe_; }  // toggles at each sampling instant
   sim::Signal& frame_active() { return frame_active_; }
 
+  // The frame-level fast path (docs/performance.md). While the kernel records (Kernel::tape()),
+  // the engine notes on the tape each time it tells its observers or its client of the frame,
+  // with the frame as it was then (take_recorded_frames()); replay() tells them again.
+  enum class Note : std::uint32_t { Start, Sample, Accepted, WordDone, Done };
+  std::vector<FrameResult> take_recorded_frames() { return std::exchange(recorded_, {}); }
+  // Plays one noted item of a frame recorded `shift` earlier, whose index was `index_shift` lower.
+  void replay(const sim::TapeItem& item, const std::vector<FrameResult>& frames, Time shift, std::uint64_t index_shift);
+
  private:
+  void note(Note n, std::uint64_t data = 0);
   enum class Rx : std::uint8_t { Off, Polling, Receiving, Done };
 
   void clock_edge();
@@ -121,6 +132,8 @@ class FrameEngine {
   Time poll_start_{0};
   std::vector<std::uint8_t> rx_bits_;
   std::uint64_t epoch_ = 0;
+  std::vector<FrameResult> recorded_;  // the frame as each note saw it, while the kernel records
+  const FrameResult* replayed_ = nullptr;  // which recorded state frame_ holds while replaying
 };
 
 }  // namespace endatsim::master

@@ -43,6 +43,7 @@ struct AdditionalDatum {
     return static_cast<protocol::Information>(status & protocol::AdditionalDataStatus::kInformation);
   }
   bool busy() const { return (status & protocol::AdditionalDataStatus::kBusy) != 0; }
+  bool operator==(const AdditionalDatum&) const = default;
 };
 
 struct FrameResult {
@@ -77,6 +78,7 @@ struct FrameResult {
   unsigned start_bit_clock = 0;  // as the master counted it
   unsigned clocks = 0;
   std::optional<Time> delay_count_time;  // measurement frames: counter value x 1/f_e
+  bool operator==(const FrameResult&) const = default;
 };
 
 // What monitors and reports can observe of the master's intentions.

@@ -288,7 +288,9 @@ void Master::start_frame(std::uint64_t) {
     kernel_.schedule(wait, sim::bind<&Master::start_frame>(this));
     return;
   }
-  engine_.start(frame_request());
+  const FrameRequest request = frame_request();
+  if (shortcut_ != nullptr && shortcut_->replayed(request)) return;
+  engine_.start(request);
 }
 
 // The next frame of the current operation: a delay measurement's while one runs (2.1.2).

@@ -44,6 +44,15 @@ namespace endatsim::master {
 using protocol::ModeCommand;
 using sim::Hertz;
 using sim::Time;
+// The frame-level fast path (docs/performance.md): asked before each frame goes on the wire
+// whether it plays the frame from a recording instead (true: it has, and told the master of it
+// as the frame engine would have).
+class FrameShortcut {
+ public:
+  virtual ~FrameShortcut() = default;
+  virtual bool replayed(const FrameRequest& request) = 0;
+};
+
 class Master : private FrameClient {
  public:
   Master(sim::Kernel& kernel, line::Line& line, const MasterParams& params);
@@ -84,6 +93,12 @@ class Master : private FrameClient {
   unsigned position_bits() const { return position_bits_; }
   // What the master has selected with 2.4.2.2 MRS codes: it expects this many additional data.
   unsigned expected_additional_data() const override { return selection_.count(); }
+
+  void set_shortcut(FrameShortcut* shortcut) { shortcut_ = shortcut; }
+  FrameEngine& engine() { return engine_; }
+  // Frames the current operation has still to run, this one included; a measurement round runs.
+  unsigned frames_left() const { return frames_left_; }
+  bool measuring() const { return delay_.active(); }
 
   sim::Signal& sample_strobe() { return engine_.sample_strobe(); }  // toggles at each sampling instant
   sim::Signal& frame_active() { return engine_.frame_active(); }
@@ -136,6 +151,7 @@ class Master : private FrameClient {
   AdditionalDataSelection selection_;  // as the encoder accepted it (2.4.2.2)
   ParameterBook book_;               // the encoder's memory as read (2.4 .. 2.6)
   unsigned position_bits_ = 0;  // as configured, or as word 13 said
+  FrameShortcut* shortcut_ = nullptr;
 
   // What has been recorded.
   sim::RecordLog<FrameResult> frames_{sim::RecordLog<FrameResult>::Keep::First};

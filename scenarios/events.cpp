@@ -33,6 +33,11 @@ EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& 
   if (listen[0]) line.pins(ObservationPoint::MasterPins).clock.on_change(sim::bind<&EventDriver::on_master_clock>(this));
   if (listen[1]) line.pins(ObservationPoint::EncoderPins).clock.on_change(sim::bind<&EventDriver::on_encoder_clock>(this));
   if (master != nullptr) master->add_observer(this);
+  counts_edges_ = listen[0] || listen[1];
+}
+
+bool EventDriver::quiet_from(std::uint64_t frame) const {
+  return !counts_edges_ && std::none_of(events_.begin(), events_.end(), [&](const Event& e) { return e.frame && *e.frame >= frame; });
 }
 
 void EventDriver::frame_started(std::uint64_t index) {

@@ -28,6 +28,9 @@ class EventDriver final : public master::MasterObserver {
   void on_frame_end(const master::FrameResult&) override {}
 
   std::uint64_t random_bit_errors() const { return random_bit_errors_; }  // bits flipped at random
+  // No event is set off by a frame from `frame` on or by a clock edge (events at a time are in
+  // the kernel's queue).
+  bool quiet_from(std::uint64_t frame) const;
 
  private:
   struct Armed {
@@ -59,6 +62,7 @@ class EventDriver final : public master::MasterObserver {
   std::vector<Armed> armed_[2];                 // frame events waiting for their clock edge, per end
   std::vector<std::size_t> random_[2];          // random_bit_errors events in force, per end
   std::uint64_t random_bit_errors_ = 0;
+  bool counts_edges_ = false;
 };
 
 }  // namespace endatsim::scenarios

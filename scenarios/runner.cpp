@@ -333,7 +333,6 @@ class Watch {
   int interrupted = 0;
   RunProgress* progress = nullptr;  // kept up to date, when set
 
- private:
   std::uint64_t records() const {
     std::uint64_t n = master_.frames().size() + master_.measurements().size() + encoder_.frames().size() +
                       checker_.violations().size();
@@ -349,6 +348,23 @@ class Watch {
   const slave::Encoder& encoder_;
   const std::vector<std::unique_ptr<slave::Encoder>>& bus_;
   const checker::TimingChecker& checker_;
+  const Limits& limits_;
+};
+
+// A played frame runs no event at which the watch could stop the run: it is played only when no
+// limit can be reached inside it.
+class LimitRoom final : public FrameReplay::Room {
+ public:
+  // More than a frame adds to the records (its master and encoder frames, its findings kept).
+  static constexpr std::uint64_t kRecordsPerFrame = 64;
+  LimitRoom(const sim::Kernel& kernel, const Watch& watch, const Limits& limits) : kernel_(kernel), watch_(watch), limits_(limits) {}
+  bool for_frame(std::uint64_t events) const override {
+    return kernel_.events_processed() + events < limits_.kernel_events && watch_.records() + kRecordsPerFrame < limits_.records;
+  }
+
+ private:
+  const sim::Kernel& kernel_;
+  const Watch& watch_;
   const Limits& limits_;
 };
 
@@ -464,6 +480,9 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   if (options.progress != nullptr) options.progress->end_ps.store(max_time.count(), std::memory_order_relaxed);
   // Each record takes at least one event: looking as often as the lowest limit sees every one reached.
   kernel.watch(std::min({Watch::kEvery, limits.kernel_events, limits.records}), sim::bind<&Watch::check>(&watch));
+  LimitRoom room(kernel, watch, limits);
+  std::optional<FrameReplay> replay;
+  if (options.engine != Engine::Event && bus.empty()) replay.emplace(kernel, line, master, encoder, events, room);
   kernel.run(max_time);
   if (watch.reason.empty() && max_time < scenario.max_time && !master.finished() && kernel.now() >= max_time)
     watch.reason = "limit max_time reached: " + sim::format_time(max_time) + " simulated, less than the scenario's " +
@@ -475,6 +494,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
 
   r.simulated = kernel.now();
   r.events = kernel.events_processed();
+  r.frames_replayed = replay ? replay->frames_replayed() : 0;
   r.finished = master.finished();
   r.incomplete = watch.reason;
   r.interrupted = watch.interrupted;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "endatsim/scenarios/frame_replay.hpp"
 #include "endatsim/scenarios/limits.hpp"
 #include "endatsim/scenarios/run_recorder.hpp"
 #include "endatsim/scenarios/scenario.hpp"
@@ -33,6 +34,8 @@ struct RunOptions {
   // them by default; a long run keeps a few and streams the rest to `sinks`.
   std::size_t kept = SIZE_MAX;
   std::vector<RunSink*> sinks;  // outputs written while the run goes (run_recorder.hpp)
+  // Frames that repeat are played from a recording (frame_replay.hpp), with the same results.
+  Engine engine = Engine::Auto;
 };
 
 struct ExpectationResult {
@@ -56,6 +59,7 @@ struct ScenarioResult {
   std::uint64_t seed = 0;
   Time simulated{0};
   std::uint64_t events = 0;
+  std::uint64_t frames_replayed = 0;  // frames played from a recording (frame_replay.hpp); in no output
   bool finished = false;  // the script ran to its end within max_time
   // Not empty when the run was ended early, by a limit of limits.hpp or an interruption: why,
   // where and how to change it. Such a result is incomplete and does not pass.

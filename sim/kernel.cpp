@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "endatsim/sim/signal.hpp"
+#include "endatsim/sim/tape.hpp"
 
 namespace endatsim::sim {
 
@@ -47,9 +48,12 @@ void Kernel::commit_updates() {
   // Committing writes nothing: every request of this phase is in updates_ before the
   // listeners, whose writes belong to the next one, run.
   for (SignalBase* s : updates_)
-    if (s->commit()) changed_.push_back(s);
+    if (s->commit()) {
+      changed_.push_back(s);
+      if (tape_ != nullptr) tape_->add(TapeItem::Kind::Commit, now_, s, 0, s->committed_value());
+    }
   updates_.clear();
-  for (SignalBase* s : changed_) s->notify();
+  for (SignalBase* s : changed_) s->notify(tape_, now_);
   changed_.clear();
 }
 
@@ -61,11 +65,20 @@ void Kernel::settle() {
 }
 
 void Kernel::end_time_step() {
+  if (tape_ != nullptr) tape_->add(TapeItem::Kind::StepEnd, now_, nullptr, 0, 0);
   for (const Action& a : step_end_) a();
+}
+
+void Kernel::replay_time(Time t) {
+  if (t < now_) refuse("Kernel::replay_time: time in the past");
+  if (!updates_.empty() || fifo_size_ != 0) refuse("Kernel::replay_time: work pending");
+  if (!heap_.empty() && heap_.front().when <= t) refuse("Kernel::replay_time: an event falls inside the stretch played");
+  now_ = t;
 }
 
 void Kernel::run(Time until) {
   stopped_ = false;
+  until_ = until;
   if (!updates_.empty() || fifo_size_ != 0) {  // work left at the current time
     settle();
     end_time_step();

@@ -37,6 +37,7 @@ Action bind(T* obj, std::uint64_t arg = 0) {
 }
 
 class SignalBase;
+struct Tape;
 
 class Kernel {
  public:
@@ -83,6 +84,27 @@ class Kernel {
     next_watch_ = every == 0 ? UINT64_MAX : events_processed_ + every;
   }
 
+  // Records what the monitors are shown (tape.hpp) from now on; nullptr stops. What a model tells
+  // its observers goes to the same tape (tape()).
+  void record_to(Tape* tape) {
+    tape_ = tape;
+    if (tape != nullptr) tape_events_from_ = events_processed_;
+  }
+  Tape* tape() const { return tape_; }
+  std::uint64_t events_since_recording() const { return events_processed_ - tape_events_from_; }
+  // The end of the current run(), for a stretch played from a tape, which must not pass it.
+  Time run_until() const { return until_; }
+  // Playing a tape: time moves on to `t` with nothing run; refused (std::logic_error) if an event
+  // is queued before or at `t` or work is pending now, since the stretch played must be all that
+  // happens in its time.
+  void replay_time(Time t);
+  // Playing a tape: the actions at the end of a time step (monitors only: the VCD writer).
+  void replay_step_end() { end_time_step(); }
+  // Playing a tape: `n` events count as run (the watch is called as they pass its marks).
+  void replay_events(std::uint64_t n) {
+    for (; n > 0; --n) count_event();
+  }
+
   // Used by signals: commit this signal in the next update phase.
   void request_update(SignalBase* signal) { updates_.push_back(signal); }
 
@@ -127,6 +149,9 @@ class Kernel {
   std::vector<SignalBase*> updates_;
   std::vector<SignalBase*> changed_;
   std::vector<Action> step_end_;
+  Tape* tape_ = nullptr;
+  std::uint64_t tape_events_from_ = 0;
+  Time until_ = Time::max();
 };
 
 // A cancellable, restartable timer owned by a model. It keeps at most one entry in the

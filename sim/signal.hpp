@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "endatsim/sim/kernel.hpp"
+#include "endatsim/sim/tape.hpp"
 
 namespace endatsim::sim {
 
@@ -17,16 +18,37 @@ class SignalBase {
   // of the signals that changed run, so no listener sees a half-updated set of signals.
   virtual bool commit() = 0;
   // Listener actions receive the new value as their argument, in place of Action::arg.
-  void on_change(Action listener) { listeners_.push_back(listener); }
-  void notify() const {
-    for (const Action& l : listeners_) l.fn(l.ctx, notify_value_);
+  void on_change(Action listener) {
+    listeners_.push_back(listener);
+    monitors_.push_back(false);
   }
+  // A monitor: a listener that only reads (it writes no signal and schedules nothing), so that
+  // what it is shown can be recorded and played to it again (tape.hpp).
+  void on_change_monitor(Action listener) {
+    listeners_.push_back(listener);
+    monitors_.push_back(true);
+  }
+  void notify(Tape* tape, Time now) const {
+    for (std::size_t i = 0; i < listeners_.size(); ++i) {
+      if (tape != nullptr && monitors_[i])
+        tape->add(TapeItem::Kind::Monitor, now, this, static_cast<std::uint32_t>(i), notify_value_);
+      listeners_[i].fn(listeners_[i].ctx, notify_value_);
+    }
+  }
+  std::uint64_t committed_value() const { return notify_value_; }
+  // Played from a tape: the monitor at `place` is shown `value` again.
+  void replay_monitor(std::uint32_t place, std::uint64_t value) const {
+    listeners_[place].fn(listeners_[place].ctx, value);
+  }
+  // Played from a tape: the signal takes `value` now, as if committed (no listener is called).
+  virtual void replay_commit(std::uint64_t value) = 0;
 
  protected:
   std::uint64_t notify_value_ = 0;  // set by commit(), so that notify() needs no virtual call
 
  private:
   std::vector<Action> listeners_;
+  std::vector<bool> monitors_;  // per listener
 };
 
 class Signal final : public SignalBase {
@@ -44,6 +66,7 @@ class Signal final : public SignalBase {
   std::uint64_t changes() const { return changes_; }
 
   bool commit() override;
+  void replay_commit(std::uint64_t value) override;
 
  private:
   Kernel& kernel_;

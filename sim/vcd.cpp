@@ -61,7 +61,7 @@ void VcdWriter::add(Signal& signal, const std::string& scope, const std::string&
   if (started_) throw std::logic_error("VcdWriter::add after start");
   const std::size_t index = probes_.size();
   probes_.push_back(Probe{this, index, &signal, scope, name, short_id(index), signal.read(), false});
-  signal.on_change(Action{&VcdWriter::on_change, &probes_.back(), 0});
+  signal.on_change_monitor(Action{&VcdWriter::on_change, &probes_.back(), 0});
 }
 
 std::size_t VcdWriter::add_text(const std::string& scope, const std::string& name) {

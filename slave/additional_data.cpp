@@ -113,6 +113,29 @@ std::uint8_t AdditionalData::status_byte(Information i, bool busy) const {
   return s;
 }
 
+bool AdditionalData::frame_invariant() const {
+  for (const auto which : {protocol::AdditionalDataNumber::One, protocol::AdditionalDataNumber::Two}) {
+    const std::optional<Information>& i = selection_[which];
+    if (!i) continue;
+    switch (*i) {
+      case I::Temperature1:
+      case I::Temperature2:
+      case I::Commutation:
+      case I::Acceleration:
+      case I::CommutationAndAcceleration:
+      case I::LimitPositionSignals:
+      case I::LimitPositionSignalsAndAcceleration:
+      case I::OperatingStatusErrorSources:
+      case I::MrsCodeAcknowledgment:
+      case I::TestCommandAcknowledgment:
+        continue;
+      default:
+        return false;
+    }
+  }
+  return true;
+}
+
 std::uint16_t AdditionalData::content(Information i, Time frame_start, std::uint64_t true_position) {
   const Sensors& s = params_.sensors;
   const auto acceleration = s.acceleration;

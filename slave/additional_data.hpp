@@ -23,6 +23,9 @@ class AdditionalData {
 
   // What additional data 1 or 2 carries; none: not selected.
   std::optional<Information> selected(protocol::AdditionalDataNumber which) const { return selection_[which]; }
+  // The data selected are the same in every frame and sending them changes nothing here (no
+  // rolling address, no latched or timed value): the frame-level fast path (docs/performance.md).
+  bool frame_invariant() const;
   // 2.4.2.2: an MRS code 40h .. 5Fh selects an information or stops additional data 1 or 2.
   void select(std::uint8_t mrs);
   // I = 7: the MRS code and block address as acknowledged (inverted after an error, A2 type II).

@@ -96,6 +96,7 @@ void Encoder::begin_frame() {
   frames_.add(f);
   errors_.latch();
   frames_.last().error_present = errors_.error_present();
+  if (sim::Tape* tape = kernel_.tape()) tape->add(sim::TapeItem::Kind::Model, kernel_.now(), this, static_cast<std::uint32_t>(Note::Begin), 0);
   release();
 }
 
@@ -358,6 +359,41 @@ void Encoder::on_recovery_time_elapsed() {
 }
 
 void Encoder::finish_frame() {
+  end_frame();
+  if (sim::Tape* tape = kernel_.tape()) {
+    recorded_.push_back(frames_.last());
+    tape->add(sim::TapeItem::Kind::Model, kernel_.now(), this, static_cast<std::uint32_t>(Note::Finish), recorded_.size() - 1);
+  }
+}
+
+// ---- the frame-level fast path ----------------------------------------------------------------
+
+bool Encoder::frame_invariant() const {
+  return state_ == State::Idle && !readiness_.running_up() && readiness_.settled() && !busy() &&
+         !recovery_timer_.pending() && !end_marker_timer_.pending() && positions_.frame_invariant() &&
+         additional_data_.frame_invariant();
+}
+
+// What begin_frame and finish_frame do to the encoder, without the pins: the frame's record is
+// the recorded one at its new time.
+void Encoder::replay(const sim::TapeItem& item, const std::vector<EncoderFrame>& frames, Time shift) {
+  const Time now = kernel_.now();
+  if (static_cast<Note>(item.index) == Note::Begin) {
+    positions_.update_reference(now);
+    positions_.check_multiturn_overflow(now);
+    (void)positions_.sent(positions_.latched(now));
+    errors_.latch();
+    EncoderFrame f = frames.at(frames.size() - 1);
+    f.start += shift;
+    frames_.add(std::move(f));
+    return;
+  }
+  end_marker_timer_.cancel();
+  bus_.frame_ended();
+  readiness_.frame_ended(params_.t_r);
+}
+
+void Encoder::end_frame() {
   EncoderFrame& f = frames_.last();
   // A 2.1 parameter frame that ends before its 8 + 16 bits are in (A2 cause 3).
   if (state_ == State::Payload) commands_.transmission_cut_short();

@@ -12,11 +12,13 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "endatsim/line/line.hpp"
 #include "endatsim/protocol/protocol.hpp"
 #include "endatsim/sim/record_log.hpp"
+#include "endatsim/sim/tape.hpp"
 #include "endatsim/slave/additional_data.hpp"
 #include "endatsim/slave/bus_addressing.hpp"
 #include "endatsim/slave/eib.hpp"
@@ -52,6 +54,7 @@ struct EncoderFrame {
   unsigned clocks = 0;                 // rising edges seen
   unsigned continuous_words = 0;       // further words sent with a continuous clock
   std::vector<std::uint64_t> continuous_positions;
+  bool operator==(const EncoderFrame&) const = default;
 };
 
 class Encoder final : private MemoryAccess::Client {
@@ -96,6 +99,16 @@ class Encoder final : private MemoryAccess::Client {
   void set_sensor_values(const SensorValues& values);
   static constexpr Time kMaxFaultTime = EncoderParams::kMaxFaultTime;
 
+  // The frame-level fast path (docs/performance.md). While the kernel records (Kernel::tape()),
+  // the encoder notes on the tape where each frame begins and ends, and keeps each frame's record
+  // as it ended (take_recorded_frames()); replay() does to the encoder what the frame did.
+  enum class Note : std::uint32_t { Begin, Finish };
+  std::vector<EncoderFrame> take_recorded_frames() { return std::exchange(recorded_, {}); }
+  void replay(const sim::TapeItem& item, const std::vector<EncoderFrame>& frames, Time shift);
+  // A frame begun now would leave the encoder as it found it, apart from times and its record:
+  // idle and ready, nothing pending, a position standing still, no data that roll or latch.
+  bool frame_invariant() const;
+
  private:
   enum class State : std::uint8_t {
     Idle, Header, Payload, Answer, EndOfData, ContinuousGap, Type1, HandoverLevel, SupplementHunt, Supplement,
@@ -118,6 +131,7 @@ class Encoder final : private MemoryAccess::Client {
   void load_continuous_word();
   void abort_type1(protocol::ErrorCause cause);
   void finish_frame();
+  void end_frame();
   void reset();
   void restart_state();
   void adopt_encoder_type(unsigned position_bits);
@@ -158,6 +172,7 @@ class Encoder final : private MemoryAccess::Client {
   unsigned gap_low_bits_ = 0;
 
   sim::RecordLog<EncoderFrame> frames_{sim::RecordLog<EncoderFrame>::Keep::Recent};
+  std::vector<EncoderFrame> recorded_;  // frames as they ended, while the kernel records
 };
 
 }  // namespace endatsim::slave

@@ -56,6 +56,11 @@ class PositionSource {
   // 3.9.32: a touch probe's switching time, or the frame's, in the timestamp unit.
   std::uint16_t timestamp(Time frame_start) const;
 
+  // Every frame latches the same position and changes nothing here: an absolute encoder standing
+  // still (the frame-level fast path, docs/performance.md).
+  bool frame_invariant() const {
+    return params_.motion.counts_per_s == 0 && valid_ && !incremental_ && !touch_probe_ && !multiturn_overflow_;
+  }
   unsigned position_bits() const { return position_bits_; }
   // False for an EIB not yet initiated: "no valid position" (2.3.1), no position value 2.
   bool valid() const { return valid_; }

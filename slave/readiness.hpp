@@ -32,6 +32,7 @@ class Readiness {
 
   // After start-up: this many position answers carry an unsettled value.
   void restart_settling(unsigned unsettled_positions) { unsettled_left_ = unsettled_positions; }
+  bool settled() const { return unsettled_left_ == 0; }
   // Whether this position answer carries one.
   bool take_unsettled() {
     if (unsettled_left_ == 0) return false;

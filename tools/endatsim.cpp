@@ -61,7 +61,7 @@ constexpr int interrupted_status(int signal) { return scenarios::exit_status::in
 const char* const kRunUsage =
     "usage: endatsim run FILE... [--vcd PATH [--gtkw]] [--json PATH] [--junit PATH [--junit-cases scenario|expectation]]\n"
     "                    [--log PATH] [--log-json PATH] [--examples N]\n"
-    "                    [--seed N] [--shard K/N] [--verbose|--quiet] [--color auto|always|never]\n"
+    "                    [--seed N] [--engine auto|event|fast] [--shard K/N] [--verbose|--quiet] [--color auto|always|never]\n"
     "                    [--max-time TIME] [--max-kernel-events N] [--max-script-frames N] [--max-events N] [--max-records N]\n";
 const char* const kSweepUsage =
     "usage: endatsim sweep FILE --grid POINTER=V1,V2,...|START:STOP:STEP [--grid ...] [--maximize POINTER]\n"
@@ -269,6 +269,9 @@ po::options_description options_of(Command c) {
           "examples", po::value<std::string>(),
           "frames and findings of each check kept for the summary and --json's violations (default 1000; all are counted)")(
           "seed", po::value<std::string>(), "override every scenario's seed (0 .. 2^64-1)")(
+          "engine", po::value<std::string>(),
+          "auto (default): frames that repeat are played from recordings, with the same results; event: every edge as an "
+          "event; fast: as auto, and say how many frames were played")(
           "shard", po::value<std::string>(), "run the K-th of N slices of the files; outputs are partials for merge")(
           "color", po::value<std::string>(), "auto (default: only on a terminal, not with NO_COLOR), always, never");
       add_limit_options(o);
@@ -440,6 +443,7 @@ struct Options {
   std::optional<std::string> log_json;
   std::optional<std::uint64_t> seed;
   bool gtkw = false;
+  scenarios::Engine engine = scenarios::Engine::Auto;
   std::size_t examples = 1000;  // frames and findings per check kept in memory
   scenarios::JunitCases junit_cases = scenarios::JunitCases::Scenario;
   bool verbose = false;
@@ -562,6 +566,7 @@ int run(const Options& o) {
     ro.limits = o.limits;
     ro.kept = o.examples;
     ro.sinks = sinks;
+    ro.engine = o.engine;
     if (o.vcd) ro.vcd_path = output_path(*o.vcd, s.name, ".vcd", vcd_folder);
     ro.vcd_decoded = o.gtkw;  // the text trace is for GTKWave
     auto result = progress ? run_with_progress(s, ro, i + 1, loaded.size()) : scenarios::run_scenario(s, ro);
@@ -569,6 +574,8 @@ int run(const Options& o) {
     if (o.vcd && o.gtkw)
       write_file(std::filesystem::path(*ro.vcd_path).replace_extension(".gtkw").string(),
                  scenarios::gtkw_save_file(result, *ro.vcd_path));
+    if (o.engine == scenarios::Engine::Fast)
+      std::cerr << result.name << ": " << result.frames_replayed << " frames played from recordings\n";
     passed = passed && result.passed();
     if (!result.incomplete.empty() && incomplete.empty()) incomplete = result.name + ": " + result.incomplete;
     if (result.interrupted != 0) interrupted = result.interrupted;
@@ -861,6 +868,14 @@ int run_command(const po::variables_map& vm) {
   if (o.gtkw && !o.vcd) {
     std::cerr << "endatsim run: --gtkw writes a GTKWave save file beside each --vcd file; give --vcd PATH\n";
     return kBadInput;
+  }
+  if (const auto text = string_option(vm, "engine")) {
+    const auto engine = scenarios::engine_from(scenarios::trimmed(*text));
+    if (!engine) {
+      std::cerr << "endatsim run: --engine expects auto, event or fast, got '" << scenarios::trimmed(*text) << "'\n";
+      return kBadInput;
+    }
+    o.engine = *engine;
   }
   if (const auto text = string_option(vm, "seed")) {
     o.seed = parse_uint(*text);

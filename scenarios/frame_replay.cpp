@@ -1,0 +1,153 @@
+#include "endatsim/scenarios/frame_replay.hpp"
+
+#include <algorithm>
+
+#include "endatsim/sim/signal.hpp"
+
+namespace endatsim::scenarios {
+namespace {
+
+// The same request apart from the frame's index.
+bool same_request(master::FrameRequest a, const master::FrameRequest& b) {
+  a.index = b.index;
+  return a.operation == b.operation && a.measurement == b.measurement && a.command == b.command &&
+         a.mode_bits == b.mode_bits && a.payload == b.payload && a.f_c == b.f_c && a.t_d == b.t_d &&
+         a.position_bits == b.position_bits && a.continuous_words == b.continuous_words && a.clock_adjust == b.clock_adjust;
+}
+
+master::FrameResult moved(master::FrameResult f, Time shift, std::uint64_t index_shift) {
+  f.index += index_shift;
+  f.start += shift;
+  if (f.end != Time::zero()) f.end += shift;
+  return f;
+}
+
+}  // namespace
+
+std::string_view to_string(Engine e) {
+  switch (e) {
+    case Engine::Event: return "event";
+    case Engine::Auto: return "auto";
+    case Engine::Fast: return "fast";
+  }
+  return "?";
+}
+
+std::optional<Engine> engine_from(std::string_view name) {
+  for (const Engine e : {Engine::Event, Engine::Auto, Engine::Fast})
+    if (to_string(e) == name) return e;
+  return std::nullopt;
+}
+
+FrameReplay::FrameReplay(sim::Kernel& kernel, line::Line& line, master::Master& master, slave::Encoder& encoder,
+                         const EventDriver& events, const Room& room)
+    : kernel_(kernel), line_(line), master_(master), encoder_(encoder), events_(events), room_(room) {
+  master_.set_shortcut(this);
+}
+
+FrameReplay::~FrameReplay() {
+  if (recording_) kernel_.record_to(nullptr);
+  master_.set_shortcut(nullptr);
+}
+
+// What must hold of the run for a frame to be recorded or played: a master clock without jitter
+// (its generator would be drawn from), no measurement, not the operation's last frame (what
+// follows it is paced differently), an encoder whose frame changes nothing, and no scenario event
+// still to come that a frame or a clock edge sets off.
+bool FrameReplay::steady(const master::FrameRequest& request) const {
+  return master_.params().jitter == Time::zero() && !request.measurement && !master_.measuring() &&
+         master_.frames_left() > 1 && encoder_.frame_invariant() && events_.quiet_from(request.index) &&
+         !kernel_.work_pending();
+}
+
+bool FrameReplay::replayed(const master::FrameRequest& request) {
+  if (recording_) close_recording();
+  const bool strobe = master_.sample_strobe().read();
+  if (!steady(request)) return false;
+  const auto& last = last_[strobe ? 1 : 0];
+  if (last && may_play(*last, request)) {
+    play(*last, request);
+    return true;
+  }
+  recording_.emplace();
+  recording_->request = request;
+  recording_->start = kernel_.now();
+  recording_->strobe = strobe;
+  recording_->contentions = line_.contentions_seen();
+  kernel_.record_to(&recording_->tape);
+  return false;
+}
+
+// The frame that was recorded ends where the next one begins.
+void FrameReplay::close_recording() {
+  kernel_.record_to(nullptr);
+  Recording r = std::move(*recording_);
+  recording_.reset();
+  // The events up to here, less this one, which the kernel counts as it returns.
+  r.tape.events = kernel_.events_since_recording();
+  r.frames = master_.engine().take_recorded_frames();
+  r.encoder_frames = encoder_.take_recorded_frames();
+  const bool clean = line_.contentions_seen() == r.contentions && r.encoder_frames.size() == 1 && !r.frames.empty() &&
+                     r.frames.back().outcome == master::FrameOutcome::Ok;
+  if (!clean) {
+    last_ = {};
+    return;
+  }
+  auto& slot = last_[r.strobe ? 1 : 0];
+  if (slot) {
+    const Recording& p = *slot;
+    const Time shift = r.start - p.start;
+    const std::uint64_t index_shift = r.request.index - p.request.index;
+    bool same = same_request(p.request, r.request) && p.tape.events == r.tape.events &&
+                p.tape.items.size() == r.tape.items.size() && p.frames.size() == r.frames.size();
+    for (std::size_t i = 0; same && i < p.tape.items.size(); ++i) {
+      sim::TapeItem moved_item = p.tape.items[i];
+      moved_item.at += shift;
+      same = moved_item == r.tape.items[i];
+    }
+    for (std::size_t i = 0; same && i < p.frames.size(); ++i) same = moved(p.frames[i], shift, index_shift) == r.frames[i];
+    if (same) {
+      slave::EncoderFrame e = p.encoder_frames.front();
+      e.start += shift;
+      same = e == r.encoder_frames.front();
+    }
+    r.confirmed = same;
+  }
+  slot = std::move(r);
+}
+
+bool FrameReplay::may_play(const Recording& r, const master::FrameRequest& request) const {
+  if (!r.confirmed || !same_request(r.request, request) || r.tape.items.empty()) return false;
+  const Time end = kernel_.now() + (r.tape.items.back().at - r.start);
+  const std::optional<Time> next = kernel_.next_event_time();
+  return (!next || *next > end) && end <= kernel_.run_until() && room_.for_frame(r.tape.events);
+}
+
+void FrameReplay::play(const Recording& r, const master::FrameRequest& request) {
+  const Time shift = kernel_.now() - r.start;
+  const std::uint64_t index_shift = request.index - r.request.index;
+  master::FrameEngine& engine = master_.engine();
+  for (const sim::TapeItem& item : r.tape.items) {
+    const Time at = item.at + shift;
+    if (at != kernel_.now()) kernel_.replay_time(at);
+    switch (item.kind) {
+      case sim::TapeItem::Kind::Commit:
+        const_cast<sim::SignalBase*>(static_cast<const sim::SignalBase*>(item.who))->replay_commit(item.value);
+        break;
+      case sim::TapeItem::Kind::Monitor:
+        static_cast<const sim::SignalBase*>(item.who)->replay_monitor(item.index, item.value);
+        break;
+      case sim::TapeItem::Kind::StepEnd:
+        kernel_.replay_step_end();
+        break;
+      case sim::TapeItem::Kind::Model:
+        if (item.who == &engine) engine.replay(item, r.frames, shift, index_shift);
+        else encoder_.replay(item, r.encoder_frames, shift);
+        break;
+    }
+  }
+  kernel_.replay_events(r.tape.events - 1);
+  ++replayed_;
+}
+
+}  // namespace endatsim::scenarios

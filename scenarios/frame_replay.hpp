@@ -1,0 +1,76 @@
+// The frame-level fast path (docs/performance.md): a frame that would be the same as one run
+// before it, moved in time, is played from that one's recording instead of being run edge by
+// edge. The master's scheduler, the checker, the VCD writer and the outputs run their own code
+// on what is played (they are shown every change and every declaration at its instant), so
+// their results are the event level's by construction; only the frame engine, the encoder and
+// the line, whose frame is the same, are not run. A recording is played only once the two
+// recordings before it of its kind (the sampling strobe's level at FE1 alternates frame by frame)
+// agreed, and only when nothing else can happen in the frame's time.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "endatsim/line/line.hpp"
+#include "endatsim/master/master.hpp"
+#include "endatsim/scenarios/events.hpp"
+#include "endatsim/sim/tape.hpp"
+#include "endatsim/slave/encoder.hpp"
+
+namespace endatsim::scenarios {
+
+// How a run is carried out: `event` runs every edge as an event (to fall back on and to compare
+// with); `auto` (the default) plays the frames that repeat from recordings and runs every other
+// frame at the event level; `fast` does the same and says how many frames it played.
+enum class Engine : std::uint8_t { Event, Auto, Fast };
+std::string_view to_string(Engine e);
+std::optional<Engine> engine_from(std::string_view name);
+
+class FrameReplay final : public master::FrameShortcut {
+ public:
+  // `room` says whether the run's limits leave room for `events` more kernel events and a frame's
+  // records (the run ends at a limit between two events, which a played frame must not pass).
+  struct Room {
+    virtual ~Room() = default;
+    virtual bool for_frame(std::uint64_t events) const = 0;
+  };
+  FrameReplay(sim::Kernel& kernel, line::Line& line, master::Master& master, slave::Encoder& encoder,
+              const EventDriver& events, const Room& room);
+  FrameReplay(const FrameReplay&) = delete;
+  FrameReplay& operator=(const FrameReplay&) = delete;
+  ~FrameReplay() override;
+
+  bool replayed(const master::FrameRequest& request) override;
+  std::uint64_t frames_replayed() const { return replayed_; }
+
+ private:
+  struct Recording {
+    master::FrameRequest request;
+    Time start{0};
+    bool strobe = false;  // the sampling strobe's level at FE1: recordings of one level are played for frames of that level
+    sim::Tape tape;
+    std::vector<master::FrameResult> frames;
+    std::vector<slave::EncoderFrame> encoder_frames;
+    std::uint64_t contentions = 0;  // the line's count when the recording began
+    bool confirmed = false;         // the recording before it of its kind was the same, moved in time
+  };
+  bool steady(const master::FrameRequest& request) const;
+  void close_recording();
+  bool may_play(const Recording& r, const master::FrameRequest& request) const;
+  void play(const Recording& r, const master::FrameRequest& request);
+
+  sim::Kernel& kernel_;
+  line::Line& line_;
+  master::Master& master_;
+  slave::Encoder& encoder_;
+  const EventDriver& events_;
+  const Room& room_;
+  std::optional<Recording> recording_;
+  std::array<std::optional<Recording>, 2> last_;  // by the sampling strobe's level at FE1
+  std::uint64_t replayed_ = 0;
+};
+
+}  // namespace endatsim::scenarios
