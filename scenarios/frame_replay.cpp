@@ -61,12 +61,21 @@ bool FrameReplay::steady(const master::FrameRequest& request) const {
 }
 
 bool FrameReplay::replayed(const master::FrameRequest& request) {
-  if (recording_) close_recording();
+  // Recordings are played only while every frame since they were confirmed was recorded alike or
+  // played, and nothing else ran between the frames (a scenario event, a cable change): the
+  // world is then the one they were made in.
+  bool unbroken = false;
+  if (recording_) unbroken = close_recording();
+  else if (played_) unbroken = kernel_.events_processed() == events_after_play_;
+  played_ = false;
+  if (!unbroken) ++epoch_;
   const bool strobe = master_.sample_strobe().read();
   if (!steady(request)) return false;
   const auto& last = last_[strobe ? 1 : 0];
-  if (last && may_play(*last, request)) {
+  if (unbroken && last && last->epoch == epoch_ && may_play(*last, request)) {
     play(*last, request);
+    played_ = true;
+    events_after_play_ = kernel_.events_processed() + 1;  // this event, counted as it returns
     return true;
   }
   recording_.emplace();
@@ -79,7 +88,7 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
 }
 
 // The frame that was recorded ends where the next one begins.
-void FrameReplay::close_recording() {
+bool FrameReplay::close_recording() {
   kernel_.record_to(nullptr);
   Recording r = std::move(*recording_);
   recording_.reset();
@@ -91,7 +100,7 @@ void FrameReplay::close_recording() {
                      r.frames.back().outcome == master::FrameOutcome::Ok;
   if (!clean) {
     last_ = {};
-    return;
+    return false;
   }
   auto& slot = last_[r.strobe ? 1 : 0];
   if (slot) {
@@ -113,7 +122,10 @@ void FrameReplay::close_recording() {
     }
     r.confirmed = same;
   }
+  r.epoch = epoch_;
+  const bool confirmed = r.confirmed;
   slot = std::move(r);
+  return confirmed;
 }
 
 bool FrameReplay::may_play(const Recording& r, const master::FrameRequest& request) const {

@@ -56,9 +56,11 @@ class FrameReplay final : public master::FrameShortcut {
     std::vector<slave::EncoderFrame> encoder_frames;
     std::uint64_t contentions = 0;  // the line's count when the recording began
     bool confirmed = false;         // the recording before it of its kind was the same, moved in time
+    std::uint64_t epoch = 0;        // when it was made (FrameReplay::epoch_)
   };
   bool steady(const master::FrameRequest& request) const;
-  void close_recording();
+  // Ends the recording begun at the frame before; true if it confirmed the one before it.
+  bool close_recording();
   bool may_play(const Recording& r, const master::FrameRequest& request) const;
   void play(const Recording& r, const master::FrameRequest& request);
 
@@ -71,6 +73,10 @@ class FrameReplay final : public master::FrameShortcut {
   std::optional<Recording> recording_;
   std::array<std::optional<Recording>, 2> last_;  // by the sampling strobe's level at FE1
   std::uint64_t replayed_ = 0;
+  // Counts the stretches of frames recorded alike or played; a recording plays only in its own.
+  std::uint64_t epoch_ = 0;
+  bool played_ = false;  // the frame before was played
+  std::uint64_t events_after_play_ = 0;  // the kernel's count at the next frame if nothing else ran
 };
 
 }  // namespace endatsim::scenarios
