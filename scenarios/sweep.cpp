@@ -296,6 +296,7 @@ std::vector<SweepPoint> run_points(const json& base, const std::string& file, co
   std::size_t done = 0;
   RunOptions run_options;
   run_options.limits = options.limits;
+  run_options.engine = options.engine;
   run_options.kept = 1;  // every frame and finding is counted; a point is judged from the counts
   for_each_point(count, options.jobs, [&](std::size_t i) {
     const Scenario scenario = load_point(base, file, grid, first + i, n);

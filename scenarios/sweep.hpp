@@ -59,6 +59,7 @@ struct SweepOptions {
   // at a time.
   std::function<void(std::size_t, std::size_t)> progress;
   Limits limits;  // for every point's run
+  Engine engine = Engine::Auto;  // for every point's run
   // Only these grid points (`sweep --shard K/N`, shard.hpp): only they are loaded, checked and
   // run, and Sweep::points holds them alone. None: every point.
   std::optional<std::pair<std::size_t, std::size_t>> points;

@@ -65,7 +65,8 @@ const char* const kRunUsage =
     "                    [--max-time TIME] [--max-kernel-events N] [--max-script-frames N] [--max-events N] [--max-records N]\n";
 const char* const kSweepUsage =
     "usage: endatsim sweep FILE --grid POINTER=V1,V2,...|START:STOP:STEP [--grid ...] [--maximize POINTER]\n"
-    "                      [--csv PATH] [--json PATH] [--svg PATH] [--jobs N] [--shard K/N] [--verbose|--quiet] [limits as run]\n";
+    "                      [--csv PATH] [--json PATH] [--svg PATH] [--jobs N] [--engine auto|event|fast] [--shard K/N]\n"
+    "                      [--verbose|--quiet] [limits as run]\n";
 const char* const kMergeUsage =
     "usage: endatsim merge PARTIAL... [--json PATH] [--junit PATH] [--log PATH] [--log-json PATH] [--quiet]\n"
     "       endatsim merge PARTIAL... [--csv PATH] [--json PATH] [--svg PATH] [--maximize POINTER] [--verbose|--quiet]\n";
@@ -284,6 +285,7 @@ po::options_description options_of(Command c) {
           "json", po::value<std::string>(), "write the points as JSON to this file")(
           "svg", po::value<std::string>(), "write a chart of the --maximize table to this file")(
           "jobs", po::value<std::string>(), "threads (default: the number of cores)")(
+          "engine", po::value<std::string>(), "auto (default) or fast: frames that repeat are played from recordings; event: every edge as an event")(
           "shard", po::value<std::string>(), "run the K-th of N slices of the grid; --json is a partial for merge");
       add_limit_options(o);
       break;
@@ -653,12 +655,26 @@ struct SweepArgs {
   bool quiet = false;
   bool verbose = false;
   scenarios::Limits limits;
+  scenarios::Engine engine = scenarios::Engine::Auto;
 };
+
+// --engine of run and sweep: false, after saying why, for a name it does not know.
+bool engine_option(const std::optional<std::string>& text, const char* command, scenarios::Engine& engine) {
+  if (!text) return true;
+  const auto e = scenarios::engine_from(scenarios::trimmed(*text));
+  if (!e) {
+    std::cerr << "endatsim " << command << ": --engine expects auto, event or fast, got '" << scenarios::trimmed(*text) << "'\n";
+    return false;
+  }
+  engine = *e;
+  return true;
+}
 
 scenarios::SweepOptions sweep_run_options(const SweepArgs& o) {
   scenarios::SweepOptions so;
   so.jobs = o.jobs;
   so.limits = o.limits;
+  so.engine = o.engine;
   // A progress counter only where someone watches it: not in logs, pipes or CI.
   if (!o.quiet && isatty(STDERR_FILENO) != 0)
     so.progress = [](std::size_t done, std::size_t total) { std::cerr << "\r" << done << "/" << total << std::flush; };
@@ -789,6 +805,7 @@ int sweep_command(const po::variables_map& vm) {
     std::cerr << "endatsim sweep: --svg draws the --maximize table; give --maximize POINTER\n";
     return kBadInput;
   }
+  if (!engine_option(string_option("engine"), "sweep", o.engine)) return kBadInput;
   o.jobs = std::max(1U, std::thread::hardware_concurrency());
   if (vm.count("jobs") != 0) {
     const auto jobs = parse_jobs(vm["jobs"].as<std::string>());
@@ -869,14 +886,7 @@ int run_command(const po::variables_map& vm) {
     std::cerr << "endatsim run: --gtkw writes a GTKWave save file beside each --vcd file; give --vcd PATH\n";
     return kBadInput;
   }
-  if (const auto text = string_option(vm, "engine")) {
-    const auto engine = scenarios::engine_from(scenarios::trimmed(*text));
-    if (!engine) {
-      std::cerr << "endatsim run: --engine expects auto, event or fast, got '" << scenarios::trimmed(*text) << "'\n";
-      return kBadInput;
-    }
-    o.engine = *engine;
-  }
+  if (!engine_option(string_option(vm, "engine"), "run", o.engine)) return kBadInput;
   if (const auto text = string_option(vm, "seed")) {
     o.seed = parse_uint(*text);
     if (!o.seed) {

@@ -90,9 +90,9 @@ loop.pop("$schema")
 loop["script"][-1]["count"] = 48000
 with open(path("loop_3s.json"), "w") as f:
     json.dump(loop, f)
-# Interrupted after 2.5 s of wall time, whatever the build's speed (the run would take 3 s in a
-# release build, minutes under the sanitizers): the progress line was shown by then.
-r = on_terminal(["run", path("loop_3s.json"), "--max-kernel-events", "200000000", "--max-records", "500000"],
+# Interrupted after 2.5 s of wall time, whatever the build's speed (every edge an event, the run
+# would take 3 s in a release build, minutes under the sanitizers): the progress line was shown by then.
+r = on_terminal(["run", path("loop_3s.json"), "--engine", "event", "--max-kernel-events", "200000000", "--max-records", "500000"],
                 interrupt_after=2.5)
 check(" of 3 s simulated, " in r.stdout and " frames, " in r.stdout and " s left" in r.stdout,
       "terminal: progress of a long run", r)
@@ -241,6 +241,17 @@ r = run("rnu", clean)
 check(r.returncode == 2 and 'unknown command "rnu"; did you mean "run"?' in r.stderr, "did you mean: command", r)
 r = run("run", clean, "--jsn", path("x.json"))
 check(r.returncode == 2 and "did you mean --json?" in r.stderr, "did you mean: option", r)
+# --engine: the fast path by default, every edge with event, the count of frames played with fast.
+r = run("run", clean, "--engine", "warp")
+check(r.returncode == 2 and "--engine expects auto, event or fast, got 'warp'" in r.stderr, "run --engine: an unknown name", r)
+r = run("sweep", clean, "--grid", "/line/cable_length_m=1,2", "--engine", "", "--jobs", "1")
+check(r.returncode == 2 and "endatsim sweep: --engine expects auto, event or fast, got ''" in r.stderr, "sweep --engine: no name", r)
+r = run("run", clean, "--engine", "fast", "--quiet")
+check(r.returncode == 0 and "endat21_1mhz_10m: " in r.stderr and " frames played from recordings" in r.stderr,
+      "run --engine fast says how many frames it played", r)
+event = run("run", clean, "--engine", "event", "--log", "-")
+auto = run("run", clean, "--log", "-")
+check(event.returncode == 0 and event.stdout == auto.stdout and event.stdout != "", "run --engine event: the same log as auto", event)
 r = run("sweep", clean, "--gird", "/x=1")
 check(r.returncode == 2 and "did you mean --grid?" in r.stderr, "did you mean: sweep option", r)
 r = run("run", clean, "--frobnicate")

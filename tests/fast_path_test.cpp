@@ -1,0 +1,183 @@
+// The frame-level fast path (scenarios/frame_replay.hpp) against the event level: for every
+// bundled, field and safety scenario and for three hundred generated ones (mixed versions, clock
+// rates, cables, compensation, additional data that stay, roll or carry a time, jitter, moving
+// axes, events at a time, at a frame and at a clock edge), every output is the same byte for
+// byte: the transaction log, its JSON lines, the results file, the JUnit XML, the summary and
+// the VCD, and the kernel events counted.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "endatsim/scenarios/junit.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/report.hpp"
+#include "endatsim/scenarios/streamed_outputs.hpp"
+
+#include "scenario_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace scenarios = endatsim::scenarios;
+
+struct Outputs {
+  scenarios::ScenarioResult result;
+  std::string log, jsonl, json, junit, summary, vcd;
+};
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Outputs run_with(const scenarios::Scenario& s, scenarios::Engine engine, const std::string& tag) {
+  std::ostringstream log, jsonl, json, summary;
+  scenarios::TransactionLogWriter text(log, scenarios::TransactionLogWriter::Format::Text);
+  scenarios::TransactionLogWriter lines(jsonl, scenarios::TransactionLogWriter::Format::JsonLines);
+  scenarios::ResultsJsonWriter results(json, "test");
+  // A name of its own: ctest runs each test in a process of its own, side by side.
+  const fs::path vcd = fs::temp_directory_path() / ("endatsim_fast_path_" + std::to_string(::getpid()) + "_" + tag + ".vcd");
+  scenarios::RunOptions options;
+  options.engine = engine;
+  options.vcd_path = vcd.string();
+  options.vcd_decoded = true;
+  options.sinks = {&text, &lines, &results};
+  Outputs out{scenarios::run_scenario(s, options), {}, {}, {}, {}, {}, {}};
+  results.finish(out.result.passed(), "", {});
+  scenarios::write_summary(summary, out.result, true);
+  out.log = log.str();
+  out.jsonl = jsonl.str();
+  out.json = json.str();
+  out.junit = scenarios::junit_xml({out.result});
+  out.summary = summary.str();
+  out.vcd = read_file(vcd);
+  fs::remove(vcd);
+  return out;
+}
+
+// Runs `s` both ways and requires the same outputs; returns the frames the fast path played.
+std::uint64_t expect_same_outputs(const scenarios::Scenario& s, const std::string& what) {
+  const Outputs event = run_with(s, scenarios::Engine::Event, "event");
+  const Outputs fast = run_with(s, scenarios::Engine::Auto, "auto");
+  EXPECT_EQ(event.result.frames_replayed, 0U) << what;
+  EXPECT_EQ(fast.result.events, event.result.events) << what << ": kernel events";
+  EXPECT_EQ(fast.log, event.log) << what << ": transaction log";
+  EXPECT_EQ(fast.jsonl, event.jsonl) << what << ": JSON lines";
+  EXPECT_EQ(fast.json, event.json) << what << ": results file";
+  EXPECT_EQ(fast.junit, event.junit) << what << ": JUnit";
+  EXPECT_EQ(fast.summary, event.summary) << what << ": summary";
+  EXPECT_TRUE(fast.vcd == event.vcd) << what << ": VCD (" << fast.vcd.size() << " against " << event.vcd.size() << " bytes)";
+  return fast.result.frames_replayed;
+}
+
+class FastPathScenario : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(FastPathScenario, GivesTheOutputsOfTheEventLevel) {
+  const auto s = scenarios::load_scenario_file(GetParam().string());
+  expect_same_outputs(s, GetParam().filename().string());
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, FastPathScenario, ::testing::ValuesIn(endatsim::test_support::scenario_files()),
+                         [](const auto& param_info) { return endatsim::test_support::scenario_test_name(param_info.param); });
+
+// ---- generated scenarios ----------------------------------------------------------------------
+
+// A scenario drawn at random, as its JSON text (the loader checks it like any file).
+class ScenarioDraw {
+ public:
+  explicit ScenarioDraw(std::uint64_t seed) : rng_(seed) {}
+
+  std::string json(std::uint64_t index) {
+    const bool v22 = coin(0.8);
+    const unsigned mhz_list[] = {1, 2, 4, 8, 16};
+    const unsigned mhz = mhz_list[pick(v22 ? 5 : 4)];
+    const bool compensated = mhz >= 4 ? coin(0.8) : coin(0.3);
+    const unsigned cable = 1 + static_cast<unsigned>(pick(mhz >= 8 ? 40 : 100));
+    const unsigned bits = coin(0.5) ? 25 : 13 + static_cast<unsigned>(pick(20));
+    const char* cycles[] = {"50 us", "62.5 us", "100 us", "200 us"};
+    std::ostringstream j;
+    j << "{ \"name\": \"drawn_" << index << "\", \"seed\": " << pick(1000) << ", \"max_time\": \"30 ms\",\n";
+    j << "  \"line\": { \"cable_length_m\": " << cable << " },\n";
+    j << "  \"encoder\": { \"version\": \"" << (v22 ? "2.2" : "2.1") << "\", \"position_bits\": " << bits
+      << ", \"motion\": { \"start\": " << pick(1u << 12) << ", \"counts_per_s\": " << (coin(0.2) ? 1000 + pick(100000) : 0)
+      << " }" << (coin(0.3) ? ", \"t_m_short\": \"2 us\"" : "")
+      << ", \"sensors\": { \"temperature_1\": 3000, \"temperature_2\": 3100, \"operating_status_error_sources\": \"0x0000\" } },\n";
+    j << "  \"master\": { \"f_c\": \"" << mhz << " MHz\", \"t_st\": \"" << (mhz == 16 ? "1 us" : "2 us") << "\", \"position_bits\": " << bits
+      << ", \"delay_compensation\": " << (compensated ? "true" : "false")
+      << (coin(0.15) ? ", \"jitter\": \"2 ns\"" : "")
+      << ", \"delay_measurement\": { \"f_c\": \"200 kHz\", \"f_e\": \"128 MHz\", \"count\": 3 } },\n";
+    j << "  \"script\": [\n";
+    if (compensated) j << "    { \"op\": \"measure_delay\" },\n";
+    std::string command = "encoder_send_position_values";
+    if (v22) {
+      const double r = uniform();
+      if (r < 0.6) {
+        command = "encoder_send_position_values_with_additional_data";
+        const char* staying[] = {"temperature_1", "temperature_2", "operating_status_error_sources"};
+        const char* moving[] = {"timestamp", "additional_sensors", "position_value_2_word_1", "diagnosis"};
+        j << "    { \"op\": \"select_additional_data\", \"additional_data\": \""
+          << (coin(0.7) ? staying[pick(3)] : moving[pick(4)]) << "\" },\n";
+        if (coin(0.5)) j << "    { \"op\": \"select_additional_data\", \"additional_data\": \"" << staying[pick(3)] << "\" },\n";
+      } else if (r < 0.8) {
+        command = "encoder_send_position_values_with_additional_data";  // none selected: the 2.2 position alone
+      }
+    }
+    j << "    { \"op\": \"read_position\", \"command\": \"" << command << "\", \"count\": " << 8 + pick(40)
+      << ", \"cycle\": \"" << cycles[pick(4)] << "\" }";
+    if (coin(0.3)) j << ",\n    { \"op\": \"read_position\", \"count\": " << 5 + pick(20) << ", \"cycle\": \"100 us\" }";
+    j << "\n  ]";
+    if (coin(0.4)) j << ",\n  \"events\": [ " << event() << " ]";
+    j << "\n}\n";
+    return j.str();
+  }
+
+ private:
+  std::string event() {
+    std::ostringstream e;
+    const unsigned at_us = 200 + static_cast<unsigned>(pick(2000));
+    switch (pick(5)) {
+      case 0: e << "{ \"at\": \"" << at_us << " us\", \"set_cable\": { \"cable_length_m\": " << 1 + pick(30) << " } }"; break;
+      case 1: e << "{ \"at\": \"" << at_us << " us\", \"error_sources\": { \"errors\": \"0x0001\" } }"; break;
+      case 2: e << "{ \"frame\": " << 3 + pick(20) << ", \"clock\": " << 10 + pick(20) << ", \"bit_flip\": { \"wire\": \"data\", \"end\": \"master\" } }"; break;
+      case 3: e << "{ \"frame\": " << 3 + pick(20) << ", \"slip\": { \"steps\": 5 } }"; break;
+      default: e << "{ \"at\": \"" << at_us << " us\", \"slip\": { \"steps\": 7 } }"; break;
+    }
+    return e.str();
+  }
+  bool coin(double p) { return uniform() < p; }
+  double uniform() { return std::uniform_real_distribution<double>(0, 1)(rng_); }
+  std::uint64_t pick(std::uint64_t n) { return std::uniform_int_distribution<std::uint64_t>(0, n - 1)(rng_); }
+  std::mt19937_64 rng_;
+};
+
+TEST(FastPathDrawn, ThreeHundredDrawnScenariosGiveTheOutputsOfTheEventLevel) {
+  constexpr std::uint64_t kScenarios = 300;
+  ScenarioDraw draw(20261127);
+  std::uint64_t played = 0, playing = 0;
+  for (std::uint64_t i = 0; i < kScenarios; ++i) {
+    const std::string text = draw.json(i);
+    scenarios::Scenario s;
+    try {
+      s = scenarios::load_scenario_text(text, "drawn_" + std::to_string(i) + ".json");
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "the draw made a scenario the loader refuses: " << e.what() << "\n" << text;
+      continue;
+    }
+    const std::uint64_t n = expect_same_outputs(s, "drawn scenario " + std::to_string(i) + ":\n" + text);
+    played += n;
+    playing += n != 0 ? 1 : 0;
+    if (::testing::Test::HasFailure()) break;  // one scenario's differences are enough to read
+  }
+  // The draws exercise the fast path, not only the fall-back to the event level.
+  EXPECT_GT(playing, kScenarios / 4);
+  EXPECT_GT(played, 1000U);
+}
+
+}  // namespace
