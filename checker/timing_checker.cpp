@@ -253,6 +253,7 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
   encoder_pins.data.on_change_monitor(sim::bind<&TimingChecker::on_encoder_data>(this));
   line.master().data_in.on_change_monitor(sim::bind<&TimingChecker::on_master_data>(this));
   line.pins(ObservationPoint::MasterPins).data_driven.on_change_monitor(sim::bind<&TimingChecker::on_master_driven>(this));
+  encoder_pins.data_driven.read_by_monitor();  // floating DATA at the encoder's sampling instants
   // Contentions that began before the checker (those the line has logged) are judged too.
   for (const line::Contention& c : line.contentions())
     if (contentions_reported() && (!params_.recorded_at || c.where == *params_.recorded_at))

@@ -123,6 +123,7 @@ bool FrameReplay::close_recording() {
     r.confirmed = same;
   }
   r.epoch = epoch_;
+  if (r.confirmed) r.playback = compile(r);
   const bool confirmed = r.confirmed;
   slot = std::move(r);
   return confirmed;
@@ -130,34 +131,76 @@ bool FrameReplay::close_recording() {
 
 bool FrameReplay::may_play(const Recording& r, const master::FrameRequest& request) const {
   if (!r.confirmed || !same_request(r.request, request) || r.tape.items.empty()) return false;
+  // The last thing the frame did is on the tape, whether it is played or stands at the end.
   const Time end = kernel_.now() + (r.tape.items.back().at - r.start);
   const std::optional<Time> next = kernel_.next_event_time();
   return (!next || *next > end) && end <= kernel_.run_until() && room_.for_frame(r.tape.events);
 }
 
-void FrameReplay::play(const Recording& r, const master::FrameRequest& request) {
-  const Time shift = kernel_.now() - r.start;
-  const std::uint64_t index_shift = request.index - r.request.index;
-  master::FrameEngine& engine = master_.engine();
-  for (const sim::TapeItem& item : r.tape.items) {
-    const Time at = item.at + shift;
-    if (at != kernel_.now()) kernel_.replay_time(at);
-    switch (item.kind) {
-      case sim::TapeItem::Kind::Commit:
-        const_cast<sim::SignalBase*>(static_cast<const sim::SignalBase*>(item.who))->replay_commit(item.value);
+FrameReplay::Playback FrameReplay::compile(const Recording& r) const {
+  using K = sim::TapeItem::Kind;
+  Playback p;
+  const bool step_ends = kernel_.has_step_end_actions();
+  std::vector<std::size_t> final_of;  // per signal seen, its place in p.finals
+  std::vector<const void*> seen;
+  for (const sim::TapeItem& i : r.tape.items) {
+    const Time at = i.at - r.start;
+    switch (i.kind) {
+      case K::Commit: {
+        // Every signal is a Signal (SignalBase only spares the kernel its header).
+        auto* signal = const_cast<sim::Signal*>(static_cast<const sim::Signal*>(static_cast<const sim::SignalBase*>(i.who)));
+        if (signal->observed()) {
+          p.items.push_back({at, Playback::Kind::Commit, 0, signal, i.value});
+          break;
+        }
+        const auto it = std::find(seen.begin(), seen.end(), i.who);
+        if (it == seen.end()) {
+          seen.push_back(i.who);
+          final_of.push_back(p.finals.size());
+          p.finals.push_back({signal, i.value != 0, at, 1});
+        } else {
+          Playback::Final& f = p.finals[final_of[static_cast<std::size_t>(it - seen.begin())]];
+          f.value = i.value != 0;
+          f.last_change = at;
+          ++f.changes;
+        }
         break;
-      case sim::TapeItem::Kind::Monitor:
-        static_cast<const sim::SignalBase*>(item.who)->replay_monitor(item.index, item.value);
+      }
+      case K::Monitor: p.items.push_back({at, Playback::Kind::Monitor, i.index, i.who, i.value}); break;
+      case K::StepEnd:
+        if (step_ends) p.items.push_back({at, Playback::Kind::StepEnd, 0, nullptr, 0});
         break;
-      case sim::TapeItem::Kind::StepEnd:
-        kernel_.replay_step_end();
-        break;
-      case sim::TapeItem::Kind::Model:
-        if (item.who == &engine) engine.replay(item, r.frames, shift, index_shift);
-        else encoder_.replay(item, r.encoder_frames, shift);
-        break;
+      case K::Model: p.items.push_back({at, Playback::Kind::Model, i.index, i.who, i.value}); break;
     }
   }
+  p.end = r.tape.items.back().at - r.start;
+  return p;
+}
+
+void FrameReplay::play(const Recording& r, const master::FrameRequest& request) {
+  const Time start = kernel_.now();
+  const Time shift = start - r.start;
+  const std::uint64_t index_shift = request.index - r.request.index;
+  master::FrameEngine& engine = master_.engine();
+  for (const Playback::Item& item : r.playback.items) {
+    kernel_.replay_time(start + item.at);
+    switch (item.kind) {
+      case Playback::Kind::Commit: static_cast<sim::Signal*>(const_cast<void*>(item.who))->replay_commit(item.value); break;
+      case Playback::Kind::Monitor:
+        static_cast<const sim::SignalBase*>(item.who)->replay_monitor(item.index, item.value);
+        break;
+      case Playback::Kind::StepEnd: kernel_.replay_step_end(); break;
+      case Playback::Kind::Model: {
+        const sim::TapeItem note{sim::TapeItem::Kind::Model, start + item.at, item.who, item.index, item.value};
+        if (item.who == &engine) engine.replay(note, r.frames, shift, index_shift);
+        else encoder_.replay(note, r.encoder_frames, shift);
+        break;
+      }
+    }
+  }
+  for (const Playback::Final& f : r.playback.finals) f.signal->replay_final(f.value, start + f.last_change, f.changes);
+  kernel_.replay_time(start + r.playback.end);  // where the frame's last event was
+  kernel_.replay_done(kernel_.now());
   kernel_.replay_events(r.tape.events - 1);
   ++replayed_;
 }

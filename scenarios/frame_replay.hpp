@@ -47,6 +47,27 @@ class FrameReplay final : public master::FrameShortcut {
   std::uint64_t frames_replayed() const { return replayed_; }
 
  private:
+  // A recording as it is played: what the monitors are shown and the models' notes, in order;
+  // the signals no monitor observes only as they stand at the end.
+  struct Playback {
+    enum class Kind : std::uint8_t { Commit, Monitor, StepEnd, Model };
+    struct Item {
+      Time at;  // from the frame's start
+      Kind kind;
+      std::uint32_t index;
+      const void* who;
+      std::uint64_t value;
+    };
+    struct Final {
+      sim::Signal* signal;
+      bool value;
+      Time last_change;  // from the frame's start
+      std::uint64_t changes;
+    };
+    std::vector<Item> items;
+    std::vector<Final> finals;
+    Time end{0};  // the last change on the tape, from the frame's start
+  };
   struct Recording {
     master::FrameRequest request;
     Time start{0};
@@ -57,7 +78,9 @@ class FrameReplay final : public master::FrameShortcut {
     std::uint64_t contentions = 0;  // the line's count when the recording began
     bool confirmed = false;         // the recording before it of its kind was the same, moved in time
     std::uint64_t epoch = 0;        // when it was made (FrameReplay::epoch_)
+    Playback playback;              // once confirmed
   };
+  Playback compile(const Recording& r) const;
   bool steady(const master::FrameRequest& request) const;
   // Ends the recording begun at the frame before; true if it confirmed the one before it.
   bool close_recording();

@@ -94,15 +94,24 @@ class Kernel {
   std::uint64_t events_since_recording() const { return events_processed_ - tape_events_from_; }
   // The end of the current run(), for a stretch played from a tape, which must not pass it.
   Time run_until() const { return until_; }
-  // Playing a tape: time moves on to `t` with nothing run; refused (std::logic_error) if an event
-  // is queued before or at `t` or work is pending now, since the stretch played must be all that
-  // happens in its time.
-  void replay_time(Time t);
+  // Playing a tape: time moves on to `t` with nothing run. The player makes sure that nothing is
+  // queued before the end of what it plays, and says so with replay_done().
+  void replay_time(Time t) { now_ = t; }
+  // Refuses (std::logic_error) a stretch played up to `last` when an event queued meanwhile falls
+  // inside it or work is pending: the stretch must have been all that happened in its time.
+  void replay_done(Time last) const;
   // Playing a tape: the actions at the end of a time step (monitors only: the VCD writer).
   void replay_step_end() { end_time_step(); }
+  bool has_step_end_actions() const { return !step_end_.empty(); }
   // Playing a tape: `n` events count as run (the watch is called as they pass its marks).
   void replay_events(std::uint64_t n) {
-    for (; n > 0; --n) count_event();
+    while (n >= next_watch_ - events_processed_) {
+      n -= next_watch_ - events_processed_;
+      events_processed_ = next_watch_;
+      next_watch_ += watch_every_;
+      watch_();
+    }
+    events_processed_ += n;
   }
 
   // Used by signals: commit this signal in the next update phase.

@@ -27,7 +27,12 @@ class SignalBase {
   void on_change_monitor(Action listener) {
     listeners_.push_back(listener);
     monitors_.push_back(true);
+    observed_ = true;
   }
+  // A monitor reads this signal's level without listening to it.
+  void read_by_monitor() { observed_ = true; }
+  // A monitor listens to or reads this signal: a stretch played from a tape shows it each change.
+  bool observed() const { return observed_; }
   void notify(Tape* tape, Time now) const {
     for (std::size_t i = 0; i < listeners_.size(); ++i) {
       if (tape != nullptr && monitors_[i])
@@ -49,6 +54,7 @@ class SignalBase {
  private:
   std::vector<Action> listeners_;
   std::vector<bool> monitors_;  // per listener
+  bool observed_ = false;
 };
 
 class Signal final : public SignalBase {
@@ -67,6 +73,13 @@ class Signal final : public SignalBase {
 
   bool commit() override;
   void replay_commit(std::uint64_t value) override;
+  // Played from a tape for a signal no monitor observed: where it stands after the stretch.
+  void replay_final(bool value, Time last_change, std::uint64_t changes) {
+    value_ = next_ = value;
+    notify_value_ = value ? 1 : 0;
+    last_change_ = last_change;
+    changes_ += changes;
+  }
 
  private:
   Kernel& kernel_;
