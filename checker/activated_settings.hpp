@@ -28,6 +28,7 @@ class ActivatedSettings {
   bool short_t_m() const { return short_t_m_; }
   // Word 3 has been written since the last activation: a reset would change the setting.
   bool pending() const { return written_.has_value(); }
+  bool operator==(const ActivatedSettings&) const = default;
 
  private:
   void activate();

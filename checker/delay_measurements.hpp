@@ -52,11 +52,15 @@ class DelayMeasurements {
   struct Measurement {
     std::uint64_t frame;
     sim::Time t_d;
+    bool operator==(const Measurement&) const = default;
   };
   std::vector<Measurement> run_;
   bool closed_ = false;  // a compensated frame has come since the latest measurement
   bool ever_ = false;
   std::optional<sim::Time> judged_period_;
+
+ public:
+  bool operator==(const DelayMeasurements&) const = default;
 };
 
 }  // namespace endatsim::checker

@@ -97,6 +97,11 @@ void TimingChecker::report(Finding f, std::string_view field) {
 
 // `contention`: the line's sequence number of the contention reported (Contention::sequence).
 void TimingChecker::report(Violation v, std::optional<std::uint64_t> contention) {
+  if (sim::Tape* tape = kernel_.tape()) {  // the frame-level fast path records (checker_snapshot.cpp)
+    contention_recorded_ = contention_recorded_ || contention.has_value();
+    recorded_.push_back(v);
+    tape->add(sim::TapeItem::Kind::Model, kernel_.now(), this, 0, recorded_.size() - 1);
+  }
   Tally& t = tally_.at(protocol::check::row_of(v.check));
   const std::uint64_t kept = t.errors + t.warnings + t.undecided;
   ++(v.severity == Severity::Error ? t.errors : v.severity == Severity::Warning ? t.warnings : t.undecided);
@@ -253,7 +258,7 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
   encoder_pins.data.on_change_monitor(sim::bind<&TimingChecker::on_encoder_data>(this));
   line.master().data_in.on_change_monitor(sim::bind<&TimingChecker::on_master_data>(this));
   line.pins(ObservationPoint::MasterPins).data_driven.on_change_monitor(sim::bind<&TimingChecker::on_master_driven>(this));
-  encoder_pins.data_driven.read_by_monitor();  // floating DATA at the encoder's sampling instants
+  encoder_pins.data_driven.read_by_monitor(this);  // floating DATA at the encoder's sampling instants
   // Contentions that began before the checker (those the line has logged) are judged too.
   for (const line::Contention& c : line.contentions())
     if (contentions_reported() && (!params_.recorded_at || c.where == *params_.recorded_at))

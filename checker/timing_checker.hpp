@@ -13,9 +13,11 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "endatsim/line/line.hpp"
@@ -28,6 +30,7 @@
 #include "endatsim/checker/frame_decoder.hpp"
 #include "endatsim/checker/power_on.hpp"
 #include "endatsim/protocol/timing.hpp"
+#include "endatsim/sim/tape.hpp"
 
 namespace endatsim::checker {
 
@@ -66,11 +69,13 @@ struct Finding {
   Severity severity = Severity::Error;
   std::string message;
   Verdict verdict = Verdict::Both;
+  bool operator==(const Finding&) const = default;
 };
 
 struct Violation : Finding {
   // Where in the frame: "start-bit polling", "start bit", "position", "CRC", "first LOW phase"...
   std::string field;
+  bool operator==(const Violation&) const = default;
 };
 
 // The two verdicts of a run: does the master conform to the spec envelope, and to the declared
@@ -250,6 +255,26 @@ class TimingChecker final {
   // True when no master declared its frames: they were found on the wires at the encoder pins
   // (frame_decoder.hpp), and only the rows that need nothing but wires were judged.
   bool judged_from_wires() const { return wires_only_; }
+
+  // The frame-level fast path (docs/performance.md). What the checker holds between two frames,
+  // but for what it has counted, noted and kept: taken at the start and the end of a recorded
+  // frame, and put back, moved in time, after the frame is played again (restore). While the
+  // kernel records, each finding is noted on the tape (take_recorded_findings); replay() reports
+  // it again. A frame's worst cases need nothing: the same values noted again change none.
+  struct Snapshot;
+  // Between frames of a run whose master declares them, with nothing pending that belongs to no
+  // frame (a contention, the power-on conditions) and the whole run still to be judged.
+  bool replayable() const;
+  std::shared_ptr<const Snapshot> snapshot() const;
+  // `later` is `earlier` moved by `shift` and `index_shift` (frame indices).
+  static bool same_moved(const Snapshot& earlier, const Snapshot& later, Time shift, std::uint64_t index_shift);
+  // What a frame counted (clock edges, rows judged), the same in both.
+  static bool same_counts(const Snapshot& start0, const Snapshot& end0, const Snapshot& start1, const Snapshot& end1);
+  // After a frame recorded between `start` and `end` was played `shift` later: the state at `end`,
+  // moved, and the counts of the frame added.
+  void restore(const Snapshot& start, const Snapshot& end, Time shift, std::uint64_t index_shift);
+  std::vector<Violation> take_recorded_findings() { return std::exchange(recorded_, {}); }
+  void replay(const sim::TapeItem& item, const std::vector<Violation>& findings, Time shift, std::uint64_t index_shift);
   const std::vector<Violation>& violations() const { return violations_; }
   // The verdicts over every finding, kept or not.
   const Conclusion& conclusion() const { return conclusion_; }
@@ -271,6 +296,7 @@ class TimingChecker final {
     sim::Hertz f_c = 0;
     Time t_d_used{0};
     unsigned supplement_last_clock = 0;  // found on the wires: the rising edge that took its last bit
+    bool operator==(const FrameHeader&) const = default;
   };
   // The clock edges of one frame at the encoder pins; the buffers are reused frame after frame.
   struct PinFrame {
@@ -278,6 +304,7 @@ class TimingChecker final {
     Time fe1{0};
     std::vector<Time> rising;
     std::vector<Time> falling;
+    bool operator==(const PinFrame&) const = default;
   };
 
   void on_encoder_clock(std::uint64_t level);
@@ -288,6 +315,7 @@ class TimingChecker final {
     Time t_z;
     Time at;
     unsigned clock;
+    bool operator==(const Release&) const = default;
   };
   // The bound of t_z and t_OE: one period of the frame's clock, or 10 us read literally; none
   // while the frame's f_c is not known yet.
@@ -398,6 +426,7 @@ class TimingChecker final {
     Time last_rise;
     protocol::EndatVersion command_type;
     std::uint64_t index;
+    bool operator==(const FrameEnd&) const = default;
   };
   std::optional<FrameEnd> previous_end_;
   std::optional<std::uint64_t> error_handling_frame_;  // the last master frame that ended in an error handling
@@ -472,6 +501,7 @@ class TimingChecker final {
     Time t_d_used;
     Time period;
     bool measurement;  // the first word of a propagation-delay measurement frame (2.1.2)
+    bool operator==(const StartBitInFlight&) const = default;
   };
   std::deque<StartBitInFlight> start_bits_in_flight_;
   // Frames found on the wires when no master declares its own (decided at the first FE).
@@ -501,6 +531,8 @@ class TimingChecker final {
   std::optional<std::uint64_t> frame_cut_by_end_;
   std::optional<Time> run_cut_at_;  // end_run_early()
   Time capture_end_{0};
+  std::vector<Violation> recorded_;  // findings while the kernel records
+  bool contention_recorded_ = false;  // a contention was reported while recording: not replayable
 };
 
 }  // namespace endatsim::checker

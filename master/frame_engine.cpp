@@ -380,6 +380,10 @@ void FrameEngine::note(Note n, std::uint64_t data) {
             data | std::uint64_t{recorded_.size() - 1} << kNoteFrameShift);
 }
 
+bool FrameEngine::samples_wanted(const MasterObserver* skip) const {
+  return std::any_of(observers_.begin(), observers_.end(), [&](const MasterObserver* o) { return o != skip && o->wants_samples(); });
+}
+
 void FrameEngine::replay(const sim::TapeItem& item, const std::vector<FrameResult>& frames, Time shift,
                          std::uint64_t index_shift) {
   const Note n = static_cast<Note>(item.index);

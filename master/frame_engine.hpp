@@ -79,6 +79,8 @@ class FrameEngine {
   std::vector<FrameResult> take_recorded_frames() { return std::exchange(recorded_, {}); }
   // Plays one noted item of a frame recorded `shift` earlier, whose index was `index_shift` lower.
   void replay(const sim::TapeItem& item, const std::vector<FrameResult>& frames, Time shift, std::uint64_t index_shift);
+  // Some observer but `skip` wants the sampling instants (MasterObserver::wants_samples).
+  bool samples_wanted(const MasterObserver* skip) const;
 
  private:
   void note(Note n, std::uint64_t data = 0);

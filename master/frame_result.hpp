@@ -88,6 +88,9 @@ class MasterObserver {
   virtual void on_frame_start(const FrameResult& frame) = 0;
   // The master samples DATA for bit slot `clock` (the bit the encoder sent after RE_clock).
   virtual void on_sample(const FrameResult& frame, unsigned clock, bool value, bool in_data) = 0;
+  // Whether on_sample does anything: a frame played from a recording (the frame-level fast path,
+  // docs/performance.md) skips the sampling instants when no observer wants them.
+  virtual bool wants_samples() const { return true; }
   virtual void on_frame_end(const FrameResult& frame) = 0;
   // A result recorded: each frame as it ends (after on_frame_end), and each further word of a
   // continuous clock (2.3.1) as its CRC arrives, which ends no frame. For outputs written while

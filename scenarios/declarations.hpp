@@ -20,14 +20,24 @@ checker::DeclaredFrame declared_frame(const master::FrameResult& frame);
 class MasterDeclarations final : public master::MasterObserver {
  public:
   explicit MasterDeclarations(checker::TimingChecker& checker) : checker_(checker) {}
-  void on_frame_start(const master::FrameResult& frame) override { checker_.on_frame_start(declared_frame(frame)); }
-  void on_sample(const master::FrameResult& frame, unsigned clock, bool, bool) override {
-    checker_.on_sample(declared_frame(frame), clock);
+  void on_frame_start(const master::FrameResult& frame) override {
+    if (!muted_) checker_.on_frame_start(declared_frame(frame));
   }
-  void on_frame_end(const master::FrameResult& frame) override { checker_.on_frame_end(declared_frame(frame)); }
+  void on_sample(const master::FrameResult& frame, unsigned clock, bool, bool) override {
+    if (!muted_) checker_.on_sample(declared_frame(frame), clock);
+  }
+  bool wants_samples() const override { return !muted_; }
+  void on_frame_end(const master::FrameResult& frame) override {
+    if (!muted_) checker_.on_frame_end(declared_frame(frame));
+  }
+  // While a frame is played from a recording with the checker's part in it (frame_replay.hpp),
+  // the checker is told nothing: it is put where the recorded frame left it.
+  void mute(bool muted) { muted_ = muted; }
+  checker::TimingChecker& checker() { return checker_; }
 
  private:
   checker::TimingChecker& checker_;
+  bool muted_ = false;
 };
 
 }  // namespace endatsim::scenarios

@@ -25,6 +25,7 @@ class EventDriver final : public master::MasterObserver {
   // The master's frame `index` (delay-measurement frames included, from 0) begins now.
   void frame_started(std::uint64_t index);
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
+  bool wants_samples() const override { return false; }
   void on_frame_end(const master::FrameResult&) override {}
 
   std::uint64_t random_bit_errors() const { return random_bit_errors_; }  // bits flipped at random

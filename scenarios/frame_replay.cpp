@@ -7,6 +7,9 @@
 namespace endatsim::scenarios {
 namespace {
 
+// Recordings made again for the checker's part before a frame is played with the checker shown it.
+constexpr unsigned kCheckerAttempts = 4;
+
 // The same request apart from the frame's index.
 bool same_request(master::FrameRequest a, const master::FrameRequest& b) {
   a.index = b.index;
@@ -40,8 +43,9 @@ std::optional<Engine> engine_from(std::string_view name) {
 }
 
 FrameReplay::FrameReplay(sim::Kernel& kernel, line::Line& line, master::Master& master, slave::Encoder& encoder,
-                         const EventDriver& events, const Room& room)
-    : kernel_(kernel), line_(line), master_(master), encoder_(encoder), events_(events), room_(room) {
+                         const EventDriver& events, const Room& room, MasterDeclarations& declarations)
+    : kernel_(kernel), line_(line), master_(master), encoder_(encoder), events_(events), room_(room),
+      declarations_(declarations), checker_(declarations.checker()) {
   master_.set_shortcut(this);
 }
 
@@ -70,9 +74,16 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
   played_ = false;
   if (!unbroken) ++epoch_;
   const bool strobe = master_.sample_strobe().read();
-  if (!steady(request)) return false;
+  // The time since the frame before began: what the encoder's recovery and the checker's rows
+  // between frames see. The first and last frames of an operation are paced apart from the rest.
+  const std::optional<Time> gap = last_start_ ? std::optional<Time>(kernel_.now() - *last_start_) : std::nullopt;
+  last_start_ = kernel_.now();
+  if (!gap || !steady(request)) return false;
   const auto& last = last_[strobe ? 1 : 0];
-  if (unbroken && last && last->epoch == epoch_ && may_play(*last, request)) {
+  // A recording whose checker part did not repeat yet is made again a few times: the checker
+  // settles a frame or two after the models (it judges a frame when the next one begins).
+  const bool checker_pending = last && !last->checker_confirmed && last->checker_attempts < kCheckerAttempts;
+  if (unbroken && last && last->epoch == epoch_ && !checker_pending && last->gap == *gap && may_play(*last, request)) {
     play(*last, request);
     played_ = true;
     events_after_play_ = kernel_.events_processed() + 1;  // this event, counted as it returns
@@ -82,7 +93,9 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
   recording_->request = request;
   recording_->start = kernel_.now();
   recording_->strobe = strobe;
+  recording_->gap = *gap;
   recording_->contentions = line_.contentions_seen();
+  if (checker_.replayable()) recording_->checker_start = checker_.snapshot();
   kernel_.record_to(&recording_->tape);
   return false;
 }
@@ -96,6 +109,8 @@ bool FrameReplay::close_recording() {
   r.tape.events = kernel_.events_since_recording();
   r.frames = master_.engine().take_recorded_frames();
   r.encoder_frames = encoder_.take_recorded_frames();
+  r.findings = checker_.take_recorded_findings();
+  if (r.checker_start && checker_.replayable()) r.checker_end = checker_.snapshot();
   const bool clean = line_.contentions_seen() == r.contentions && r.encoder_frames.size() == 1 && !r.frames.empty() &&
                      r.frames.back().outcome == master::FrameOutcome::Ok;
   if (!clean) {
@@ -107,7 +122,7 @@ bool FrameReplay::close_recording() {
     const Recording& p = *slot;
     const Time shift = r.start - p.start;
     const std::uint64_t index_shift = r.request.index - p.request.index;
-    bool same = same_request(p.request, r.request) && p.tape.events == r.tape.events &&
+    bool same = same_request(p.request, r.request) && p.gap == r.gap && p.tape.events == r.tape.events &&
                 p.tape.items.size() == r.tape.items.size() && p.frames.size() == r.frames.size();
     for (std::size_t i = 0; same && i < p.tape.items.size(); ++i) {
       sim::TapeItem moved_item = p.tape.items[i];
@@ -121,12 +136,30 @@ bool FrameReplay::close_recording() {
       same = e == r.encoder_frames.front();
     }
     r.confirmed = same;
+    r.checker_confirmed = same && same_checker_part(p, r, shift, index_shift);
+    r.checker_attempts = r.checker_confirmed ? 0 : p.checker_attempts + 1;
   }
   r.epoch = epoch_;
   if (r.confirmed) r.playback = compile(r);
   const bool confirmed = r.confirmed;
   slot = std::move(r);
   return confirmed;
+}
+
+bool FrameReplay::same_checker_part(const Recording& p, const Recording& r, Time shift, std::uint64_t index_shift) const {
+  using checker::TimingChecker;
+  if (!p.checker_end || !r.checker_end || p.findings.size() != r.findings.size()) return false;
+  if (!TimingChecker::same_moved(*p.checker_start, *r.checker_start, shift, index_shift) ||
+      !TimingChecker::same_moved(*p.checker_end, *r.checker_end, shift, index_shift) ||
+      !TimingChecker::same_counts(*p.checker_start, *p.checker_end, *r.checker_start, *r.checker_end))
+    return false;
+  for (std::size_t i = 0; i < p.findings.size(); ++i) {
+    checker::Violation v = p.findings[i];
+    v.time += shift;
+    if (v.frame) *v.frame += index_shift;
+    if (!(v == r.findings[i])) return false;  // its words may name a frame or a time
+  }
+  return true;
 }
 
 bool FrameReplay::may_play(const Recording& r, const master::FrameRequest& request) const {
@@ -141,6 +174,11 @@ FrameReplay::Playback FrameReplay::compile(const Recording& r) const {
   using K = sim::TapeItem::Kind;
   Playback p;
   const bool step_ends = kernel_.has_step_end_actions();
+  // With the checker put in place, what only it observes is not played, nor the sampling
+  // instants if no one else wants them; without, its findings come from itself.
+  const void* checker = &checker_;
+  const void* engine = &master_.engine();
+  const bool samples = !r.checker_confirmed || master_.engine().samples_wanted(&declarations_);
   std::vector<std::size_t> final_of;  // per signal seen, its place in p.finals
   std::vector<const void*> seen;
   for (const sim::TapeItem& i : r.tape.items) {
@@ -149,7 +187,7 @@ FrameReplay::Playback FrameReplay::compile(const Recording& r) const {
       case K::Commit: {
         // Every signal is a Signal (SignalBase only spares the kernel its header).
         auto* signal = const_cast<sim::Signal*>(static_cast<const sim::Signal*>(static_cast<const sim::SignalBase*>(i.who)));
-        if (signal->observed()) {
+        if (signal->observed(r.checker_confirmed ? checker : nullptr)) {
           p.items.push_back({at, Playback::Kind::Commit, 0, signal, i.value});
           break;
         }
@@ -166,11 +204,18 @@ FrameReplay::Playback FrameReplay::compile(const Recording& r) const {
         }
         break;
       }
-      case K::Monitor: p.items.push_back({at, Playback::Kind::Monitor, i.index, i.who, i.value}); break;
+      case K::Monitor:
+        if (r.checker_confirmed && static_cast<const sim::SignalBase*>(i.who)->listener_of(i.index) == checker) break;
+        p.items.push_back({at, Playback::Kind::Monitor, i.index, i.who, i.value});
+        break;
       case K::StepEnd:
         if (step_ends) p.items.push_back({at, Playback::Kind::StepEnd, 0, nullptr, 0});
         break;
-      case K::Model: p.items.push_back({at, Playback::Kind::Model, i.index, i.who, i.value}); break;
+      case K::Model:
+        if (i.who == checker && !r.checker_confirmed) break;
+        if (i.who == engine && !samples && i.index == static_cast<std::uint32_t>(master::FrameEngine::Note::Sample)) break;
+        p.items.push_back({at, Playback::Kind::Model, i.index, i.who, i.value});
+        break;
     }
   }
   p.end = r.tape.items.back().at - r.start;
@@ -182,6 +227,7 @@ void FrameReplay::play(const Recording& r, const master::FrameRequest& request) 
   const Time shift = start - r.start;
   const std::uint64_t index_shift = request.index - r.request.index;
   master::FrameEngine& engine = master_.engine();
+  declarations_.mute(r.checker_confirmed);
   for (const Playback::Item& item : r.playback.items) {
     kernel_.replay_time(start + item.at);
     switch (item.kind) {
@@ -193,12 +239,15 @@ void FrameReplay::play(const Recording& r, const master::FrameRequest& request) 
       case Playback::Kind::Model: {
         const sim::TapeItem note{sim::TapeItem::Kind::Model, start + item.at, item.who, item.index, item.value};
         if (item.who == &engine) engine.replay(note, r.frames, shift, index_shift);
+        else if (item.who == &checker_) checker_.replay(note, r.findings, shift, index_shift);
         else encoder_.replay(note, r.encoder_frames, shift);
         break;
       }
     }
   }
   for (const Playback::Final& f : r.playback.finals) f.signal->replay_final(f.value, start + f.last_change, f.changes);
+  declarations_.mute(false);
+  if (r.checker_confirmed) checker_.restore(*r.checker_start, *r.checker_end, shift, index_shift);
   kernel_.replay_time(start + r.playback.end);  // where the frame's last event was
   kernel_.replay_done(kernel_.now());
   kernel_.replay_events(r.tape.events - 1);

@@ -1,9 +1,10 @@
 // The frame-level fast path (docs/performance.md): a frame that would be the same as one run
 // before it, moved in time, is played from that one's recording instead of being run edge by
-// edge. The master's scheduler, the checker, the VCD writer and the outputs run their own code
-// on what is played (they are shown every change and every declaration at its instant), so
-// their results are the event level's by construction; only the frame engine, the encoder and
-// the line, whose frame is the same, are not run. A recording is played only once the two
+// edge. The master's scheduler, the VCD writer and the outputs run their own code on what is
+// played (they are shown every change and every declaration at its instant); the frame engine,
+// the encoder and the line, whose frame is the same, are not run. The checker is shown the frame
+// too, or, when its state and findings repeated with the frame, put where the recorded frame
+// left it, moved in time, with its findings told again. A recording is played only once the two
 // recordings before it of its kind (the sampling strobe's level at FE1 alternates frame by frame)
 // agreed, and only when nothing else can happen in the frame's time.
 #pragma once
@@ -14,8 +15,10 @@
 #include <string_view>
 #include <vector>
 
+#include "endatsim/checker/timing_checker.hpp"
 #include "endatsim/line/line.hpp"
 #include "endatsim/master/master.hpp"
+#include "endatsim/scenarios/declarations.hpp"
 #include "endatsim/scenarios/events.hpp"
 #include "endatsim/sim/tape.hpp"
 #include "endatsim/slave/encoder.hpp"
@@ -37,8 +40,10 @@ class FrameReplay final : public master::FrameShortcut {
     virtual ~Room() = default;
     virtual bool for_frame(std::uint64_t events) const = 0;
   };
+  // `declarations` tells the checker of the master's frames (the checker is fed or put in place
+  // through it).
   FrameReplay(sim::Kernel& kernel, line::Line& line, master::Master& master, slave::Encoder& encoder,
-              const EventDriver& events, const Room& room);
+              const EventDriver& events, const Room& room, MasterDeclarations& declarations);
   FrameReplay(const FrameReplay&) = delete;
   FrameReplay& operator=(const FrameReplay&) = delete;
   ~FrameReplay() override;
@@ -71,6 +76,7 @@ class FrameReplay final : public master::FrameShortcut {
   struct Recording {
     master::FrameRequest request;
     Time start{0};
+    Time gap{0};  // since the frame before began
     bool strobe = false;  // the sampling strobe's level at FE1: recordings of one level are played for frames of that level
     sim::Tape tape;
     std::vector<master::FrameResult> frames;
@@ -79,7 +85,15 @@ class FrameReplay final : public master::FrameShortcut {
     bool confirmed = false;         // the recording before it of its kind was the same, moved in time
     std::uint64_t epoch = 0;        // when it was made (FrameReplay::epoch_)
     Playback playback;              // once confirmed
+    // The checker's part: its state at the start and at the end, its findings. When the recording
+    // before it of its kind agrees on these too, the checker is put in place instead of being
+    // shown the frame.
+    std::shared_ptr<const checker::TimingChecker::Snapshot> checker_start, checker_end;
+    std::vector<checker::Violation> findings;
+    bool checker_confirmed = false;
+    unsigned checker_attempts = 0;  // recordings of its kind in a row whose checker part did not repeat
   };
+  bool same_checker_part(const Recording& earlier, const Recording& later, Time shift, std::uint64_t index_shift) const;
   Playback compile(const Recording& r) const;
   bool steady(const master::FrameRequest& request) const;
   // Ends the recording begun at the frame before; true if it confirmed the one before it.
@@ -93,12 +107,15 @@ class FrameReplay final : public master::FrameShortcut {
   slave::Encoder& encoder_;
   const EventDriver& events_;
   const Room& room_;
+  MasterDeclarations& declarations_;
+  checker::TimingChecker& checker_;
   std::optional<Recording> recording_;
   std::array<std::optional<Recording>, 2> last_;  // by the sampling strobe's level at FE1
   std::uint64_t replayed_ = 0;
   // Counts the stretches of frames recorded alike or played; a recording plays only in its own.
   std::uint64_t epoch_ = 0;
   bool played_ = false;  // the frame before was played
+  std::optional<Time> last_start_;  // when the frame before began
   std::uint64_t events_after_play_ = 0;  // the kernel's count at the next frame if nothing else ran
 };
 

@@ -83,6 +83,7 @@ class RunRecorder final : public master::MasterObserver {
               const checker::TimingChecker& checker, ScenarioResult& out, std::vector<RunSink*> sinks);
   void on_frame_start(const master::FrameResult&) override {}
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
+  bool wants_samples() const override { return false; }
   void on_frame_end(const master::FrameResult&) override {}
   void on_result(const master::FrameResult& frame) override;
   void on_finding(const checker::Violation& finding);

@@ -294,6 +294,7 @@ class DecodedTrace final : public master::MasterObserver {
     vcd_.set_text(trace_, "#" + std::to_string(frame.index) + " " + std::string(protocol::info(frame.command).key));
   }
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
+  bool wants_samples() const override { return false; }
   void on_frame_end(const master::FrameResult& frame) override {
     std::string line = transaction_line(transaction_of(frame, {}));
     line.erase(0, line.find('#'));  // the time is the trace's own
@@ -482,7 +483,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   kernel.watch(std::min({Watch::kEvery, limits.kernel_events, limits.records}), sim::bind<&Watch::check>(&watch));
   LimitRoom room(kernel, watch, limits);
   std::optional<FrameReplay> replay;
-  if (options.engine != Engine::Event && bus.empty()) replay.emplace(kernel, line, master, encoder, events, room);
+  if (options.engine != Engine::Event && bus.empty())
+    replay.emplace(kernel, line, master, encoder, events, room, declarations);
   kernel.run(max_time);
   if (watch.reason.empty() && max_time < scenario.max_time && !master.finished() && kernel.now() >= max_time)
     watch.reason = "limit max_time reached: " + sim::format_time(max_time) + " simulated, less than the scenario's " +

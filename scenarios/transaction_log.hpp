@@ -41,6 +41,7 @@ class TransactionRecorder final : public master::MasterObserver {
  public:
   void on_frame_start(const master::FrameResult&) override {}
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
+  bool wants_samples() const override { return false; }
   void on_frame_end(const master::FrameResult& frame) override { frames_.push_back(frame); }
   const std::vector<master::FrameResult>& frames() const { return frames_; }
 

@@ -27,12 +27,20 @@ class SignalBase {
   void on_change_monitor(Action listener) {
     listeners_.push_back(listener);
     monitors_.push_back(true);
-    observed_ = true;
   }
-  // A monitor reads this signal's level without listening to it.
-  void read_by_monitor() { observed_ = true; }
-  // A monitor listens to or reads this signal: a stretch played from a tape shows it each change.
-  bool observed() const { return observed_; }
+  // The monitor `who` reads this signal's level without listening to it.
+  void read_by_monitor(const void* who) { readers_.push_back(who); }
+  // A monitor other than `but` (none: any) listens to or reads this signal: a stretch played from
+  // a tape shows it each change.
+  bool observed(const void* but = nullptr) const {
+    for (std::size_t i = 0; i < listeners_.size(); ++i)
+      if (monitors_[i] && listeners_[i].ctx != but) return true;
+    for (const void* r : readers_)
+      if (r != but) return true;
+    return false;
+  }
+  // The object the listener at `place` calls.
+  const void* listener_of(std::uint32_t place) const { return listeners_[place].ctx; }
   void notify(Tape* tape, Time now) const {
     for (std::size_t i = 0; i < listeners_.size(); ++i) {
       if (tape != nullptr && monitors_[i])
@@ -54,7 +62,7 @@ class SignalBase {
  private:
   std::vector<Action> listeners_;
   std::vector<bool> monitors_;  // per listener
-  bool observed_ = false;
+  std::vector<const void*> readers_;  // monitors that read without listening
 };
 
 class Signal final : public SignalBase {
