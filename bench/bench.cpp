@@ -158,19 +158,20 @@ scenarios::Scenario additional_data_scenario() {
   return s;
 }
 
-void run_frames(benchmark::State& state, const scenarios::Scenario& scenario, bool vcd) {
-  scenarios::RunOptions options;
+// The Frame benchmarks run every edge as an event (Engine::Event), unless `fast` (the default of
+// the command line): frames that repeat are played from recordings (scenarios/frame_replay.hpp).
+void run_frames(benchmark::State& state, const scenarios::Scenario& scenario, bool vcd, bool fast = false,
+                unsigned frames = kFrames, scenarios::RunOptions options = {}) {
+  options.engine = fast ? scenarios::Engine::Auto : scenarios::Engine::Event;
   if (vcd) options.vcd_path = "/tmp/endatsim_bench_" + std::to_string(::getpid()) + ".vcd";
 
   double simulated_s = 0;
   std::uint64_t events = 0;
   for (auto _ : state) {
     const scenarios::ScenarioResult r = scenarios::run_scenario(scenario, options);
-    const auto ok = std::count_if(r.frames.begin(), r.frames.end(), [](const master::FrameResult& f) {
-      return !f.measurement && f.outcome == master::FrameOutcome::Ok &&
-             f.command == master::ModeCommand::EncoderSendPositionValuesWithAdditionalData;
-    });
-    if (!r.finished || ok < kFrames) {
+    // Every frame but the delay measurement's read Ok, the reads among them (counted, whatever was kept).
+    const std::uint64_t ok = r.tally.outcome(master::FrameOutcome::Ok);
+    if (!r.finished || ok != r.tally.frames() || ok < frames) {
       state.SkipWithError("not every ReadPosition frame was read Ok");
       break;
     }
@@ -184,20 +185,43 @@ void run_frames(benchmark::State& state, const scenarios::Scenario& scenario, bo
     std::filesystem::remove(*options.vcd_path, ec);
   }
   if (state.error_occurred()) return;
-  state.counters["frames_per_s"] = benchmark::Counter(kFrames, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["frames_per_s"] = benchmark::Counter(frames, benchmark::Counter::kIsIterationInvariantRate);
   report_sim_rate(state, simulated_s);
   state.counters["events"] = static_cast<double>(events);
 }
 
-void BM_Frame_EnDat22_16MHz_10m(benchmark::State& state, bool vcd) { run_frames(state, frame_scenario(), vcd); }
-BENCHMARK_CAPTURE(BM_Frame_EnDat22_16MHz_10m, no_vcd, false)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Frame_EnDat22_16MHz_10m, vcd, true)->UseRealTime()->Unit(benchmark::kMillisecond);
+void BM_Frame_EnDat22_16MHz_10m(benchmark::State& state, bool vcd, bool fast) { run_frames(state, frame_scenario(), vcd, fast); }
+BENCHMARK_CAPTURE(BM_Frame_EnDat22_16MHz_10m, no_vcd, false, false)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Frame_EnDat22_16MHz_10m, vcd, true, false)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Frame_EnDat22_16MHz_10m, fast_no_vcd, false, true)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Frame_EnDat22_16MHz_10m, fast_vcd, true, true)->UseRealTime()->Unit(benchmark::kMillisecond);
 
-void BM_Frame_AdditionalData_EnDat22_16MHz_10m(benchmark::State& state, bool vcd) {
-  run_frames(state, additional_data_scenario(), vcd);
+void BM_Frame_AdditionalData_EnDat22_16MHz_10m(benchmark::State& state, bool vcd, bool fast) {
+  run_frames(state, additional_data_scenario(), vcd, fast);
 }
-BENCHMARK_CAPTURE(BM_Frame_AdditionalData_EnDat22_16MHz_10m, no_vcd, false)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Frame_AdditionalData_EnDat22_16MHz_10m, vcd, true)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Frame_AdditionalData_EnDat22_16MHz_10m, no_vcd, false, false)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Frame_AdditionalData_EnDat22_16MHz_10m, vcd, true, false)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Frame_AdditionalData_EnDat22_16MHz_10m, fast_no_vcd, false, true)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Frame_AdditionalData_EnDat22_16MHz_10m, fast_vcd, true, true)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// ---- Loop: the one-second loop of bench/scenarios/additional_data_loop_1s.json for 10 s, through
+// the fast path (the command line's default), without outputs ----
+
+constexpr unsigned kLoopFrames = 160'000;
+
+void BM_Loop_AdditionalData_10s_fast(benchmark::State& state) {
+  scenarios::Scenario s = scenarios::load_scenario_file(ENDATSIM_SOURCE_DIR "/bench/scenarios/additional_data_loop_1s.json");
+  s.script.back().count = kLoopFrames;
+  s.max_time = sim::ms(10'010);
+  // As `endatsim run` with raised limits and its default --examples 1000.
+  scenarios::RunOptions options;
+  options.kept = 1000;
+  options.limits.kernel_events = UINT64_MAX;
+  options.limits.script_frames = UINT64_MAX;
+  options.limits.records = UINT64_MAX;
+  run_frames(state, s, false, true, kLoopFrames, options);
+}
+BENCHMARK(BM_Loop_AdditionalData_10s_fast)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // ---- Check: the same 0.1 s read back from its VCD and judged from the wires (endatsim check) ----
 
