@@ -167,7 +167,7 @@ bool FrameReplay::may_play(const Recording& r, const master::FrameRequest& reque
   // The last thing the frame did is on the tape, whether it is played or stands at the end.
   const Time end = kernel_.now() + (r.tape.items.back().at - r.start);
   const std::optional<Time> next = kernel_.next_event_time();
-  return (!next || *next > end) && end <= kernel_.run_until() && room_.for_frame(r.tape.events);
+  return (!next || *next > end) && end <= kernel_.run_until() && room_.for_frame(r.tape.events, r.frames.size() + r.encoder_frames.size() + r.findings.size());
 }
 
 FrameReplay::Playback FrameReplay::compile(const Recording& r) const {

@@ -34,11 +34,12 @@ std::optional<Engine> engine_from(std::string_view name);
 
 class FrameReplay final : public master::FrameShortcut {
  public:
-  // `room` says whether the run's limits leave room for `events` more kernel events and a frame's
-  // records (the run ends at a limit between two events, which a played frame must not pass).
+  // `room` says whether the run's limits leave room for `events` more kernel events and `records`
+  // more records (frames and findings kept): the run ends at a limit between two events, which a
+  // played frame must not pass.
   struct Room {
     virtual ~Room() = default;
-    virtual bool for_frame(std::uint64_t events) const = 0;
+    virtual bool for_frame(std::uint64_t events, std::uint64_t records) const = 0;
   };
   // `declarations` tells the checker of the master's frames (the checker is fed or put in place
   // through it).

@@ -356,11 +356,12 @@ class Watch {
 // limit can be reached inside it.
 class LimitRoom final : public FrameReplay::Room {
  public:
-  // More than a frame adds to the records (its master and encoder frames, its findings kept).
-  static constexpr std::uint64_t kRecordsPerFrame = 64;
+  // Beyond what the recorded frame added: a checker shown the frame may find more than it did.
+  static constexpr std::uint64_t kRecordsSlack = 64;
   LimitRoom(const sim::Kernel& kernel, const Watch& watch, const Limits& limits) : kernel_(kernel), watch_(watch), limits_(limits) {}
-  bool for_frame(std::uint64_t events) const override {
-    return kernel_.events_processed() + events < limits_.kernel_events && watch_.records() + kRecordsPerFrame < limits_.records;
+  bool for_frame(std::uint64_t events, std::uint64_t records) const override {
+    return kernel_.events_processed() + events < limits_.kernel_events &&
+           watch_.records() + records + kRecordsSlack < limits_.records;
   }
 
  private:

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "endatsim/scenarios/junit.hpp"
+#include "endatsim/scenarios/limits.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/report.hpp"
 #include "endatsim/scenarios/streamed_outputs.hpp"
@@ -26,6 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 namespace scenarios = endatsim::scenarios;
+namespace sim = endatsim::sim;
 
 struct Outputs {
   scenarios::ScenarioResult result;
@@ -39,16 +41,15 @@ std::string read_file(const fs::path& p) {
   return s.str();
 }
 
-Outputs run_with(const scenarios::Scenario& s, scenarios::Engine engine, const std::string& tag, std::size_t kept) {
+Outputs run_with(const scenarios::Scenario& s, scenarios::Engine engine, const std::string& tag,
+                 scenarios::RunOptions options) {
   std::ostringstream log, jsonl, json, summary;
   scenarios::TransactionLogWriter text(log, scenarios::TransactionLogWriter::Format::Text);
   scenarios::TransactionLogWriter lines(jsonl, scenarios::TransactionLogWriter::Format::JsonLines);
   scenarios::ResultsJsonWriter results(json, "test");
   // A name of its own: ctest runs each test in a process of its own, side by side.
   const fs::path vcd = fs::temp_directory_path() / ("endatsim_fast_path_" + std::to_string(::getpid()) + "_" + tag + ".vcd");
-  scenarios::RunOptions options;
   options.engine = engine;
-  options.kept = kept;
   options.vcd_path = vcd.string();
   options.vcd_decoded = true;
   options.sinks = {&text, &lines, &results};
@@ -65,11 +66,11 @@ Outputs run_with(const scenarios::Scenario& s, scenarios::Engine engine, const s
   return out;
 }
 
-// Runs `s` both ways, keeping `kept` frames and findings of each check, and requires the same
-// outputs; returns the frames the fast path played.
-std::uint64_t expect_same_outputs(const scenarios::Scenario& s, const std::string& what, std::size_t kept = SIZE_MAX) {
-  const Outputs event = run_with(s, scenarios::Engine::Event, "event", kept);
-  const Outputs fast = run_with(s, scenarios::Engine::Auto, "auto", kept);
+// Runs `s` both ways with `options` and requires the same outputs; returns the frames the fast
+// path played.
+std::uint64_t expect_same_outputs(const scenarios::Scenario& s, const std::string& what, scenarios::RunOptions options = {}) {
+  const Outputs event = run_with(s, scenarios::Engine::Event, "event", options);
+  const Outputs fast = run_with(s, scenarios::Engine::Auto, "auto", options);
   EXPECT_EQ(event.result.frames_replayed, 0U) << what;
   EXPECT_EQ(fast.result.events, event.result.events) << what << ": kernel events";
   EXPECT_EQ(fast.log, event.log) << what << ": transaction log";
@@ -183,7 +184,9 @@ TEST(FastPathDrawn, ThreeHundredDrawnScenariosGiveTheOutputsOfTheEventLevel) {
       continue;
     }
     // Every third keeps three of each (a long run's outputs, streamed).
-    const std::uint64_t n = expect_same_outputs(s, "drawn scenario " + std::to_string(i) + ":\n" + text, i % 3 == 0 ? 3 : SIZE_MAX);
+    scenarios::RunOptions options;
+    if (i % 3 == 0) options.kept = 3;
+    const std::uint64_t n = expect_same_outputs(s, "drawn scenario " + std::to_string(i) + ":\n" + text, options);
     played += n;
     playing += n != 0 ? 1 : 0;
     if (::testing::Test::HasFailure()) break;  // one scenario's differences are enough to read
@@ -191,6 +194,35 @@ TEST(FastPathDrawn, ThreeHundredDrawnScenariosGiveTheOutputsOfTheEventLevel) {
   // The draws exercise the fast path, not only the fall-back to the event level.
   EXPECT_GT(playing, kScenarios / 4);
   EXPECT_GT(played, 1000U);
+}
+
+// A run that a limit ends ends where the event level ends it: a frame is played only when no
+// limit can be reached inside it.
+TEST(FastPathLimits, ARunEndedByALimitEndsAtTheSameEventWithTheSameOutputs) {
+  scenarios::Scenario s = scenarios::load_scenario_file(ENDATSIM_SOURCE_DIR "/bench/scenarios/additional_data_loop_1s.json");
+  s.script.back().count = 600;
+  s.max_time = sim::ms(40);
+  s.expect = {};
+  struct Case {
+    const char* what;
+    scenarios::Limits limits;
+  };
+  std::vector<Case> cases(4);
+  cases[0] = {"kernel events", {}};
+  cases[0].limits.kernel_events = 400'000;
+  cases[1] = {"records", {}};
+  cases[1].limits.records = 700;
+  cases[2] = {"max_time", {}};
+  cases[2].limits.max_time = sim::us(21'031);
+  cases[3] = {"none", {}};
+  for (const Case& c : cases) {
+    scenarios::RunOptions options;
+    options.limits = c.limits;
+    const Outputs fast = run_with(s, scenarios::Engine::Auto, "limits", options);
+    EXPECT_GT(fast.result.frames_replayed, 100U) << c.what;
+    EXPECT_EQ(fast.result.incomplete.empty(), std::string(c.what) == "none") << c.what << ": " << fast.result.incomplete;
+    expect_same_outputs(s, std::string("limit ") + c.what, options);
+  }
 }
 
 }  // namespace
