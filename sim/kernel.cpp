@@ -47,27 +47,45 @@ void Kernel::run_fifo_snapshot() {
 void Kernel::commit_updates() {
   // Committing writes nothing: every request of this phase is in updates_ before the
   // listeners, whose writes belong to the next one, run.
+  if (tape_ != nullptr) {
+    commit_updates_recorded();
+    return;
+  }
   for (SignalBase* s : updates_)
-    if (s->commit()) {
-      changed_.push_back(s);
-      if (tape_ != nullptr) tape_->add(TapeItem::Kind::Commit, now_, s, 0, s->committed_value());
-    }
+    if (s->commit()) changed_.push_back(s);
   updates_.clear();
-  for (SignalBase* s : changed_) s->notify(tape_, now_);
+  for (SignalBase* s : changed_) s->notify();
   changed_.clear();
 }
 
-void Kernel::settle() {
+// commit_updates() while recording: every commit and every monitor's call goes on the tape.
+void Kernel::commit_updates_recorded() {
+  for (SignalBase* s : updates_)
+    if (s->commit()) {
+      changed_.push_back(s);
+      tape_->add(TapeItem::Kind::Commit, now_, s, 0, s->committed_value());
+    }
+  updates_.clear();
+  for (SignalBase* s : changed_) s->notify(*tape_, now_);
+  changed_.clear();
+}
+
+inline void Kernel::settle() {
   while ((!updates_.empty() || fifo_size_ != 0) && !stopped_) {
     commit_updates();
     run_fifo_snapshot();
   }
 }
 
-void Kernel::end_time_step() {
-  if (tape_ != nullptr) tape_->add(TapeItem::Kind::StepEnd, now_, nullptr, 0, 0);
+void Kernel::note_step_end() { tape_->add(TapeItem::Kind::StepEnd, now_, nullptr, 0, 0); }
+
+inline void Kernel::end_time_step() {
+  if (tape_ != nullptr) [[unlikely]]
+    note_step_end();
   for (const Action& a : step_end_) a();
 }
+
+void Kernel::replay_step_end() { end_time_step(); }
 
 void Kernel::replay_done(Time last) const {
   if (!updates_.empty() || fifo_size_ != 0) refuse("Kernel::replay_done: work pending after a stretch played");

@@ -41,10 +41,13 @@ class SignalBase {
   }
   // The object the listener at `place` calls.
   const void* listener_of(std::uint32_t place) const { return listeners_[place].ctx; }
-  void notify(Tape* tape, Time now) const {
+  void notify() const {
+    for (const Action& l : listeners_) l.fn(l.ctx, notify_value_);
+  }
+  // The same while the kernel records: each monitor's call goes on the tape first.
+  void notify(Tape& tape, Time now) const {
     for (std::size_t i = 0; i < listeners_.size(); ++i) {
-      if (tape != nullptr && monitors_[i])
-        tape->add(TapeItem::Kind::Monitor, now, this, static_cast<std::uint32_t>(i), notify_value_);
+      if (monitors_[i]) tape.add(TapeItem::Kind::Monitor, now, this, static_cast<std::uint32_t>(i), notify_value_);
       listeners_[i].fn(listeners_[i].ctx, notify_value_);
     }
   }

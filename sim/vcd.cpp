@@ -49,7 +49,12 @@ VcdWriter::VcdWriter(Kernel& kernel, const std::string& path) : kernel_(kernel),
   // One large buffer of our own, written with one call when full: the stream's own buffer
   // would only copy it again.
   std::setvbuf(file_, nullptr, _IONBF, 0);
-  buffer_.reserve(kBufferSize);
+  buffer_.resize(kBufferSize);
+}
+
+void VcdWriter::make_room(std::size_t n) {
+  write_buffer();
+  if (used_ + n > buffer_.size()) buffer_.resize(used_ + n);
 }
 
 VcdWriter::~VcdWriter() {
@@ -60,8 +65,13 @@ VcdWriter::~VcdWriter() {
 void VcdWriter::add(Signal& signal, const std::string& scope, const std::string& name) {
   if (started_) throw std::logic_error("VcdWriter::add after start");
   const std::size_t index = probes_.size();
-  probes_.push_back(Probe{this, index, &signal, scope, name, short_id(index), signal.read(), false});
-  signal.on_change_monitor(Action{&VcdWriter::on_change, &probes_.back(), 0});
+  probes_.push_back(Probe{this, index, &signal, scope, name, short_id(index), signal.read(), false, {}, 0});
+  Probe& p = probes_.back();
+  if (p.id.size() + 2 > p.line.size()) throw std::logic_error("VcdWriter::add: too many signals");
+  p.line_size = p.id.size() + 2;
+  std::memcpy(p.line.data() + 1, p.id.data(), p.id.size());
+  p.line[p.line_size - 1] = '\n';
+  signal.on_change_monitor(Action{&VcdWriter::on_change, &p, 0});
 }
 
 std::size_t VcdWriter::add_text(const std::string& scope, const std::string& name) {
@@ -86,24 +96,25 @@ void VcdWriter::set_text(std::size_t handle, const std::string& text) {
 }
 
 void VcdWriter::start() {
-  buffer_ += "$version endatsim $end\n$timescale 1ps $end\n";
+  std::string head = "$version endatsim $end\n$timescale 1ps $end\n";
   for (std::size_t k = 0; k < texts_.size(); ++k) texts_[k].id = short_id(probes_.size() + k);
   std::map<std::string, std::vector<std::string>> scopes;
   for (const Probe& p : probes_) scopes[p.scope].push_back("$var wire 1 " + p.id + " " + p.name + " $end\n");
   for (const TextProbe& t : texts_) scopes[t.scope].push_back("$var string 1 " + t.id + " " + t.name + " $end\n");
   for (const auto& [scope, vars] : scopes) {
-    buffer_ += "$scope module " + scope + " $end\n";
-    for (const auto& v : vars) buffer_ += v;
-    buffer_ += "$upscope $end\n";
+    head += "$scope module " + scope + " $end\n";
+    for (const auto& v : vars) head += v;
+    head += "$upscope $end\n";
   }
-  buffer_ += "$enddefinitions $end\n#" + std::to_string(kernel_.now().count()) + "\n$dumpvars\n";
+  head += "$enddefinitions $end\n#" + std::to_string(kernel_.now().count()) + "\n$dumpvars\n";
   stamped_ = kernel_.now();
   for (Probe& p : probes_) {
     p.written = p.signal->read();
-    buffer_ += (p.written ? '1' : '0') + p.id + "\n";
+    head += (p.written ? '1' : '0') + p.id + "\n";
   }
-  for (const TextProbe& t : texts_) buffer_ += "s" + t.pending + " " + t.id + "\n";
-  buffer_ += "$end\n";
+  for (const TextProbe& t : texts_) head += "s" + t.pending + " " + t.id + "\n";
+  head += "$end\n";
+  append(head);
   kernel_.on_time_step_end(Action{&VcdWriter::on_step_end, this, 0});
   started_ = true;
 }
@@ -130,7 +141,7 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
     for (TextProbe& t : w->texts_) {
       if (!t.dirty) continue;
       t.dirty = false;
-      w->buffer_ += "s" + t.pending + " " + t.id + "\n";
+      w->append("s" + t.pending + " " + t.id + "\n");
     }
     w->texts_dirty_ = false;
   }
@@ -145,37 +156,40 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
       w->stamped_ = w->kernel_.now();
     }
     p.written = v;
-    w->buffer_ += v ? '1' : '0';
-    w->buffer_ += p.id;
-    w->buffer_ += '\n';
+    p.line[0] = v ? '1' : '0';
+    w->append(p.line.data(), p.line_size);
   }
   w->dirty_.clear();
   w->flush_if_full();
 }
 
 void VcdWriter::stamp() {
-  char text[24];
+  constexpr std::size_t kStamp = 24;  // '#', at most 20 digits, '\n'
+  char* text = room(kStamp);
   text[0] = '#';
-  const auto end = std::to_chars(text + 1, text + sizeof text - 1, kernel_.now().count()).ptr;
+  char* end = std::to_chars(text + 1, text + kStamp - 1, kernel_.now().count()).ptr;
   *end = '\n';
-  buffer_.append(text, static_cast<std::size_t>(end + 1 - text));
+  used_ += static_cast<std::size_t>(end + 1 - text);
 }
 
 void VcdWriter::flush_if_full() {
-  if (buffer_.size() < kBufferSize - 4096) return;
+  if (used_ < kBufferSize - 4096) return;
   write_buffer();
 }
 
 void VcdWriter::write_buffer() {
-  if (file_ == nullptr) return;
+  if (file_ == nullptr) {  // a write failed before: finish() says so
+    used_ = 0;
+    return;
+  }
   errno = 0;
-  if (std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
+  if (std::fwrite(buffer_.data(), 1, used_, file_) != used_) {
     const int error = errno;
     std::fclose(file_);
     file_ = nullptr;
     throw std::runtime_error("write error on VCD file '" + path_ + "': " + (error != 0 ? std::strerror(error) : "short write"));
   }
-  buffer_.clear();
+  used_ = 0;
 }
 
 void VcdWriter::finish() {

@@ -7,7 +7,9 @@
 // finish() the part file goes. "-" writes to standard output.
 #pragma once
 
+#include <array>
 #include <cstdio>
+#include <cstring>
 #include <deque>
 #include <string>
 #include <vector>
@@ -43,11 +45,25 @@ class VcdWriter {
     std::string id;
     bool written;
     bool dirty;
+    // The value's line, "0<id>\n", with the value at [0]: written with one copy per change.
+    std::array<char, 8> line{};
+    std::size_t line_size = 0;
   };
   static void on_change(void* probe, std::uint64_t value);
   static void on_step_end(void* self, std::uint64_t);
   void stamp();  // "#<now>" and a new line
   void flush_if_full();
+  // Room for `n` more bytes at the end of the buffer (written out first when it is full).
+  char* room(std::size_t n) {
+    if (used_ + n > buffer_.size()) make_room(n);
+    return buffer_.data() + used_;
+  }
+  void make_room(std::size_t n);
+  void append(const char* text, std::size_t n) {
+    std::memcpy(room(n), text, n);
+    used_ += n;
+  }
+  void append(const std::string& text) { append(text.data(), text.size()); }
   static constexpr std::size_t kBufferSize = std::size_t{1} << 20;
   void write_buffer();
 
@@ -66,7 +82,8 @@ class VcdWriter {
   std::vector<TextProbe> texts_;
   bool texts_dirty_ = false;
   std::vector<std::size_t> dirty_;
-  std::string buffer_;
+  std::string buffer_;    // kBufferSize bytes, of which the first used_ are to be written
+  std::size_t used_ = 0;
   Time stamped_{-1};  // the last "#time" written
   bool started_ = false;
   bool finished_ = false;
