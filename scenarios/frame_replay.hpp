@@ -6,7 +6,10 @@
 // too, or, when its state and findings repeated with the frame, put where the recorded frame
 // left it, moved in time, with its findings told again. A recording is played only once the two
 // recordings before it of its kind (the sampling strobe's level at FE1 alternates frame by frame)
-// agreed, and only when nothing else can happen in the frame's time.
+// agreed, and only when nothing else can happen in the frame's time. Every listener of a signal
+// that is not a monitor belongs to the models a recording stands for (the line's delays and
+// resolvers, the frame engine, the encoder); a scenario event that counts clock edges keeps
+// frames from being played. docs/performance.md says how and what it gives.
 #pragma once
 
 #include <array>
