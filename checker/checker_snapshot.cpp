@@ -58,10 +58,7 @@ struct TimingChecker::Snapshot {
   // This state moved by `dt` and `di`, its counts left as they are.
   Snapshot moved(Time dt, std::uint64_t di) const {
     Snapshot s = *this;
-    for (auto& [index, header] : s.pending) {
-      index += di;
-      header.index += di;
-    }
+    for (auto& pending_frame : s.pending) pending_frame.second.index += di;  // (empty: replayable())
     s.current.header.index = in_frame ? current.header.index + di : current.header.index;
     s.current.fe1 = moved_time(current.fe1, dt);
     for (Time& t : s.current.rising) t += dt;
@@ -102,9 +99,11 @@ struct TimingChecker::Snapshot {
   }
 };
 
+// No declared frame on its way to the encoder pins: those wait for a count of falling edges there,
+// which a frame played again would have to move too.
 bool TimingChecker::replayable() const {
-  return mode_decided_ && !wires_only_ && contentions_.empty() && !power_on_.due() && !finished_ && !capture_ &&
-         !run_cut_at_ && !frozen_mark_ && !contention_recorded_;
+  return mode_decided_ && !wires_only_ && pending_.empty() && contentions_.empty() && !power_on_.due() && !finished_ &&
+         !capture_ && !run_cut_at_ && !frozen_mark_ && !contention_recorded_;
 }
 
 std::shared_ptr<const TimingChecker::Snapshot> TimingChecker::snapshot() const {

@@ -56,10 +56,14 @@ FrameReplay::~FrameReplay() {
 
 // What must hold of the run for a frame to be recorded or played: a master clock without jitter
 // (its generator would be drawn from), no measurement, not the operation's last frame (what
-// follows it is paced differently), an encoder whose frame changes nothing, and no scenario event
-// still to come that a frame or a clock edge sets off.
+// follows it is paced differently), a mode command without 8 + 16 bits (a 2.1 payload or a 2.2
+// command supplement: what the encoder does with them, a selection, a memory access, an error
+// reset, is not played, and a 2.1 payload frame may wait t_b before it starts), an encoder whose
+// frame changes nothing, and no scenario event still to come that a frame or a clock edge sets off.
 bool FrameReplay::steady(const master::FrameRequest& request) const {
-  return master_.params().jitter == Time::zero() && !request.measurement && !master_.measuring() &&
+  const protocol::ModeCommandInfo& command = protocol::info(request.command);
+  return command.payload_bits == 0 && !command.supplement && master_.params().jitter == Time::zero() &&
+         !request.measurement && !master_.measuring() &&
          master_.frames_left() > 1 && encoder_.frame_invariant() && events_.quiet_from(request.index) &&
          !kernel_.work_pending();
 }
@@ -95,6 +99,7 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
   recording_->strobe = strobe;
   recording_->gap = *gap;
   recording_->contentions = line_.contentions_seen();
+  recording_->ignored_edges = encoder_.ignored_clock_edges();
   if (checker_.replayable()) recording_->checker_start = checker_.snapshot();
   kernel_.record_to(&recording_->tape);
   return false;
@@ -111,8 +116,9 @@ bool FrameReplay::close_recording() {
   r.encoder_frames = encoder_.take_recorded_frames();
   r.findings = checker_.take_recorded_findings();
   if (r.checker_start && checker_.replayable()) r.checker_end = checker_.snapshot();
-  const bool clean = line_.contentions_seen() == r.contentions && r.encoder_frames.size() == 1 && !r.frames.empty() &&
-                     r.frames.back().outcome == master::FrameOutcome::Ok;
+  // One frame at the encoder, read Ok, no contention, no clock edge the encoder did not take (t_R).
+  const bool clean = line_.contentions_seen() == r.contentions && encoder_.ignored_clock_edges() == r.ignored_edges &&
+                     r.encoder_frames.size() == 1 && !r.frames.empty() && r.frames.back().outcome == master::FrameOutcome::Ok;
   if (!clean) {
     last_ = {};
     return false;

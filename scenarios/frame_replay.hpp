@@ -35,6 +35,55 @@ enum class Engine : std::uint8_t { Event, Auto, Fast };
 std::string_view to_string(Engine e);
 std::optional<Engine> engine_from(std::string_view name);
 
+// The parts of a recording (FrameReplay): at namespace scope, so that their default member
+// initializers are usable inside FrameReplay (std::optional of a nested struct is not, in Clang).
+namespace frame_replay {
+
+// A recording as it is played: what the monitors are shown and the models' notes, in order;
+// the signals no monitor observes only as they stand at the end.
+struct Playback {
+  enum class Kind : std::uint8_t { Commit, Monitor, StepEnd, Model };
+  struct Item {
+    Time at;  // from the frame's start
+    Kind kind;
+    std::uint32_t index;
+    const void* who;
+    std::uint64_t value;
+  };
+  struct Final {
+    sim::Signal* signal;
+    bool value;
+    Time last_change;  // from the frame's start
+    std::uint64_t changes;
+  };
+  std::vector<Item> items;
+  std::vector<Final> finals;
+  Time end{0};  // the last change on the tape, from the frame's start
+};
+struct Recording {
+  master::FrameRequest request;
+  Time start{0};
+  Time gap{0};  // since the frame before began
+  bool strobe = false;  // the sampling strobe's level at FE1: recordings of one level are played for frames of that level
+  sim::Tape tape;
+  std::vector<master::FrameResult> frames;
+  std::vector<slave::EncoderFrame> encoder_frames;
+  std::uint64_t contentions = 0;  // the line's count when the recording began
+  std::uint64_t ignored_edges = 0;  // the encoder's count of clock edges it did not take, then
+  bool confirmed = false;         // the recording before it of its kind was the same, moved in time
+  std::uint64_t epoch = 0;        // when it was made (FrameReplay::epoch_)
+  Playback playback;              // once confirmed
+  // The checker's part: its state at the start and at the end, its findings. When the recording
+  // before it of its kind agrees on these too, the checker is put in place instead of being
+  // shown the frame.
+  std::shared_ptr<const checker::TimingChecker::Snapshot> checker_start, checker_end;
+  std::vector<checker::Violation> findings;
+  bool checker_confirmed = false;
+  unsigned checker_attempts = 0;  // recordings of its kind in a row whose checker part did not repeat
+};
+
+}  // namespace frame_replay
+
 class FrameReplay final : public master::FrameShortcut {
  public:
   // `room` says whether the run's limits leave room for `events` more kernel events and `records`
@@ -56,47 +105,8 @@ class FrameReplay final : public master::FrameShortcut {
   std::uint64_t frames_replayed() const { return replayed_; }
 
  private:
-  // A recording as it is played: what the monitors are shown and the models' notes, in order;
-  // the signals no monitor observes only as they stand at the end.
-  struct Playback {
-    enum class Kind : std::uint8_t { Commit, Monitor, StepEnd, Model };
-    struct Item {
-      Time at;  // from the frame's start
-      Kind kind;
-      std::uint32_t index;
-      const void* who;
-      std::uint64_t value;
-    };
-    struct Final {
-      sim::Signal* signal;
-      bool value;
-      Time last_change;  // from the frame's start
-      std::uint64_t changes;
-    };
-    std::vector<Item> items;
-    std::vector<Final> finals;
-    Time end{0};  // the last change on the tape, from the frame's start
-  };
-  struct Recording {
-    master::FrameRequest request;
-    Time start{0};
-    Time gap{0};  // since the frame before began
-    bool strobe = false;  // the sampling strobe's level at FE1: recordings of one level are played for frames of that level
-    sim::Tape tape;
-    std::vector<master::FrameResult> frames;
-    std::vector<slave::EncoderFrame> encoder_frames;
-    std::uint64_t contentions = 0;  // the line's count when the recording began
-    bool confirmed = false;         // the recording before it of its kind was the same, moved in time
-    std::uint64_t epoch = 0;        // when it was made (FrameReplay::epoch_)
-    Playback playback;              // once confirmed
-    // The checker's part: its state at the start and at the end, its findings. When the recording
-    // before it of its kind agrees on these too, the checker is put in place instead of being
-    // shown the frame.
-    std::shared_ptr<const checker::TimingChecker::Snapshot> checker_start, checker_end;
-    std::vector<checker::Violation> findings;
-    bool checker_confirmed = false;
-    unsigned checker_attempts = 0;  // recordings of its kind in a row whose checker part did not repeat
-  };
+  using Playback = frame_replay::Playback;
+  using Recording = frame_replay::Recording;
   bool same_checker_part(const Recording& earlier, const Recording& later, Time shift, std::uint64_t index_shift) const;
   Playback compile(const Recording& r) const;
   bool steady(const master::FrameRequest& request) const;

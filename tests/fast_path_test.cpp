@@ -145,6 +145,7 @@ class ScenarioDraw {
       j << ",\n    { \"op\": \"select_memory_area\", \"mrs\": \"operating_parameters\" },"
         << "\n    { \"op\": \"read_parameter\", \"address\": " << pick(4) << " }";
     if (coin(0.3)) j << ",\n    { \"op\": \"read_position\", \"count\": " << 5 + pick(20) << ", \"cycle\": \"100 us\" }";
+    if (coin(0.25)) j << ",\n    " << repeated_frames(v22);
     j << "\n  ]";
     if (coin(0.4)) j << ",\n  \"events\": [ " << event() << " ]";
     j << "\n}\n";
@@ -152,6 +153,20 @@ class ScenarioDraw {
   }
 
  private:
+  // Frames of a mode command with 8 + 16 bits, over and over (none is played: what the encoder
+  // does with the bits is not), with a cycle above or below t_b.
+  std::string repeated_frames(bool v22) {
+    const char* cycles[] = {"200 us", "2 ms"};
+    const char* v21[] = {"encoder_send_parameters", "encoder_send_test_values"};
+    const char* v22_commands[] = {"encoder_send_position_values_and_receive_error_reset",
+                                  "encoder_send_position_values_and_send_parameter", "encoder_send_parameters"};
+    const std::string command = v22 ? v22_commands[pick(3)] : v21[pick(2)];
+    std::ostringstream f;
+    f << "{ \"op\": \"frame\", \"command\": \"" << command << "\"";
+    if (command != "encoder_send_test_values") f << ", \"address\": " << pick(4);  // no 8 + 16 bits
+    f << ", \"count\": " << 5 + pick(25) << ", \"cycle\": \"" << cycles[pick(2)] << "\" }";
+    return f.str();
+  }
   std::string event() {
     std::ostringstream e;
     const unsigned at_us = 200 + static_cast<unsigned>(pick(2000));
@@ -194,6 +209,25 @@ TEST(FastPathDrawn, ThreeHundredDrawnScenariosGiveTheOutputsOfTheEventLevel) {
   // The draws exercise the fast path, not only the fall-back to the event level.
   EXPECT_GT(playing, kScenarios / 4);
   EXPECT_GT(played, 1000U);
+}
+
+// Frames whose 8 + 16 bits make the encoder do something are run, never played: 2.1 parameter
+// reads at a cycle below t_b (the master waits t_b before each), and error resets whose effect on
+// word 0 shows when max_time ends the run between two frames.
+TEST(FastPathCommands, FramesWithAPayloadOrASupplementGiveTheOutputsOfTheEventLevel) {
+  const char* reads = R"({"name": "t_b_reads", "max_time": "200 ms", "line": {"cable_length_m": 2},
+    "encoder": {"version": "2.2"}, "master": {"f_c": "1 MHz"},
+    "script": [{"op": "select_memory_area", "mrs": "operating_parameters"},
+               {"op": "frame", "command": "encoder_send_parameters", "address": 1, "count": 60}]})";
+  const char* resets = R"({"name": "error_resets_cut", "max_time": "5.15 ms", "line": {"cable_length_m": 2},
+    "encoder": {"version": "2.2", "error_sources": "0x0001"}, "master": {"f_c": "1 MHz"},
+    "script": [{"op": "frame", "command": "encoder_send_position_values_and_receive_error_reset", "count": 40,
+                "cycle": "200 us"}],
+    "expect": {"memory": [{"area": "operating_status", "address": "0x00", "value": "0x0000"}]}})";
+  for (const char* text : {reads, resets}) {
+    const scenarios::Scenario s = scenarios::load_scenario_text(text, "commands.json");
+    EXPECT_EQ(expect_same_outputs(s, s.name), 0U) << s.name;
+  }
 }
 
 // A run that a limit ends ends where the event level ends it: a frame is played only when no
