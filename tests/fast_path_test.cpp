@@ -19,7 +19,6 @@
 #include "endatsim/scenarios/limits.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "endatsim/scenarios/report.hpp"
-#include "endatsim/scenarios/streamed_outputs.hpp"
 
 #include "scenario_support.hpp"
 
@@ -29,9 +28,9 @@ namespace fs = std::filesystem;
 namespace scenarios = endatsim::scenarios;
 namespace sim = endatsim::sim;
 
-struct Outputs {
-  scenarios::ScenarioResult result;
-  std::string log, jsonl, json, junit, summary, vcd;
+// Every output of one run: the streamed ones, JUnit, the summary and the VCD.
+struct Outputs : endatsim::test_support::Streamed {
+  std::string junit, summary, vcd;
 };
 
 std::string read_file(const fs::path& p) {
@@ -43,22 +42,14 @@ std::string read_file(const fs::path& p) {
 
 Outputs run_with(const scenarios::Scenario& s, scenarios::Engine engine, const std::string& tag,
                  scenarios::RunOptions options) {
-  std::ostringstream log, jsonl, json, summary;
-  scenarios::TransactionLogWriter text(log, scenarios::TransactionLogWriter::Format::Text);
-  scenarios::TransactionLogWriter lines(jsonl, scenarios::TransactionLogWriter::Format::JsonLines);
-  scenarios::ResultsJsonWriter results(json, "test");
   // A name of its own: ctest runs each test in a process of its own, side by side.
   const fs::path vcd = fs::temp_directory_path() / ("endatsim_fast_path_" + std::to_string(::getpid()) + "_" + tag + ".vcd");
   options.engine = engine;
   options.vcd_path = vcd.string();
   options.vcd_decoded = true;
-  options.sinks = {&text, &lines, &results};
-  Outputs out{scenarios::run_scenario(s, options), {}, {}, {}, {}, {}, {}};
-  results.finish(out.result.passed(), "", {});
+  Outputs out{endatsim::test_support::run_streamed(s, options), {}, {}, {}};
+  std::ostringstream summary;
   scenarios::write_summary(summary, out.result, true);
-  out.log = log.str();
-  out.jsonl = jsonl.str();
-  out.json = json.str();
   out.junit = scenarios::junit_xml({out.result});
   out.summary = summary.str();
   out.vcd = read_file(vcd);

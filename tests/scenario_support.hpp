@@ -7,7 +7,12 @@
 #include <filesystem>
 #include <vector>
 
+#include <sstream>
+#include <string>
+
 #include "endatsim/scenarios/runner.hpp"
+#include "endatsim/scenarios/streamed_outputs.hpp"
+#include "endatsim/scenarios/transaction_log.hpp"
 #include "endatsim/scenarios/vcd_reader.hpp"
 
 namespace endatsim::test_support {
@@ -20,6 +25,26 @@ inline std::vector<std::filesystem::path> scenario_files() {
     for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(ENDATSIM_SOURCE_DIR) / "scenarios" / folder))
       if (e.path().extension() == ".json") out.push_back(e.path());
   std::sort(out.begin(), out.end());
+  return out;
+}
+
+// One run with the transaction log, its JSON lines and the results file streamed into strings,
+// as `endatsim run --log --log-json --json` writes them.
+struct Streamed {
+  scenarios::ScenarioResult result;
+  std::string log, jsonl, json;
+};
+inline Streamed run_streamed(const scenarios::Scenario& s, scenarios::RunOptions options) {
+  std::ostringstream log, jsonl, json;
+  scenarios::TransactionLogWriter text(log, scenarios::TransactionLogWriter::Format::Text);
+  scenarios::TransactionLogWriter lines(jsonl, scenarios::TransactionLogWriter::Format::JsonLines);
+  scenarios::ResultsJsonWriter results(json, "test");
+  options.sinks = {&text, &lines, &results};
+  Streamed out{scenarios::run_scenario(s, options), {}, {}, {}};
+  results.finish(out.result.passed(), "", {});
+  out.log = log.str();
+  out.jsonl = jsonl.str();
+  out.json = json.str();
   return out;
 }
 

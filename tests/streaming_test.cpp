@@ -24,26 +24,13 @@ namespace fs = std::filesystem;
 namespace scenarios = endatsim::scenarios;
 namespace master = endatsim::master;
 
-// One run with every output streamed.
-struct Streamed {
-  scenarios::ScenarioResult result;
-  std::string log, jsonl, json;
-};
+using endatsim::test_support::Streamed;
 
+// One run with every output streamed, keeping `kept` frames and findings of each check.
 Streamed run_streamed(const scenarios::Scenario& s, std::size_t kept) {
-  std::ostringstream log, jsonl, json;
-  scenarios::TransactionLogWriter text(log, scenarios::TransactionLogWriter::Format::Text);
-  scenarios::TransactionLogWriter lines(jsonl, scenarios::TransactionLogWriter::Format::JsonLines);
-  scenarios::ResultsJsonWriter results(json, "test");
   scenarios::RunOptions options;
   options.kept = kept;
-  options.sinks = {&text, &lines, &results};
-  Streamed out{scenarios::run_scenario(s, options), {}, {}, {}};
-  results.finish(out.result.passed(), "", {});
-  out.log = log.str();
-  out.jsonl = jsonl.str();
-  out.json = json.str();
-  return out;
+  return endatsim::test_support::run_streamed(s, options);
 }
 
 std::vector<std::string> expectation_lines(const scenarios::ScenarioResult& r) {
