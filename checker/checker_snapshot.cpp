@@ -228,10 +228,7 @@ void TimingChecker::restore(const Snapshot& start, const Snapshot& end, Time shi
 
 void TimingChecker::replay(const sim::TapeItem& item, const std::vector<Violation>& findings, Time shift,
                            std::uint64_t index_shift) {
-  Violation v = findings.at(item.value);
-  v.time += shift;
-  if (v.frame) *v.frame += index_shift;
-  report(std::move(v), std::nullopt);
+  report(moved(findings.at(item.value), shift, index_shift), std::nullopt);
 }
 
 }  // namespace endatsim::checker

@@ -78,6 +78,13 @@ struct Violation : Finding {
   bool operator==(const Violation&) const = default;
 };
 
+// The same finding `shift` later, of a frame `index_shift` higher (the frame-level fast path).
+inline Violation moved(Violation v, Time shift, std::uint64_t index_shift) {
+  v.time += shift;
+  if (v.frame) *v.frame += index_shift;
+  return v;
+}
+
 // The two verdicts of a run: does the master conform to the spec envelope, and to the declared
 // encoder? (Warnings count against neither.) A verdict without an error finding but with a
 // finding undecided at the capture's resolution is undecided, never conforming.

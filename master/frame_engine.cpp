@@ -390,10 +390,7 @@ void FrameEngine::replay(const sim::TapeItem& item, const std::vector<FrameResul
   if (n == Note::Start) replayed_ = nullptr;
   const FrameResult& recorded = frames.at(item.value >> kNoteFrameShift);
   if (&recorded != replayed_) {
-    frame_ = recorded;
-    frame_.index += index_shift;
-    frame_.start += shift;
-    if (frame_.end != Time::zero()) frame_.end += shift;  // zero: no rising edge yet
+    frame_ = moved(recorded, shift, index_shift);
     replayed_ = &recorded;
   }
   switch (n) {

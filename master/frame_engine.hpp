@@ -41,6 +41,7 @@ struct FrameRequest {
   unsigned position_bits = 0;
   unsigned continuous_words = 0;  // further words without a new mode command (2.3.1)
   int clock_adjust = 0;           // a fault: this many clock pulses more (or fewer) than the answer needs
+  bool operator==(const FrameRequest&) const = default;
 };
 
 // What the frame engine asks of and tells the scheduler while a frame runs.

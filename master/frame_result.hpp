@@ -81,6 +81,15 @@ struct FrameResult {
   bool operator==(const FrameResult&) const = default;
 };
 
+// The same frame `shift` later with an index `index_shift` higher (the frame-level fast path):
+// what a frame played from a recording reports. `end` stays zero until the first rising edge.
+inline FrameResult moved(FrameResult f, Time shift, std::uint64_t index_shift) {
+  f.index += index_shift;
+  f.start += shift;
+  if (f.end != Time::zero()) f.end += shift;
+  return f;
+}
+
 // What monitors and reports can observe of the master's intentions.
 class MasterObserver {
  public:

@@ -13,16 +13,7 @@ constexpr unsigned kCheckerAttempts = 4;
 // The same request apart from the frame's index.
 bool same_request(master::FrameRequest a, const master::FrameRequest& b) {
   a.index = b.index;
-  return a.operation == b.operation && a.measurement == b.measurement && a.command == b.command &&
-         a.mode_bits == b.mode_bits && a.payload == b.payload && a.f_c == b.f_c && a.t_d == b.t_d &&
-         a.position_bits == b.position_bits && a.continuous_words == b.continuous_words && a.clock_adjust == b.clock_adjust;
-}
-
-master::FrameResult moved(master::FrameResult f, Time shift, std::uint64_t index_shift) {
-  f.index += index_shift;
-  f.start += shift;
-  if (f.end != Time::zero()) f.end += shift;
-  return f;
+  return a == b;
 }
 
 }  // namespace
@@ -135,12 +126,9 @@ bool FrameReplay::close_recording() {
       moved_item.at += shift;
       same = moved_item == r.tape.items[i];
     }
-    for (std::size_t i = 0; same && i < p.frames.size(); ++i) same = moved(p.frames[i], shift, index_shift) == r.frames[i];
-    if (same) {
-      slave::EncoderFrame e = p.encoder_frames.front();
-      e.start += shift;
-      same = e == r.encoder_frames.front();
-    }
+    for (std::size_t i = 0; same && i < p.frames.size(); ++i)
+      same = master::moved(p.frames[i], shift, index_shift) == r.frames[i];
+    same = same && slave::moved(p.encoder_frames.front(), shift) == r.encoder_frames.front();
     r.confirmed = same;
     r.checker_confirmed = same && same_checker_part(p, r, shift, index_shift);
     r.checker_attempts = r.checker_confirmed ? 0 : p.checker_attempts + 1;
@@ -159,12 +147,8 @@ bool FrameReplay::same_checker_part(const Recording& p, const Recording& r, Time
       !TimingChecker::same_moved(*p.checker_end, *r.checker_end, shift, index_shift) ||
       !TimingChecker::same_counts(*p.checker_start, *p.checker_end, *r.checker_start, *r.checker_end))
     return false;
-  for (std::size_t i = 0; i < p.findings.size(); ++i) {
-    checker::Violation v = p.findings[i];
-    v.time += shift;
-    if (v.frame) *v.frame += index_shift;
-    if (!(v == r.findings[i])) return false;  // its words may name a frame or a time
-  }
+  for (std::size_t i = 0; i < p.findings.size(); ++i)  // its words may name a frame or a time
+    if (!(checker::moved(p.findings[i], shift, index_shift) == r.findings[i])) return false;
   return true;
 }
 

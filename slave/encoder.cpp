@@ -383,9 +383,7 @@ void Encoder::replay(const sim::TapeItem& item, const std::vector<EncoderFrame>&
     positions_.check_multiturn_overflow(now);
     (void)positions_.sent(positions_.latched(now));
     errors_.latch();
-    EncoderFrame f = frames.at(frames.size() - 1);
-    f.start += shift;
-    frames_.add(std::move(f));
+    frames_.add(moved(frames.at(frames.size() - 1), shift));
     return;
   }
   end_marker_timer_.cancel();

@@ -57,6 +57,12 @@ struct EncoderFrame {
   bool operator==(const EncoderFrame&) const = default;
 };
 
+// The same frame `shift` later (the frame-level fast path).
+inline EncoderFrame moved(EncoderFrame f, Time shift) {
+  f.start += shift;
+  return f;
+}
+
 class Encoder final : private MemoryAccess::Client {
  public:
   Encoder(sim::Kernel& kernel, line::Line& line, const EncoderParams& params);
