@@ -34,9 +34,10 @@ std::optional<Engine> engine_from(std::string_view name) {
 }
 
 FrameReplay::FrameReplay(sim::Kernel& kernel, line::Line& line, master::Master& master, slave::Encoder& encoder,
-                         const EventDriver& events, const Room& room, MasterDeclarations& declarations)
+                         const EventDriver& events, const Room& room, MasterDeclarations& declarations,
+                         sim::VcdWriter* vcd)
     : kernel_(kernel), line_(line), master_(master), encoder_(encoder), events_(events), room_(room),
-      declarations_(declarations), checker_(declarations.checker()) {
+      declarations_(declarations), checker_(declarations.checker()), vcd_(vcd) {
   master_.set_shortcut(this);
 }
 
@@ -91,6 +92,7 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
   recording_->gap = *gap;
   recording_->contentions = line_.contentions_seen();
   recording_->ignored_edges = encoder_.ignored_clock_edges();
+  recording_->vcd_quiet = vcd_ != nullptr && vcd_->quiet();
   if (checker_.replayable()) recording_->checker_start = checker_.snapshot();
   kernel_.record_to(&recording_->tape);
   return false;
@@ -157,27 +159,35 @@ bool FrameReplay::may_play(const Recording& r, const master::FrameRequest& reque
   // The last thing the frame did is on the tape, whether it is played or stands at the end.
   const Time end = kernel_.now() + (r.tape.items.back().at - r.start);
   const std::optional<Time> next = kernel_.next_event_time();
+  if (r.playback.vcd && !vcd_->quiet()) return false;  // its first time step is prepared as it began
   return (!next || *next > end) && end <= kernel_.run_until() && room_.for_frame(r.tape.events, r.frames.size() + r.encoder_frames.size() + r.findings.size());
 }
 
 FrameReplay::Playback FrameReplay::compile(const Recording& r) const {
   using K = sim::TapeItem::Kind;
   Playback p;
-  const bool step_ends = kernel_.has_step_end_actions();
+  const bool step_ends = kernel_.step_end_actions() != 0;
+  if (vcd_ != nullptr && r.vcd_quiet && kernel_.step_end_actions() == 1) p.vcd = vcd_->prepare(r.tape, r.start);
+  std::uint32_t vcd_steps = 0;
   // With the checker put in place, what only it observes is not played, nor the sampling
   // instants if no one else wants them; without, its findings come from itself.
   const void* checker = &checker_;
   const void* engine = &master_.engine();
   const bool samples = !r.checker_confirmed || master_.engine().samples_wanted(&declarations_);
+  // The monitors not shown the frame: the checker put in place, the VCD writer's prepared lines.
+  const auto unseen = [&](const void* monitor) {
+    return (r.checker_confirmed && monitor == checker) || (p.vcd && vcd_->is_probe(monitor));
+  };
   std::vector<std::size_t> final_of;  // per signal seen, its place in p.finals
   std::vector<const void*> seen;
-  for (const sim::TapeItem& i : r.tape.items) {
+  for (std::size_t k = 0; k < r.tape.items.size(); ++k) {
+    const sim::TapeItem& i = r.tape.items[k];
     const Time at = i.at - r.start;
     switch (i.kind) {
       case K::Commit: {
         // Every signal is a Signal (SignalBase only spares the kernel its header).
         auto* signal = const_cast<sim::Signal*>(static_cast<const sim::Signal*>(static_cast<const sim::SignalBase*>(i.who)));
-        if (signal->observed(r.checker_confirmed ? checker : nullptr)) {
+        if (signal->observed(unseen)) {
           p.items.push_back({at, Playback::Kind::Commit, 0, signal, i.value});
           break;
         }
@@ -194,12 +204,22 @@ FrameReplay::Playback FrameReplay::compile(const Recording& r) const {
         }
         break;
       }
-      case K::Monitor:
-        if (r.checker_confirmed && static_cast<const sim::SignalBase*>(i.who)->listener_of(i.index) == checker) break;
+      case K::Monitor: {
+        const void* listener = static_cast<const sim::SignalBase*>(i.who)->listener_of(i.index);
+        if (r.checker_confirmed && listener == checker) break;
+        if (p.vcd && k < p.vcd->covered && vcd_->is_probe(listener)) break;  // in the prepared lines
         p.items.push_back({at, Playback::Kind::Monitor, i.index, i.who, i.value});
         break;
+      }
       case K::StepEnd:
-        if (step_ends) p.items.push_back({at, Playback::Kind::StepEnd, 0, nullptr, 0});
+        if (!p.vcd) {
+          if (step_ends) p.items.push_back({at, Playback::Kind::StepEnd, 0, nullptr, 0});
+        } else if (!p.items.empty() && p.items.back().kind == Playback::Kind::VcdSteps) {
+          ++p.items.back().value;
+        } else {
+          p.items.push_back({at, Playback::Kind::VcdSteps, vcd_steps, nullptr, 1});
+        }
+        ++vcd_steps;
         break;
       case K::Model:
         if (i.who == checker && !r.checker_confirmed) break;
@@ -226,6 +246,7 @@ void FrameReplay::play(const Recording& r, const master::FrameRequest& request) 
         static_cast<const sim::SignalBase*>(item.who)->replay_monitor(item.index, item.value);
         break;
       case Playback::Kind::StepEnd: kernel_.replay_step_end(); break;
+      case Playback::Kind::VcdSteps: vcd_->play_steps(*r.playback.vcd, item.index, item.index + item.value, start); break;
       case Playback::Kind::Model: {
         const sim::TapeItem note{sim::TapeItem::Kind::Model, start + item.at, item.who, item.index, item.value};
         if (item.who == &engine) engine.replay(note, r.frames, shift, index_shift);
@@ -236,6 +257,7 @@ void FrameReplay::play(const Recording& r, const master::FrameRequest& request) 
     }
   }
   for (const Playback::Final& f : r.playback.finals) f.signal->replay_final(f.value, start + f.last_change, f.changes);
+  if (r.playback.vcd) vcd_->play_end(*r.playback.vcd);
   declarations_.mute(false);
   if (r.checker_confirmed) checker_.restore(*r.checker_start, *r.checker_end, shift, index_shift);
   kernel_.replay_time(start + r.playback.end);  // where the frame's last event was

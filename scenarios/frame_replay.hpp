@@ -24,6 +24,7 @@
 #include "endatsim/scenarios/declarations.hpp"
 #include "endatsim/scenarios/events.hpp"
 #include "endatsim/sim/tape.hpp"
+#include "endatsim/sim/vcd.hpp"
 #include "endatsim/slave/encoder.hpp"
 
 namespace endatsim::scenarios {
@@ -40,9 +41,12 @@ std::optional<Engine> engine_from(std::string_view name);
 namespace frame_replay {
 
 // A recording as it is played: what the monitors are shown and the models' notes, in order;
-// the signals no monitor observes only as they stand at the end.
+// the signals no monitor observes only as they stand at the end. With a VCD writer the only action
+// at the end of a time step, what it writes is prepared too (sim::VcdWriter::Stretch): each run of
+// time steps with nothing else played between them is one VcdSteps item (`index` the first step,
+// `value` how many), and the signals only it observes are played as they stand at the end.
 struct Playback {
-  enum class Kind : std::uint8_t { Commit, Monitor, StepEnd, Model };
+  enum class Kind : std::uint8_t { Commit, Monitor, StepEnd, VcdSteps, Model };
   struct Item {
     Time at;  // from the frame's start
     Kind kind;
@@ -59,6 +63,7 @@ struct Playback {
   std::vector<Item> items;
   std::vector<Final> finals;
   Time end{0};  // the last change on the tape, from the frame's start
+  std::optional<sim::VcdWriter::Stretch> vcd;
 };
 struct Recording {
   master::FrameRequest request;
@@ -70,6 +75,7 @@ struct Recording {
   std::vector<slave::EncoderFrame> encoder_frames;
   std::uint64_t contentions = 0;  // the line's count when the recording began
   std::uint64_t ignored_edges = 0;  // the encoder's count of clock edges it did not take, then
+  bool vcd_quiet = false;  // the VCD writer had nothing waiting for the end of the time step, then
   bool confirmed = false;         // the recording before it of its kind was the same, moved in time
   std::uint64_t epoch = 0;        // when it was made (FrameReplay::epoch_)
   Playback playback;              // once confirmed
@@ -94,9 +100,9 @@ class FrameReplay final : public master::FrameShortcut {
     virtual bool for_frame(std::uint64_t events, std::uint64_t records) const = 0;
   };
   // `declarations` tells the checker of the master's frames (the checker is fed or put in place
-  // through it).
+  // through it); `vcd` is the run's VCD writer, if any.
   FrameReplay(sim::Kernel& kernel, line::Line& line, master::Master& master, slave::Encoder& encoder,
-              const EventDriver& events, const Room& room, MasterDeclarations& declarations);
+              const EventDriver& events, const Room& room, MasterDeclarations& declarations, sim::VcdWriter* vcd);
   FrameReplay(const FrameReplay&) = delete;
   FrameReplay& operator=(const FrameReplay&) = delete;
   ~FrameReplay() override;
@@ -123,6 +129,7 @@ class FrameReplay final : public master::FrameShortcut {
   const Room& room_;
   MasterDeclarations& declarations_;
   checker::TimingChecker& checker_;
+  sim::VcdWriter* vcd_;
   std::optional<Recording> recording_;
   std::array<std::optional<Recording>, 2> last_;  // by the sampling strobe's level at FE1
   std::uint64_t replayed_ = 0;

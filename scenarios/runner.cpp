@@ -485,7 +485,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   LimitRoom room(kernel, watch, limits);
   std::optional<FrameReplay> replay;
   if (options.engine != Engine::Event && bus.empty())
-    replay.emplace(kernel, line, master, encoder, events, room, declarations);
+    replay.emplace(kernel, line, master, encoder, events, room, declarations, vcd.get());
   kernel.run(max_time);
   if (watch.reason.empty() && max_time < scenario.max_time && !master.finished() && kernel.now() >= max_time)
     watch.reason = "limit max_time reached: " + sim::format_time(max_time) + " simulated, less than the scenario's " +

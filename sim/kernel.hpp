@@ -102,7 +102,7 @@ class Kernel {
   void replay_done(Time last) const;
   // Playing a tape: the actions at the end of a time step (monitors only: the VCD writer).
   void replay_step_end();
-  bool has_step_end_actions() const { return !step_end_.empty(); }
+  std::size_t step_end_actions() const { return step_end_.size(); }
   // Playing a tape: `n` events count as run (the watch is called as they pass its marks).
   void replay_events(std::uint64_t n) {
     while (n >= next_watch_ - events_processed_) {

@@ -30,14 +30,18 @@ class SignalBase {
   }
   // The monitor `who` reads this signal's level without listening to it.
   void read_by_monitor(const void* who) { readers_.push_back(who); }
-  // A monitor other than `but` (none: any) listens to or reads this signal: a stretch played from
-  // a tape shows it each change.
-  bool observed(const void* but = nullptr) const {
+  // A monitor listens to or reads this signal, other than those for which `ignored(its context)`
+  // holds: a stretch played from a tape shows it each change.
+  template <class Ignored>
+  bool observed(Ignored ignored) const {
     for (std::size_t i = 0; i < listeners_.size(); ++i)
-      if (monitors_[i] && listeners_[i].ctx != but) return true;
+      if (monitors_[i] && !ignored(listeners_[i].ctx)) return true;
     for (const void* r : readers_)
-      if (r != but) return true;
+      if (!ignored(r)) return true;
     return false;
+  }
+  bool observed() const {
+    return observed([](const void*) { return false; });
   }
   // The object the listener at `place` calls.
   const void* listener_of(std::uint32_t place) const { return listeners_[place].ctx; }

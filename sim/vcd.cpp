@@ -23,6 +23,21 @@ std::string short_id(std::size_t index) {
   return id;
 }
 
+// A stamp's last kStampLowDigits digits are formatted in a fixed width; the digits before them
+// change far less often (every 100 us) and are kept as text (VcdWriter::stamp_high_text_).
+constexpr std::int64_t kStampLow = 100'000'000;
+constexpr std::size_t kStampLowDigits = 8;
+
+// "00" "01" .. "99": two digits at a time.
+constexpr std::array<char, 200> kDigitPairs = [] {
+  std::array<char, 200> pairs{};
+  for (std::size_t i = 0; i < 100; ++i) {
+    pairs[2 * i] = static_cast<char>('0' + i / 10);
+    pairs[2 * i + 1] = static_cast<char>('0' + i % 10);
+  }
+  return pairs;
+}();
+
 }  // namespace
 
 VcdWriter::VcdWriter(Kernel& kernel, const std::string& path) : kernel_(kernel), file_(nullptr), path_(path) {
@@ -71,6 +86,7 @@ void VcdWriter::add(Signal& signal, const std::string& scope, const std::string&
   p.line_size = p.id.size() + 2;
   std::memcpy(p.line.data() + 1, p.id.data(), p.id.size());
   p.line[p.line_size - 1] = '\n';
+  probe_of_.emplace(&p, index);
   signal.on_change_monitor(Action{&VcdWriter::on_change, &p, 0});
 }
 
@@ -131,30 +147,14 @@ void VcdWriter::on_change(void* probe, std::uint64_t) {
 void VcdWriter::on_step_end(void* self, std::uint64_t) {
   auto* w = static_cast<VcdWriter*>(self);
   if (w->dirty_.empty() && !w->texts_dirty_) return;
-  bool stamped = w->stamped_ == w->kernel_.now();
-  if (w->texts_dirty_) {
-    if (!stamped) {
-      w->stamp();
-      stamped = true;
-      w->stamped_ = w->kernel_.now();
-    }
-    for (TextProbe& t : w->texts_) {
-      if (!t.dirty) continue;
-      t.dirty = false;
-      w->append("s" + t.pending + " " + t.id + "\n");
-    }
-    w->texts_dirty_ = false;
-  }
+  const Time now = w->kernel_.now();
+  w->write_texts(now);
   for (std::size_t index : w->dirty_) {
     Probe& p = w->probes_[index];
     p.dirty = false;
     const bool v = p.signal->read();
     if (v == p.written) continue;  // changed and changed back within the step
-    if (!stamped) {
-      w->stamp();
-      stamped = true;
-      w->stamped_ = w->kernel_.now();
-    }
+    w->stamp_once(now);
     p.written = v;
     p.line[0] = v ? '1' : '0';
     w->append(p.line.data(), p.line_size);
@@ -163,11 +163,103 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
   w->flush_if_full();
 }
 
-void VcdWriter::stamp() {
+void VcdWriter::write_texts(Time now) {
+  if (!texts_dirty_) return;
+  stamp_once(now);
+  for (TextProbe& t : texts_) {
+    if (!t.dirty) continue;
+    t.dirty = false;
+    append("s" + t.pending + " " + t.id + "\n");
+  }
+  texts_dirty_ = false;
+}
+
+void VcdWriter::stamp_once(Time now) {
+  if (stamped_ == now) return;
+  stamp(now);
+  stamped_ = now;
+}
+
+VcdWriter::Stretch VcdWriter::prepare(const Tape& tape, Time origin) const {
+  // What on_change() and on_step_end() do with the tape's changes, with the values the probes'
+  // lines were written with followed from the tape: before a probe's first change on it, the
+  // opposite of that change (a tape holds changes only, and the writer was quiet when it began).
+  Stretch s;
+  std::vector<std::int8_t> written(probes_.size(), -1);  // -1: no change of the probe yet
+  std::vector<bool> value(probes_.size()), dirty(probes_.size());
+  std::vector<std::size_t> order;  // the probes changed in the current time step, in order
+  for (std::size_t k = 0; k < tape.items.size(); ++k) {
+    const TapeItem& item = tape.items[k];
+    if (item.kind == TapeItem::Kind::Monitor) {
+      const auto found = probe_of_.find(static_cast<const SignalBase*>(item.who)->listener_of(item.index));
+      if (found == probe_of_.end()) continue;
+      const std::size_t probe = found->second;
+      if (written[probe] < 0) written[probe] = item.value != 0 ? 0 : 1;
+      value[probe] = item.value != 0;
+      if (!dirty[probe]) order.push_back(probe);
+      dirty[probe] = true;
+    } else if (item.kind == TapeItem::Kind::StepEnd) {
+      Stretch::Step step{item.at - origin, static_cast<std::uint32_t>(s.lines.size()), 0};
+      for (std::size_t probe : order) {
+        dirty[probe] = false;
+        if (static_cast<std::int8_t>(value[probe]) == written[probe]) continue;
+        written[probe] = static_cast<std::int8_t>(value[probe]);
+        const Probe& p = probes_[probe];
+        s.lines += value[probe] ? '1' : '0';
+        s.lines.append(p.line.data() + 1, p.line_size - 1);
+      }
+      order.clear();
+      step.end = static_cast<std::uint32_t>(s.lines.size());
+      s.steps.push_back(step);
+      s.covered = k + 1;
+    }
+  }
+  for (std::size_t probe = 0; probe < probes_.size(); ++probe)
+    if (written[probe] >= 0) s.written.emplace_back(probe, written[probe] != 0);
+  return s;
+}
+
+void VcdWriter::play_steps(const Stretch& stretch, std::size_t first, std::size_t last, Time origin) {
+  if (!started_ || finished_ || first == last) return;
+  write_texts(origin + stretch.steps[first].at);
+  for (std::size_t k = first; k < last; ++k) {
+    const Stretch::Step& s = stretch.steps[k];
+    if (s.end == s.begin) continue;
+    stamp_once(origin + s.at);
+    append(stretch.lines.data() + s.begin, s.end - s.begin);
+    flush_if_full();
+  }
+}
+
+void VcdWriter::play_end(const Stretch& stretch) {
+  for (const auto& [probe, value] : stretch.written) probes_[probe].written = value;
+}
+
+void VcdWriter::stamp(Time at) {
   constexpr std::size_t kStamp = 24;  // '#', at most 20 digits, '\n'
   char* text = room(kStamp);
   text[0] = '#';
-  char* end = std::to_chars(text + 1, text + kStamp - 1, kernel_.now().count()).ptr;
+  char* end = text + 1;
+  const std::int64_t t = at.count();
+  if (t < kStampLow) {
+    end = std::to_chars(end, text + kStamp - 1, t).ptr;
+  } else {
+    const std::int64_t high = t / kStampLow;
+    if (high != stamp_high_) {
+      stamp_high_ = high;
+      stamp_high_size_ = static_cast<std::size_t>(
+          std::to_chars(stamp_high_text_.data(), stamp_high_text_.data() + stamp_high_text_.size(), high).ptr -
+          stamp_high_text_.data());
+    }
+    std::memcpy(end, stamp_high_text_.data(), stamp_high_size_);
+    end += stamp_high_size_;
+    auto low = static_cast<std::uint32_t>(t - high * kStampLow);
+    for (std::size_t k = kStampLowDigits / 2; k-- > 0;) {
+      std::memcpy(end + 2 * k, kDigitPairs.data() + 2 * (low % 100), 2);
+      low /= 100;
+    }
+    end += kStampLowDigits;
+  }
   *end = '\n';
   used_ += static_cast<std::size_t>(end + 1 - text);
 }
@@ -195,7 +287,7 @@ void VcdWriter::write_buffer() {
 void VcdWriter::finish() {
   if (finished_) return;
   finished_ = true;
-  if (stamped_ != kernel_.now()) stamp();
+  if (stamped_ != kernel_.now()) stamp(kernel_.now());
   write_buffer();
   if (file_ == nullptr) throw std::runtime_error("write error on VCD file '" + path_ + "'");
   errno = 0;
