@@ -155,3 +155,83 @@ TEST(VcdWriter, TextTracesAreStringVariablesWrittenAtTheirTimeStep) {
   EXPECT_NE(issues[0].message.find("text variable top.decoded: sigrok-cli skips its values"), std::string::npos);
   std::filesystem::remove(path);
 }
+
+namespace {
+
+// Changes of two wires a stretch apart: a rises at +1 ns; at +2 ns b rises while a falls and, one
+// delta later, rises again (no line); at +3 ns both fall (two lines in one step, a first).
+struct Activity {
+  Kernel* k;
+  Signal* a;
+  Signal* b;
+  void a_up() { a->write(true); }
+  void a_down() { a->write(false); }
+  void b_up() { b->write(true); }
+  void b_down() { b->write(false); }
+  void a_blip() {
+    a->write(false);
+    k->schedule(Time::zero(), bind<&Activity::a_up>(this));
+  }
+  void schedule(Time origin) {
+    k->schedule_at(origin + ns(1), bind<&Activity::a_up>(this));
+    k->schedule_at(origin + ns(2), bind<&Activity::b_up>(this));
+    k->schedule_at(origin + ns(2), bind<&Activity::a_blip>(this));
+    k->schedule_at(origin + ns(3), bind<&Activity::a_down>(this));
+    k->schedule_at(origin + ns(3), bind<&Activity::b_down>(this));
+  }
+};
+
+}  // namespace
+
+// The fast path's VCD: a stretch recorded on a tape, prepared and played later gives the bytes of
+// running it there, with stamps whose leading digits change in the middle of the stretch.
+TEST(VcdWriter, APreparedStretchPlayedLaterWritesTheBytesOfRunningIt) {
+  const Time first = ns(10);
+  const Time second = ps(199'999'998'000);  // its +2 ns step is the first stamp of 2000 x 10^8 ps
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string ran = (dir / ("endatsim_vcd_ran_" + std::to_string(::getpid()) + ".vcd")).string();
+  const std::string played = (dir / ("endatsim_vcd_played_" + std::to_string(::getpid()) + ".vcd")).string();
+  {
+    Kernel k;
+    Signal a(k, "a", false), b(k, "b", false);
+    VcdWriter vcd(k, ran);
+    vcd.add(a, "top", "a");
+    vcd.add(b, "top", "b");
+    vcd.start();
+    Activity act{&k, &a, &b};
+    act.schedule(first);
+    act.schedule(second);
+    k.run();
+    vcd.finish();
+  }
+  {
+    Kernel k;
+    Signal a(k, "a", false), b(k, "b", false);
+    VcdWriter vcd(k, played);
+    vcd.add(a, "top", "a");
+    vcd.add(b, "top", "b");
+    vcd.start();
+    Activity act{&k, &a, &b};
+    act.schedule(first);
+    Tape tape;
+    ASSERT_TRUE(vcd.quiet());
+    k.record_to(&tape);
+    k.run();
+    k.record_to(nullptr);
+    const VcdWriter::Stretch stretch = vcd.prepare(tape, first);
+    ASSERT_EQ(stretch.steps.size(), 3U);
+    EXPECT_EQ(stretch.steps[1].at, ns(2));
+    EXPECT_EQ(stretch.lines, "1!\n1\"\n0!\n0\"\n");
+    EXPECT_EQ(stretch.covered, tape.items.size());
+    k.replay_time(second + ns(3));
+    vcd.play_steps(stretch, 0, stretch.steps.size(), second);
+    vcd.play_end(stretch);
+    vcd.finish();
+  }
+  const std::string text = read_file(played);
+  EXPECT_NE(text.find("#199999999000\n1!\n#200000000000\n1\"\n#200000001000\n0!\n0\"\n"), std::string::npos) << text;
+  EXPECT_EQ(text, read_file(ran));
+  endatsim::test_support::expect_clean_vcd(text, played);
+  std::filesystem::remove(ran);
+  std::filesystem::remove(played);
+}
