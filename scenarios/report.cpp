@@ -404,50 +404,57 @@ nlohmann::json diagnosis_json(const master::DiagnosisReport& d) {
 
 }  // namespace
 
-nlohmann::json frame_json(const ScenarioResult& r, const master::FrameResult& f) {
-  using nlohmann::json;
-  json jf{{"index", f.index},
-          {"word", f.word},
-          {"start_ps", f.start.count()},
-          {"end_ps", f.end.count()},
-          {"command", protocol::info(f.command).key},
-          {"mode_bits", f.mode_bits},
-          {"f_c_hz", f.f_c},
-          {"measurement", f.measurement},
-          {"compensated", f.compensated},
-          {"t_d_used_ps", f.t_d_used.count()},
-          {"outcome", master::to_string(f.outcome)},
-          {"clocks", f.clocks},
-          {"start_bit_clock", f.start_bit_clock}};
+JsonTokens frame_tokens(const ScenarioResult& r, const master::FrameResult& f) {
+  JsonTokens jf;
+  jf.begin_object();
+  jf.member("index", f.index);
+  jf.member("word", f.word);
+  jf.member("start_ps", f.start.count());
+  jf.member("end_ps", f.end.count());
+  jf.member("command", protocol::info(f.command).key);
+  jf.member("mode_bits", f.mode_bits);
+  jf.member("f_c_hz", f.f_c);
+  jf.member("measurement", f.measurement);
+  jf.member("compensated", f.compensated);
+  jf.member("t_d_used_ps", f.t_d_used.count());
+  jf.member("outcome", master::to_string(f.outcome));
+  jf.member("clocks", f.clocks);
+  jf.member("start_bit_clock", f.start_bit_clock);
   if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
-    jf["position"] = f.position;
+    jf.member("position", f.position);
     if (r.multiturn_bits > 0) {
       const auto [rev, st] = revolution_and_singleturn(r, f.position);
-      jf["revolution"] = rev;
-      jf["singleturn"] = st;
+      jf.member("revolution", rev);
+      jf.member("singleturn", st);
     }
-    jf["error1"] = f.error1;
-    jf["error2"] = f.error2;
-    jf["error_detected"] = f.error_detected;
-    jf["crc_received"] = f.crc_received;
-    jf["crc_expected"] = f.crc_expected;
+    jf.member("error1", f.error1);
+    jf.member("error2", f.error2);
+    jf.member("error_detected", f.error_detected);
+    jf.member("crc_received", f.crc_received);
+    jf.member("crc_expected", f.crc_expected);
   }
   // Each additional datum with its own CRC: a frame can fail on one while the position's agrees.
   if (!f.additional_data.empty()) {
-    json ad = json::array();
-    for (const auto& d : f.additional_data)
-      ad.push_back({{"information", protocol::info(d.information()).key},
-                    {"additional_data", protocol::is_additional_data_2(d.information()) ? 2 : 1},
-                    {"status", d.status},
-                    {"data", d.data},
-                    {"busy", d.busy()},
-                    {"crc_received", d.crc_received},
-                    {"crc_expected", d.crc_expected},
-                    {"crc_ok", d.crc_ok}});
-    jf["additional_data"] = ad;
+    jf.key("additional_data").begin_array();
+    for (const auto& d : f.additional_data) {
+      jf.begin_object();
+      jf.member("information", protocol::info(d.information()).key);
+      jf.member("additional_data", protocol::is_additional_data_2(d.information()) ? 2 : 1);
+      jf.member("status", d.status);
+      jf.member("data", d.data);
+      jf.member("busy", d.busy());
+      jf.member("crc_received", d.crc_received);
+      jf.member("crc_expected", d.crc_expected);
+      jf.member("crc_ok", d.crc_ok);
+      jf.end_object();
+    }
+    jf.end_array();
   }
+  jf.end_object();
   return jf;
 }
+
+nlohmann::json frame_json(const ScenarioResult& r, const master::FrameResult& f) { return frame_tokens(r, f).sorted(); }
 
 nlohmann::json result_json_without_frames(const ScenarioResult& r) {
   using nlohmann::json;

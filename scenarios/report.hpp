@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "endatsim/scenarios/json_tokens.hpp"
 #include "endatsim/scenarios/runner.hpp"
 
 namespace endatsim::scenarios {
@@ -34,7 +35,9 @@ nlohmann::json conformance_json(const std::vector<checker::RowConformance>& rows
 // The stable result format (documented in docs/command-line.md and schema/results.schema.json),
 // with the frames the result kept.
 nlohmann::json to_json(const ScenarioResult& r);
-// Its parts: one frame, and everything but the frames (the results file streams them).
+// Its parts: one frame, and everything but the frames (the results file streams them). The
+// frame's tokens are what the results file writes; frame_json() is the same frame as a tree.
+JsonTokens frame_tokens(const ScenarioResult& r, const master::FrameResult& f);
 nlohmann::json frame_json(const ScenarioResult& r, const master::FrameResult& f);
 nlohmann::json result_json_without_frames(const ScenarioResult& r);
 

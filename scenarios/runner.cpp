@@ -296,7 +296,7 @@ class DecodedTrace final : public master::MasterObserver {
   void on_sample(const master::FrameResult&, unsigned, bool, bool) override {}
   bool wants_samples() const override { return false; }
   void on_frame_end(const master::FrameResult& frame) override {
-    std::string line = transaction_line(transaction_of(frame, {}));
+    std::string line = transaction_line(transaction_tokens(frame, {}));
     line.erase(0, line.find('#'));  // the time is the trace's own
     vcd_.set_text(trace_, line);
   }

@@ -38,7 +38,10 @@ void write_head(std::ostream& out, const ScenarioResult& r) {
 }
 
 void write_frame(std::ostream& out, const ScenarioResult& r, const master::FrameResult& f, bool first) {
-  out << (first ? "\n" : ",\n") << std::string(kFrameIndent, ' ') << indented(frame_json(r, f), kFrameIndent);
+  std::string text(first ? "\n" : ",\n");
+  text.append(kFrameIndent, ' ');
+  frame_tokens(r, f).sorted_indented(text, kFrameIndent);
+  out << text;
 }
 
 void write_tail(std::ostream& out, const ScenarioResult& r, std::size_t frames) {
@@ -60,13 +63,14 @@ void TransactionLogWriter::begin(const ScenarioResult& h) {
 
 void TransactionLogWriter::frame(const ScenarioResult& h, const master::FrameResult& f,
                                  std::span<const checker::Violation> findings) {
-  auto record = transaction_of(f, findings);
   if (format_ == Format::Text) {
-    out_ << transaction_line(record) << "\n";
+    out_ << transaction_line(transaction_tokens(f, findings)) << "\n";
     return;
   }
-  record["scenario"] = h.name;
-  out_ << record.dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
+  line_.clear();
+  transaction_tokens(f, findings, &h.name).compact(line_);
+  line_ += '\n';
+  out_ << line_;
 }
 
 void TransactionLogWriter::end(const ScenarioResult& r) {

@@ -32,6 +32,7 @@ class TransactionLogWriter final : public RunSink {
  private:
   std::ostream& out_;
   Format format_;
+  std::string line_;  // a JSON line as it is written
 };
 
 // The results file (docs/command-line.md, schema/results.schema.json): {"endatsim": VERSION,

@@ -17,16 +17,24 @@ using nlohmann::ordered_json;
 
 using sim::hex_0x;
 
-std::string value_text(const ordered_json& v) {
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
-  return v.dump();
+// A field's value in the text log: a string as it is, a flag as 1 or 0, anything else as JSON.
+void value_text(std::string& out, const JsonTokens& record, std::size_t value) {
+  const JsonTokens::Token& t = record.at(value);
+  if (t.kind == JsonTokens::Kind::String) out += t.text;
+  else if (t.kind == JsonTokens::Kind::Bool) out += t.bits != 0 ? "1" : "0";
+  else record.scalar(out, value);
 }
 
-std::string fields_text(const ordered_json& fields) {
-  std::string s;
-  for (const auto& [name, value] : fields.items()) s += (s.empty() ? "" : " ") + name + "=" + value_text(value);
-  return s.empty() ? "-" : s;
+// "name=value name=value", or "-" for none.
+void fields_text(std::string& out, const JsonTokens& record, std::size_t object) {
+  const auto members = record.members(object);
+  if (members.empty()) out += '-';
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    if (i > 0) out += ' ';
+    out += record.at(members[i].first).text;
+    out += '=';
+    value_text(out, record, members[i].second);
+  }
 }
 
 // The diagnosis values of 2.3.5.1 / A3 in words, without spaces: "3:20" (address: valuation
@@ -53,87 +61,96 @@ std::string decoded(const master::AdditionalDatum& d) {
 
 }  // namespace
 
-ordered_json transaction_of(const master::FrameResult& f, std::span<const checker::Violation> violations) {
-  ordered_json t;
-  t["time_ps"] = f.start.count();
-  t["time"] = sim::format_time(f.start);
-  t["frame"] = f.index;
-  t["word"] = f.word;
-  t["command"] = protocol::info(f.command).key;
-  t["mode_bits"] = protocol::mode_bits_string(f.mode_bits);
+JsonTokens transaction_tokens(const master::FrameResult& f, std::span<const checker::Violation> violations,
+                              const std::string* scenario) {
+  JsonTokens t;
+  t.begin_object();
+  t.member("time_ps", f.start.count());
+  t.member("time", sim::format_time(f.start));
+  t.member("frame", f.index);
+  t.member("word", f.word);
+  t.member("command", protocol::info(f.command).key);
+  t.member("mode_bits", protocol::mode_bits_string(f.mode_bits));
 
-  ordered_json sent = ordered_json::object();
-  sent["mode_bits"] = protocol::mode_bits_string(f.mode_bits);
-  sent["f_c"] = sim::format_frequency(f.f_c);
-  if (f.measurement) sent["delay_measurement"] = true;
-  if (f.compensated) sent["t_d"] = sim::format_time(f.t_d_used);
+  t.key("sent").begin_object();
+  t.member("mode_bits", protocol::mode_bits_string(f.mode_bits));
+  t.member("f_c", sim::format_frequency(f.f_c));
+  if (f.measurement) t.member("delay_measurement", true);
+  if (f.compensated) t.member("t_d", sim::format_time(f.t_d_used));
   if (f.payload) {  // 2.1 parameter frames: address / MRS code / port, then 16 bits
-    sent["address"] = hex_0x(protocol::payload_address(*f.payload), 2);
-    sent["parameter"] = hex_0x(protocol::payload_parameter(*f.payload), 4);
+    t.member("address", hex_0x(protocol::payload_address(*f.payload), 2));
+    t.member("parameter", hex_0x(protocol::payload_parameter(*f.payload), 4));
   }
   if (f.supplement) {  // 2.2 command supplement
-    sent["supplement_address"] = hex_0x(protocol::payload_address(*f.supplement), 2);
-    sent["supplement_parameter"] = hex_0x(protocol::payload_parameter(*f.supplement), 4);
+    t.member("supplement_address", hex_0x(protocol::payload_address(*f.supplement), 2));
+    t.member("supplement_parameter", hex_0x(protocol::payload_parameter(*f.supplement), 4));
   }
-  t["sent"] = sent;
+  t.end_object();
 
-  ordered_json received = ordered_json::object();
+  t.key("received").begin_object();
   const auto& command = protocol::info(f.command);
   const bool word = f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError;
-  if (f.start_bit_clock > 0) received["start_bit_clock"] = f.start_bit_clock;
+  if (f.start_bit_clock > 0) t.member("start_bit_clock", f.start_bit_clock);
   if (word) {
     switch (command.answer) {
       case protocol::AnswerFormat::Position:
-        received["F1"] = f.error1 ? 1 : 0;
-        if (command.version == protocol::EndatVersion::V2_2) received["F2"] = f.error2 ? 1 : 0;
-        received["position"] = f.position;
+        t.member("F1", f.error1 ? 1 : 0);
+        if (command.version == protocol::EndatVersion::V2_2) t.member("F2", f.error2 ? 1 : 0);
+        t.member("position", f.position);
         break;
       case protocol::AnswerFormat::TestValues:
-        received["F1"] = f.error1 ? 1 : 0;
-        received["test_value"] = hex_0x(f.test_value, 10);
+        t.member("F1", f.error1 ? 1 : 0);
+        t.member("test_value", hex_0x(f.test_value, 10));
         break;
       case protocol::AnswerFormat::Parameter:
-        received["address"] = hex_0x(f.echo_address, 2);
-        received["parameter"] = hex_0x(f.echo_parameter, 4);
+        t.member("address", hex_0x(f.echo_address, 2));
+        t.member("parameter", hex_0x(f.echo_parameter, 4));
         break;
     }
-    received["crc"] = f.crc_received;
+    t.member("crc", f.crc_received);
   }
-  received["clocks"] = f.clocks;
-  if (f.delay_count_time) received["delay_count"] = sim::format_time(*f.delay_count_time);
-  t["received"] = received;
+  t.member("clocks", f.clocks);
+  if (f.delay_count_time) t.member("delay_count", sim::format_time(*f.delay_count_time));
+  t.end_object();
 
-  if (word) t["crc_ok"] = f.outcome == master::FrameOutcome::Ok;
-  else t["crc_ok"] = nullptr;
-  if (word && f.outcome == master::FrameOutcome::CrcError) t["crc_expected"] = f.crc_expected;
+  if (word) t.member("crc_ok", f.outcome == master::FrameOutcome::Ok);
+  else t.member("crc_ok", nullptr);
+  if (word && f.outcome == master::FrameOutcome::CrcError) t.member("crc_expected", f.crc_expected);
   // Additional data (2.3.5), in wire order, by information code: the 16 data bits, and the
-  // status flags and CRC only when they say something.
-  ordered_json additional = ordered_json::object();
+  // status flags and CRC only when they say something. A frame carries each information once
+  // (additional data 1 and 2 come from separate sets of codes).
+  t.key("additional").begin_object();
   if (word)
     for (const auto& d : f.additional_data) {
       const std::string key(protocol::info(d.information()).key);
-      additional[key] = hex_0x(d.data, 4);
-      if (!d.crc_ok) additional[key + ".crc_ok"] = false;
-      if (d.busy()) additional[key + ".busy"] = true;
-      if ((d.status & protocol::AdditionalDataStatus::kWarning) != 0) additional[key + ".warning"] = true;
-      if ((d.status & protocol::AdditionalDataStatus::kReferenceMark) != 0) additional[key + ".reference_mark"] = true;
-      if (const auto v = decoded(d); !v.empty()) additional[key + ".decoded"] = v;
+      t.member(key, hex_0x(d.data, 4));
+      if (!d.crc_ok) t.member(key + ".crc_ok", false);
+      if (d.busy()) t.member(key + ".busy", true);
+      if ((d.status & protocol::AdditionalDataStatus::kWarning) != 0) t.member(key + ".warning", true);
+      if ((d.status & protocol::AdditionalDataStatus::kReferenceMark) != 0) t.member(key + ".reference_mark", true);
+      if (auto v = decoded(d); !v.empty()) t.member(key + ".decoded", std::move(v));
     }
-  t["additional"] = additional;
-  t["outcome"] = master::to_string(f.outcome);
+  t.end_object();
+  t.member("outcome", master::to_string(f.outcome));
 
-  ordered_json vs = ordered_json::array();
+  t.key("violations").begin_array();
   for (const auto& v : violations) {
     if (!v.frame || *v.frame != f.index) continue;
-    ordered_json jv;
-    jv["check"] = v.check;
-    jv["severity"] = checker::to_string(v.severity);
-    if (!v.field.empty()) jv["field"] = v.field;
-    jv["message"] = v.message;
-    vs.push_back(jv);
+    t.begin_object();
+    t.member("check", v.check);
+    t.member("severity", checker::to_string(v.severity));
+    if (!v.field.empty()) t.member("field", v.field);
+    t.member("message", v.message);
+    t.end_object();
   }
-  t["violations"] = vs;
+  t.end_array();
+  if (scenario != nullptr) t.member("scenario", *scenario);
+  t.end_object();
   return t;
+}
+
+ordered_json transaction_of(const master::FrameResult& f, std::span<const checker::Violation> violations) {
+  return transaction_tokens(f, violations).ordered();
 }
 
 std::vector<ordered_json> transactions(const std::vector<master::FrameResult>& frames,
@@ -144,21 +161,39 @@ std::vector<ordered_json> transactions(const std::vector<master::FrameResult>& f
   return out;
 }
 
-std::string transaction_line(const ordered_json& t) {
-  std::string time = t["time"].get<std::string>();
-  if (time.size() < 12) time.insert(0, 12 - time.size(), ' ');
-  std::string s = time + "  #" + std::to_string(t["frame"].get<std::uint64_t>());
-  if (t["word"].get<unsigned>() > 0) s += "." + std::to_string(t["word"].get<unsigned>());
-  s += "  " + t["command"].get<std::string>();
-  s += "  sent: " + fields_text(t["sent"]);
-  s += "  received: " + fields_text(t["received"]);
-  if (t["crc_ok"].is_boolean())
-    s += t["crc_ok"].get<bool>() ? "  CRC ok" : "  CRC FAIL (expected " + t["crc_expected"].dump() + ")";
-  if (!t["additional"].empty()) s += "  additional: " + fields_text(t["additional"]);
-  s += "  -> " + t["outcome"].get<std::string>();
-  if (!t["violations"].empty()) {
+std::string transaction_line(const JsonTokens& t) {
+  constexpr std::size_t kRecord = 0;  // the record's object begins the tokens
+  const auto field = [&](std::string_view key) { return t.at(t.find(kRecord, key)); };
+  std::string s;
+  const std::string& time = field("time").text;
+  if (time.size() < 12) s.append(12 - time.size(), ' ');
+  s += time;
+  s += "  #" + std::to_string(field("frame").bits);
+  if (field("word").bits > 0) s += "." + std::to_string(field("word").bits);
+  s += "  " + field("command").text;
+  s += "  sent: ";
+  fields_text(s, t, t.find(kRecord, "sent"));
+  s += "  received: ";
+  fields_text(s, t, t.find(kRecord, "received"));
+  if (const JsonTokens::Token& crc = field("crc_ok"); crc.kind == JsonTokens::Kind::Bool) {
+    if (crc.bits != 0) {
+      s += "  CRC ok";
+    } else {
+      s += "  CRC FAIL (expected ";
+      t.scalar(s, t.find(kRecord, "crc_expected"));
+      s += ")";
+    }
+  }
+  if (const std::size_t additional = t.find(kRecord, "additional"); t.at(additional + 1).kind != JsonTokens::Kind::EndObject) {
+    s += "  additional: ";
+    fields_text(s, t, additional);
+  }
+  s += "  -> " + field("outcome").text;
+  const std::size_t violations = t.find(kRecord, "violations");
+  if (t.at(violations + 1).kind != JsonTokens::Kind::EndArray) {
     s += "  violations:";
-    for (const auto& v : t["violations"]) s += " " + v["check"].get<std::string>();
+    for (std::size_t v = violations + 1; t.at(v).kind != JsonTokens::Kind::EndArray; v = t.skip(v))
+      s += " " + t.at(t.find(v, "check")).text;
   }
   return s;
 }

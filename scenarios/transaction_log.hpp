@@ -3,7 +3,7 @@
 // sent, what came back, whether the CRC held, additional data, the outcome and the violations
 // the checker attributed to the frame. A record is data: "sent", "received" and "additional"
 // are name -> value objects, so a new field appears in the text and in the JSON lines by
-// being added in one place (transaction_of in transaction_log.cpp).
+// being added in one place (transaction_tokens in transaction_log.cpp).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -13,6 +13,7 @@
 
 #include "endatsim/checker/timing_checker.hpp"
 #include "endatsim/master/master.hpp"
+#include "endatsim/scenarios/json_tokens.hpp"
 #include "endatsim/scenarios/runner.hpp"
 
 namespace endatsim::scenarios {
@@ -20,7 +21,10 @@ namespace endatsim::scenarios {
 // One frame (or one continuous-clock word) as a record:
 // {"time_ps", "time", "frame", "word", "command", "mode_bits", "sent": {...}, "received": {...},
 //  "crc_ok": bool|null, "additional": {...}, "outcome", "violations": [{"check", "severity",
-//  "field", "message"}]}
+//  "field", "message"}]}, and "scenario" last when one is named. The tokens are what the log
+// writes; transaction_of() is the same record as a tree.
+JsonTokens transaction_tokens(const master::FrameResult& frame, std::span<const checker::Violation> violations,
+                              const std::string* scenario = nullptr);
 nlohmann::ordered_json transaction_of(const master::FrameResult& frame, std::span<const checker::Violation> violations);
 
 // Records of every frame in order.
@@ -28,7 +32,7 @@ std::vector<nlohmann::ordered_json> transactions(const std::vector<master::Frame
                                                  const std::vector<checker::Violation>& violations);
 
 // One line per record, columns aligned for reading.
-std::string transaction_line(const nlohmann::ordered_json& record);
+std::string transaction_line(const JsonTokens& record);
 // The log of the frames a result kept (all, unless RunOptions::kept said fewer), as
 // TransactionLogWriter (streamed_outputs.hpp) writes it while a run goes: "# NAME (FILE, seed
 // N)", a line per frame, "# N frames"; JSON lines: one compact object per line.

@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "endatsim/scenarios/json_tokens.hpp"
+#include "endatsim/scenarios/loader.hpp"
+#include "endatsim/scenarios/report.hpp"
+#include "endatsim/scenarios/transaction_log.hpp"
+#include "scenario_support.hpp"
+
+using endatsim::scenarios::JsonTokens;
+using nlohmann::json;
+
+namespace {
+
+// Every kind of value, nested, with keys out of order, strings that need escaping (quotes, a
+// backslash, control characters, UTF-8, invalid UTF-8, DEL) and empty containers.
+JsonTokens every_kind() {
+  JsonTokens t;
+  t.begin_object();
+  t.member("zeta", -42);
+  t.member("alpha", std::numeric_limits<std::uint64_t>::max());
+  t.member("min", std::numeric_limits<std::int64_t>::min());
+  t.member("text", "plain");
+  t.member("quoted", "a \"b\" \\ c\n\t\x01 end");
+  t.member("utf8", "25 \xc2\xb0" "C");
+  t.member("broken", std::string("x\xff\xfey"));
+  t.member("del", std::string("a\x7f" "b"));
+  t.member("ratio", 0.1);
+  t.member("whole", 16000000.0);
+  t.member("flag", true);
+  t.member("off", false);
+  t.member("none", nullptr);
+  t.key("empty_object").begin_object().end_object();
+  t.key("empty_array").begin_array().end_array();
+  t.key("list").begin_array();
+  t.value(1U).value("two").begin_object().member("b", 2).member("a", 1).end_object().begin_array().end_array();
+  t.end_array();
+  t.key("nested").begin_object().member("y", "1").key("x").begin_object().member("k", std::uint8_t{7}).end_object().end_object();
+  t.member("q\"key", 3);
+  t.end_object();
+  return t;
+}
+
+}  // namespace
+
+TEST(JsonTokens, CompactTextIsNlohmannsDumpOfTheOrderedTree) {
+  const JsonTokens t = every_kind();
+  EXPECT_EQ(t.compact(), t.ordered().dump(-1, ' ', false, json::error_handler_t::replace));
+  EXPECT_EQ(t.ordered().begin().key(), "zeta");  // built order kept
+}
+
+TEST(JsonTokens, SortedIndentedTextIsNlohmannsIndentedDumpOfTheSortedTree) {
+  const JsonTokens t = every_kind();
+  std::string text;
+  t.sorted_indented(text, 0);
+  EXPECT_EQ(text, t.sorted().dump(2, ' ', false, json::error_handler_t::replace));
+  EXPECT_EQ(t.sorted().begin().key(), "alpha");
+  // Shifted right: every line after the first.
+  std::string shifted;
+  t.sorted_indented(shifted, 8);
+  std::string expected;
+  for (char c : text) {
+    expected += c;
+    if (c == '\n') expected.append(8, ' ');
+  }
+  EXPECT_EQ(shifted, expected);
+}
+
+TEST(JsonTokens, ReadsMembersBack) {
+  const JsonTokens t = every_kind();
+  const std::size_t nested = t.find(0, "nested");
+  ASSERT_NE(nested, JsonTokens::npos);
+  EXPECT_EQ(t.at(t.find(nested, "y")).text, "1");
+  EXPECT_EQ(t.find(nested, "z"), JsonTokens::npos);
+  EXPECT_EQ(t.members(nested).size(), 2U);
+  std::string number;
+  t.scalar(number, t.find(0, "zeta"));
+  EXPECT_EQ(number, "-42");
+}
+
+// The outputs written from tokens are the trees' dumps for every frame of every bundled, field
+// and safety scenario.
+TEST(JsonTokens, FramesAndTransactionsOfEveryScenarioAreTheirTreesDumps) {
+  std::size_t frames = 0;
+  for (const auto& file : endatsim::test_support::scenario_files()) {
+    const auto r = endatsim::scenarios::run_scenario(endatsim::scenarios::load_scenario_file(file.string()), {});
+    for (const auto& f : r.frames) {
+      const JsonTokens record = endatsim::scenarios::transaction_tokens(f, r.violations, &r.name);
+      auto tree = endatsim::scenarios::transaction_of(f, r.violations);
+      tree["scenario"] = r.name;
+      ASSERT_EQ(record.compact(), tree.dump(-1, ' ', false, json::error_handler_t::replace)) << file;
+      std::string text;
+      endatsim::scenarios::frame_tokens(r, f).sorted_indented(text, 8);
+      std::string expected;
+      for (char c : endatsim::scenarios::frame_json(r, f).dump(2, ' ', false, json::error_handler_t::replace)) {
+        expected += c;
+        if (c == '\n') expected.append(8, ' ');
+      }
+      ASSERT_EQ(text, expected) << file;
+      ++frames;
+    }
+  }
+  EXPECT_GT(frames, 1000U);
+}
