@@ -9,6 +9,10 @@ namespace {
 
 // Recordings made again for the checker's part before a frame is played with the checker shown it.
 constexpr unsigned kCheckerAttempts = 4;
+// A moving axis: frames are recorded only while its position will stand for this many more
+// frames, enough to confirm recordings of both kinds and play some. Recording costs as much as
+// running a frame again, and a position that changes sooner would leave nothing to play.
+constexpr std::int64_t kRecordingHorizon = 5;
 
 // The same request apart from the frame's index.
 bool same_request(master::FrameRequest a, const master::FrameRequest& b) {
@@ -85,6 +89,7 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
     events_after_play_ = kernel_.events_processed() + 1;  // this event, counted as it returns
     return true;
   }
+  if (!encoder_.holds_position(kernel_.now(), kernel_.now() + kRecordingHorizon * *gap)) return false;
   recording_.emplace();
   recording_->request = request;
   recording_->start = kernel_.now();
@@ -160,6 +165,7 @@ bool FrameReplay::may_play(const Recording& r, const master::FrameRequest& reque
   const Time end = kernel_.now() + (r.tape.items.back().at - r.start);
   const std::optional<Time> next = kernel_.next_event_time();
   if (r.playback.vcd && !vcd_->quiet()) return false;  // its first time step is prepared as it began
+  if (!encoder_.latches_again(r.encoder_frames.front(), kernel_.now() - r.start, end)) return false;  // a moving axis
   return (!next || *next > end) && end <= kernel_.run_until() && room_.for_frame(r.tape.events, r.frames.size() + r.encoder_frames.size() + r.findings.size());
 }
 

@@ -374,6 +374,13 @@ bool Encoder::frame_invariant() const {
          additional_data_.frame_invariant();
 }
 
+bool Encoder::latches_again(const EncoderFrame& recorded, Time shift, Time until) const {
+  for (const std::uint64_t p : recorded.continuous_positions)
+    if (p != recorded.true_position) return false;
+  const Time from = recorded.start + shift;
+  return positions_.latches_again(from, recorded.true_position) && holds_position(from, until);
+}
+
 // What begin_frame and finish_frame do to the encoder, without the pins: the frame's record is
 // the recorded one at its new time.
 void Encoder::replay(const sim::TapeItem& item, const std::vector<EncoderFrame>& frames, Time shift) {

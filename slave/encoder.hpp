@@ -112,8 +112,17 @@ class Encoder final : private MemoryAccess::Client {
   std::vector<EncoderFrame> take_recorded_frames() { return std::exchange(recorded_, {}); }
   void replay(const sim::TapeItem& item, const std::vector<EncoderFrame>& frames, Time shift);
   // A frame begun now would leave the encoder as it found it, apart from times and its record:
-  // idle and ready, nothing pending, a position standing still, no data that roll or latch.
+  // idle and ready, nothing pending, an absolute position, no data that roll or latch.
   bool frame_invariant() const;
+  // A frame `shift` after `recorded`, over before `until`, latches what it latched: the recorded
+  // frame latched one position throughout (at FE1 and for each word of a continuous clock), and
+  // the axis stands on it from this frame's FE1 to `until` (a moving axis between two steps).
+  bool latches_again(const EncoderFrame& recorded, Time shift, Time until) const;
+  // The position latched at `from` is still the one latched at `to` (the axis moves at a constant
+  // velocity, so also at every instant between).
+  bool holds_position(Time from, Time to) const {
+    return params_.motion.counts_per_s == 0 || positions_.latched(from) == positions_.latched(to);
+  }
 
  private:
   enum class State : std::uint8_t {

@@ -104,6 +104,11 @@ std::uint64_t PositionSource::sent(std::uint64_t latched) {
   return *frozen_;
 }
 
+bool PositionSource::latches_again(Time t, std::uint64_t true_position) const {
+  if (memory_.function_activated(EncoderFunction::MultiturnOverflowErrorMessage) && multiturn_overflowed(t)) return false;
+  return latched(t) == true_position;
+}
+
 std::uint64_t PositionSource::absolute_output(Time t) const {
   return output(static_cast<std::uint64_t>(wrapped(static_cast<sim::Int128>(measured(t)) - reference_offset_, position_bits_)));
 }

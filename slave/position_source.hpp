@@ -56,11 +56,12 @@ class PositionSource {
   // 3.9.32: a touch probe's switching time, or the frame's, in the timestamp unit.
   std::uint16_t timestamp(Time frame_start) const;
 
-  // Every frame latches the same position and changes nothing here: an absolute encoder standing
-  // still (the frame-level fast path, docs/performance.md).
-  bool frame_invariant() const {
-    return params_.motion.counts_per_s == 0 && valid_ && !incremental_ && !touch_probe_ && !multiturn_overflow_;
-  }
+  // A frame changes nothing here: an absolute encoder with no multiturn overflow reported (the
+  // frame-level fast path, docs/performance.md). Which position it latches is latches_again()'s.
+  bool frame_invariant() const { return valid_ && !incremental_ && !touch_probe_ && !multiturn_overflow_; }
+  // A frame latching at `t` latches `true_position` and reports no multiturn overflow: the axis
+  // stands still, or has not crossed a measuring step since `true_position` was latched.
+  bool latches_again(Time t, std::uint64_t true_position) const;
   unsigned position_bits() const { return position_bits_; }
   // False for an EIB not yet initiated: "no valid position" (2.3.1), no position value 2.
   bool valid() const { return valid_; }

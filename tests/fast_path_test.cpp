@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include <unistd.h>
@@ -219,6 +220,34 @@ TEST(FastPathCommands, FramesWithAPayloadOrASupplementGiveTheOutputsOfTheEventLe
     const scenarios::Scenario s = scenarios::load_scenario_text(text, "commands.json");
     EXPECT_EQ(expect_same_outputs(s, s.name), 0U) << s.name;
   }
+}
+
+// A moving axis: frames are played while the position stands between two measuring steps, and run
+// from the first frame that latches the next one; an axis that steps every frame or two is not
+// recorded at all.
+TEST(FastPathMotion, AMovingAxisPlaysTheFramesBetweenItsStepsAndGivesTheOutputsOfTheEventLevel) {
+  const auto loop = [](int counts_per_s) {
+    return R"({"name": "moving_)" + std::to_string(counts_per_s) + R"(", "max_time": "40 ms", "line": {"cable_length_m": 5},
+      "encoder": {"version": "2.2", "position_bits": 25, "motion": {"start": 33554400, "counts_per_s": )" +
+           std::to_string(counts_per_s) + R"(}},
+      "master": {"f_c": "8 MHz", "position_bits": 25},
+      "script": [{"op": "read_position", "count": 600, "cycle": "50 us"}]})";
+  };
+  // 2 000 counts/s: a step every 10 frames, and the position wraps past 2^25 - 1 on the way.
+  const scenarios::Scenario slow = scenarios::load_scenario_text(loop(2000), "slow.json");
+  const Outputs fast = run_with(slow, scenarios::Engine::Auto, "slow", {});
+  ASSERT_FALSE(fast.result.frames.empty());
+  EXPECT_EQ(fast.result.frames.front().position, 33554400U);
+  EXPECT_LT(fast.result.frames.back().position, 100U);  // about 60 steps on, past 2^25 - 1
+  std::set<std::uint64_t> positions;
+  for (const auto& f : fast.result.frames) positions.insert(f.position);
+  EXPECT_GE(positions.size(), 55U);
+  const std::uint64_t played = expect_same_outputs(slow, "slow axis");
+  EXPECT_GT(played, 400U);
+  EXPECT_LT(played, 540U);  // the first frames after each step run
+  // 30 000 counts/s: a step every frame or two.
+  const scenarios::Scenario quick = scenarios::load_scenario_text(loop(30000), "quick.json");
+  EXPECT_EQ(expect_same_outputs(quick, "quick axis"), 0U);
 }
 
 // A run that a limit ends ends where the event level ends it: a frame is played only when no
