@@ -79,11 +79,12 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
   const std::optional<Time> gap = last_start_ ? std::optional<Time>(kernel_.now() - *last_start_) : std::nullopt;
   last_start_ = kernel_.now();
   if (!gap || !steady(request)) return false;
-  const auto& last = last_[strobe ? 1 : 0];
+  auto& last = last_[strobe ? 1 : 0];
   // A recording whose checker part did not repeat yet is made again a few times: the checker
   // settles a frame or two after the models (it judges a frame when the next one begins).
   const bool checker_pending = last && !last->checker_confirmed && last->checker_attempts < kCheckerAttempts;
   if (unbroken && last && last->epoch == epoch_ && !checker_pending && last->gap == *gap && may_play(*last, request)) {
+    if (!last->playback) last->playback = compile(*last);
     play(*last, request);
     played_ = true;
     events_after_play_ = kernel_.events_processed() + 1;  // this event, counted as it returns
@@ -91,6 +92,8 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
   }
   if (!encoder_.holds_position(kernel_.now(), kernel_.now() + kRecordingHorizon * *gap)) return false;
   recording_.emplace();
+  // A recording is as long as the one before it of its kind, most likely.
+  if (last) recording_->tape.items.reserve(last->tape.items.size());
   recording_->request = request;
   recording_->start = kernel_.now();
   recording_->strobe = strobe;
@@ -141,7 +144,6 @@ bool FrameReplay::close_recording() {
     r.checker_attempts = r.checker_confirmed ? 0 : p.checker_attempts + 1;
   }
   r.epoch = epoch_;
-  if (r.confirmed) r.playback = compile(r);
   const bool confirmed = r.confirmed;
   slot = std::move(r);
   return confirmed;
@@ -164,16 +166,22 @@ bool FrameReplay::may_play(const Recording& r, const master::FrameRequest& reque
   // The last thing the frame did is on the tape, whether it is played or stands at the end.
   const Time end = kernel_.now() + (r.tape.items.back().at - r.start);
   const std::optional<Time> next = kernel_.next_event_time();
-  if (r.playback.vcd && !vcd_->quiet()) return false;  // its first time step is prepared as it began
+  if (prepares_vcd(r) && !vcd_->quiet()) return false;  // its first time step is prepared as it began
   if (!encoder_.latches_again(r.encoder_frames.front(), kernel_.now() - r.start, end)) return false;  // a moving axis
   return (!next || *next > end) && end <= kernel_.run_until() && room_.for_frame(r.tape.events, r.frames.size() + r.encoder_frames.size() + r.findings.size());
+}
+
+// What the VCD writer writes for the recording is prepared when the writer is the only action at
+// the end of a time step and had nothing waiting when the recording began.
+bool FrameReplay::prepares_vcd(const Recording& r) const {
+  return vcd_ != nullptr && r.vcd_quiet && kernel_.step_end_actions() == 1;
 }
 
 FrameReplay::Playback FrameReplay::compile(const Recording& r) const {
   using K = sim::TapeItem::Kind;
   Playback p;
   const bool step_ends = kernel_.step_end_actions() != 0;
-  if (vcd_ != nullptr && r.vcd_quiet && kernel_.step_end_actions() == 1) p.vcd = vcd_->prepare(r.tape, r.start);
+  if (prepares_vcd(r)) p.vcd = vcd_->prepare(r.tape, r.start);
   std::uint32_t vcd_steps = 0;
   // With the checker put in place, what only it observes is not played, nor the sampling
   // instants if no one else wants them; without, its findings come from itself.
@@ -244,7 +252,7 @@ void FrameReplay::play(const Recording& r, const master::FrameRequest& request) 
   const std::uint64_t index_shift = request.index - r.request.index;
   master::FrameEngine& engine = master_.engine();
   declarations_.mute(r.checker_confirmed);
-  for (const Playback::Item& item : r.playback.items) {
+  for (const Playback::Item& item : r.playback->items) {
     kernel_.replay_time(start + item.at);
     switch (item.kind) {
       case Playback::Kind::Commit: static_cast<sim::Signal*>(const_cast<void*>(item.who))->replay_commit(item.value); break;
@@ -252,7 +260,7 @@ void FrameReplay::play(const Recording& r, const master::FrameRequest& request) 
         static_cast<const sim::SignalBase*>(item.who)->replay_monitor(item.index, item.value);
         break;
       case Playback::Kind::StepEnd: kernel_.replay_step_end(); break;
-      case Playback::Kind::VcdSteps: vcd_->play_steps(*r.playback.vcd, item.index, item.index + item.value, start); break;
+      case Playback::Kind::VcdSteps: vcd_->play_steps(*r.playback->vcd, item.index, item.index + item.value, start); break;
       case Playback::Kind::Model: {
         const sim::TapeItem note{sim::TapeItem::Kind::Model, start + item.at, item.who, item.index, item.value};
         if (item.who == &engine) engine.replay(note, r.frames, shift, index_shift);
@@ -262,11 +270,11 @@ void FrameReplay::play(const Recording& r, const master::FrameRequest& request) 
       }
     }
   }
-  for (const Playback::Final& f : r.playback.finals) f.signal->replay_final(f.value, start + f.last_change, f.changes);
-  if (r.playback.vcd) vcd_->play_end(*r.playback.vcd);
+  for (const Playback::Final& f : r.playback->finals) f.signal->replay_final(f.value, start + f.last_change, f.changes);
+  if (r.playback->vcd) vcd_->play_end(*r.playback->vcd);
   declarations_.mute(false);
   if (r.checker_confirmed) checker_.restore(*r.checker_start, *r.checker_end, shift, index_shift);
-  kernel_.replay_time(start + r.playback.end);  // where the frame's last event was
+  kernel_.replay_time(start + r.playback->end);  // where the frame's last event was
   kernel_.replay_done(kernel_.now());
   kernel_.replay_events(r.tape.events - 1);
   ++replayed_;

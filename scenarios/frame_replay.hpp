@@ -78,7 +78,7 @@ struct Recording {
   bool vcd_quiet = false;  // the VCD writer had nothing waiting for the end of the time step, then
   bool confirmed = false;         // the recording before it of its kind was the same, moved in time
   std::uint64_t epoch = 0;        // when it was made (FrameReplay::epoch_)
-  Playback playback;              // once confirmed
+  std::optional<Playback> playback;  // once confirmed, made when it is first played
   // The checker's part: its state at the start and at the end, its findings. When the recording
   // before it of its kind agrees on these too, the checker is put in place instead of being
   // shown the frame.
@@ -115,6 +115,7 @@ class FrameReplay final : public master::FrameShortcut {
   using Recording = frame_replay::Recording;
   bool same_checker_part(const Recording& earlier, const Recording& later, Time shift, std::uint64_t index_shift) const;
   Playback compile(const Recording& r) const;
+  bool prepares_vcd(const Recording& r) const;
   bool steady(const master::FrameRequest& request) const;
   // Ends the recording begun at the frame before; true if it confirmed the one before it.
   bool close_recording();

@@ -136,9 +136,10 @@ class Kernel {
   [[gnu::always_inline]] inline void settle();
   [[gnu::always_inline]] inline void end_time_step();
   void commit_updates();
-  // Out of line and cold, so that the time step's end stays inlined into run() when nothing records.
-  [[gnu::noinline, gnu::cold]] void commit_updates_recorded();
-  [[gnu::noinline, gnu::cold]] void note_step_end();
+  // Out of line, so that the time step's end stays inlined into run() when nothing records (not
+  // cold: a moving axis records often, and cold code is compiled for size).
+  [[gnu::noinline]] void commit_updates_recorded();
+  [[gnu::noinline]] void note_step_end();
   void run_fifo_snapshot();
   void push_fifo(Action a);
   void count_event() {
