@@ -181,6 +181,19 @@ struct Activity {
   }
 };
 
+// Wires a and b with a VCD writer to `path`, and the activity above on them.
+struct TwoWires {
+  explicit TwoWires(const std::string& path) : vcd(k, path) {
+    vcd.add(a, "top", "a");
+    vcd.add(b, "top", "b");
+    vcd.start();
+  }
+  Kernel k;
+  Signal a{k, "a", false}, b{k, "b", false};
+  VcdWriter vcd;
+  Activity act{&k, &a, &b};
+};
+
 }  // namespace
 
 // The fast path's VCD: a stretch recorded on a tape, prepared and played later gives the bytes of
@@ -192,41 +205,29 @@ TEST(VcdWriter, APreparedStretchPlayedLaterWritesTheBytesOfRunningIt) {
   const std::string ran = (dir / ("endatsim_vcd_ran_" + std::to_string(::getpid()) + ".vcd")).string();
   const std::string played = (dir / ("endatsim_vcd_played_" + std::to_string(::getpid()) + ".vcd")).string();
   {
-    Kernel k;
-    Signal a(k, "a", false), b(k, "b", false);
-    VcdWriter vcd(k, ran);
-    vcd.add(a, "top", "a");
-    vcd.add(b, "top", "b");
-    vcd.start();
-    Activity act{&k, &a, &b};
-    act.schedule(first);
-    act.schedule(second);
-    k.run();
-    vcd.finish();
+    TwoWires w(ran);
+    w.act.schedule(first);
+    w.act.schedule(second);
+    w.k.run();
+    w.vcd.finish();
   }
   {
-    Kernel k;
-    Signal a(k, "a", false), b(k, "b", false);
-    VcdWriter vcd(k, played);
-    vcd.add(a, "top", "a");
-    vcd.add(b, "top", "b");
-    vcd.start();
-    Activity act{&k, &a, &b};
-    act.schedule(first);
+    TwoWires w(played);
+    w.act.schedule(first);
     Tape tape;
-    ASSERT_TRUE(vcd.quiet());
-    k.record_to(&tape);
-    k.run();
-    k.record_to(nullptr);
-    const VcdWriter::Stretch stretch = vcd.prepare(tape, first);
+    ASSERT_TRUE(w.vcd.quiet());
+    w.k.record_to(&tape);
+    w.k.run();
+    w.k.record_to(nullptr);
+    const VcdWriter::Stretch stretch = w.vcd.prepare(tape, first);
     ASSERT_EQ(stretch.steps.size(), 3U);
     EXPECT_EQ(stretch.steps[1].at, ns(2));
     EXPECT_EQ(stretch.lines, "1!\n1\"\n0!\n0\"\n");
     EXPECT_EQ(stretch.covered, tape.items.size());
-    k.replay_time(second + ns(3));
-    vcd.play_steps(stretch, 0, stretch.steps.size(), second);
-    vcd.play_end(stretch);
-    vcd.finish();
+    w.k.replay_time(second + ns(3));
+    w.vcd.play_steps(stretch, 0, stretch.steps.size(), second);
+    w.vcd.play_end(stretch);
+    w.vcd.finish();
   }
   const std::string text = read_file(played);
   EXPECT_NE(text.find("#199999999000\n1!\n#200000000000\n1\"\n#200000001000\n0!\n0\"\n"), std::string::npos) << text;
