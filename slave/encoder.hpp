@@ -118,10 +118,11 @@ class Encoder final : private MemoryAccess::Client {
   // frame latched one position throughout (at FE1 and for each word of a continuous clock), and
   // the axis stands on it from this frame's FE1 to `until` (a moving axis between two steps).
   bool latches_again(const EncoderFrame& recorded, Time shift, Time until) const;
-  // The position latched at `from` is still the one latched at `to` (the axis moves at a constant
-  // velocity, so also at every instant between).
+  // The axis crosses no measuring step from `from` to `to`, so the position latched at any instant
+  // between is the same. Steps are counted, not positions compared: a position that wraps
+  // around (2^n steps) comes back to the same value.
   bool holds_position(Time from, Time to) const {
-    return params_.motion.counts_per_s == 0 || positions_.latched(from) == positions_.latched(to);
+    return params_.motion.steps_by(from) == params_.motion.steps_by(to);
   }
 
  private:

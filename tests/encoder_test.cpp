@@ -485,3 +485,17 @@ TEST(EncoderSupplementHandover, EndLevelDrivesHighForOneClockBeforeReleasing) {
   // The slot after the last CRC bit reads HIGH either way (fail-safe HIGH when released, docs/model.md §11).
   EXPECT_EQ(end_level.slots.substr(1, 1), "1");
 }
+
+// The fast path plays a moving axis only between two measuring steps: steps are counted, so a
+// position that wraps around to the same value has still moved.
+TEST(EncoderFastPath, HoldsItsPositionOnlyBetweenTwoMeasuringSteps) {
+  slave::EncoderParams p = encoder_params(protocol::EndatVersion::V2_2, 8, 10);
+  p.motion.counts_per_s = 1'000'000;  // a step every microsecond
+  Bench b(p);
+  EXPECT_TRUE(b.encoder.holds_position(ns(1'100), ns(1'900)));
+  EXPECT_FALSE(b.encoder.holds_position(ns(1'900), ns(2'100)));
+  EXPECT_FALSE(b.encoder.holds_position(ns(1'100), ns(257'100)));  // 256 steps: the same 8-bit position
+  slave::EncoderParams still = encoder_params(protocol::EndatVersion::V2_2, 8, 10);
+  Bench s(still);
+  EXPECT_TRUE(s.encoder.holds_position(Time::zero(), sim::ms(100)));
+}
