@@ -1,9 +1,12 @@
 #include "endatsim/scenarios/transaction_log.hpp"
 
+#include <algorithm>
 #include <bitset>
 #include <cstdio>
 #include <map>
 #include <sstream>
+#include <utility>
+#include <variant>
 
 #include "endatsim/protocol/frame.hpp"
 #include "endatsim/scenarios/streamed_outputs.hpp"
@@ -57,6 +60,31 @@ std::string decoded(const master::AdditionalDatum& d) {
     }
     default: return "";
   }
+}
+
+// Additional data (2.3.5), in wire order, by information code: the 16 data bits, and the status
+// flags and CRC only when they say something. Each name once: the master reads the information
+// code off the wire, so a frame with a misread status (an idle line after a power dip, a flipped
+// bit) can carry one code twice; the later value then takes the earlier one's place, as in a JSON
+// object.
+std::vector<std::pair<std::string, std::variant<std::string, bool>>> additional_fields(
+    const std::vector<master::AdditionalDatum>& data) {
+  std::vector<std::pair<std::string, std::variant<std::string, bool>>> fields;
+  const auto put = [&fields](std::string key, std::variant<std::string, bool> value) {
+    const auto at = std::find_if(fields.begin(), fields.end(), [&key](const auto& f) { return f.first == key; });
+    if (at != fields.end()) at->second = std::move(value);
+    else fields.emplace_back(std::move(key), std::move(value));
+  };
+  for (const auto& d : data) {
+    const std::string key(protocol::info(d.information()).key);
+    put(key, hex_0x(d.data, 4));
+    if (!d.crc_ok) put(key + ".crc_ok", false);
+    if (d.busy()) put(key + ".busy", true);
+    if ((d.status & protocol::AdditionalDataStatus::kWarning) != 0) put(key + ".warning", true);
+    if ((d.status & protocol::AdditionalDataStatus::kReferenceMark) != 0) put(key + ".reference_mark", true);
+    if (auto v = decoded(d); !v.empty()) put(key + ".decoded", std::move(v));
+  }
+  return fields;
 }
 
 }  // namespace
@@ -116,19 +144,11 @@ JsonTokens transaction_tokens(const master::FrameResult& f, std::span<const chec
   if (word) t.member("crc_ok", f.outcome == master::FrameOutcome::Ok);
   else t.member("crc_ok", nullptr);
   if (word && f.outcome == master::FrameOutcome::CrcError) t.member("crc_expected", f.crc_expected);
-  // Additional data (2.3.5), in wire order, by information code: the 16 data bits, and the
-  // status flags and CRC only when they say something. A frame carries each information once
-  // (additional data 1 and 2 come from separate sets of codes).
   t.key("additional").begin_object();
   if (word)
-    for (const auto& d : f.additional_data) {
-      const std::string key(protocol::info(d.information()).key);
-      t.member(key, hex_0x(d.data, 4));
-      if (!d.crc_ok) t.member(key + ".crc_ok", false);
-      if (d.busy()) t.member(key + ".busy", true);
-      if ((d.status & protocol::AdditionalDataStatus::kWarning) != 0) t.member(key + ".warning", true);
-      if ((d.status & protocol::AdditionalDataStatus::kReferenceMark) != 0) t.member(key + ".reference_mark", true);
-      if (auto v = decoded(d); !v.empty()) t.member(key + ".decoded", std::move(v));
+    for (auto& [key, value] : additional_fields(f.additional_data)) {
+      t.key(key);
+      std::visit([&t](auto& v) { t.value(std::move(v)); }, value);
     }
   t.end_object();
   t.member("outcome", master::to_string(f.outcome));

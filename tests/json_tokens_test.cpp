@@ -105,3 +105,30 @@ TEST(JsonTokens, FramesAndTransactionsOfEveryScenarioAreTheirTreesDumps) {
   }
   EXPECT_GT(frames, 1000U);
 }
+
+// The master reads the information code off the wire: a misread status can bring one code twice
+// in a frame. Its name is in the record once, with the later value in the earlier one's place (as
+// in a JSON object), and a flag the earlier one raised stays.
+TEST(JsonTokens, AnInformationReadTwiceInAFrameIsOneFieldWithTheLaterValue) {
+  namespace pr = endatsim::protocol;
+  endatsim::master::FrameResult f;
+  f.command = pr::ModeCommand::EncoderSendPositionValuesWithAdditionalData;
+  f.outcome = endatsim::master::FrameOutcome::CrcError;
+  const auto commutation = static_cast<std::uint8_t>(pr::Information::Commutation);
+  endatsim::master::AdditionalDatum first, later;
+  first.status = later.status = commutation;
+  first.data = 0x1111;
+  first.crc_ok = false;
+  later.data = 0x2222;
+  later.crc_ok = true;
+  f.additional_data = {first, later};
+  const JsonTokens record = endatsim::scenarios::transaction_tokens(f, {});
+  const std::string text = record.compact();
+  const std::string key = "\"" + std::string(pr::info(pr::Information::Commutation).key) + "\":";
+  ASSERT_NE(text.find(key + "\"0x2222\""), std::string::npos) << text;
+  EXPECT_EQ(text.find(key, text.find(key) + 1), std::string::npos) << text;
+  EXPECT_NE(text.find(".crc_ok\":false"), std::string::npos) << text;
+  EXPECT_EQ(text, endatsim::scenarios::transaction_of(f, {}).dump(-1, ' ', false, json::error_handler_t::replace));
+  const std::string line = endatsim::scenarios::transaction_line(record);
+  EXPECT_EQ(line.find("=0x1111"), std::string::npos) << line;
+}
