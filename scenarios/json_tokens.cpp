@@ -49,7 +49,7 @@ void JsonTokens::scalar(std::string& out, std::size_t token) const {
   }
 }
 
-std::size_t JsonTokens::skip(std::size_t token) const {
+std::size_t JsonTokens::end_of(std::size_t token) const {
   std::size_t depth = 0;
   do {
     const Kind k = tokens_[token].kind;
@@ -62,12 +62,12 @@ std::size_t JsonTokens::skip(std::size_t token) const {
 
 std::vector<std::pair<std::size_t, std::size_t>> JsonTokens::members(std::size_t object) const {
   std::vector<std::pair<std::size_t, std::size_t>> out;
-  for (std::size_t t = object + 1; tokens_[t].kind != Kind::EndObject; t = skip(t + 1)) out.emplace_back(t, t + 1);
+  for (std::size_t t = object + 1; tokens_[t].kind != Kind::EndObject; t = end_of(t + 1)) out.emplace_back(t, t + 1);
   return out;
 }
 
 std::size_t JsonTokens::find(std::size_t object, std::string_view key) const {
-  for (std::size_t t = object + 1; tokens_[t].kind != Kind::EndObject; t = skip(t + 1))
+  for (std::size_t t = object + 1; tokens_[t].kind != Kind::EndObject; t = end_of(t + 1))
     if (tokens_[t].text == key) return t + 1;
   return npos;
 }
@@ -121,7 +121,7 @@ std::size_t JsonTokens::write_sorted(std::string& out, std::size_t token, std::s
   while (tokens_[t].kind != Kind::EndObject && tokens_[t].kind != Kind::EndArray) {
     const std::size_t value = object ? t + 1 : t;
     parts.emplace_back(t, value);
-    t = skip(value);
+    t = end_of(value);
   }
   if (parts.empty()) {
     out += object ? "{}" : "[]";

@@ -66,7 +66,7 @@ class JsonTokens {
   // A scalar as dump() writes it.
   void scalar(std::string& out, std::size_t token) const;
   // The token after the value that begins at `token`.
-  std::size_t skip(std::size_t token) const;
+  std::size_t end_of(std::size_t token) const;
 
  private:
   JsonTokens& add(Kind kind, std::string text = {}, std::uint64_t bits = 0) {

@@ -212,7 +212,7 @@ std::string transaction_line(const JsonTokens& t) {
   const std::size_t violations = t.find(kRecord, "violations");
   if (t.at(violations + 1).kind != JsonTokens::Kind::EndArray) {
     s += "  violations:";
-    for (std::size_t v = violations + 1; t.at(v).kind != JsonTokens::Kind::EndArray; v = t.skip(v))
+    for (std::size_t v = violations + 1; t.at(v).kind != JsonTokens::Kind::EndArray; v = t.end_of(v))
       s += " " + t.at(t.find(v, "check")).text;
   }
   return s;
