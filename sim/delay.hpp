@@ -3,7 +3,7 @@
 // changed while running (cable swap); changes already in flight keep their old delay.
 //
 // A long cable at a high clock rate holds a dozen edges in flight. They wait in this line's own
-// queue, and only the earliest is in the kernel's heap, ordered as if it had been scheduled
+// queue, and only the earliest is in the kernel's queue, ordered as if it had been scheduled
 // when the edge went in (Kernel::take_seq): the same result as one kernel entry per edge.
 #pragma once
 

@@ -9,7 +9,6 @@
 namespace endatsim::sim {
 
 Kernel::Kernel() {
-  heap_.reserve(1024);
   fifo_.resize(256);
   updates_.reserve(64);
   changed_.reserve(64);
@@ -89,7 +88,7 @@ void Kernel::replay_step_end() { end_time_step(); }
 
 void Kernel::replay_done(Time last) const {
   if (!updates_.empty() || fifo_size_ != 0) refuse("Kernel::replay_done: work pending after a stretch played");
-  if (!heap_.empty() && heap_.front().when <= last) refuse("Kernel::replay_done: an event falls inside the stretch played");
+  if (!queue_.empty() && queue_.top().when <= last) refuse("Kernel::replay_done: an event falls inside the stretch played");
 }
 
 void Kernel::run(Time until) {
@@ -99,20 +98,18 @@ void Kernel::run(Time until) {
     settle();
     end_time_step();
   }
-  while (!stopped_ && !heap_.empty()) {
-    const Time t = heap_.front().when;
+  while (!stopped_ && !queue_.empty()) {
+    const Time t = queue_.top().when;
     if (t > until) {
       now_ = until;
       break;
     }
     now_ = t;
     do {
-      std::pop_heap(heap_.begin(), heap_.end(), Later{});
-      const Action a = heap_.back().action;
-      heap_.pop_back();
+      const Action a = queue_.pop().payload;
       a();
       count_event();
-    } while (!heap_.empty() && heap_.front().when == t && !stopped_);
+    } while (!queue_.empty() && queue_.top().when == t && !stopped_);
     settle();
     end_time_step();
   }
@@ -125,8 +122,8 @@ void Kernel::advance_to(Time t) {
 }
 
 std::optional<Time> Kernel::next_event_time() const {
-  if (heap_.empty()) return std::nullopt;
-  return heap_.front().when;
+  if (queue_.empty()) return std::nullopt;
+  return queue_.top().when;
 }
 
 void Timer::start(Time delay) {

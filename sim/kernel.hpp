@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "endatsim/sim/event_queue.hpp"
 #include "endatsim/sim/time.hpp"
 
 namespace endatsim::sim {
@@ -47,15 +48,15 @@ class Kernel {
 
   Time now() const { return now_; }
 
-  // delay == 0 wakes up in the next delta cycle (FIFO); delay > 0 goes to the time heap.
+  // delay == 0 wakes up in the next delta cycle (FIFO); delay > 0 goes to the queue of timed events (event_queue.hpp).
   void schedule(Time delay, Action action);
   void schedule_at(Time when, Action action);
 
   // For models that keep their own queue of future work (a delay line, a timer restarted on
-  // every clock edge) and put only its earliest item into the kernel's heap: take_seq() at the
+  // every clock edge) and put only its earliest item into the kernel's queue: take_seq() at the
   // moment the work is decided, and schedule_ordered(when, seq, ...) later. The entry runs in
   // the order a schedule() at the moment of take_seq() would have given it, so keeping the
-  // queue outside changes no result, only how many entries the heap holds.
+  // queue outside changes no result, only how many entries the queue holds.
   std::uint64_t take_seq() { return seq_++; }
   void schedule_ordered(Time when, std::uint64_t seq, Action action);
 
@@ -118,17 +119,6 @@ class Kernel {
   void request_update(SignalBase* signal) { updates_.push_back(signal); }
 
  private:
-  struct Entry {
-    Time when;
-    std::uint64_t seq;
-    Action action;
-  };
-  // A function object, not a function pointer, so that the heap operations inline it.
-  struct Later {
-    bool operator()(const Entry& a, const Entry& b) const {
-      return a.when != b.when ? a.when > b.when : a.seq > b.seq;
-    }
-  };
   // Out of line and cold, so that schedule() and schedule_ordered() inline into their callers
   // (an Action handed through a call was copied through the stack, and stalled there).
   [[noreturn]] static void refuse(const char* what);
@@ -156,7 +146,7 @@ class Kernel {
   std::uint64_t watch_every_ = 0;
   std::uint64_t next_watch_ = UINT64_MAX;
   Action watch_;
-  std::vector<Entry> heap_;
+  EventQueue<Action> queue_;  // the timed events
   std::vector<Action> fifo_;  // ring buffer
   std::size_t fifo_head_ = 0;
   std::size_t fifo_size_ = 0;
@@ -169,7 +159,7 @@ class Kernel {
 };
 
 // A cancellable, restartable timer owned by a model. It keeps at most one entry in the
-// kernel's heap: a restart to a later expiry (a watchdog restarted on every clock edge) leaves
+// kernel's queue: a restart to a later expiry (a watchdog restarted on every clock edge) leaves
 // the queued entry in place, and when that entry comes up it queues itself again for the
 // current expiry, in the order the restart took (Kernel::take_seq). Only a restart to an
 // earlier (or the same) expiry queues a second entry; the first one is then stale and ignored.
@@ -203,16 +193,14 @@ inline void Kernel::schedule(Time delay, Action action) {
     push_fifo(action);
     return;
   }
-  heap_.push_back(Entry{now_ + delay, seq_++, action});
-  std::push_heap(heap_.begin(), heap_.end(), Later{});
+  queue_.push({now_ + delay, seq_++, action});
 }
 
 // `now` itself only from an event of this instant (a delay line's next change due at once),
 // which the running time step still picks up in its order.
 inline void Kernel::schedule_ordered(Time when, std::uint64_t seq, Action action) {
   if (when < now_) refuse("Kernel::schedule_ordered: time in the past");
-  heap_.push_back(Entry{when, seq, action});
-  std::push_heap(heap_.begin(), heap_.end(), Later{});
+  queue_.push({when, seq, action});
 }
 
 }  // namespace endatsim::sim
