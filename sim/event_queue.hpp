@@ -37,14 +37,14 @@ class EventQueue {
 
   // `entry.when` must not lie before the last entry taken out (the kernel's present).
   void push(const Entry& entry) {
-    const bool earliest = top_ != kNone && later(top_ == kOverflow ? overflow_.front() : node(top_).entry, entry);
     const std::uint64_t bucket = bucket_of(entry.when);
     if (bucket - cursor_ >= kBuckets) {
+      // Later than every entry in the wheel: the top only if the heap's front is the top already.
       overflow_.push_back(entry);
       std::push_heap(overflow_.begin(), overflow_.end(), Later{});
-      if (earliest) top_ = kOverflow;
       return;
     }
+    const bool earliest = top_ != kNone && later(top_ == kOverflow ? overflow_.front() : node(top_).entry, entry);
     const std::uint32_t n = allocate();
     Node& fresh = nodes_[n];
     fresh.entry = entry;
@@ -83,6 +83,8 @@ class EventQueue {
   static constexpr unsigned kShift = 12;  // 4 096 ps per bucket
   static constexpr std::size_t kBuckets = 1024;  // 4.2 us ahead
   static constexpr std::size_t kMask = kBuckets - 1;
+  static constexpr std::size_t kWords = kBuckets / 64;  // one bit of summary_ each
+  static_assert(kWords >= 1 && kWords <= 64);
   static constexpr std::uint32_t kEnd = UINT32_MAX;
   static constexpr std::uint32_t kNone = UINT32_MAX;
   static constexpr std::uint32_t kOverflow = UINT32_MAX - 1;
@@ -115,7 +117,7 @@ class EventQueue {
     const std::size_t w = from >> 6;
     const std::uint64_t here = words_[w] & (~std::uint64_t{0} << (from & 63));
     if (here != 0) return (w << 6) + static_cast<std::size_t>(std::countr_zero(here));
-    const std::uint64_t after = w == 63 ? 0 : summary_ & (~std::uint64_t{0} << (w + 1));
+    const std::uint64_t after = w + 1 == kWords ? 0 : summary_ & (~std::uint64_t{0} << (w + 1));
     const std::uint64_t s = after != 0 ? after : summary_;  // around: words 0 .. w (w's low bits)
     const std::size_t w2 = static_cast<std::size_t>(std::countr_zero(s));
     return (w2 << 6) + static_cast<std::size_t>(std::countr_zero(words_[w2]));
@@ -152,7 +154,7 @@ class EventQueue {
   std::vector<Node> nodes_;
   std::uint32_t free_ = kEnd;
   std::array<std::uint32_t, kBuckets> heads_ = filled();
-  std::array<std::uint64_t, kBuckets / 64> words_{};
+  std::array<std::uint64_t, kWords> words_{};
   std::uint64_t summary_ = 0;
   std::size_t wheel_size_ = 0;
   std::uint64_t cursor_ = 0;  // the bucket of the last entry taken out
