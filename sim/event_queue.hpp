@@ -80,7 +80,7 @@ class EventQueue {
   }
 
  private:
-  static constexpr unsigned kShift = 12;  // 4 096 ps per bucket
+  static constexpr unsigned kShift = 12;         // 4 096 ps per bucket
   static constexpr std::size_t kBuckets = 1024;  // 4.2 us ahead
   static constexpr std::size_t kMask = kBuckets - 1;
   static constexpr std::size_t kWords = kBuckets / 64;  // one bit of summary_ each

@@ -66,22 +66,29 @@ void compare_with_a_set(std::mt19937_64& rng, std::int64_t (*next_delay)(std::mt
 TEST(EventQueue, GivesEntriesByTimeThenSequenceAsAnOrderedSetDoes) {
   std::mt19937_64 rng(17);
   // Clock edges and cable delays: many entries per microsecond, some at the same picosecond.
-  compare_with_a_set(rng, [](std::mt19937_64& r) { return static_cast<std::int64_t>(r() % 3 == 0 ? 0 : r() % 200'000); },
-                     200'000);
+  compare_with_a_set(
+      rng, [](std::mt19937_64& r) { return static_cast<std::int64_t>(r() % 3 == 0 ? 0 : r() % 200'000); }, 200'000);
 }
 
 TEST(EventQueue, KeepsOrderAcrossTheWheelsHorizonAndAroundIt) {
   std::mt19937_64 rng(18);
   // Delays from a picosecond to a second: entries beyond the wheel wait in the heap, and the
   // wheel goes round many times.
-  compare_with_a_set(rng, [](std::mt19937_64& r) {
-    switch (r() % 4) {
-      case 0: return static_cast<std::int64_t>(r() % 1'000);
-      case 1: return static_cast<std::int64_t>(r() % 5'000'000);
-      case 2: return static_cast<std::int64_t>(4'190'000 + r() % 20'000);  // the horizon's edge
-      default: return static_cast<std::int64_t>(r() % 1'000'000'000'000);
-    }
-  }, 200'000);
+  compare_with_a_set(
+      rng,
+      [](std::mt19937_64& r) {
+        switch (r() % 4) {
+          case 0:
+            return static_cast<std::int64_t>(r() % 1'000);
+          case 1:
+            return static_cast<std::int64_t>(r() % 5'000'000);
+          case 2:
+            return static_cast<std::int64_t>(4'190'000 + r() % 20'000);  // the horizon's edge
+          default:
+            return static_cast<std::int64_t>(r() % 1'000'000'000'000);
+        }
+      },
+      200'000);
 }
 
 TEST(EventQueue, AnEntryPushedBeforeTheKnownTopBecomesTheTop) {
@@ -106,7 +113,7 @@ TEST(EventQueue, AnEntryPushedBeforeTheKnownTopBecomesTheTop) {
 }
 
 namespace {
-constexpr std::int64_t kBucket = 4'096;  // ps, the wheel's bucket
+constexpr std::int64_t kBucket = 4'096;           // ps, the wheel's bucket
 constexpr std::int64_t kWheel = 1'024 * kBucket;  // its horizon
 }  // namespace
 

@@ -15,6 +15,17 @@ using nlohmann::json;
 
 namespace {
 
+// `text` with every line after the first shifted right by `indent`: what sorted_indented()
+// writes, found here from the dump alone.
+std::string shifted_right(const std::string& text, std::size_t indent) {
+  std::string out;
+  for (char c : text) {
+    out += c;
+    if (c == '\n') out.append(indent, ' ');
+  }
+  return out;
+}
+
 // Every kind of value, nested, with keys out of order, strings that need escaping (quotes, a
 // backslash, control characters, UTF-8, invalid UTF-8, DEL) and empty containers.
 JsonTokens every_kind() {
@@ -61,12 +72,7 @@ TEST(JsonTokens, SortedIndentedTextIsNlohmannsIndentedDumpOfTheSortedTree) {
   // Shifted right: every line after the first.
   std::string shifted;
   t.sorted_indented(shifted, 8);
-  std::string expected;
-  for (char c : text) {
-    expected += c;
-    if (c == '\n') expected.append(8, ' ');
-  }
-  EXPECT_EQ(shifted, expected);
+  EXPECT_EQ(shifted, shifted_right(text, 8));
 }
 
 TEST(JsonTokens, ReadsMembersBack) {
@@ -94,12 +100,8 @@ TEST(JsonTokens, FramesAndTransactionsOfEveryScenarioAreTheirTreesDumps) {
       ASSERT_EQ(record.compact(), tree.dump(-1, ' ', false, json::error_handler_t::replace)) << file;
       std::string text;
       endatsim::scenarios::frame_tokens(r, f).sorted_indented(text, 8);
-      std::string expected;
-      for (char c : endatsim::scenarios::frame_json(r, f).dump(2, ' ', false, json::error_handler_t::replace)) {
-        expected += c;
-        if (c == '\n') expected.append(8, ' ');
-      }
-      ASSERT_EQ(text, expected) << file;
+      const json tree_of_frame = endatsim::scenarios::frame_json(r, f);
+      ASSERT_EQ(text, shifted_right(tree_of_frame.dump(2, ' ', false, json::error_handler_t::replace), 8)) << file;
       ++frames;
     }
   }
