@@ -128,6 +128,8 @@ std::optional<Time> Kernel::next_event_time() const {
 
 void Timer::start(Time delay) {
   if (delay < Time::zero()) throw std::logic_error("Timer::start: negative delay");
+  if (delay > Time::max() - kernel_.now())
+    throw std::logic_error("Timer::start: the expiry would fall after Time::max()");
   pending_ = true;
   expiry_ = kernel_.now() + delay;
   if (delay == Time::zero()) {

@@ -189,6 +189,7 @@ class Timer {
 
 inline void Kernel::schedule(Time delay, Action action) {
   if (delay < Time::zero()) refuse("Kernel::schedule: negative delay");
+  if (delay > Time::max() - now_) refuse("Kernel::schedule: the event would fall after Time::max()");
   if (delay == Time::zero()) {
     push_fifo(action);
     return;

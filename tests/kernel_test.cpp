@@ -76,6 +76,22 @@ TEST(KernelRun, RejectsNegativeDelays) {
   EXPECT_THROW(k.schedule(ps(-1), bind<&Log::record>(&log, 0)), std::logic_error);
 }
 
+TEST(KernelRun, RejectsAnEventAfterTheLatestTime) {
+  Kernel k;
+  Log log{&k, {}};
+  Timer timer(k, bind<&Log::record>(&log, 2));
+  k.schedule(ns(1), bind<&Log::record>(&log, 1));
+  k.run();
+  ASSERT_EQ(k.now(), ns(1));
+  // now + delay would overflow the picosecond count.
+  EXPECT_THROW(k.schedule(Time::max(), bind<&Log::record>(&log, 0)), std::logic_error);
+  EXPECT_THROW(timer.start(Time::max() - ns(1) + ps(1)), std::logic_error);
+  // Up to Time::max() itself is taken.
+  EXPECT_NO_THROW(k.schedule(Time::max() - ns(1), bind<&Log::record>(&log, 3)));
+  EXPECT_NO_THROW(timer.start(Time::max() - ns(1)));
+  EXPECT_EQ(k.next_event_time(), Time::max());
+}
+
 TEST(KernelTimer, CancelledTimerDoesNotFire) {
   Kernel k;
   Log log{&k, {}};
