@@ -11,7 +11,9 @@
 #include <climits>
 #include <fstream>
 #include <map>
+#include <string_view>
 #include <sys/stat.h>
+#include <unordered_map>
 
 #include "endatsim/capture/queued_reader.hpp"
 
@@ -238,9 +240,9 @@ class VcdReader final : public QueuedReader {
 
   const std::vector<std::pair<std::string, std::uint32_t>>& aliases() const override { return aliases_; }
 
-  const Variable& lookup(const std::string& id) {
+  const Variable& lookup(std::string_view id) {
     const auto it = vars_.find(id);
-    if (it == vars_.end()) fail("value change for undeclared identifier '" + id.substr(0, 40) + "'");
+    if (it == vars_.end()) fail("value change for undeclared identifier '" + std::string(id.substr(0, 40)) + "'");
     return it->second;
   }
 
@@ -248,7 +250,7 @@ class VcdReader final : public QueuedReader {
 
   // One token of the body; false at the end of the file.
   bool body_token() {
-    std::string t;
+    std::string& t = body_;  // reused: a value change is a token or two, millions of times
     if (!tokens_.next(t)) return false;
     if (t.size() > TokenStream::kMaxToken) fail("a token longer than " + std::to_string(TokenStream::kMaxToken) + " characters");
     if (tokens_.unterminated())
@@ -275,7 +277,7 @@ class VcdReader final : public QueuedReader {
     }
     const char v = normalize(t[0]);
     if (v == '?' || t.size() < 2) fail("'" + t.substr(0, 40) + "' is no value change");
-    const Variable& var = lookup(t.substr(1));
+    const Variable& var = lookup(std::string_view(t).substr(1));
     if (var.real || var.width != 1) fail("scalar value '" + t.substr(0, 40) + "' for a vector or real variable");
     emit(var.first, v);
     return true;
@@ -295,9 +297,16 @@ class VcdReader final : public QueuedReader {
     }
   }
 
+  // Identifiers looked up by a view into the token, with no string made per value change.
+  struct IdHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view id) const { return std::hash<std::string_view>{}(id); }
+  };
+
   TokenStream tokens_;
+  std::string body_;
   std::vector<std::string> scopes_;
-  std::map<std::string, Variable> vars_;
+  std::unordered_map<std::string, Variable, IdHash, std::equal_to<>> vars_;
   std::vector<std::pair<std::string, std::uint32_t>> aliases_;  // further names of declared bits
   bool rounded_ = false;  // a time fell between two picoseconds
   std::int64_t scale_num_ = 0;  // femtoseconds per unit
