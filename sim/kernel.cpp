@@ -50,29 +50,35 @@ void Kernel::commit_updates() {
     commit_updates_recorded();
     return;
   }
-  for (SignalBase* s : updates_)
+  if (updates_.size() == 1) {  // the common case (one delivery, one pin hop): no list of changes
+    Signal* s = updates_.front();
+    updates_.clear();
+    if (s->commit()) s->notify();
+    return;
+  }
+  for (Signal* s : updates_)
     if (s->commit()) changed_.push_back(s);
   updates_.clear();
-  for (SignalBase* s : changed_) s->notify();
+  for (Signal* s : changed_) s->notify();
   changed_.clear();
 }
 
 // commit_updates() while recording: every commit and every monitor's call goes on the tape.
 void Kernel::commit_updates_recorded() {
-  for (SignalBase* s : updates_)
+  for (Signal* s : updates_)
     if (s->commit()) {
       changed_.push_back(s);
       tape_->add(TapeItem::Kind::Commit, now_, s, 0, s->committed_value());
     }
   updates_.clear();
-  for (SignalBase* s : changed_) s->notify(*tape_, now_);
+  for (Signal* s : changed_) s->notify(*tape_, now_);
   changed_.clear();
 }
 
 inline void Kernel::settle() {
   while ((!updates_.empty() || fifo_size_ != 0) && !stopped_) {
     commit_updates();
-    run_fifo_snapshot();
+    if (fifo_size_ != 0) run_fifo_snapshot();
   }
 }
 

@@ -37,7 +37,7 @@ Action bind(T* obj, std::uint64_t arg = 0) {
                 obj, arg};
 }
 
-class SignalBase;
+class Signal;
 struct Tape;
 
 class Kernel {
@@ -116,7 +116,7 @@ class Kernel {
   }
 
   // Used by signals: commit this signal in the next update phase.
-  void request_update(SignalBase* signal) { updates_.push_back(signal); }
+  void request_update(Signal* signal) { updates_.push_back(signal); }
 
  private:
   // Out of line and cold, so that schedule() and schedule_ordered() inline into their callers
@@ -150,8 +150,8 @@ class Kernel {
   std::vector<Action> fifo_;  // ring buffer
   std::size_t fifo_head_ = 0;
   std::size_t fifo_size_ = 0;
-  std::vector<SignalBase*> updates_;
-  std::vector<SignalBase*> changed_;
+  std::vector<Signal*> updates_;  // Signal is final: its commit() is a direct call
+  std::vector<Signal*> changed_;
   std::vector<Action> step_end_;
   Tape* tape_ = nullptr;
   std::uint64_t tape_events_from_ = 0;

@@ -80,13 +80,29 @@ class Signal final : public SignalBase {
   Signal& operator=(const Signal&) = delete;
 
   bool read() const { return value_; }
-  void write(bool v);
+  // Writing the value it already has, with nothing pending, would commit as no change: dropped.
+  void write(bool v) {
+    if (!pending_ && v == value_) return;
+    next_ = v;
+    if (!pending_) {
+      pending_ = true;
+      kernel_.request_update(this);
+    }
+  }
 
   const std::string& name() const { return name_; }
   Time last_change() const { return last_change_; }
   std::uint64_t changes() const { return changes_; }
 
-  bool commit() override;
+  bool commit() override {
+    pending_ = false;
+    if (next_ == value_) return false;
+    value_ = next_;
+    last_change_ = kernel_.now();
+    ++changes_;
+    notify_value_ = value_ ? 1 : 0;
+    return true;
+  }
   void replay_commit(std::uint64_t value) override;
   // Played from a tape for a signal no monitor observed: where it stands after the stretch.
   void replay_final(bool value, Time last_change, std::uint64_t changes) {
