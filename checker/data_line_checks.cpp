@@ -303,7 +303,7 @@ void TimingChecker::note_start_bit_for_t_d() {
   const unsigned clock = word_start_clock_;
   if (clock > master_rising_.size()) return;  // an edge the master never sent (a glitch at the encoder pins)
   const auto& lp = line_.params();
-  start_bits_in_flight_.push_back({kernel_.now() + lp.cable_delay() + lp.master.receiver_delay,
+  start_bits_in_flight_.push_back({kernel_.now() + line_.cable_delay() + lp.master.receiver_delay,
                                    master_rising_[position::edge_index(clock)], current_.header.index + word_, clock,
                                    current_.header.compensated, current_.header.t_d_used,
                                    sim::period_of(current_.header.f_c), word_ == 0 && measures_delay(current_.header)});

@@ -59,4 +59,20 @@ class RowMargins {
   std::vector<std::array<std::optional<Extreme>, kLimitsOf>> worst_;  // indexed by LimitOf
 };
 
+// The least margin of a run of occasions on one row, noted once: a frame's clock phases are judged
+// by the hundred. The first of equal margins stays, as RowMargins::note keeps it, so noting the
+// run's least gives the same worst case as noting each occasion.
+class LeastMargin {
+ public:
+  void add(const Judgement& j) {
+    if (!least_ || j.margin() < least_->margin()) least_ = j;
+  }
+  void note_to(RowMargins& margins, std::size_t row, LimitOf of = LimitOf::Spec) const {
+    if (least_) margins.note(row, *least_, of);
+  }
+
+ private:
+  std::optional<Judgement> least_;
+};
+
 }  // namespace endatsim::checker

@@ -533,7 +533,7 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
 }
 
 // The master's CLOCK edge reaches the encoder pins through its driver and the cable.
-Time TimingChecker::clock_path() const { return line_.params().master.driver_delay + line_.params().cable_delay(); }
+Time TimingChecker::clock_path() const { return line_.params().master.driver_delay + line_.cable_delay(); }
 
 // A frame found on the wires (no master declares its own): the frame before it is judged with
 // what the decoder made of it; the new one starts like a declared one.

@@ -261,6 +261,7 @@ struct Line::Impl {
 
 Line::Line(sim::Kernel& kernel, const LineParams& params) : kernel_(kernel), params_(params) {
   params_.validate();
+  cable_delay_ = params_.cable_delay();
   impl_ = std::make_unique<Impl>(kernel_, params_, ContentionLog(*this));
 }
 
@@ -311,7 +312,7 @@ Line::Pins Line::pins(ObservationPoint where) {
 }
 
 Time Line::pin_round_trip(Time encoder_output_delay) const {
-  return 2 * params_.cable_delay() + params_.encoder.receiver_delay + encoder_output_delay +
+  return 2 * cable_delay_ + params_.encoder.receiver_delay + encoder_output_delay +
          params_.encoder.driver_delay;
 }
 
@@ -325,7 +326,8 @@ void Line::set_cable(double length_m, Time delay_per_m) {
   next.cable_delay_per_m = delay_per_m;
   next.validate();
   params_ = next;
-  const Time d = params_.cable_delay();
+  cable_delay_ = params_.cable_delay();
+  const Time d = cable_delay_;
   for (TransportDelay* t : {&impl_->clock_cable, &impl_->m_level_cable, &impl_->m_en_cable, &impl_->e_level_cable,
                             &impl_->e_en_cable})
     t->set_delays(d, d);

@@ -115,6 +115,8 @@ class Line {
   Pins pins(ObservationPoint where);
 
   const LineParams& params() const { return params_; }
+  // params().cable_delay(), kept as the cable changes (asked for on every sample and start bit).
+  Time cable_delay() const { return cable_delay_; }
   // Clock edge at the master logic -> data edge back at the master logic, for an encoder
   // whose logic needs `encoder_output_delay` from its clock input to its data output.
   Time round_trip(Time encoder_output_delay) const;
@@ -157,6 +159,7 @@ class Line {
   void end_contention(std::uint64_t sequence);
   sim::Kernel& kernel_;
   LineParams params_;
+  Time cable_delay_{0};
   std::unique_ptr<Impl> impl_;
   std::vector<Contention> contentions_;
   std::size_t contention_log_limit_ = kContentionLogLimit;

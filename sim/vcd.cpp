@@ -140,7 +140,7 @@ void VcdWriter::on_change(void* probe, std::uint64_t) {
   VcdWriter* w = p.owner;
   if (!p.dirty && w->started_ && !w->finished_) {
     p.dirty = true;
-    w->dirty_.push_back(p.index);
+    w->dirty_.push_back(&p);
   }
 }
 
@@ -149,8 +149,8 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
   if (w->dirty_.empty() && !w->texts_dirty_) return;
   const Time now = w->kernel_.now();
   w->write_texts(now);
-  for (std::size_t index : w->dirty_) {
-    Probe& p = w->probes_[index];
+  for (Probe* probe : w->dirty_) {
+    Probe& p = *probe;
     p.dirty = false;
     const bool v = p.signal->read();
     if (v == p.written) continue;  // changed and changed back within the step

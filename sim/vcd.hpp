@@ -111,7 +111,7 @@ class VcdWriter {
   std::unordered_map<const void*, std::size_t> probe_of_;  // by listener context
   std::vector<TextProbe> texts_;
   bool texts_dirty_ = false;
-  std::vector<std::size_t> dirty_;
+  std::vector<Probe*> dirty_;  // in the order of their first change in this time step
   std::string buffer_;    // kBufferSize bytes, of which the first used_ are to be written
   std::size_t used_ = 0;
   Time stamped_{-1};  // the last "#time" written
