@@ -85,18 +85,19 @@ check(r.returncode == 0 and "[1/1]" not in r.stdout, "terminal with --quiet: no 
 # A run longer than a second: simulated time, frames, wall time and the time left at most.
 with open(os.path.join(source, "bench", "scenarios", "additional_data_loop_1s.json")) as f:
     loop = json.load(f)
-loop.update({"name": "loop_3s", "max_time": "3 s", "expect": {}})
+loop.update({"name": "loop_20s", "max_time": "20 s", "expect": {}})
 loop.pop("$schema")
-loop["script"][-1]["count"] = 48000
-with open(path("loop_3s.json"), "w") as f:
+loop["script"][-1]["count"] = 320000
+with open(path("loop_20s.json"), "w") as f:
     json.dump(loop, f)
 # Interrupted after 2.5 s of wall time, whatever the build's speed (every edge an event, the run
-# would take 3 s in a release build, minutes under the sanitizers): the progress line was shown by then.
-r = on_terminal(["run", path("loop_3s.json"), "--engine", "event", "--max-kernel-events", "200000000", "--max-records", "500000"],
-                interrupt_after=2.5)
-check(" of 3 s simulated, " in r.stdout and " frames, " in r.stdout and " s left" in r.stdout,
+# takes several seconds in a release build, minutes under the sanitizers): the progress line was
+# shown by then.
+r = on_terminal(["run", path("loop_20s.json"), "--engine", "event", "--max-kernel-events", "1000000000",
+                 "--max-records", "4000000", "--max-script-frames", "400000"], interrupt_after=2.5)
+check(" of 20 s simulated, " in r.stdout and " frames, " in r.stdout and " s left" in r.stdout,
       "terminal: progress of a long run", r)
-check(r.returncode == 130 and "incomplete: loop_3s: interrupted by SIGINT" in r.stdout,
+check(r.returncode == 130 and "incomplete: loop_20s: interrupted by SIGINT" in r.stdout,
       "terminal: a run stopped by Ctrl-C says so and exits 130", r)
 
 # JUnit, JSON results, transaction logs.
