@@ -6,11 +6,13 @@
 // The body is streamed token by token.
 #include <cerrno>
 #include <cstring>
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <climits>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <sys/stat.h>
 #include <unordered_map>
@@ -24,20 +26,42 @@ class TokenStream {
  public:
   explicit TokenStream(const std::string& path) : in_(path, std::ios::binary) {}
   bool good() const { return static_cast<bool>(in_); }
-  // The next whitespace-separated token; false at the end of the file.
+  // The next whitespace-separated token; false at the end of the file. Runs of the buffer are
+  // scanned and appended at once: a capture is millions of short tokens.
   bool next(std::string& token) {
     token.clear();
-    int c = get();
-    while (c != EOF && is_space(c)) c = get();
-    token_line_ = line_;
-    if (c == EOF) return false;
-    while (c != EOF && !is_space(c)) {
-      token.push_back(static_cast<char>(c));
-      if (token.size() > kMaxToken) return true;  // the caller rejects it
-      c = get();
+    for (;;) {  // the whitespace before it
+      if (pos_ == end_ && !fill()) {
+        token_line_ = line_;
+        return false;
+      }
+      const char c = buffer_[pos_];
+      if (!is_space(c)) break;
+      if (c == '\n') ++line_;
+      ++pos_;
+      ++consumed_;
     }
-    unterminated_ = c == EOF;
-    return true;
+    token_line_ = line_;
+    for (;;) {
+      const std::size_t from = pos_;
+      const std::size_t room = kMaxToken + 1 - token.size();
+      const std::size_t stop = std::min(end_, pos_ + room);
+      while (pos_ < stop && !is_space(buffer_[pos_])) ++pos_;
+      token.append(buffer_.data() + from, pos_ - from);
+      consumed_ += pos_ - from;
+      if (token.size() > kMaxToken) return true;  // the caller rejects it
+      if (pos_ < end_) {  // the whitespace that ends it is taken with it
+        if (buffer_[pos_] == '\n') ++line_;
+        ++pos_;
+        ++consumed_;
+        unterminated_ = false;
+        return true;
+      }
+      if (!fill()) {
+        unterminated_ = true;
+        return true;
+      }
+    }
   }
   // The last token ran into the end of the file: a writer ends every line, so the file was cut.
   bool unterminated() const { return unterminated_; }
@@ -47,19 +71,15 @@ class TokenStream {
   static constexpr std::size_t kMaxToken = 4096;
 
  private:
-  static bool is_space(int c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
-  int get() {
-    if (pos_ == end_) {
-      in_.read(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-      end_ = static_cast<std::size_t>(in_.gcount());
-      pos_ = 0;
-      if (end_ == 0) return EOF;
-    }
-    ++consumed_;
-    const char c = buffer_[pos_++];
-    if (c == '\n') ++line_;
-    if (c == '\0') return ' ';  // a NUL is no part of any VCD token
-    return static_cast<unsigned char>(c);
+  // A NUL is no part of any VCD token: it separates them like a space.
+  static bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v' || c == '\0';
+  }
+  bool fill() {
+    in_.read(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    end_ = static_cast<std::size_t>(in_.gcount());
+    pos_ = 0;
+    return end_ != 0;
   }
   std::ifstream in_;
   std::array<char, 1 << 16> buffer_{};
@@ -194,7 +214,8 @@ class VcdReader final : public QueuedReader {
       const auto bits = bit_names(name, full, range, width);
       signals_.insert(signals_.end(), bits.begin(), bits.end());
     }
-    vars_[id] = v;
+    const Variable& stored = vars_[id] = v;
+    if (const auto slot = short_slot(id)) short_ids_[*slot] = &stored;
   }
 
   // The names of a variable's bits, most significant first: "data[3]" for a bit of a vector;
@@ -240,7 +261,23 @@ class VcdReader final : public QueuedReader {
 
   const std::vector<std::pair<std::string, std::uint32_t>>& aliases() const override { return aliases_; }
 
+  // Identifiers of one or two printable characters (what writers give the first 8 000 variables)
+  // have a slot of their own: a value change is looked up without hashing.
+  static constexpr std::size_t kPrintable = '~' - '!' + 1;
+  static std::optional<std::size_t> short_slot(std::string_view id) {
+    const auto code = [](char c) -> std::optional<std::size_t> {
+      if (c < '!' || c > '~') return std::nullopt;
+      return static_cast<std::size_t>(c - '!');
+    };
+    if (id.size() == 1) return code(id[0]);
+    if (id.size() != 2) return std::nullopt;
+    const auto first = code(id[0]), second = code(id[1]);
+    if (!first || !second) return std::nullopt;
+    return kPrintable + *first * kPrintable + *second;
+  }
+
   const Variable& lookup(std::string_view id) {
+    if (const auto slot = short_slot(id); slot && short_ids_[*slot] != nullptr) return *short_ids_[*slot];
     const auto it = vars_.find(id);
     if (it == vars_.end()) fail("value change for undeclared identifier '" + std::string(id.substr(0, 40)) + "'");
     return it->second;
@@ -306,7 +343,8 @@ class VcdReader final : public QueuedReader {
   TokenStream tokens_;
   std::string body_;
   std::vector<std::string> scopes_;
-  std::unordered_map<std::string, Variable, IdHash, std::equal_to<>> vars_;
+  std::unordered_map<std::string, Variable, IdHash, std::equal_to<>> vars_;  // its elements never move
+  std::vector<const Variable*> short_ids_ = std::vector<const Variable*>(kPrintable + kPrintable * kPrintable);
   std::vector<std::pair<std::string, std::uint32_t>> aliases_;  // further names of declared bits
   bool rounded_ = false;  // a time fell between two picoseconds
   std::int64_t scale_num_ = 0;  // femtoseconds per unit

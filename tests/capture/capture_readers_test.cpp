@@ -6,6 +6,7 @@
 #include <zip.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cstdlib>
 #include <filesystem>
@@ -798,4 +799,44 @@ TEST_F(CaptureReaders, GhdlVectorRangeInTheNameAndFemtosecondTimes) {
   ASSERT_TRUE(reader->next(c));
   EXPECT_EQ(c.time, Time{3});  // 2.5 ps rounds to the nearest
   EXPECT_EQ(reader->uncertainty(), Time{1});
+}
+
+// Identifiers of one, two and three characters (a slot each for the short ones, a hash for the
+// rest), tokens that straddle the reader's 64 KiB buffer, and every kind of separator a writer may
+// use (space, tab, CR LF, form feed, NUL): each change reaches its signal at its time, and an error
+// after the buffer's first refill names the right line.
+TEST_F(CaptureReaders, VcdOfManyIdentifiersReadsTheSameAcrossItsBuffer) {
+  std::vector<std::string> ids;
+  for (char a = '!'; a <= '~' && ids.size() < 40; ++a) ids.emplace_back(1, a);
+  for (char a = '!'; a <= '~' && ids.size() < 80; a = static_cast<char>(a + 7))
+    for (char b = '!'; b <= '~' && ids.size() < 80; b = static_cast<char>(b + 11)) ids.push_back({a, b});
+  for (char a = 'A'; ids.size() < 100; ++a) ids.push_back({a, '%', '~'});
+  std::string text = "$timescale 1 ps $end\n$scope module top $end\n";
+  Waveform want;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    text += "$var wire 1 " + ids[i] + " s" + std::to_string(i) + " $end\n";
+    want["s" + std::to_string(i)];
+  }
+  text += "$upscope $end\n$enddefinitions $end\n";
+  const std::array<std::string, 5> separators{" ", "\t", "\r\n", "\f", std::string(1, '\0')};
+  std::vector<char> level(ids.size(), '?');
+  for (std::int64_t t = 0; text.size() < 3 * 65536 + 1000; ++t) {
+    text += "#" + std::to_string(t * 1000) + "\n";
+    for (std::size_t k = 0; k < 7; ++k) {
+      const std::size_t i = static_cast<std::size_t>(t * 7 + static_cast<std::int64_t>(k) * 13) % ids.size();
+      const char v = level[i] == '1' ? '0' : '1';
+      level[i] = v;
+      want["s" + std::to_string(i)].push_back({t * 1000, v});
+      text += std::string(1, v) + ids[i] + separators[(static_cast<std::size_t>(t) + k) % separators.size()];
+    }
+    text += "\n";
+  }
+  const auto lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+  auto reader = capture::open(write("many.vcd", text));
+  EXPECT_EQ(reader->signals().size(), ids.size());
+  expect_same(want, read_all(*reader), Time{0}, "many identifiers");
+
+  const std::string bad = write("bad.vcd", text + "1?!\n");  // never declared
+  expect_mentions(error_of([&] { read_to_end(bad); }),
+                  {bad + ": line " + std::to_string(lines + 1) + ": ", "undeclared identifier '?!'"});
 }
