@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 namespace endatsim {
 namespace {
 
@@ -54,6 +56,36 @@ TEST(RowMargins, FrequenciesAndCountsKeepTheirUnits) {
   EXPECT_EQ(m.worst(0)[0].margin, "-1 Hz");
   EXPECT_EQ(m.worst(1)[0].limit, ">= 41 clocks");
   EXPECT_EQ(m.worst(1)[0].margin, "-1 clock");
+}
+
+// A frame's phases are noted as one run (LeastMargin): the worst case is the one noting each
+// would have kept, the first of equal margins included, between runs as within one.
+TEST(LeastMargin, NotingARunsLeastKeepsTheWorstCaseOfNotingEachOccasion) {
+  std::mt19937 random(7);
+  // Few margins and many limits: equal margins of different occasions, told apart by their text;
+  // the margins fall from run to run, so that later runs hold new worst cases.
+  std::uniform_int_distribution<int> margin(-2, 2), limit(100, 109), kind(0, 1);
+  RowMargins each(1), runs(1);
+  for (int run = 0; run < 200; ++run) {
+    checker::LeastMargin least;
+    const int length = run % 6;  // empty runs too
+    for (int i = 0; i < length; ++i) {
+      const sim::Time l = ns(limit(random)), m = ns(margin(random) - run / 4);
+      const checker::Judgement j = kind(random) == 0 ? checker::at_least(l + m, l, sim::Time::zero())
+                                                     : checker::at_most(l - m, l, sim::Time::zero());
+      each.note(0, j);
+      least.add(j);
+    }
+    least.note_to(runs, 0);
+    const auto a = each.worst(0), b = runs.worst(0);
+    ASSERT_EQ(a.size(), b.size()) << "run " << run;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a[k].measured, b[k].measured) << "run " << run;
+      EXPECT_EQ(a[k].limit, b[k].limit) << "run " << run;
+      EXPECT_EQ(a[k].margin, b[k].margin) << "run " << run;
+    }
+  }
+  EXPECT_EQ(each.worst(0).at(0).margin, "-51 ns");
 }
 
 }  // namespace
