@@ -2,12 +2,11 @@
 // `out` after the delay for that direction (rise: 0 -> 1, fall: 1 -> 0). The delay can be
 // changed while running (cable swap); changes already in flight keep their old delay.
 //
-// A long cable at a high clock rate holds a dozen edges in flight. They wait in this line's own
-// queue, and only the earliest is in the kernel's queue, ordered as if it had been scheduled
-// when the edge went in (Kernel::take_seq): the same result as one kernel entry per edge.
+// Each change in flight is one entry in the kernel's queue, taken in the order of the moment it
+// went in: with unequal rise and fall delays a later change may overtake an earlier one, and the
+// kernel's (time, sequence) order delivers them as a transport delay must. The timing wheel
+// (event_queue.hpp) holds the dozen edges a long cable keeps in flight at no extra cost.
 #pragma once
-
-#include <vector>
 
 #include "endatsim/sim/signal.hpp"
 
@@ -29,23 +28,16 @@ class TransportDelay {
   Time fall() const { return fall_; }
 
  private:
-  struct InFlight {
-    Time when;
-    std::uint64_t seq;
-    bool value;
-    bool before(const InFlight& o) const { return when != o.when ? when < o.when : seq < o.seq; }
-  };
-  void on_input(std::uint64_t value);
-  static void deliver(void* self, std::uint64_t entry);
-  void queue_front();
+  void on_input(std::uint64_t value) {
+    // A zero delay wakes up in the next delta cycle, like any zero-delay wake-up.
+    kernel_.schedule(value != 0 ? rise_ : fall_, Action{&TransportDelay::deliver, &out_, value});
+  }
+  static void deliver(void* out, std::uint64_t value) { static_cast<Signal*>(out)->write(value != 0); }
 
   Kernel& kernel_;
   Signal& out_;
   Time rise_;
   Time fall_;
-  std::vector<InFlight> in_flight_;  // in delivery order from head_ on
-  std::size_t head_ = 0;
-  std::uint64_t entry_ = 0;  // the kernel entry for the front; older ones are stale
 };
 
 }  // namespace endatsim::sim
