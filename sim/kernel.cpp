@@ -50,12 +50,6 @@ void Kernel::commit_updates() {
     commit_updates_recorded();
     return;
   }
-  if (updates_.size() == 1) {  // the common case (one delivery, one pin hop): no list of changes
-    Signal* s = updates_.front();
-    updates_.clear();
-    if (s->commit()) s->notify();
-    return;
-  }
   for (Signal* s : updates_)
     if (s->commit()) changed_.push_back(s);
   updates_.clear();
@@ -77,7 +71,14 @@ void Kernel::commit_updates_recorded() {
 
 inline void Kernel::settle() {
   while ((!updates_.empty() || fifo_size_ != 0) && !stopped_) {
-    commit_updates();
+    // The common case (one delivery, one pin hop) commits here: no call, no list of changes.
+    if (updates_.size() == 1 && tape_ == nullptr) {
+      Signal* s = updates_.front();
+      updates_.clear();
+      if (s->commit()) s->notify();
+    } else {
+      commit_updates();
+    }
     if (fifo_size_ != 0) run_fifo_snapshot();
   }
 }
