@@ -133,28 +133,16 @@ std::optional<Time> Kernel::next_event_time() const {
   return queue_.top().when;
 }
 
-void Timer::start(Time delay) {
+void Timer::refuse(Time delay) {
   if (delay < Time::zero()) throw std::logic_error("Timer::start: negative delay");
-  if (delay > Time::max() - kernel_.now())
-    throw std::logic_error("Timer::start: the expiry would fall after Time::max()");
-  pending_ = true;
-  expiry_ = kernel_.now() + delay;
-  if (delay == Time::zero()) {
-    // The next delta cycle, through the kernel's FIFO like any zero-delay wake-up.
-    queued_ = true;
-    queued_at_ = expiry_;
-    kernel_.schedule(Time::zero(), Action{&Timer::fire, this, ++entry_});
-    return;
-  }
-  seq_ = kernel_.take_seq();
-  // An entry due at the same instant carries an older order: only an earlier one can be kept.
-  if (!queued_ || queued_at_ >= expiry_) queue(expiry_);
+  throw std::logic_error("Timer::start: the expiry would fall after Time::max()");
 }
 
-void Timer::queue(Time when) {
+void Timer::start_now() {
+  // The next delta cycle, through the kernel's FIFO like any zero-delay wake-up.
   queued_ = true;
-  queued_at_ = when;
-  kernel_.schedule_ordered(when, seq_, Action{&Timer::fire, this, ++entry_});
+  queued_at_ = expiry_;
+  kernel_.schedule(Time::zero(), Action{&Timer::fire, this, ++entry_});
 }
 
 void Timer::fire(void* self, std::uint64_t entry) {

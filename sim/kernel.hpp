@@ -177,6 +177,9 @@ class Timer {
  private:
   static void fire(void* self, std::uint64_t entry);
   void queue(Time when);
+  // Out of line and cold, so that start() inlines into the models that restart it on every edge.
+  [[noreturn]] static void refuse(Time delay);
+  void start_now();
   Kernel& kernel_;
   Action action_;
   bool pending_ = false;
@@ -195,6 +198,25 @@ inline void Kernel::schedule(Time delay, Action action) {
     return;
   }
   queue_.push({now_ + delay, seq_++, action});
+}
+
+inline void Timer::start(Time delay) {
+  if (delay < Time::zero() || delay > Time::max() - kernel_.now()) refuse(delay);
+  pending_ = true;
+  expiry_ = kernel_.now() + delay;
+  if (delay == Time::zero()) {
+    start_now();
+    return;
+  }
+  seq_ = kernel_.take_seq();
+  // An entry due at the same instant carries an older order: only an earlier one can be kept.
+  if (!queued_ || queued_at_ >= expiry_) queue(expiry_);
+}
+
+inline void Timer::queue(Time when) {
+  queued_ = true;
+  queued_at_ = when;
+  kernel_.schedule_ordered(when, seq_, Action{&Timer::fire, this, ++entry_});
 }
 
 // `now` itself only from an event of this instant (a delay line's next change due at once),
