@@ -74,6 +74,11 @@ TEST(KernelRun, RejectsNegativeDelays) {
   Kernel k;
   Log log{&k, {}};
   EXPECT_THROW(k.schedule(ps(-1), bind<&Log::record>(&log, 0)), std::logic_error);
+  Timer timer(k, bind<&Log::record>(&log, 1));
+  EXPECT_THROW(timer.start(ps(-1)), std::logic_error);
+  EXPECT_FALSE(timer.pending());
+  k.run();
+  EXPECT_TRUE(log.entries.empty());
 }
 
 TEST(KernelRun, RejectsAnEventAfterTheLatestTime) {
