@@ -157,7 +157,9 @@ void VcdWriter::on_step_end(void* self, std::uint64_t) {
     w->stamp_once(now);
     p.written = v;
     p.line[0] = v ? '1' : '0';
-    w->append(p.line.data(), p.line_size);
+    // All of the line's array in one fixed-size copy (a move, not a call); only its line counts.
+    std::memcpy(w->room(p.line.size()), p.line.data(), p.line.size());
+    w->used_ += p.line_size;
   }
   w->dirty_.clear();
   w->flush_if_full();
@@ -251,7 +253,7 @@ void VcdWriter::stamp(Time at) {
           std::to_chars(stamp_high_text_.data(), stamp_high_text_.data() + stamp_high_text_.size(), high).ptr -
           stamp_high_text_.data());
     }
-    std::memcpy(end, stamp_high_text_.data(), stamp_high_size_);
+    std::memcpy(end, stamp_high_text_.data(), 16);  // fixed size: the digits and what follows, overwritten below
     end += stamp_high_size_;
     auto low = static_cast<std::uint32_t>(t - high * kStampLow);
     for (std::size_t k = kStampLowDigits / 2; k-- > 0;) {
