@@ -30,9 +30,8 @@ class TransportDelay {
  private:
   void on_input(std::uint64_t value) {
     // A zero delay wakes up in the next delta cycle, like any zero-delay wake-up.
-    kernel_.schedule(value != 0 ? rise_ : fall_, Action{&TransportDelay::deliver, &out_, value});
+    kernel_.schedule(value != 0 ? rise_ : fall_, Action{&Kernel::write_signal, &out_, value});
   }
-  static void deliver(void* out, std::uint64_t value) { static_cast<Signal*>(out)->write(value != 0); }
 
   Kernel& kernel_;
   Signal& out_;

@@ -14,6 +14,8 @@ Kernel::Kernel() {
   changed_.reserve(64);
 }
 
+void Kernel::write_signal(void* signal, std::uint64_t value) { static_cast<Signal*>(signal)->write(value != 0); }
+
 void Kernel::refuse(const char* what) { throw std::logic_error(what); }
 
 void Kernel::schedule_at(Time when, Action action) {
@@ -114,7 +116,8 @@ void Kernel::run(Time until) {
     now_ = t;
     do {
       const Action a = queue_.pop().payload;
-      a();
+      if (a.fn == &write_signal) static_cast<Signal*>(a.ctx)->write(a.arg != 0);
+      else a();
       count_event();
     } while (!queue_.empty() && queue_.top().when == t && !stopped_);
     settle();
