@@ -52,8 +52,8 @@ class Kernel {
   void schedule(Time delay, Action action);
   void schedule_at(Time when, Action action);
 
-  // For models that keep their own queue of future work (a delay line, a timer restarted on
-  // every clock edge) and put only its earliest item into the kernel's queue: take_seq() at the
+  // For models that keep their own queue of future work (a timer restarted on every clock
+  // edge) and put only its earliest item into the kernel's queue: take_seq() at the
   // moment the work is decided, and schedule_ordered(when, seq, ...) later. The entry runs in
   // the order a schedule() at the moment of take_seq() would have given it, so keeping the
   // queue outside changes no result, only how many entries the queue holds.
