@@ -140,10 +140,14 @@ class EventQueue {
     const std::size_t b = bucket_of(node(n).entry.when) & kMask;
     std::uint32_t* link = &heads_[b];
     while (*link != n) link = &nodes_[*link].next;
-    *link = nodes_[n].next;
-    if (heads_[b] == kEnd) {
-      words_[b >> 6] &= ~(std::uint64_t{1} << (b & 63));
-      if (words_[b >> 6] == 0) summary_ &= ~(std::uint64_t{1} << (b >> 6));
+    const std::uint32_t next = nodes_[n].next;
+    *link = next;
+    // The bucket is empty when its head went and nothing followed (known without reading back
+    // the head just stored, which waits for the store).
+    if (link == &heads_[b] && next == kEnd) {
+      std::uint64_t& word = words_[b >> 6];
+      word &= ~(std::uint64_t{1} << (b & 63));
+      if (word == 0) summary_ &= ~(std::uint64_t{1} << (b >> 6));
     }
     --wheel_size_;
     nodes_[n].next = free_;
