@@ -62,12 +62,16 @@ FittedFrequency fit_frequency(const std::vector<Time>& rising) {
     const auto r = static_cast<long double>(residual(i)) / static_cast<long double>(fit.den);
     squares += r * r;
   }
-  if (squares == 0) return fit;
+  fit.uncertainty_ppm = uncertainty_ppm(fit, m, squares);
+  return fit;
+}
+
+std::int64_t uncertainty_ppm(const FittedFrequency& fit, std::int64_t m, long double squares) {
+  if (squares == 0) return 0;
   const long double slope_sd = std::sqrt(squares / static_cast<long double>(m - 2) /
                                          (static_cast<long double>(fit.den) / static_cast<long double>(m)));
   const long double period = static_cast<long double>(fit.num) / static_cast<long double>(fit.den);
-  fit.uncertainty_ppm = static_cast<std::int64_t>(std::ceil(3 * slope_sd / period * 1e6L));
-  return fit;
+  return static_cast<std::int64_t>(std::ceil(3 * slope_sd / period * 1e6L));
 }
 
 }  // namespace endatsim::checker

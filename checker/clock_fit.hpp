@@ -24,17 +24,22 @@ struct FittedFrequency {
   sim::Hertz hertz() const { return static_cast<sim::Hertz>((sim::Int128{sim::kPsPerSecond} * den + num / 2) / num); }
   // f above (or below) bound by more than `ppm` parts per million plus the fit's uncertainty.
   bool above(sim::Hertz bound, std::int64_t ppm) const {
-    return sim::Int128{sim::kPsPerSecond} * den * 1'000'000 > sim::Int128{bound} * (1'000'000 + ppm + uncertainty_ppm) * num;
+    return sim::Int128{sim::kPsPerSecond} * den * 1'000'000 >
+           sim::Int128{bound} * (1'000'000 + ppm + uncertainty_ppm) * num;
   }
   // The period shorter than `min` by more than `ppm` plus the fit's uncertainty.
   bool period_below(sim::Time min, std::int64_t ppm) const {
     return num * 1'000'000 < sim::Int128{min.count()} * den * (1'000'000 - ppm - uncertainty_ppm);
   }
   bool below(sim::Hertz bound, std::int64_t ppm) const {
-    return sim::Int128{sim::kPsPerSecond} * den * 1'000'000 < sim::Int128{bound} * (1'000'000 - ppm - uncertainty_ppm) * num;
+    return sim::Int128{sim::kPsPerSecond} * den * 1'000'000 <
+           sim::Int128{bound} * (1'000'000 - ppm - uncertainty_ppm) * num;
   }
 };
 
 FittedFrequency fit_frequency(const std::vector<Time>& rising);
+// Three standard errors of the fitted slope, in ppm of the period (rounded up), from the sum of
+// the squared residuals of `m` edges (in ps^2); 0 when they are all zero.
+std::int64_t uncertainty_ppm(const FittedFrequency& fit, std::int64_t m, long double squares);
 
 }  // namespace endatsim::checker

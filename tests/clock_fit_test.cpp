@@ -1,10 +1,9 @@
 // fit_frequency against the least-squares fit written out plainly (every sum in 128 bits, every
-// residual in long double): the same period and the same uncertainty, bit for bit, for steady and
-// jittered clocks, short frames and continuous clocks longer than the fit, and spans long enough
-// to need the 128-bit sums.
+// residual in long double, then the same uncertainty_ppm): the same period and the same
+// uncertainty, bit for bit, for steady and jittered clocks, short frames and continuous clocks
+// longer than the fit, and spans long enough to need the 128-bit sums.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <random>
 #include <vector>
 
@@ -38,11 +37,7 @@ FittedFrequency plain_fit(const std::vector<Time>& rising) {
         static_cast<long double>(fit.den * y(i) - intercept - i * fit.num) / static_cast<long double>(fit.den);
     squares += r * r;
   }
-  if (squares == 0) return fit;
-  const long double slope_sd = std::sqrt(squares / static_cast<long double>(m - 2) /
-                                         (static_cast<long double>(fit.den) / static_cast<long double>(m)));
-  const long double period = static_cast<long double>(fit.num) / static_cast<long double>(fit.den);
-  fit.uncertainty_ppm = static_cast<std::int64_t>(std::ceil(3 * slope_sd / period * 1e6L));
+  fit.uncertainty_ppm = uncertainty_ppm(fit, m, squares);
   return fit;
 }
 
