@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <sstream>
+#include <vector>
 
 #include <unistd.h>
 
@@ -109,6 +111,42 @@ TEST(VcdWriter, ChangesAtTimeZeroAreStampedZero) {
   const auto body = text.substr(text.find("$end\n", text.find("$dumpvars")) + 5);
   EXPECT_EQ(body, "1!\n#3000\n0!\n");
   endatsim::test_support::expect_clean_vcd(text, path);
+  std::filesystem::remove(path);
+}
+
+// Every time stamp is the time in decimal, whatever its digits: below 10^8 ps, where the leading
+// digits are kept from the stamp before, across their changes, up to 19 digits, and at 2 000
+// random times that step by 1 ps to 10^12 ps.
+TEST(VcdWriter, StampsEachTimeStepWithItsTimeInDecimal) {
+  std::vector<std::int64_t> times{1, 9, 10, 99'999'999, 100'000'000, 100'000'001, 109'999'999, 110'000'000,
+                                  123'456'789, 987'654'321, 1'000'000'000'000, 1'000'000'099'999'990};
+  std::mt19937_64 random(17);
+  for (int k = 0; k < 2000; ++k) {
+    const std::int64_t scale = std::int64_t{1} << (random() % 40);
+    times.push_back(times.back() + 1 + static_cast<std::int64_t>(random() % static_cast<std::uint64_t>(scale)));
+  }
+  times.push_back(Time::max().count() - 1);
+  const std::string path = (std::filesystem::temp_directory_path() / "endatsim_vcd_stamps.vcd").string();
+  {
+    Kernel k;
+    Signal a(k, "a", false);
+    VcdWriter vcd(k, path);
+    vcd.add(a, "top", "a");
+    vcd.start();
+    struct Toggle {
+      Signal* s;
+      void go() { s->write(!s->read()); }
+    } toggle{&a};
+    for (std::int64_t t : times) k.schedule(Time{t}, bind<&Toggle::go>(&toggle));
+    k.run();
+    vcd.finish();
+  }
+  const std::string text = read_file(path);
+  std::istringstream body(text.substr(text.find("$end\n", text.find("$dumpvars")) + 5));
+  std::vector<std::int64_t> stamps;
+  for (std::string line; std::getline(body, line);)
+    if (!line.empty() && line[0] == '#') stamps.push_back(std::stoll(line.substr(1)));
+  EXPECT_EQ(stamps, times);
   std::filesystem::remove(path);
 }
 
