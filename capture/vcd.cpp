@@ -26,13 +26,14 @@ class TokenStream {
  public:
   explicit TokenStream(const std::string& path) : in_(path, std::ios::binary) {}
   bool good() const { return static_cast<bool>(in_); }
-  // The next whitespace-separated token; false at the end of the file. Runs of the buffer are
-  // scanned and appended at once: a capture is millions of short tokens.
-  bool next(std::string& token) {
-    token.clear();
+  // The next whitespace-separated token; false at the end of the file. The token is a view into
+  // the buffer, valid until the next call; only one that runs across the buffer's end is copied
+  // (a capture is millions of short tokens).
+  bool next(std::string_view& token) {
     for (;;) {  // the whitespace before it
       if (pos_ == end_ && !fill()) {
         token_line_ = line_;
+        token = {};
         return false;
       }
       const char c = buffer_[pos_];
@@ -42,26 +43,38 @@ class TokenStream {
       ++consumed_;
     }
     token_line_ = line_;
-    for (;;) {
-      const std::size_t from = pos_;
-      const std::size_t room = kMaxToken + 1 - token.size();
-      const std::size_t stop = std::min(end_, pos_ + room);
-      while (pos_ < stop && !is_space(buffer_[pos_])) ++pos_;
-      token.append(buffer_.data() + from, pos_ - from);
-      consumed_ += pos_ - from;
-      if (token.size() > kMaxToken) return true;  // the caller rejects it
-      if (pos_ < end_) {  // the whitespace that ends it is taken with it
-        if (buffer_[pos_] == '\n') ++line_;
-        ++pos_;
-        ++consumed_;
-        unterminated_ = false;
-        return true;
-      }
+    const std::size_t from = pos_;
+    pos_ = scan(pos_, std::min(end_, pos_ + kMaxToken + 1));
+    consumed_ += pos_ - from;
+    if (pos_ < end_ || pos_ - from > kMaxToken) {
+      token = std::string_view(buffer_.data() + from, pos_ - from);
+      if (token.size() <= kMaxToken) take_separator();
+      return true;
+    }
+    spill_.assign(buffer_.data() + from, pos_ - from);
+    for (;;) {  // the token runs on after the buffer's end
       if (!fill()) {
         unterminated_ = true;
+        token = spill_;
+        return true;
+      }
+      const std::size_t rest = pos_;
+      pos_ = scan(pos_, std::min(end_, pos_ + kMaxToken + 1 - spill_.size()));
+      spill_.append(buffer_.data() + rest, pos_ - rest);
+      consumed_ += pos_ - rest;
+      token = spill_;
+      if (spill_.size() > kMaxToken) return true;  // the caller rejects it
+      if (pos_ < end_) {
+        take_separator();
         return true;
       }
     }
+  }
+  bool next(std::string& token) {
+    std::string_view view;
+    const bool found = next(view);
+    token.assign(view);
+    return found;
   }
   // The last token ran into the end of the file: a writer ends every line, so the file was cut.
   bool unterminated() const { return unterminated_; }
@@ -71,9 +84,28 @@ class TokenStream {
   static constexpr std::size_t kMaxToken = 4096;
 
  private:
-  // A NUL is no part of any VCD token: it separates them like a space.
-  static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v' || c == '\0';
+  // A NUL is no part of any VCD token: it separates them like a space. A table: this is asked of
+  // every character of a capture.
+  static constexpr std::array<bool, 256> kSpace = [] {
+    std::array<bool, 256> space{};
+    for (const char c : {' ', '\t', '\n', '\r', '\f', '\v', '\0'}) space[static_cast<unsigned char>(c)] = true;
+    return space;
+  }();
+  static bool is_space(char c) { return kSpace[static_cast<unsigned char>(c)]; }
+  // The first whitespace in [from, stop), or stop. In locals: stores to a member would have to be
+  // kept in step with the character loads, which may alias them.
+  std::size_t scan(std::size_t from, std::size_t stop) const {
+    const char* const text = buffer_.data();
+    std::size_t at = from;
+    while (at < stop && !is_space(text[at])) ++at;
+    return at;
+  }
+  // The whitespace that ends a token is taken with it.
+  void take_separator() {
+    if (buffer_[pos_] == '\n') ++line_;
+    ++pos_;
+    ++consumed_;
+    unterminated_ = false;
   }
   bool fill() {
     in_.read(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
@@ -83,6 +115,7 @@ class TokenStream {
   }
   std::ifstream in_;
   std::array<char, 1 << 16> buffer_{};
+  std::string spill_;  // a token across the buffer's end
   std::size_t pos_ = 0;
   std::size_t end_ = 0;
   std::size_t line_ = 1;
@@ -287,37 +320,60 @@ class VcdReader final : public QueuedReader {
 
   // One token of the body; false at the end of the file.
   bool body_token() {
-    std::string& t = body_;  // reused: a value change is a token or two, millions of times
+    std::string_view t;  // into the token stream's buffer: used before the next token is read
     if (!tokens_.next(t)) return false;
     if (t.size() > TokenStream::kMaxToken) fail("a token longer than " + std::to_string(TokenStream::kMaxToken) + " characters");
     if (tokens_.unterminated())
-      fail("truncated: the file ends inside '" + t.substr(0, 40) + "', without the end of its line");
+      fail("truncated: the file ends inside '" + quoted(t) + "', without the end of its line");
     switch (t[0]) {
       case '$':
-        if (t == "$comment") skip_to_end(t);
+        if (t == "$comment") skip_to_end(std::string(t));
         return true;  // $dumpvars, $dumpall, $dumpon, $dumpoff and their $end: the changes inside count
       case '#': {
-        std::int64_t units = 0;
-        const auto [p, ec] = std::from_chars(t.data() + 1, t.data() + t.size(), units);
-        if (ec != std::errc() || p != t.data() + t.size() || units < 0) fail("bad timestamp '" + t.substr(0, 40) + "'");
-        if (units > (INT64_MAX - 500) / scale_num_) fail("timestamp '" + t.substr(0, 40) + "' beyond the picosecond range");
-        const Time at{(units * scale_num_ + 500) / 1000};
-        if ((units * scale_num_) % 1000 != 0) rounded_ = true;
-        if (at < now_) fail("time goes backwards (" + t.substr(0, 40) + ")");
+        const std::optional<std::int64_t> units = decimal(t.substr(1));
+        if (!units) fail("bad timestamp '" + quoted(t) + "'");
+        if (*units > (INT64_MAX - 500) / scale_num_) fail("timestamp '" + quoted(t) + "' beyond the picosecond range");
+        const Time at{(*units * scale_num_ + 500) / 1000};
+        if ((*units * scale_num_) % 1000 != 0) rounded_ = true;
+        if (at < now_) fail("time goes backwards (" + quoted(t) + ")");
         now_ = at;
         return true;
       }
-      case 'b': case 'B': vector(t.substr(1), token("the vector's identifier")); return true;
+      case 'b': case 'B': {
+        const std::string digits(t.substr(1));  // before the next token replaces t
+        vector(digits, token("the vector's identifier"));
+        return true;
+      }
       case 'r': case 'R': lookup(token("the real's identifier")); return true;
       case 's': case 'S': lookup(token("the text's identifier")); return true;
       default: break;
     }
     const char v = normalize(t[0]);
-    if (v == '?' || t.size() < 2) fail("'" + t.substr(0, 40) + "' is no value change");
-    const Variable& var = lookup(std::string_view(t).substr(1));
-    if (var.real || var.width != 1) fail("scalar value '" + t.substr(0, 40) + "' for a vector or real variable");
+    if (v == '?' || t.size() < 2) fail("'" + quoted(t) + "' is no value change");
+    const Variable& var = lookup(t.substr(1));
+    if (var.real || var.width != 1) fail("scalar value '" + quoted(t) + "' for a vector or real variable");
     emit(var.first, v);
     return true;
+  }
+
+  // A token's first 40 characters, for a message.
+  static std::string quoted(std::string_view t) { return std::string(t.substr(0, 40)); }
+
+  // Digits only, at most INT64_MAX (a time stamp's units); nullopt for anything else. By hand, with
+  // one check for the range at the end: std::from_chars took half of a time stamp's share of
+  // reading a capture.
+  static std::optional<std::int64_t> decimal(std::string_view digits) {
+    if (digits.empty()) return std::nullopt;
+    const std::size_t zeros = std::min(digits.find_first_not_of('0'), digits.size());
+    if (digits.size() - zeros > 19) return std::nullopt;  // 10^19 > INT64_MAX
+    std::uint64_t value = 0;  // 19 digits stay below 2^64
+    for (const char c : digits) {
+      const auto d = static_cast<unsigned>(c - '0');
+      if (d > 9) return std::nullopt;
+      value = value * 10 + d;
+    }
+    if (value > static_cast<std::uint64_t>(INT64_MAX)) return std::nullopt;
+    return static_cast<std::int64_t>(value);
   }
 
   // "b0101 id": left-extended with 0, or with x when the leftmost digit is x or z.
@@ -341,7 +397,6 @@ class VcdReader final : public QueuedReader {
   };
 
   TokenStream tokens_;
-  std::string body_;
   std::vector<std::string> scopes_;
   std::unordered_map<std::string, Variable, IdHash, std::equal_to<>> vars_;  // its elements never move
   std::vector<const Variable*> short_ids_ = std::vector<const Variable*>(kPrintable + kPrintable * kPrintable);

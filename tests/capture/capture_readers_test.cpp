@@ -688,6 +688,67 @@ TEST_F(CaptureReaders, VcdTimestampAtTheEndOfThePicosecondRange) {
   }
 }
 
+// A time stamp is "#" and decimal digits, nothing else, up to the largest 64-bit value; each
+// bad one is refused with its line and its text.
+TEST_F(CaptureReaders, VcdBadTimestampsAreRefusedWithTheirLine) {
+  for (const std::string stamp :
+       {"#", "#12a", "#-5", "#+5", "#1.5", "#0x10", "#9223372036854775808", "#99999999999999999999"}) {
+    const std::string path = write("stamp.vcd", "$timescale 1 ps $end\n$var wire 1 ! a $end\n$enddefinitions $end\n#0\n0!\n" +
+                                                    stamp + "\n1!\n");
+    SCOPED_TRACE(stamp);
+    expect_mentions(vcd_signals_or_error(path), {path + ": line 6: ", "bad timestamp '" + stamp + "'"});
+  }
+  // Leading zeros are digits like any other.
+  const std::string path = write("stamp.vcd", "$timescale 1 fs $end\n$var wire 1 ! a $end\n$enddefinitions $end\n#0\n0!\n"
+                                              "#0009223372036854775307\n1!\n");
+  auto reader = capture::open_vcd(path);
+  Change c;
+  ASSERT_TRUE(reader->next(c));
+  ASSERT_TRUE(reader->next(c));
+  EXPECT_EQ(c.time, Time{INT64_MAX / 1000});
+}
+
+// Tokens that run across the end of the reader's 64 KiB buffer: time stamps and value changes
+// read as they do anywhere else, a word of the longest length is taken and one character more
+// refused with its line, and a file cut inside a token is truncated.
+TEST_F(CaptureReaders, VcdTokensAcrossTheBufferEnd) {
+  const std::string head = "$timescale 1 ps $end\n$var wire 1 ! a $end\n$enddefinitions $end\n";
+  // A comment of words that makes the file `size` bytes long, on one line.
+  const auto up_to = [&](std::size_t size) {
+    std::string text = head + "$comment";
+    while (text.size() + 9 < size - 6) text += " cccccccc";
+    text += std::string(size - 6 - text.size(), ' ') + " $end\n";
+    return text;
+  };
+  for (std::size_t shift = 0; shift < 24; ++shift) {
+    const std::string text = up_to(65536 - 12 + shift) + "#123456\n1!\n#123457\n0!\n";
+    const std::string path = write("across.vcd", text);
+    SCOPED_TRACE(shift);
+    auto reader = capture::open_vcd(path);
+    Change c;
+    ASSERT_TRUE(reader->next(c));
+    EXPECT_EQ(c.time, Time{123456});
+    EXPECT_EQ(c.value, '1');
+    ASSERT_TRUE(reader->next(c));
+    EXPECT_EQ(c.time, Time{123457});
+    EXPECT_EQ(c.value, '0');
+    EXPECT_FALSE(reader->next(c));
+  }
+  for (std::size_t at : {std::size_t{200}, std::size_t{65536 - 2000}, std::size_t{65536 - 4000}}) {
+    const std::string text = up_to(at);
+    SCOPED_TRACE(at);
+    const std::string ok = write("long.vcd", text + "$comment " + std::string(4096, 'w') + " $end\n#5\n1!\n");
+    auto reader = capture::open_vcd(ok);
+    Change c;
+    ASSERT_TRUE(reader->next(c));
+    EXPECT_EQ(c.time, Time{5});
+    const std::string bad = write("too_long.vcd", text + "#1\n1!\n" + std::string(4097, '1') + "\n");
+    expect_mentions(vcd_signals_or_error(bad), {bad + ": line 7: ", "a token longer than 4096 characters"});
+  }
+  const std::string cut = write("cut.vcd", up_to(65536 - 3) + "#12345");
+  expect_mentions(vcd_signals_or_error(cut), {cut + ": line 5: ", "truncated: the file ends inside '#12345'"});
+}
+
 TEST_F(CaptureReaders, SaleaeTimeWithTwoExponentSignsIsRefused) {
   for (const std::string time : {"1e--5", "1e+-5", "1e-+5", "0.0000000000001e+-2147483648", "1e--2147483648", "1e-"}) {
     const std::string csv = write("signs.csv", "Time [s],a\n0,0\n" + time + ",1\n");
