@@ -47,7 +47,6 @@ FrameEngine::FrameEngine(sim::Kernel& kernel, line::Line::MasterSide pins, const
                          DelayMeasurement& delay, FrameClient& client, const std::vector<MasterObserver*>& observers)
     : kernel_(kernel), pins_(pins), params_(params), delay_(delay), client_(client), observers_(observers),
       timing_(params), sample_strobe_(kernel, "master_sample", false), frame_active_(kernel, "master_frame", false),
-      edge_timer_(kernel, sim::bind<&FrameEngine::clock_edge>(this)),
       layout_(protocol::position_frame_layout(protocol::EndatVersion::V2_1, params.position_bits)) {
   pins_.data_in.on_change(sim::bind<&FrameEngine::on_data_in>(this));
 }
@@ -95,6 +94,16 @@ void FrameEngine::start(const FrameRequest& request) {
 
 // ---- the clock and what the master sends ---------------------------------------------------
 
+// Each edge queues the next straight into the kernel: one call when it comes up, where a
+// restartable timer took two (its own, then its action's), on every edge of every frame.
+void FrameEngine::next_edge(Time delay) {
+  kernel_.schedule(delay, sim::bind<&FrameEngine::edge_due>(this, edge_epoch_));
+}
+
+void FrameEngine::edge_due(std::uint64_t epoch) {
+  if (epoch == edge_epoch_) clock_edge();
+}
+
 void FrameEngine::clock_edge() {
   if (clock_low_) rising_edge();
   else falling_edge();
@@ -129,7 +138,7 @@ void FrameEngine::falling_edge() {
       kernel_.schedule(frame_.t_d_used, sim::bind<&FrameEngine::sample>(this, sample_tag(epoch_, slot)));
     else sample_now(slot);
   }
-  edge_timer_.start(timing_.after_falling(clock_, kernel_.now()) - kernel_.now());
+  next_edge(timing_.after_falling(clock_, kernel_.now()) - kernel_.now());
 }
 
 void FrameEngine::rising_edge() {
@@ -166,7 +175,7 @@ void FrameEngine::rising_edge() {
     maybe_complete_frame();
     return;
   }
-  edge_timer_.start(timing_.after_rising(kernel_.now()) - kernel_.now());
+  next_edge(timing_.after_rising(kernel_.now()) - kernel_.now());
 }
 
 void FrameEngine::drive_supplement_bit() {
@@ -352,7 +361,7 @@ void FrameEngine::end_reception(FrameOutcome outcome, bool answer_complete) {
     // Aborted: finish the current clock period and leave CLOCK HIGH (A2: wait t_m).
     last_clock_ = clock_;
     if (!clock_low_) {
-      edge_timer_.cancel();
+      ++edge_epoch_;  // the edge queued is not taken
       clocking_done_ = true;
     }
   }

@@ -88,6 +88,8 @@ class FrameEngine {
   enum class Rx : std::uint8_t { Off, Polling, Receiving, Done };
 
   void clock_edge();
+  void next_edge(Time delay);
+  void edge_due(std::uint64_t epoch);
   void falling_edge();
   void rising_edge();
   void sample(std::uint64_t tag);
@@ -114,7 +116,9 @@ class FrameEngine {
   ClockTiming timing_;  // when each edge is due; its generator also draws the delay counter's phase
   sim::Signal sample_strobe_;
   sim::Signal frame_active_;
-  sim::Timer edge_timer_;
+  // The clock's next edge is a kernel entry that carries this; an abort moves it on, so that the
+  // entry queued before finds it changed and does nothing.
+  std::uint64_t edge_epoch_ = 0;
 
   FrameResult frame_;
   bool frame_running_ = false;
