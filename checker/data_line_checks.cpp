@@ -56,7 +56,7 @@ void TimingChecker::start_data_line_checks() {
 // (fail-safe LOW), on a rising clock edge. Only a HIGH after it is a start bit: a type I answer
 // that drives HIGH at once (A2, docs/model.md §10) is not.
 void TimingChecker::note_encoder_low() {
-  if (driving_ && !line_.pins(ObservationPoint::EncoderPins).data.read()) driven_low_ = true;
+  if (driving_ && !encoder_pins_.data.read()) driven_low_ = true;
 }
 
 std::optional<Time> TimingChecker::turnaround_bound() const {
@@ -456,7 +456,7 @@ void TimingChecker::check_encoder_sample(unsigned clock) {
   if (clock < position::kFirstModeBit || clock > position::kLastModeBit) return;
   if (params_.driver_enables_observable && clock == position::kFirstModeBit) judge(protocol::check::row_index(check::kFloatingData));
   if (floating_reported_) return;
-  if (line_.pins(ObservationPoint::EncoderPins).data_driven.read()) return;
+  if (encoder_pins_.data_driven.read()) return;
   floating_reported_ = true;
   report({.check = std::string(check::kFloatingData),
           .spec = "2.3 (mode bits taken on rising edges)",

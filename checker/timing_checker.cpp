@@ -236,6 +236,8 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
                              const MasterDeclaration& master, const CheckerParams& params)
     : kernel_(kernel),
       line_(line),
+      encoder_pins_(line.pins(ObservationPoint::EncoderPins)),
+      master_pins_(line.pins(ObservationPoint::MasterPins)),
       encoder_(encoder),
       master_(master),
       params_(params),
@@ -252,13 +254,12 @@ TimingChecker::TimingChecker(sim::Kernel& kernel, line::Line& line, const Encode
       power_on_(params.resolution) {
   if (encoder.switched_on_in_run) power_on_.switched_on(kernel.now());
   line.master().clock_out.on_change_monitor(sim::bind<&TimingChecker::on_master_clock>(this));
-  auto encoder_pins = line.pins(ObservationPoint::EncoderPins);
-  encoder_pins.clock.on_change_monitor(sim::bind<&TimingChecker::on_encoder_clock>(this));
-  encoder_pins.driver_enable.on_change_monitor(sim::bind<&TimingChecker::on_encoder_driver>(this));
-  encoder_pins.data.on_change_monitor(sim::bind<&TimingChecker::on_encoder_data>(this));
+  encoder_pins_.clock.on_change_monitor(sim::bind<&TimingChecker::on_encoder_clock>(this));
+  encoder_pins_.driver_enable.on_change_monitor(sim::bind<&TimingChecker::on_encoder_driver>(this));
+  encoder_pins_.data.on_change_monitor(sim::bind<&TimingChecker::on_encoder_data>(this));
   line.master().data_in.on_change_monitor(sim::bind<&TimingChecker::on_master_data>(this));
-  line.pins(ObservationPoint::MasterPins).data_driven.on_change_monitor(sim::bind<&TimingChecker::on_master_driven>(this));
-  encoder_pins.data_driven.read_by_monitor(this);  // floating DATA at the encoder's sampling instants
+  master_pins_.data_driven.on_change_monitor(sim::bind<&TimingChecker::on_master_driven>(this));
+  encoder_pins_.data_driven.read_by_monitor(this);  // floating DATA at the encoder's sampling instants
   // Contentions that began before the checker (those the line has logged) are judged too.
   for (const line::Contention& c : line.contentions())
     if (contentions_reported() && (!params_.recorded_at || c.where == *params_.recorded_at))
@@ -481,7 +482,7 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
   if (level != 0) {
     if (!in_frame_) return;
     current_.rising.push_back(now);
-    low_at_last_rise_ = !line_.pins(ObservationPoint::EncoderPins).data.read();
+    low_at_last_rise_ = !encoder_pins_.data.read();
     note_encoder_low();
     check_encoder_sample(static_cast<unsigned>(current_.rising.size()));
     // The decoder has taken the last mode bit (on RE8) once the next edge comes.
@@ -512,7 +513,7 @@ void TimingChecker::on_encoder_clock(std::uint64_t level) {
   }
   ++encoder_falling_edges_;
   if (!pending_.empty() && pending_.front().first == encoder_falling_edges_) {
-    master_driven_.assign(1, {now, line_.pins(ObservationPoint::MasterPins).data_driven.read()});
+    master_driven_.assign(1, {now, master_pins_.data_driven.read()});
     floating_reported_ = false;
     if (in_frame_) evaluate(current_);
     current_.header = pending_.front().second;
@@ -560,7 +561,7 @@ void TimingChecker::begin_wire_frame(Time now) {
   }
   const WireFrame* started = decoder_.current();
   if (started == nullptr) return;  // the end of the run
-  master_driven_.assign(1, {now, line_.pins(ObservationPoint::MasterPins).data_driven.read()});
+  master_driven_.assign(1, {now, master_pins_.data_driven.read()});
   floating_reported_ = false;
   current_.header = FrameHeader{};
   current_.header.index = started->index;

@@ -420,6 +420,9 @@ class TimingChecker final {
 
   sim::Kernel& kernel_;
   line::Line& line_;
+  // The pins' signals, looked up once: they are read on every clock edge.
+  line::Line::Pins encoder_pins_;
+  line::Line::Pins master_pins_;
   EncoderDeclaration encoder_;
   MasterDeclaration master_;
   CheckerParams params_;
