@@ -136,7 +136,14 @@ class Kernel {
   [[gnu::noinline]] void commit_updates_recorded();
   [[gnu::noinline]] void note_step_end();
   void run_fifo_snapshot();
-  void push_fifo(Action a);
+  // A zero-delay wake-up (a delay line of zero delay: every hop of the line `endatsim check` replays
+  // a capture onto) is a store and a mask; the ring doubles, out of line, when full.
+  void push_fifo(Action a) {
+    if (fifo_size_ == fifo_.size()) grow_fifo();
+    fifo_[(fifo_head_ + fifo_size_) & (fifo_.size() - 1)] = a;
+    ++fifo_size_;
+  }
+  void grow_fifo();
   void count_event() {
     if (++events_processed_ == next_watch_) {
       next_watch_ += watch_every_;
@@ -152,7 +159,7 @@ class Kernel {
   std::uint64_t next_watch_ = UINT64_MAX;
   Action watch_;
   EventQueue<Action> queue_;  // the timed events
-  std::vector<Action> fifo_;  // ring buffer
+  std::vector<Action> fifo_;  // ring buffer, its size a power of two
   std::size_t fifo_head_ = 0;
   std::size_t fifo_size_ = 0;
   std::vector<Signal*> updates_;  // Signal is final: its commit() is a direct call
