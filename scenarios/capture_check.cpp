@@ -22,6 +22,13 @@ using sim::Time;
 // without delays: CLOCK from the master; DATA from the encoder while its recorded enable is on,
 // from the master otherwise (without a recorded enable, always from the master: the checker
 // then knows the enables are not observable). 'x' releases DATA.
+//
+// Changes at one instant: CLOCK's first, and the others once its edge has reached the encoder's
+// pins, as a clocked circuit sees them (a flip-flop takes the level before its edge). So an
+// encoder that releases DATA at FE1 itself or drives it at FE9 itself (t_z = 0, t_OE = 0) does
+// it after that edge, not before it, whatever order the lines of a VCD time step or the hops of
+// the line would give. (The bits on DATA are taken by time, not by this order: a change at the
+// instant of the rising edge that takes a bit counts for it, as the model's encoder takes it.)
 class Replay {
  public:
   Replay(sim::Kernel& kernel, line::Line& line, capture::Reader& reader, const CaptureCheckOptions& o,
@@ -38,6 +45,9 @@ class Replay {
         on_frame_(o.on_frame),
         simulator_(!reader.sampled() && !o.resolution),
         timer_(kernel, sim::bind<&Replay::step>(this)) {
+    clock_written_ = master_.clock_out.read();
+    // After the checker's own listener there, which is already in place.
+    line.pins(line::ObservationPoint::EncoderPins).clock.on_change(sim::bind<&Replay::after_clock>(this));
     clock_ = capture::find_signal(reader, o.clock);
     data_ = capture::find_signal(reader, o.data);
     std::vector<std::uint32_t> wanted{clock_, data_};
@@ -74,7 +84,8 @@ class Replay {
   void step() {
     do {
       checker_.raise_resolution(reader_.uncertainty());
-      apply(next_);
+      if (next_.signal == clock_) apply(next_);
+      else held_.push_back(next_);
       if ((++result_.changes & 0xFFFF) == 0) {
         if (const int signal = interrupt_signal(); signal != 0)
           throw Interrupted(reader_.path() + ": interrupted by " + signal_name(signal) + ": not judged", signal);
@@ -82,12 +93,30 @@ class Replay {
       }
       result_.end = next_.time + offset_;
       if (!reader_.next(next_)) {
+        release_held();
         drain();
         return;
       }
     } while (next_.time + offset_ == kernel_.now());
+    release_held();
     drain();
     schedule();
+  }
+
+  // The instant's other changes: now if CLOCK does not move (also when it changed and changed back:
+  // a pulse of no width commits nothing), else from after_clock().
+  void release_held() {
+    clock_moved_ = clock_written_ != master_.clock_out.read();
+    if (clock_moved_) return;
+    for (const capture::Change& c : held_) apply(c);
+    held_.clear();
+  }
+
+  void after_clock() {
+    if (!clock_moved_) return;
+    clock_moved_ = false;
+    release_held();
+    drain();
   }
 
  public:
@@ -127,7 +156,8 @@ class Replay {
         return;
       }
       if (!clock_known_) begin(c);
-      master_.clock_out.write(c.value == '1');
+      clock_written_ = c.value == '1';
+      master_.clock_out.write(clock_written_);
       decoder_.on_clock(now, c.value == '1');
       return;
     }
@@ -209,6 +239,9 @@ class Replay {
   char out_level_ = '1';
   bool master_on_ = false;
   capture::Change next_;
+  std::vector<capture::Change> held_;  // this instant's changes other than CLOCK's
+  bool clock_written_ = true;          // the level last written to CLOCK
+  bool clock_moved_ = false;           // CLOCK changes at this instant: held_ waits for its edge
   Time offset_{0};
   char data_level_ = '1';
   bool encoder_on_ = false;

@@ -1188,6 +1188,68 @@ void to_femtoseconds(const fs::path& from, const fs::path& to, int nth, std::int
 
 }  // namespace
 
+// The encoder's driver turned off at FE1 itself and on at FE9 itself (t_z = t_OE = 0, as a
+// zero-delay RTL encoder does): at one instant the clock's edge counts first, so both turnarounds
+// are within their limits and every frame decodes as before, whichever order the time step lists
+// the two lines in. (Before, the enable reached the checker before the edge, and every frame
+// broke t_z, t_cal and its turnaround.)
+TEST(CheckCapture, AnEnableThatChangesAtTheClockEdgeItselfCountsAfterTheEdge) {
+  const auto s = test_support::make_scenario(3, sim::MHz(2), false);
+  const fs::path vcd = temp("edge.vcd"), moved = temp("edge_moved.vcd");
+  run_to_vcd(s, vcd);
+  const auto original = scenarios::check_capture(encoder_pins_of(s, vcd));
+  ASSERT_TRUE(original.conforms());
+  ASSERT_GE(original.frames_clean, 3U);
+  for (const bool enable_line_first : {false, true}) {
+    PinChanges changes = encoder_pin_changes(vcd);
+    // Each frame's FE1 (CLOCK HIGH for more than 5 us before it) and FE9.
+    std::vector<std::int64_t> fe1, fe9;
+    std::int64_t rose = 0;
+    int falls = 0;
+    for (const auto& [t, i, v] : changes) {
+      if (i != 0) continue;
+      if (v == '1') rose = t;
+      else if (fe1.empty() || t - rose > 5'000'000) falls = 1, fe1.push_back(t);
+      else if (++falls == 9) fe9.push_back(t);
+    }
+    ASSERT_EQ(fe1.size(), fe9.size());
+    PinChanges out;
+    std::size_t released = 0, driven = 0;
+    for (const auto& [t, i, v] : changes) {
+      if (i != 2) {
+        out.emplace_back(t, i, v);
+        continue;
+      }
+      // The release after each FE1 and the drive after each FE9, each moved onto its edge.
+      const auto after = [&](const std::vector<std::int64_t>& edges) {
+        const auto e = std::upper_bound(edges.begin(), edges.end(), t);
+        return e == edges.begin() ? std::int64_t{-1} : *(e - 1);
+      };
+      const std::int64_t edge = v == '0' ? after(fe1) : after(fe9);
+      const bool move = edge >= 0 && t - edge < 200'000;
+      if (move) (v == '0' ? released : driven) += 1;
+      const std::int64_t at = move ? edge : t;
+      if (enable_line_first) {
+        const auto clock_line = std::find(out.begin(), out.end(), std::make_tuple(at, std::size_t{0}, '0'));
+        out.insert(clock_line, std::make_tuple(at, std::size_t{2}, v));
+      } else {
+        out.emplace_back(at, i, v);
+      }
+    }
+    EXPECT_EQ(released, fe1.size());
+    EXPECT_EQ(driven, fe9.size());
+    write_encoder_pins(moved, "1 ps", out);
+    auto o = encoder_pins_of(s, moved);
+    const auto r = scenarios::check_capture(o);
+    EXPECT_TRUE(r.conforms()) << enable_line_first << "\n" << verdict_line(r.violations);
+    EXPECT_EQ(r.frames_decoded, original.frames_decoded);
+    EXPECT_EQ(r.frames_clean, original.frames_clean);
+    EXPECT_EQ(decoded(r), decoded(original));
+  }
+  fs::remove(vcd);
+  fs::remove(moved);
+}
+
 // A VCD finer than the picosecond is read to the nearest picosecond: once a time rounds, the
 // resolution is a picosecond, and t_ST 400 fs short of note 8's 2 us is undecided, never passed;
 // while every time falls on a whole picosecond the file is exact. The bundled 8 MHz scenario meets t_ST with no margin in each of its 20
