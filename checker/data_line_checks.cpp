@@ -164,15 +164,26 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
 
 // The rising clock edge whose bit slot an edge on DATA at the encoder pins belongs to: the encoder
 // puts its bits out on rising edges, which show on its pins one encoder-internal delay (receiver,
-// logic, driver) later.
+// logic, driver) later. The slot is the one whose bit the level from this edge on is taken for,
+// as the decoder takes it (checker/frame_decoder.hpp): half a period after RE_k plus the declared
+// delay. So an encoder a little faster or slower than declared (up to half a period) still has its
+// start bit on the edge that carried it, as the decoded frame shows.
 unsigned TimingChecker::carrying_clock() const {
+  const auto& rising = current_.rising;
   const auto& lp = line_.params();
-  // In a sampled capture each edge shows up to one resolution late: a DATA edge may then look
-  // earlier than its clock edge plus the delay by as much.
-  const Time launched = kernel_.now() - (lp.encoder.receiver_delay + encoder_.output_delay + lp.encoder.driver_delay) +
-                        params_.resolution;
-  const auto carried_by = std::upper_bound(current_.rising.begin(), current_.rising.end(), launched);
-  return static_cast<unsigned>(carried_by - current_.rising.begin());
+  const Time delay = lp.encoder.receiver_delay + encoder_.output_delay + lp.encoder.driver_delay;
+  const std::size_t n = rising.size();
+  if (n < 2) {
+    // No period yet: the latest edge the declared delay allows. In a sampled capture each edge
+    // shows up to one resolution late: a DATA edge may then look earlier than its clock edge plus
+    // the delay by as much.
+    const Time launched = kernel_.now() - delay + params_.resolution;
+    return static_cast<unsigned>(std::upper_bound(rising.begin(), rising.end(), launched) - rising.begin());
+  }
+  const Time half = (rising[n - 1] - rising[n - 2]) / 2;
+  const auto first = std::lower_bound(rising.begin(), rising.end(), kernel_.now() - delay - half);
+  // After the last edge's slot (the clock stopped): that edge's.
+  return static_cast<unsigned>(std::min<std::size_t>(static_cast<std::size_t>(first - rising.begin()) + 1, n));
 }
 
 // The start bit of the frame's first word: the first rising DATA edge the encoder drives after the

@@ -1250,6 +1250,44 @@ TEST(CheckCapture, AnEnableThatChangesAtTheClockEdgeItselfCountsAfterTheEdge) {
   fs::remove(moved);
 }
 
+// The start bit belongs to the rising edge whose bit the decoder takes it for: the slot of RE_k
+// runs from half a period before RE_k plus the declared CLOCK-to-DATA delay to half a period after.
+// An encoder faster or slower than declared by less than half a period (T = 500 ns) keeps its
+// start bit on RE11, as the decoded frame shows; by more, it moves to the next edge, and t_cal's
+// minimum (RE11, 10.5 periods after FE1) or the clock count says so. (Before, the encoder had to
+// be no faster than declared: 1 ps faster put the start bit on RE10.)
+TEST(CheckCapture, TheStartBitBelongsToTheEdgeWithinHalfAPeriodOfTheDeclaredDelay) {
+  const auto s = test_support::make_scenario(3, sim::MHz(2), false);
+  const fs::path vcd = temp("slot.vcd");
+  run_to_vcd(s, vcd);
+  const auto start_bits = [](const scenarios::CaptureCheckResult& r) {
+    std::vector<unsigned> clocks;
+    for (const auto& f : r.frames) clocks.push_back(f.start_bit_clock);
+    return clocks;
+  };
+  const auto rows = [](const scenarios::CaptureCheckResult& r, std::string_view row) {
+    return std::count_if(r.violations.begin(), r.violations.end(), [&](const auto& v) { return v.check == row; });
+  };
+  const auto exact = scenarios::check_capture(encoder_pins_of(s, vcd));
+  ASSERT_TRUE(exact.conforms());
+  ASSERT_EQ(start_bits(exact), (std::vector<unsigned>{11, 11, 11}));
+  // Declared slower than the encoder is: the encoder looks faster by `by`.
+  for (const Time by : {sim::ps(1), ns(249), ns(250) - sim::ps(1), -sim::ps(1), -ns(249)}) {
+    auto o = encoder_pins_of(s, vcd);
+    o.encoder.output_delay += by;
+    const auto r = scenarios::check_capture(o);
+    EXPECT_TRUE(r.conforms()) << by.count() << "\n" << verdict_line(r.violations);
+    EXPECT_EQ(rows(r, checker::check::kCalculationTime), 0) << by.count();
+    EXPECT_EQ(rows(r, checker::check::kClockCount), 0) << by.count();
+  }
+  // More than half a period faster than declared: the start bit is the one of the edge before.
+  auto o = encoder_pins_of(s, vcd);
+  o.encoder.output_delay += ns(251);
+  const auto early = scenarios::check_capture(o);
+  EXPECT_EQ(rows(early, checker::check::kCalculationTime), 3);
+  fs::remove(vcd);
+}
+
 // A VCD finer than the picosecond is read to the nearest picosecond: once a time rounds, the
 // resolution is a picosecond, and t_ST 400 fs short of note 8's 2 us is undecided, never passed;
 // while every time falls on a whole picosecond the file is exact. The bundled 8 MHz scenario meets t_ST with no margin in each of its 20
