@@ -16,7 +16,10 @@ constexpr std::size_t kNamedMarkers = 26;
 // The window the save file asks for, and the width of its wave area (without the signal names)
 // that the zoom is chosen for.
 constexpr int kWindowWidth = 1400, kWindowHeight = 700;
-constexpr double kViewPixels = 1000.0;
+constexpr double kViewPixels = 800.0;
+// GTKWave's zoom z shows 2^-z time units in one of its "frames" of 200 pixels (measured with
+// GTKWave 3.3's getWindowStartTime / getWindowEndTime: each step of z halves the window).
+constexpr double kGtkwavePixelsPerFrame = 200.0;
 
 struct View {
   sim::Time start{0};
@@ -34,9 +37,9 @@ View first_frame_view(const ScenarioResult& r) {
   View v;
   v.start = std::max(sim::Time::zero(), frame->start - length / 10);
   v.marker = frame->start;
-  // GTKWave shows 2^-zoom time units (1 ps here) per pixel; it accepts zooms from -62 to 0.
-  const double per_pixel = static_cast<double>((length + length / 5).count()) / kViewPixels;
-  v.zoom = std::clamp(-std::log2(std::max(per_pixel, 1.0)), -62.0, 0.0);
+  // 2^-zoom time units (1 ps here) per 200 pixels; GTKWave accepts zooms from -62 to 0.
+  const double per_frame = static_cast<double>((length + length / 5).count()) / kViewPixels * kGtkwavePixelsPerFrame;
+  v.zoom = std::clamp(-std::log2(std::max(per_frame, 1.0)), -62.0, 0.0);
   return v;
 }
 

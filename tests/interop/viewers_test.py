@@ -131,7 +131,8 @@ def main():
     shown = os.path.join(work, "shown.tcl")
     with open(shown, "w") as out:
         out.write('puts "displayed [gtkwave::getDisplayedSignals]"\n'
-                  'puts "start [gtkwave::getWindowStartTime]"\nputs "marker [gtkwave::getMarker]"\n'
+                  'puts "start [gtkwave::getWindowStartTime]"\nputs "end [gtkwave::getWindowEndTime]"\n'
+                  'puts "marker [gtkwave::getMarker]"\n'
                   'puts "named [gtkwave::getNamedMarker A]"\n'
                   'puts "decoded [gtkwave::getTraceValueAtMarkerFromName endat.decoded]"\ngtkwave::/File/Quit\n')
     # --gtkw adds the text trace endat.decoded (GTKWave's string variables; sigrok skips them).
@@ -140,7 +141,7 @@ def main():
     lint = run([vcdlint, gtk_vcd])
     r = run(["xvfb-run", "-a", "gtkwave", "-S", shown, gtk_vcd, os.path.join(work, "gtk.gtkw")], cwd=work)
     said = {line.split()[0]: line.split()[1:] for line in r.stdout.splitlines()
-            if line.split() and line.split()[0] in ("displayed", "start", "marker", "named", "decoded")}
+            if line.split() and line.split()[0] in ("displayed", "start", "end", "marker", "named", "decoded")}
     expected = ["endat.master_clock", "endat.master_data", "endat.master_data_driver_enable", "endat.master_sample",
                 "endat.master_frame", "endat.decoded", "endat.encoder_clock", "endat.encoder_data",
                 "endat.encoder_data_driver_enable"]
@@ -148,16 +149,23 @@ def main():
         fail("GTKWave shows %s with the save file, expected %s" % (said.get("displayed"), expected))
     first = next((f for f in frames if not f["measurement"]), frames[0])
     length = first["end_ps"] - first["start_ps"]
-    if said.get("start") != [str(max(0, first["start_ps"] - length // 10))] or said.get("marker") != [str(first["start_ps"])]:
+    # GTKWave starts the window on a whole pixel: up to one before the time asked for.
+    asked = max(0, first["start_ps"] - length // 10)
+    start, end = int(said.get("start", ["-1"])[0]), int(said.get("end", ["0"])[0])
+    if not asked - (end - start) // 400 <= start <= asked or said.get("marker") != [str(first["start_ps"])]:
         fail("GTKWave opens at %s with the marker at %s; the first frame starts at %d ps"
              % (said.get("start"), said.get("marker"), first["start_ps"]))
+    # The whole frame is in the window, and fills at least half of it (the zoom once showed 50 ns).
+    if end < first["end_ps"] or end - start > 2 * (length + length // 5):
+        fail("GTKWave's window ends at %s ps; the first frame runs from %d to %d ps"
+             % (said.get("end"), first["start_ps"], first["end_ps"]))
     # At FE1 the text trace names the frame and its mode command.
     if said.get("decoded") != ["#%d_%s" % (first["index"], first["command"])]:
         fail("GTKWave's text trace at the first frame's FE1 says %s" % said.get("decoded"))
     violations = sorted(v["time_ps"] for v in json.load(open(results))["scenarios"][0]["violations"])
     if said.get("named") != [str(violations[0] if violations else -1)]:
         fail("GTKWave's marker A is at %s; the first violation at %s" % (said.get("named"), violations[:1]))
-    print("gtkwave: the .gtkw save file shows all %d signals from %s ps, marker A at %s, %s"
-          % (len(expected), said["start"][0], said["named"][0], said["decoded"][0]))
+    print("gtkwave: the .gtkw save file shows all %d signals from %s to %s ps, marker A at %s, %s"
+          % (len(expected), said["start"][0], said["end"][0], said["named"][0], said["decoded"][0]))
 
 main()
