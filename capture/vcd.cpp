@@ -234,6 +234,7 @@ class VcdReader final : public QueuedReader {
     std::string full;
     for (const auto& s : scopes_) full += s + ".";
     full += name;
+    spend_on_names(name, width, full.size() + range.size());
     if (const auto it = vars_.find(id); it != vars_.end()) {
       if (!it->second.real) alias(it->second, name, bit_names(name, full, range, width));
       return;
@@ -250,6 +251,23 @@ class VcdReader final : public QueuedReader {
     const Variable& stored = vars_[id] = v;
     if (const auto slot = short_slot(id)) short_ids_[*slot] = &stored;
   }
+
+  // Every declared bit is kept by its full name (scopes included), for the signal options to find:
+  // a header of wide vectors or deep scopes could ask for gigabytes from a few kilobytes of file.
+  // A budget on those names, far beyond any testbench's or logic analyzer's dump, ends it first.
+  static constexpr std::size_t kMaxNameBytes = std::size_t{64} << 20;
+  void spend_on_names(const std::string& name, unsigned width, std::size_t name_size) {
+    // Each bit's name with its index ("[4095]") and what a string costs beside its characters.
+    const std::size_t cost = std::size_t{width} * (name_size + 8 + sizeof(std::string));
+    if (cost <= kMaxNameBytes - name_bytes_) {
+      name_bytes_ += cost;
+      return;
+    }
+    fail("variable '" + name.substr(0, 40) + "': the header declares more than its signals' names may take (" +
+         std::to_string(kMaxNameBytes >> 20) + " MiB; " + std::to_string(signals_.size() + aliases_.size()) +
+         " one-bit names so far): record the EnDat lines, not the whole design");
+  }
+  std::size_t name_bytes_ = 0;
 
   // The names of a variable's bits, most significant first: "data[3]" for a bit of a vector;
   // a 1-bit variable keeps its range. "[7:0]" after the name (or in it): the bits run from the

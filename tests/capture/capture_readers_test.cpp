@@ -2,11 +2,13 @@
 // Debian's sigrok-cli makes of that VCD, from the CSV sigrok-cli writes of those sessions and
 // from a Saleae Logic 2 style CSV; bad files give CaptureError naming the file and the problem.
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 #include <zip.h>
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <climits>
 #include <cstdlib>
 #include <filesystem>
@@ -706,6 +708,34 @@ TEST_F(CaptureReaders, VcdBadTimestampsAreRefusedWithTheirLine) {
   ASSERT_TRUE(reader->next(c));
   ASSERT_TRUE(reader->next(c));
   EXPECT_EQ(c.time, Time{INT64_MAX / 1000});
+}
+
+// Every declared bit is kept by its full name. A header that asks for gigabytes of names with a
+// few hundred kilobytes (5 000 vectors of 4 096 bits; 20 000 nested scopes, each name carrying the
+// path before it) is refused at the variable that passes the budget, with its line, in well under
+// a second; a header of 1 000 vectors of 64 bits is read.
+TEST_F(CaptureReaders, AVcdHeaderWhoseNamesWouldTakeGigabytesIsRefusedWithItsLine) {
+  const auto ident = [](std::size_t i) {
+    std::string id;
+    for (i += 1000; i != 0; i /= 94) id += static_cast<char>('!' + i % 94);
+    return id;
+  };
+  const auto header = [&](std::size_t vars, unsigned width, bool nested) {
+    std::string text = "$timescale 1ps $end\n$scope module endat $end\n$var wire 1 ! clock $end\n";
+    for (std::size_t i = 0; i < vars; ++i) {
+      if (nested) text += "$scope module s $end\n";
+      text += "$var wire " + std::to_string(width) + " " + ident(i) + " v" + std::to_string(i) + " $end\n";
+    }
+    for (std::size_t i = 0; i < (nested ? vars : 0); ++i) text += "$upscope $end\n";
+    return text + "$upscope $end\n$enddefinitions $end\n#0\n1!\n";
+  };
+  const auto started = std::chrono::steady_clock::now();
+  expect_mentions(vcd_signals_or_error(write("wide.vcd", header(5000, 4096, false))),
+                  {": line 333: variable 'v329': ", "64 MiB", "record the EnDat lines"});
+  expect_mentions(vcd_signals_or_error(write("deep.vcd", header(20000, 1, true))), {"64 MiB", "one-bit names so far"});
+  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(20));  // a hang, not a speed
+  const auto reader = capture::open_vcd(write("fine.vcd", header(1000, 64, false)));
+  EXPECT_EQ(reader->signals().size(), 1U + 1000U * 64U);
 }
 
 // Tokens that run across the end of the reader's 64 KiB buffer: time stamps and value changes
