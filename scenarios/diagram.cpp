@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <map>
 
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/runner.hpp"
@@ -33,33 +34,37 @@ std::string num(double v) {
 }
 
 
-// A 1-bit waveform read back from the VCD.
+// A 1-bit waveform read back from the VCD. Its changes are in time order: each lookup starts with
+// a binary search, so that a window over thousands of frames is drawn in N log N, not N^2.
 struct Wave {
   const VcdVariable* v = nullptr;
+  // The first change after `t`.
+  std::size_t after(T64 t) const {
+    return static_cast<std::size_t>(
+        std::upper_bound(v->changes.begin(), v->changes.end(), t, [](T64 x, const auto& c) { return x < c.time; }) -
+        v->changes.begin());
+  }
   bool at(T64 t) const {
-    bool value = false;
-    for (const auto& c : v->changes) {
-      if (c.time > t) break;
-      value = c.value == '1';
-    }
-    return value;
+    const std::size_t i = after(t);
+    return i != 0 && v->changes[i - 1].value == '1';
+  }
+  bool is_edge(std::size_t i, int kind) const {
+    const auto& c = v->changes[i];
+    const bool rising = c.value == '1' && v->changes[i - 1].value == '0';
+    const bool falling = c.value == '0' && v->changes[i - 1].value == '1';
+    return (kind == 1 && rising) || (kind == 0 && falling) || (kind == -1 && (rising || falling));
   }
   // Times of edges in (from, to]: rising (1), falling (0) or both (-1).
   std::vector<T64> edges(T64 from, T64 to, int kind) const {
     std::vector<T64> out;
-    for (std::size_t i = 1; i < v->changes.size(); ++i) {
-      const auto& c = v->changes[i];
-      if (c.time <= from) continue;
-      if (c.time > to) break;
-      const bool rising = c.value == '1' && v->changes[i - 1].value == '0';
-      const bool falling = c.value == '0' && v->changes[i - 1].value == '1';
-      if ((kind == 1 && rising) || (kind == 0 && falling) || (kind == -1 && (rising || falling))) out.push_back(c.time);
-    }
+    for (std::size_t i = std::max<std::size_t>(1, after(from)); i < v->changes.size() && v->changes[i].time <= to; ++i)
+      if (is_edge(i, kind)) out.push_back(v->changes[i].time);
     return out;
   }
   T64 first(T64 from, T64 to, int kind) const {
-    const auto e = edges(from, to, kind);
-    return e.empty() ? kNone : e.front();
+    for (std::size_t i = std::max<std::size_t>(1, after(from)); i < v->changes.size() && v->changes[i].time <= to; ++i)
+      if (is_edge(i, kind)) return v->changes[i].time;
+    return kNone;
   }
 };
 
@@ -83,9 +88,14 @@ class Axis {
       edges.push_back(a);
       edges.push_back(b);
     }
-    // Edges inside a forced break do not split it.
+    // Edges inside a forced break do not split it. The breaks are in time order and apart.
+    const auto break_at = [&](T64 t) {  // the last break that begins at or before t
+      const auto f = std::upper_bound(forced.begin(), forced.end(), t, [](T64 x, const auto& b) { return x < b.first; });
+      return f == forced.begin() ? forced.end() : f - 1;
+    };
     std::erase_if(edges, [&](T64 t) {
-      return std::any_of(forced.begin(), forced.end(), [&](const auto& f) { return t > f.first && t < f.second; });
+      const auto f = break_at(t);
+      return f != forced.end() && t > f->first && t < f->second;
     });
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
@@ -93,8 +103,8 @@ class Axis {
     for (std::size_t i = 1; i < edges.size(); ++i) {
       const T64 a = std::max(edges[i - 1], from), b = std::min(edges[i], to);
       if (b <= a) continue;
-      const bool inside_forced =
-          std::any_of(forced.begin(), forced.end(), [&](const auto& f) { return a >= f.first && b <= f.second; });
+      const auto f = break_at(a);
+      const bool inside_forced = f != forced.end() && a >= f->first && b <= f->second;
       const bool broken = b - a > max_gap || inside_forced;
       const double length = static_cast<double>(broken ? max_gap / 2 : b - a);
       segments_.push_back({a, b, virtual_length, length, broken});
@@ -105,10 +115,11 @@ class Axis {
   double x(T64 t) const {
     if (segments_.empty()) return x0_;
     if (t <= segments_.front().a) return x0_;
-    for (const auto& s : segments_) {
-      if (t > s.b) continue;
-      const double fraction = static_cast<double>(t - s.a) / static_cast<double>(s.b - s.a);
-      return x0_ + (s.v + fraction * s.length) * scale_;
+    // The first segment that reaches t.
+    const auto s = std::lower_bound(segments_.begin(), segments_.end(), t, [](const Segment& g, T64 x) { return g.b < x; });
+    if (s != segments_.end()) {
+      const double fraction = static_cast<double>(t - s->a) / static_cast<double>(s->b - s->a);
+      return x0_ + (s->v + fraction * s->length) * scale_;
     }
     const auto& last = segments_.back();
     return x0_ + (last.v + last.length) * scale_;
@@ -391,6 +402,9 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
 
   // Waveforms.
   for (const auto& row : rows) {
+    // Drawing a long window takes a while: SIGINT and SIGTERM end it, with no diagram written.
+    if (const int signal = interrupt_signal(); signal != 0)
+      throw Interrupted(scenario.file + ": interrupted by " + signal_name(signal) + " while drawing: no diagram written", signal);
     const Wave w = wave(row.name);
     svg.text(16, row.y + kRowHeight / 2 + 4, row.label);
     if (row.strobe) {
@@ -497,6 +511,8 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
   // Violations: a red mark at the time on its end's rows, and the list below.
   double list_y = axis_y + 50;
   std::vector<std::pair<double, double>> labels;
+  std::multimap<double, std::size_t> labels_by_x;  // x -> place in labels
+  std::vector<std::size_t> near;
   if (!violations.empty()) svg.text(20, list_y, "Violations", "font-weight=\"bold\" fill=\"#c00000\"");
   for (const auto* v : violations) {
     const bool encoder_side = v->where == line::ObservationPoint::EncoderPins;
@@ -505,8 +521,17 @@ Diagram frame_diagram(const Scenario& scenario, const DiagramOptions& options) {
     const double x = axis.x(std::clamp(v->time.count(), from, to));
     svg.line(x, y1, x, y2, "stroke=\"#c00000\" stroke-width=\"1.5\"");
     double label_y = y1 + 8;
-    for (const auto& [lx, ly] : labels)  // stagger labels that would overlap
+    // Stagger labels that would overlap: each label closer than 90 px, in the order they were
+    // placed (found by x, so that a window of many findings is not quadratic).
+    near.clear();
+    for (auto l = labels_by_x.upper_bound(x - 90); l != labels_by_x.end() && l->first < x + 90; ++l)
+      near.push_back(l->second);
+    std::sort(near.begin(), near.end());
+    for (const std::size_t k : near) {
+      const auto& [lx, ly] = labels[k];
       if (std::abs(lx - x) < 90 && std::abs(ly - label_y) < 10) label_y = ly + 11;
+    }
+    labels_by_x.emplace(x, labels.size());
     labels.emplace_back(x, label_y);
     svg.text(x + 3, label_y, v->check, "fill=\"#c00000\" font-size=\"10\"");
     list_y += 16;

@@ -448,6 +448,25 @@ TEST(HostileOutputs, DiagramKeepsItsWaveformInAPrivateDirectoryAndRemovesIt) {
   EXPECT_EQ(entries, std::size_t{kPlanted} + 1) << "the private directory is gone";
 }
 
+// A window over 3 000 frames, each with findings (16 MHz warns of f_c): the axis found each
+// edge's x by walking every segment before it and the labels were staggered against every earlier
+// one, hours in all; now a few seconds. The bound catches a return to quadratic time, not a speed.
+TEST(HostileOutputs, ADiagramOfAWindowOverThousandsOfFramesIsDrawnInSeconds) {
+  TempDir dir;
+  auto s = base("long_window", "16 MHz");
+  s["line"]["cable_length_m"] = 0;
+  s["script"][0]["count"] = 3000;
+  const auto file = write(dir / "long.json", s.dump());
+  const auto svg = dir / "d.svg";
+  const auto r = run("diagram " + file + " --svg " + svg + " --from '0 ps' --to '60 s'", dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  const auto count = r.out.rfind("; "), end = r.out.find(" violations");
+  ASSERT_TRUE(count != std::string::npos && end != std::string::npos && end > count) << r.out;
+  EXPECT_GE(std::stol(r.out.substr(count + 2, end - count - 2)), 3000) << r.out;
+  EXPECT_LT(r.seconds, 120.0);
+  EXPECT_TRUE(contains(slurp(svg), "</svg>"));
+}
+
 // --- Text that used to slip through ----------------------------------------------------------
 
 TEST(HostileText, ANulByteIsRefusedWhereItStands) {
