@@ -118,7 +118,8 @@ void check_output_paths(const std::vector<std::string>& inputs, const std::strin
     struct stat sa {}, sb {};
     if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
     std::error_code ea, eb;
-    const auto ca = fs::weakly_canonical(a, ea), cb = fs::weakly_canonical(b, eb);
+    // From the absolute path: "x" and "./x" of a file yet to be made would differ otherwise.
+    const auto ca = fs::weakly_canonical(fs::absolute(a), ea), cb = fs::weakly_canonical(fs::absolute(b), eb);
     return ea || eb ? a == b : ca == cb;
   };
   for (std::size_t i = 0; i < outputs.size(); ++i) {

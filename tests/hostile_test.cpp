@@ -364,6 +364,14 @@ TEST(HostileOutputs, TwoOutputsToOneFileAreRefused) {
   EXPECT_TRUE(contains(r.err, "--vcd " + (dir / "x") + " and --log " + (dir / "x") + ": the same file")) << r.err;
   EXPECT_FALSE(fs::exists(dir / "x"));
   EXPECT_TRUE(r.out.empty()) << "nothing ran: " << r.out;
+  // One file yet to be made, spelled two ways (run in the directory itself): refused the same.
+  fs::create_directory(dir / "sub");
+  for (const auto& [a, b] : {std::pair<std::string, std::string>{"x", "./x"}, {"./x", dir / "x"}, {"x", "sub/../x"}}) {
+    const auto twice = run("run " + file + " --vcd " + a + " --log-json " + b, dir, "cd " + dir.path() + " &&");
+    EXPECT_EQ(twice.status, 2) << a << " " << b;
+    EXPECT_TRUE(contains(twice.err, "--vcd " + a + " and --log-json " + b + ": the same file")) << twice.err;
+    EXPECT_FALSE(fs::exists(dir / "x"));
+  }
 }
 
 TEST(HostileOutputs, DirectoriesFifosAndReadOnlyFilesAreRefusedBeforeAnythingRuns) {
