@@ -491,16 +491,25 @@ void merge_log(const std::vector<Partial>& shards, std::ostream& out) {
 
 void merge_log_json(const std::vector<Partial>& shards, std::ostream& out) {
   for (const auto& p : shards) {
+    // Held back: the shard's own "incomplete" record and its mark, which the whole run's end replaces.
+    const std::size_t held = 1 + (p.mark.incomplete.empty() ? 0 : 1);
     auto in = open(p.path);
     std::size_t number = 0;
-    std::string held;
+    std::deque<std::string> back;
     for (std::string line; std::getline(in, line);) {
       stop_if_interrupted(number);
-      if (number++ != 0) out << held << "\n";
+      ++number;
       if (!json::accept(line)) fail(p.path, "line " + std::to_string(number) + ": not a JSON record");
-      held = std::move(line);
+      back.push_back(std::move(line));
+      if (back.size() <= held) continue;
+      out << back.front() << "\n";
+      back.pop_front();
     }
+    if (back.size() != held || (held > 1 && !json::parse(back.front()).contains("incomplete")))
+      fail(p.path, "its last records are not the \"incomplete\" record its mark says");
   }
+  const auto v = run_verdict(shards);
+  if (!v.incomplete.empty()) TransactionLogWriter::write_incomplete_json(out, v.incomplete, v.not_run);
 }
 
 Sweep merge_sweep(const std::vector<Partial>& shards) {

@@ -84,6 +84,13 @@ void TransactionLogWriter::write_incomplete(std::ostream& out, const std::string
   for (const auto& n : not_run) out << "# " << n.file << ": " << n.reason << "\n";
 }
 
+void TransactionLogWriter::write_incomplete_json(std::ostream& out, const std::string& incomplete,
+                                                 const std::vector<NotRun>& not_run) {
+  json files = json::array();
+  for (const auto& n : not_run) files.push_back({{"file", n.file}, {"reason", n.reason}});
+  out << json{{"incomplete", incomplete}, {"not_run", files}}.dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
+}
+
 ResultsJsonWriter::ResultsJsonWriter(std::ostream& out, const std::string& version) : out_(out) {
   out_ << "{\n" << member("endatsim", version, 2) << ",\n  \"scenarios\": [";
 }

@@ -28,6 +28,9 @@ class TransactionLogWriter final : public RunSink {
   void end(const ScenarioResult& result) override;
   // The text log's last lines for a run that ended early: why, then each file not run.
   static void write_incomplete(std::ostream& out, const std::string& incomplete, const std::vector<NotRun>& not_run);
+  // The same as the last JSON line: {"incomplete": why, "not_run": [{"file", "reason"}...]}, so
+  // that a log cut short by a limit or a signal never reads as a whole run.
+  static void write_incomplete_json(std::ostream& out, const std::string& incomplete, const std::vector<NotRun>& not_run);
 
  private:
   std::ostream& out_;

@@ -602,6 +602,8 @@ int run(const Options& o) {
                                 scenarios::run_shard_options(o.seed, o.examples, o.limits, o.junit_cases),
                                 passed && incomplete.empty(), incomplete, not_run};
   if (!incomplete.empty() && log_file) scenarios::TransactionLogWriter::write_incomplete(log_file->stream(), incomplete, not_run);
+  if (!incomplete.empty() && log_json_file)
+    scenarios::TransactionLogWriter::write_incomplete_json(log_json_file->stream(), incomplete, not_run);
   if (mark && log_file) log_file->stream() << scenarios::text_log_mark(*mark);
   if (mark && log_json_file) log_json_file->stream() << scenarios::json_lines_mark(*mark);
   if (junit_file) {

@@ -112,15 +112,20 @@ check(merged.returncode == 1 and same_bytes(path("few.json"), path("few_merged.j
 
 # A limit that ends every run early: the merge is incomplete (exit 3) like the run.
 limited = [os.path.join(source, "scenarios", "field")]
-whole = run("run", *limited, "--max-kernel-events", "2000", "--json", path("lim.json"), "--log", path("lim.log"))
+whole = run("run", *limited, "--max-kernel-events", "2000", "--json", path("lim.json"), "--log", path("lim.log"),
+            "--log-json", path("lim.jsonl"))
 check(whole.returncode == 3, "the limited run is incomplete", whole)
+# Its JSON lines end with a record that says so, as its text log ends with "# incomplete".
+with open(path("lim.jsonl")) as f:
+    last = json.loads(f.read().splitlines()[-1])
+check("incomplete" in last and isinstance(last.get("not_run"), list), "the JSON lines of an incomplete run say so")
 in_parallel([["run", *limited, "--max-kernel-events", "2000", "--shard", "%d/2" % k, "--json", path("lim%d.json" % k),
-              "--log", path("lim%d.log" % k)] for k in (1, 2)])
-merged = run("merge", path("lim1.json"), path("lim2.json"), path("lim1.log"), path("lim2.log"),
-             "--json", path("lim_merged.json"), "--log", path("lim_merged.log"))
+              "--log", path("lim%d.log" % k), "--log-json", path("lim%d.jsonl" % k)] for k in (1, 2)])
+merged = run("merge", *[path("lim%d.%s" % (k, e)) for k in (1, 2) for e in ("json", "log", "jsonl")],
+             "--json", path("lim_merged.json"), "--log", path("lim_merged.log"), "--log-json", path("lim_merged.jsonl"))
 check(merged.returncode == 3 and "incomplete: " in merged.stdout, "the merge of incomplete shards is incomplete", merged)
-check(same_bytes(path("lim.json"), path("lim_merged.json")) and same_bytes(path("lim.log"), path("lim_merged.log")),
-      "incomplete shards merge to the incomplete run")
+check(same_bytes(path("lim.json"), path("lim_merged.json")) and same_bytes(path("lim.log"), path("lim_merged.log")) and
+      same_bytes(path("lim.jsonl"), path("lim_merged.jsonl")), "incomplete shards merge to the incomplete run")
 
 # A sweep: grid points split across shards, merged into the same CSV, JSON, SVG and table.
 sweep = os.path.join(source, "scenarios", "sweeps", "figure2.json")
