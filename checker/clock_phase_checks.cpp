@@ -141,7 +141,7 @@ void TimingChecker::check_on_off_ratio(const PinFrame& f) {
     spec = "2.3.2 on-off ratio error (+/-10 % with delay compensation)";
   } else {
     bound = ">= t_D max = " + format_time(min) + " for the cable";
-    spec = "2.1.1 note 4, Figure 2 (another duty cycle: f_c <= 1 / (2 t_min), without delay compensation)";
+    spec = "2.3.2 note 4 and 2.1.1, Figure 2 (another duty cycle: f_c <= 1 / (2 t_min), without delay compensation)";
   }
   report_unless_passed(worst.decision,
       {.check = std::string(check::kOnOffRatio),

@@ -32,8 +32,10 @@ struct EncoderDeclaration {
   Time t_r = protocol::encoder_default::kRecoveryTime2;  // 2.3.2 recovery time II
   std::optional<Time> t_st_max;        // 2.3.2 t_ST maximum: "see encoder specifications"
   std::optional<Time> t_lo_max;        // 2.3.2 t_LO maximum: "see encoder specifications"
-  std::optional<Hertz> f_c_max;        // word 25 (3.5.10): the encoder's highest clock
-  bool endat21_only = false;           // an EnDat 2.1 encoder: f_c at most 2 MHz (2.1.2)
+  std::optional<Hertz> f_c_max;        // word 25 (3.9.19): the encoder's highest clock
+  // An EnDat 2.1 encoder: f_c at most 2 MHz. Not in D297403; HEIDENHAIN's EnDat 2.2 brochure
+  // (newer edition) gives it with the ordering designation EnDat21.
+  bool endat21_only = false;
   bool switched_on_in_run = false;     // the run (capture) begins with switching on (2.3.3)
   unsigned supplement_ignore_clocks = protocol::encoder_default::kSupplementIgnoredClocks;  // after a 2.2 supplement
 };

@@ -704,7 +704,7 @@ void TimingChecker::check_frequency(const PinFrame& f) {
   }
 }
 
-// Without delay compensation the cable bounds f_c (2.1.1 note 4, Figure 2 as docs/model.md §9
+// Without delay compensation the cable bounds f_c (2.3.2 note 4 and 2.1.1, Figure 2 as docs/model.md §9
 // derives it): a master that samples on its falling edge takes bits before they arrive. On the
 // wires, a clock of 2 MHz or less with no delay measurement before it is taken as uncompensated:
 // a master that compensates with a t_D it never measured breaks 2.1.2 instead.
@@ -730,7 +730,7 @@ void TimingChecker::check_frequency_for_cable(const PinFrame& f, const FittedFre
   note(check::kClockFrequency, fc, sim::frequency_of(min), Bound::AtMost, Unit::Frequency);
   if (!fit.period_below(min, tol)) return;
   report({.check = std::string(check::kClockFrequency),
-          .spec = "2.1.1 note 4, Figure 2 (without delay compensation: f_c <= 1 / (2 t_D(L)))",
+          .spec = "2.3.2 note 4 and 2.1.1, Figure 2 (without delay compensation: f_c <= 1 / (2 t_D(L)))",
           .where = ObservationPoint::EncoderPins,
           .time = f.rising[position::edge_index(position::kFirstSteadyRise)],
           .frame = f.header.index,
@@ -772,7 +772,7 @@ void TimingChecker::check_frequency_for_encoder(const PinFrame& f, const FittedF
     exceeds(*encoder_.f_c_max, "3.9.19 word 25 (the encoder's maximum clock frequency)",
             "clock above the maximum this encoder declares in word 25");
   if (encoder_.endat21_only && fit.above(limit::kFcMaxWithoutCompensation, tol))
-    exceeds(limit::kFcMaxWithoutCompensation, "2.1.1 (EnDat 2.1 encoder: 2 MHz)",
+    exceeds(limit::kFcMaxWithoutCompensation, "HEIDENHAIN EnDat 2.2 brochure, ordering designation EnDat21: 2 MHz",
             "clock above 2 MHz for an EnDat 2.1 encoder, which knows no delay compensation");
   const double cable = cable_length_m();
   if (f.header.compensated && cable > limit::kCompensatedCableMaxMetres && fit.above(limit::kFcMaxWithoutCompensation, tol))

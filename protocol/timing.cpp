@@ -46,7 +46,7 @@ constexpr std::array kRows{
     TimingRow{check::kClockFrequency, "f_c", "Frequency", "2.3.2 note 4, 2.1.1, 2.1.2, 3.9.19", "100 kHz",
               "2 MHz without, 8 MHz with delay compensation (16 MHz for special applications)",
               "fitted over each frame's rising edges from RE2 on; measurement frames have their own row; without "
-              "compensation also 1 / (2 t_D max) for the cable (2.1.1 note 4, Figure 2); this encoder: word 25 "
+              "compensation also 1 / (2 t_D max) for the cable (2.3.2 note 4 and 2.1.1, Figure 2); this encoder: word 25 "
               "(3.9.19), 2 MHz for EnDat 2.1",
               "encoder pins", E::Wires},
     TimingRow{check::kCalculationTime, "t_cal", "Calculation time", "2.3.2 note 7, 2.3.1.1", "10.5/f_c",

@@ -128,7 +128,7 @@ inline constexpr Time kPowerOnT3Max = sim::ms(420);
 
 // t_D maximum for a cable of `length_m` metres, rounded to the picosecond.
 Time data_delay_max(double length_m);
-// 2.1.1 note 4 and Figure 2 (lost; docs/model.md §9): without delay compensation a bit launched
+// 2.3.2 note 4 and 2.1.1 and Figure 2 (lost; docs/model.md §9): without delay compensation a bit launched
 // on a rising edge must reach the master before the falling edge that takes it, so a 1:1 clock's
 // period is at least 2 t_D max(L), and f_c at most min(2 MHz, 1 / (2 t_D max(L))).
 Time uncompensated_period_min(double length_m);

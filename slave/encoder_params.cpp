@@ -193,8 +193,9 @@ const std::array kRows{
     Row{"kind", choice<&EncoderParams::kind, kEncoderKindNames>(), 0, 0, "3.5.7",
         "What the encoder is (word 14). touch_probe sends 16 bits, the LSB its trigger status (2.3.4.4); eib is an "
         "External Interface Box in factory delivery state, the connected encoder after initial commissioning."},
-    Row{"version", choice<&EncoderParams::version, kEndatVersionNames>(), 0, 0, "2.1",
-        "The interface version. A 2.1 encoder answers EnDat 2.2 mode commands as not supported (type I)."},
+    Row{"version", choice<&EncoderParams::version, kEndatVersionNames>(), 0, 0, "1",
+        "The interface's command set: EnDat 2.1 is a subset of EnDat 2.2's (1). A 2.1 encoder answers EnDat 2.2 mode "
+        "commands as not supported (type I)."},
     Row{"position_bits", &EncoderParams::position_bits, 1, EncoderParams::kMaxPositionBits, "3.5.6", "Clock pulses for the position value (word 13)."},
     Row{"multiturn_bits", &EncoderParams::multiturn_bits, 0, EncoderParams::kMaxPositionBits - 1, "3.5.6",
         "Upper bits of the position that count revolutions; needs kind \"multiturn\" and fewer than position_bits."},

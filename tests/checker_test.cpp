@@ -87,7 +87,7 @@ TEST(CheckerMeasurementClock, DelayMeasuredAt1MHzIsReported) {
 }
 
 TEST(CheckerClockFrequency, EdgeJitterOnAClockAtTheLimitIsNotAViolation) {
-  // 2 MHz without compensation over 1 m (over 10 m the cable allows 1.67 MHz, 2.1.1 note 4).
+  // 2 MHz without compensation over 1 m (over 10 m the cable allows 1.67 MHz, 2.3.2 note 4 and 2.1.1).
   for (auto [cable, f_c, jitter, seed] : {std::tuple{1, MHz(2), ns(100), 1}, std::tuple{10, MHz(8), ns(30), 2},
                                           std::tuple{10, MHz(16), ns(15), 4}}) {
     auto s = make_scenario(cable, f_c, f_c > MHz(2), 20);

@@ -1026,7 +1026,7 @@ class Decoder(srd.Decoder):
 
     def judge_frequency(self, f, fit, compensated):
         '''2.3.2 f_c: 100 kHz .. 2 MHz without, .. 8 MHz with delay compensation (16 MHz for special
-        applications); without compensation also 1 / (2 t_D max) for the cable (2.1.1 note 4).'''
+        applications); without compensation also 1 / (2 t_D max) for the cable (2.3.2 note 4 and 2.1.1).'''
         f_c = fit.hz()
         ss, es = f.rising[1], f.rising[-1]
         c = f.command

@@ -815,7 +815,7 @@ TABLES = json.loads(r'''
       "section": "2.3.2 note 4, 2.1.1, 2.1.2, 3.9.19",
       "min": "100 kHz",
       "max": "2 MHz without, 8 MHz with delay compensation (16 MHz for special applications)",
-      "condition": "fitted over each frame's rising edges from RE2 on; measurement frames have their own row; without compensation also 1 / (2 t_D max) for the cable (2.1.1 note 4, Figure 2); this encoder: word 25 (3.9.19), 2 MHz for EnDat 2.1",
+      "condition": "fitted over each frame's rising edges from RE2 on; measurement frames have their own row; without compensation also 1 / (2 t_D max) for the cable (2.3.2 note 4 and 2.1.1, Figure 2); this encoder: word 25 (3.9.19), 2 MHz for EnDat 2.1",
       "observed": "encoder pins",
       "evidence": "wires"
     },
