@@ -203,6 +203,8 @@ class VcdReader final : public QueuedReader {
   }
 
   void timescale() {
+    // A second one would change the meaning of every time stamp: which was meant is not known.
+    if (scale_num_ != 0) fail("a second $timescale (the first: " + timescale_ + ")");
     std::string text;
     for (std::string t = token("the timescale"); t != "$end"; t = token("$end of $timescale")) text += t;
     std::size_t digits = 0;

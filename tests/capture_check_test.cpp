@@ -411,7 +411,18 @@ TEST(CheckCommand, BadCapturesAndNamesExitTwoNamingTheFileAndTheProblem) {
   r = cli("check '" + temp("missing.vcd").string() + "' --clock a --data b");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("cannot open"), std::string::npos) << r.err;
-  for (const auto& p : {truncated, timescale, two}) fs::remove(p);
+
+  // A second $timescale would change every time stamp after it; which one was meant is not known.
+  const fs::path twice = temp("twice.vcd");
+  std::ofstream(twice) << "$timescale 1ps $end\n$timescale 1ns $end\n$var wire 1 ! clock $end\n$enddefinitions $end\n";
+  r = cli("check '" + twice.string() + "' --clock clock --data clock");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find(twice.string() + ": line 2: a second $timescale (the first: 1 ps)"), std::string::npos) << r.err;
+  // A resolution of zero would call the capture sampled and exact at once.
+  r = cli("check '" + two.string() + "' --clock encoder.clock --data encoder.data --resolution '0 ps'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--resolution must be 1 ps .. 1 ms, got 0"), std::string::npos) << r.err;
+  for (const auto& p : {truncated, timescale, two, twice}) fs::remove(p);
 }
 
 TEST(CheckCommand, ADefectInACaptureExitsOneWithItsRow) {

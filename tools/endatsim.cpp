@@ -1261,6 +1261,11 @@ int check_command(const po::variables_map& vm) {
     return kBadInput;
   }
   if (!check_duration(vm, "resolution", sim::ms(1), o.resolution)) return kBadInput;
+  // A resolution says the capture was sampled (and may begin inside a frame); none is exact.
+  if (o.resolution && *o.resolution == sim::Time::zero()) {
+    std::cerr << "endatsim check: --resolution must be 1 ps .. 1 ms, got 0: a VCD's times are exact without it\n";
+    return kBadInput;
+  }
   const auto json = string_option(vm, "json"), log = string_option(vm, "log"), junit = string_option(vm, "junit");
   std::vector<scenarios::OutputPath> outputs;
   if (json) outputs.push_back({"--json", *json});
