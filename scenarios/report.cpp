@@ -1,5 +1,6 @@
 #include "endatsim/scenarios/report.hpp"
 
+#include "endatsim/capture/capture.hpp"
 #include "endatsim/protocol/parameters.hpp"
 #include "endatsim/sim/text.hpp"
 
@@ -313,10 +314,13 @@ void write_master_warnings(std::ostream& out, const ScenarioResult& r) {
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
   if (!r.incomplete.empty()) out << "  INCOMPLETE: " << r.incomplete << "\n";
-  if (!r.description.empty()) out << "  " << r.description << "\n";
+  // A scenario's free texts go to a terminal: control bytes (an escape sequence, a carriage return
+  // that forges a line) are shown escaped, never sent.
+  using capture::printable;
+  if (!r.description.empty()) out << "  " << printable(r.description) << "\n";
   if (r.field) {
-    out << "  field symptom: " << r.field->symptom << "\n  cause: " << r.field->cause << "\n  spec: " << r.field->spec
-        << "\n  asserts: " << r.field->asserts << "\n";
+    out << "  field symptom: " << printable(r.field->symptom) << "\n  cause: " << printable(r.field->cause)
+        << "\n  spec: " << printable(r.field->spec) << "\n  asserts: " << printable(r.field->asserts) << "\n";
   }
   std::map<std::string, std::uint64_t> outcomes;  // by name
   for (const master::FrameOutcome o : master::kFrameOutcomes)

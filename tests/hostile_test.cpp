@@ -493,6 +493,19 @@ TEST(HostileText, ANulByteIsRefusedWhereItStands) {
   EXPECT_NO_THROW((void)endatsim::scenarios::load_scenario_text(good, "nul.json"));
 }
 
+// A description is free text, printed in the summary on a terminal: an escape sequence or a
+// carriage return that forges a line is shown escaped, never sent.
+TEST(HostileText, ControlCharactersInADescriptionAreShownEscaped) {
+  TempDir dir;
+  auto s = base("described");
+  s["description"] = "evil\x1b]0;pwned\x07\x1b[31mRED\r\nPASS fake (x.json)";
+  const auto r = run("run " + write(dir / "d.json", s.dump()), dir);
+  EXPECT_LE(r.status, 1) << r.err;  // ran (its verdict is not the point)
+  EXPECT_TRUE(contains(r.out, "  evil\\x1B]0;pwned\\x07\\x1B[31mRED\\x0D\\x0APASS fake (x.json)\n")) << r.out;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos);
+  EXPECT_EQ(r.out.find('\r'), std::string::npos);
+}
+
 TEST(HostileText, NullIsNamedOnce) {
   try {
     (void)endatsim::scenarios::load_scenario_text(R"({"name": null})", "null.json");
