@@ -566,6 +566,25 @@ TEST(HostileInputs, FifosAndDevicesAreRefusedByEveryReader) {
   }
 }
 
+// A folder stands for every scenario in it: one that cannot be read (a link to a file moved away,
+// a FIFO) is refused by name, not skipped, so that it cannot drop out of a CI run unseen.
+TEST(HostileInputs, AScenarioInAFolderThatCannotBeReadIsRefusedNotSkipped) {
+  TempDir dir;
+  fs::create_directory(dir / "suite");
+  write(dir / "suite/a.json", base("a").dump());
+  fs::create_symlink(dir / "gone.json", dir / "suite/moved.json");
+  for (const std::string command : {"run", "validate"}) {
+    const auto r = run(command + " " + (dir / "suite") + " --quiet", dir);
+    EXPECT_EQ(r.status, 2) << command;
+    EXPECT_TRUE(contains(r.err, dir / "suite/moved.json")) << command << ": " << r.err;
+  }
+  fs::remove(dir / "suite/moved.json");
+  ASSERT_EQ(::mkfifo((dir / "suite/pipe.json").c_str(), 0600), 0);
+  const auto r = run("run " + (dir / "suite") + " --quiet", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(contains(r.err, dir / "suite/pipe.json")) << r.err;
+}
+
 TEST(HostileText, HugeNamesAndKeysAreCutInMessages) {
   TempDir dir;
   const std::string name(3'000'000, 'n');
