@@ -583,11 +583,14 @@ void TimingChecker::check_clock_count(const PinFrame& f) {
   judge(protocol::check::row_index(check::kClockCount));
   const bool v22 = f.header.command_type == protocol::EndatVersion::V2_2;
   const bool parameter_frame = f.header.payload_bits != 0;
+  // "A continuous clock is only possible with the mode command 'Encoder send position value'"
+  // (2.3.1): after any other frame's last bit, further pulses are beyond its end.
+  const bool bounded = v22 || parameter_frame || !f.header.continuous;
   const unsigned last_bit = start_clock_ + f.header.answer_bits - 1;
   const auto clocks = static_cast<unsigned>(f.rising.size());
   const std::string spec = "2.3.1 and 2.4.1 (the number of clock pulses)";
   note(check::kClockCount, clocks, last_bit, Bound::AtLeast, Unit::Count);
-  if ((v22 || parameter_frame) && !f.header.supplement)
+  if (bounded && !f.header.supplement)
     note(check::kClockCount, clocks, last_bit + 1, Bound::AtMost, Unit::Count);
   else if (f.header.supplement && f.header.supplement_last_clock != 0)
     note(check::kClockCount, clocks, f.header.supplement_last_clock, Bound::AtMost, Unit::Count);
@@ -603,7 +606,7 @@ void TimingChecker::check_clock_count(const PinFrame& f) {
             .severity = Severity::Error,
             .message = "the clock stopped before the encoder's last bit: the encoder hangs in the middle of the cycle"},
             "end of frame");
-  else if ((v22 || parameter_frame) && !f.header.supplement && clocks > last_bit + 1)
+  else if (bounded && !f.header.supplement && clocks > last_bit + 1)
     report({.check = std::string(check::kClockCount),
             .spec = spec,
             .where = ObservationPoint::EncoderPins,

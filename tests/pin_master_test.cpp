@@ -351,6 +351,24 @@ TEST(PinMaster, AWaitThatSuitsATenMicrosecondEncoderOnlyIsOutsideTheEnvelope) {
   EXPECT_FALSE(checker::conclude(longer.violations).this_encoder) << longer.list();
 }
 
+// "A continuous clock is only possible with the mode command 'Encoder send position value'"
+// (2.3.1): after "Encoder send test values" (010101: S, F1, 40 bits, CRC; the start bit on RE11,
+// the last CRC bit on RE57) one more pulse for the HIGH end is all, and further pulses are beyond
+// the frame's end, as after a 2.2 frame.
+TEST(PinMaster, PulsesBeyondATestValuesFrameAreCaughtAsNoContinuousClockFollowsIt) {
+  constexpr std::uint8_t k21TestValues = 0b010101;
+  const auto reads = [](unsigned clocks) {
+    return std::vector<PinFrame>{{us(10), MHz(1), clocks, header(k21TestValues)}, {us(200), MHz(1), clocks, header(k21TestValues)}};
+  };
+  const auto exact = run(reads(11 + 47), quick_encoder());
+  EXPECT_EQ(exact.count(checker::check::kClockCount), 0U) << exact.list();
+  EXPECT_EQ(exact.row(checker::check::kClockCount).judged, 2U);
+  const auto longer = run(reads(11 + 47 + 5), quick_encoder());
+  ASSERT_EQ(longer.count(checker::check::kClockCount), 2U) << longer.list();
+  EXPECT_EQ(longer.violations.front().limit, "<= 58");
+  EXPECT_EQ(longer.violations.front().measured, "63 pulses");
+}
+
 TEST(PinMaster, TooFewClocksAreCaught) {
   const auto r = run(position_reads_21(2, us(100), 11 + 20), quick_encoder());  // stops inside the position
   EXPECT_EQ(r.count(checker::check::kClockCount), 2U) << r.list();
