@@ -374,6 +374,23 @@ TEST(HostileOutputs, TwoOutputsToOneFileAreRefused) {
   }
 }
 
+// A reader that goes away (`| head`): the write fails with EPIPE instead of SIGPIPE killing the
+// process, which left every output's part file behind; now it says so, exits 2 and leaves no part file.
+TEST(HostileOutputs, AClosedPipeEndsTheRunWithAnErrorAndNoPartFiles) {
+  TempDir dir;
+  auto s = base("piped");
+  s["script"][0]["count"] = 2000;
+  const auto file = write(dir / "p.json", s.dump());
+  const std::string cmd = "cd " + dir.path() + " && bash -c '" + std::string(ENDATSIM_EXE) + " run " + file +
+                          " --quiet --log - --json p.out.json --vcd p.out.vcd 2>err | head -c 100 >/dev/null; "
+                          "echo ${PIPESTATUS[0]} >status'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(slurp(dir / "status"), "2\n");
+  EXPECT_TRUE(contains(slurp(dir / "err"), "cannot write to standard output: Broken pipe")) << slurp(dir / "err");
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find(".part-"), std::string::npos) << e.path();
+}
+
 TEST(HostileOutputs, DirectoriesFifosAndReadOnlyFilesAreRefusedBeforeAnythingRuns) {
   TempDir dir;
   const auto file = write(dir / "in.json", base("in").dump());

@@ -10,6 +10,7 @@
 #include <boost/program_options.hpp>
 #include <charconv>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <chrono>
@@ -1492,6 +1493,9 @@ int dispatch(int argc, char** argv) {
   }
   if (info->command != Command::Checks && info->command != Command::Parameters && info->command != Command::Validate)
     scenarios::install_interrupt_handlers();
+  // A reader that goes away (`| head`) makes the next write fail with EPIPE instead of killing the
+  // process: the outputs then end as on any write error, their part files removed, and it says so.
+  std::signal(SIGPIPE, SIG_IGN);
   try {
     switch (info->command) {
       case Command::Run: return run_command(vm);
