@@ -358,8 +358,13 @@ std::optional<Node> Object::opt(const std::string& key) {
 
 Node Object::req(const std::string& key) {
   auto n = opt(key);
-  if (!n) n_.fail_raw("missing required key \"" + key + "\"");
-  return *n;
+  if (n) return *n;
+  // A key of this object close to the one required is most likely it, misspelt: say which.
+  const std::vector<std::string> wanted{key};
+  for (const auto& [given, value] : n_.raw().items())
+    if (known_.count(given) == 0 && closest_match(given, wanted))
+      n_.fail_raw("missing required key \"" + key + "\" (did you mean it for \"" + trimmed(given) + "\"?)");
+  n_.fail_raw("missing required key \"" + key + "\"");
 }
 
 void Object::done() const {

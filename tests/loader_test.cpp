@@ -78,6 +78,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"garbage", "\x01\x02\xff", {"not valid JSON"}},
         BadCase{"array", "[]", {"at /", "expected an object"}},
         BadCase{"missing_name", valid_with("\"name\": \"ok\",", ""), {"missing required key \"name\""}},
+        BadCase{"misspelt_required_key", valid_with("\"cable_length_m\"", "\"cable_lenght_m\""),
+                {"at /line: missing required key \"cable_length_m\" (did you mean it for \"cable_lenght_m\"?)"}},
         BadCase{"fc_number", valid_with("\"1 MHz\"", "1000000"), {"/master/f_c", "frequency string", "got number"}},
         BadCase{"fc_too_high", valid_with("\"1 MHz\"", "\"20 MHz\""), {"/master/f_c", "16 MHz"}},
         BadCase{"fc_too_low", valid_with("\"1 MHz\"", "\"50 kHz\""), {"/master/f_c", "100 kHz"}},
