@@ -1,5 +1,6 @@
 #include "endatsim/scenarios/sweep.hpp"
 
+#include "endatsim/input/json_input.hpp"
 #include "endatsim/scenarios/xml.hpp"
 #include "endatsim/sim/text.hpp"
 
@@ -344,6 +345,16 @@ GridAxis parse_grid_axis(const std::string& text) {
     if (item.empty()) throw ScenarioError(context + ": an empty value");
     if (auto range = range_values(item, context)) {
       axis.values.insert(axis.values.end(), range->begin(), range->end());
+      continue;
+    }
+    // An object or array is read as a scenario file is (a key given twice, deep nesting and bad
+    // syntax refused, not collapsed or taken as a string); any other value that is no JSON is a string.
+    if (item.front() == '{' || item.front() == '[') {
+      try {
+        axis.values.push_back(input::parse(item, context));
+      } catch (const input::InputError& e) {
+        throw ScenarioError(e.what());
+      }
       continue;
     }
     json value = json::parse(item, nullptr, false);

@@ -82,6 +82,21 @@ TEST(SweepGrid, ValuesAreJsonWhenTheyParseAndStringsOtherwise) {
   EXPECT_EQ(scenarios::parse_grid_axis("/x=\"1\",2.5").values, (std::vector<json>{"1", 2.5}));
 }
 
+// An object or array value is read as a scenario file is: a key given twice is refused (nlohmann
+// alone would keep the last one and run with it), and so is bad syntax, never taken as a string.
+TEST(SweepGrid, ObjectValuesAreReadAsStrictlyAsAScenarioFile) {
+  EXPECT_EQ(scenarios::parse_grid_axis(R"(/line/master_transceiver={"driver_delay":"20 ns"})").values,
+            (std::vector<json>{json{{"driver_delay", "20 ns"}}}));
+  try {
+    scenarios::parse_grid_axis(R"(/line/master_transceiver={"driver_delay":"20 ns","driver_delay":"900 ns"})");
+    ADD_FAILURE() << "a key given twice was taken";
+  } catch (const scenarios::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("duplicate key \"driver_delay\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--grid /line/master_transceiver="), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(scenarios::parse_grid_axis(R"(/line/master_transceiver={"driver_delay":)"), scenarios::ScenarioError);
+}
+
 TEST(SweepGrid, RangesIncludeStopAndMixWithValues) {
   const auto l = scenarios::parse_grid_axis("/line/cable_length_m=0:150:10");
   ASSERT_EQ(l.values.size(), 16U);
