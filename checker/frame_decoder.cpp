@@ -310,6 +310,9 @@ void FrameDecoder::on_encoder_bit(unsigned clock, bool bit) {
 void FrameDecoder::decode_answer(unsigned last_clock) {
   if (frame_.answer_complete) {  // a further word of a continuous clock
     ++frame_.continuous_words;
+    WireFrame::Word w{layout_.decode(bits_), crc_matches(std::span(bits_).first(layout_.width()))};
+    if (!w.crc_ok) ++frame_.bad_words;
+    if (frame_.words.size() < WireFrame::kMaxWordsKept) frame_.words.push_back(w);
     seen_low_ = false;
     state_ = State::Hunt;
     return;

@@ -68,6 +68,15 @@ struct WireFrame {
   std::optional<std::uint32_t> supplement;
   unsigned supplement_last_clock = 0;            // the rising edge that took its last bit
   unsigned continuous_words = 0;                 // further words of a continuous clock
+  // The first kMaxWordsKept of them, each decoded as the first (2.3.1: position and CRC).
+  struct Word {
+    protocol::FieldValues fields{};
+    bool crc_ok = false;
+  };
+  static constexpr std::size_t kMaxWordsKept = 100;
+  std::vector<Word> words;
+  unsigned bad_words = 0;  // of all further words, those whose CRC failed
+  bool all_crc_ok() const { return crc_ok && bad_words == 0; }
   bool complete = false;                         // every bit the frame needs was clocked
   unsigned learnt_position_bits = 0;             // word 13 read (or its write activated) here: the width from the next frame on
 

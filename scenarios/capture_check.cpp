@@ -128,6 +128,7 @@ class Replay {
     for (auto& f : decoder_.take_finished()) {
       ++result_.frames_decoded;
       if (f.answer_complete && f.crc_ok) ++result_.frames_clean;
+      result_.words_bad_crc += f.bad_words;
       if (f.learnt_position_bits != 0) {
         result_.position_bits = f.learnt_position_bits;
         result_.position_bits_learnt_at = f.index;
@@ -375,7 +376,15 @@ std::string frame_log_line(const checker::WireFrame& f) {
     out << ", additional data I=" << (d.status & protocol::AdditionalDataStatus::kInformation) << " status " << hex_h(d.status, 2) << " data " << hex_h(d.data, 4)
         << " CRC " << (d.crc_ok ? "ok" : "BAD");
   if (f.supplement) out << ", supplement " << hex_h(protocol::payload_address(*f.supplement), 2) << " " << hex_h(protocol::payload_parameter(*f.supplement), 4);
-  if (f.continuous_words != 0) out << ", " << f.continuous_words << " further continuous-clock word(s)";
+  if (f.continuous_words != 0) {
+    out << ", " << f.continuous_words << " further continuous-clock word(s)";
+    if (f.bad_words != 0) out << " (" << f.bad_words << " with a BAD CRC)";
+    out << ":";
+    for (std::size_t k = 0; k < f.words.size(); ++k)
+      out << (k == 0 ? " " : "; ") << "position " << f.words[k].fields[static_cast<std::size_t>(Field::Position)] << " CRC "
+          << (f.words[k].crc_ok ? "ok" : "BAD");
+    if (f.continuous_words > f.words.size()) out << "; " << f.continuous_words - f.words.size() << " more not listed";
+  }
   if (f.learnt_position_bits != 0)
     out << "; word 13" << (f.command == protocol::ModeCommand::EncoderReceiveReset ? " as written, now active" : "")
         << ": the position has " << f.learnt_position_bits << " bits";
@@ -408,6 +417,8 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
         << ": limits closer than that to a measured value are undecided";
   out << "; frames decoded: " << r.frames_decoded << " (" << r.frames_clean
       << " with a complete answer and a good CRC)\n";
+  if (r.words_bad_crc != 0)
+    out << "  " << r.words_bad_crc << " further continuous-clock word(s) with a BAD CRC (2.3.1; listed in the log)\n";
   if (r.clock_unknown != 0)
     out << "  CLOCK unknown (x) " << r.clock_unknown << " time(s) after it had a level, first at "
         << sim::format_time(r.clock_unknown_first)
@@ -468,6 +479,14 @@ nlohmann::json wire_frames_json(const std::vector<checker::WireFrame>& wire_fram
       json ad = json::array();
       for (const auto& d : f.additional_data) ad.push_back({{"status", d.status}, {"data", d.data}, {"crc_ok", d.crc_ok}});
       j["additional_data"] = ad;
+      if (f.continuous_words != 0) {
+        json words = json::array();
+        for (const auto& w : f.words)
+          words.push_back({{"position", w.fields[static_cast<std::size_t>(protocol::Field::Position)]}, {"crc_ok", w.crc_ok}});
+        j["continuous_words"] = f.continuous_words;
+        j["continuous_words_bad_crc"] = f.bad_words;
+        j["words"] = words;  // the first WireFrame::kMaxWordsKept
+      }
       if (f.learnt_position_bits != 0) j["learnt_position_bits"] = f.learnt_position_bits;
     }
     if (f.supplement) j["supplement"] = *f.supplement;
@@ -497,7 +516,7 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
   return {{"file", r.file},       {"at", r.at == CaptureCheckOptions::At::Master ? "master" : "encoder"}, {"resolution_ps", r.resolution.count()}, {"timescale", r.timescale}, {"uncertainty_ps", r.uncertainty.count()},
           {"undecided", r.undecided()}, {"end_ps", r.end.count()},
           {"changes", r.changes}, {"conforms", r.conforms()},              {"frames", frames},
-          {"frames_decoded", r.frames_decoded}, {"frames_clean", r.frames_clean}, {"position_bits", r.position_bits},
+          {"frames_decoded", r.frames_decoded}, {"frames_clean", r.frames_clean}, {"words_bad_crc", r.words_bad_crc}, {"position_bits", r.position_bits},
           {"declared", declared_json(r.declared)},
           {"position_bits_learnt_at", r.position_bits_learnt_at ? json(*r.position_bits_learnt_at) : json(nullptr)},
           {"frames_not_kept", r.frames_decoded - r.frames.size()},

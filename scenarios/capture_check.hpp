@@ -67,6 +67,7 @@ struct CaptureCheckResult {
   std::vector<checker::WireFrame> frames;  // the first kMaxFramesKept
   std::uint64_t frames_decoded = 0;
   std::uint64_t frames_clean = 0;       // with a complete answer and a good CRC
+  std::uint64_t words_bad_crc = 0;      // further continuous-clock words whose CRC failed
   unsigned position_bits = 0;           // as declared, or as the last read of word 13 showed
   checker::EncoderDeclaration declared;  // the encoder as judged (--encoder, --clock-to-data, --t-d)
   std::optional<std::uint64_t> position_bits_learnt_at;  // the frame that read word 13
