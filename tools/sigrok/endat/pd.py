@@ -50,6 +50,8 @@ PS_PER_US = 1000000
 # Key of the command that a continuous clock may follow (2.3.1), and of the reset that ends the
 # selections of additional data (2.7) and activates a written word 13.
 CONTINUOUS = COMMANDS[0b000111]['key']
+# The further words of a continuous clock listed with their position and CRC (the rest counted).
+WORDS_KEPT = 100
 
 
 def command_named(key):
@@ -227,6 +229,8 @@ class Frame:
         self.supplement = None
         self.supplement_last_clock = 0
         self.continuous_words = 0
+        self.words = []  # (position, crc_ok) of the first WORDS_KEPT further words, as endatsim check keeps them
+        self.bad_words = 0
         self.complete = False
         self.learnt_position_bits = 0
         self.answer_shown = False
@@ -725,6 +729,10 @@ class Decoder(srd.Decoder):
         width = layout_width(self.layout)
         if f.answer_complete:  # a further word of a continuous clock
             f.continuous_words += 1
+            crc_ok = crc_matches(self.bits[:width])
+            f.bad_words += 0 if crc_ok else 1
+            if len(f.words) < WORDS_KEPT:
+                f.words.append((decode_layout(self.layout, self.bits[:width])['position'][0], crc_ok))
             self.show_word(self.layout, self.bits[:width], self.slots[:width], f.continuous_words)
             self.seen_low = False
             self.state = HUNT
@@ -1313,6 +1321,11 @@ def frame_text(f):
         s += ', supplement %s %s' % (hx(f.supplement >> 16, 2), hx(f.supplement & 0xFFFF, 4))
     if f.continuous_words:
         s += ', %d further continuous-clock word(s)' % f.continuous_words
+        if f.bad_words:
+            s += ' (%d with a BAD CRC)' % f.bad_words
+        s += ':' + ';'.join(' position %d CRC %s' % (p, 'ok' if ok else 'BAD') for p, ok in f.words)
+        if f.continuous_words > len(f.words):
+            s += '; %d more not listed' % (f.continuous_words - len(f.words))
     if f.learnt_position_bits:
         s += '; word 13%s: the position has %d bits' % (' as written, now active' if c['key'] == RESET else '',
                                                           f.learnt_position_bits)
