@@ -171,7 +171,8 @@ void TimingChecker::on_encoder_data(std::uint64_t level) {
 unsigned TimingChecker::carrying_clock() const {
   const auto& rising = current_.rising;
   const auto& lp = line_.params();
-  const Time delay = lp.encoder.receiver_delay + encoder_.output_delay + lp.encoder.driver_delay;
+  const Time delay = measured_round_trip_ ? *measured_round_trip_
+                         : lp.encoder.receiver_delay + encoder_.output_delay + lp.encoder.driver_delay;
   const std::size_t n = rising.size();
   if (n < 2) {
     // No period yet: the latest edge the declared delay allows. In a sampled capture each edge
@@ -359,6 +360,11 @@ void TimingChecker::drop_given_up_start_bits() {
 void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
   if (!params_.round_trip_observable) return;
   if (start.measurement) delay_measurements_.measured(start.frame, t_d);
+  // Only a capture at the master's connector sees its "encoder pins" one round trip after the edges.
+  if (start.measurement && params_.recorded_at == ObservationPoint::MasterPins && t_d < start.period / 2) {
+    measured_round_trip_ = t_d;
+    decoder_.set_clock_to_data(t_d);
+  }
   judge(protocol::check::row_index(check::kDataDelay));
   const Time bound = limit::data_delay_max(cable_length_m());
   report_unless_passed(at_most(t_d, bound, params_.resolution),

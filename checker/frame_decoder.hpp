@@ -96,6 +96,9 @@ class FrameDecoder {
   // Levels at the encoder pins, in time order. on_clock returns true when the edge is FE1.
   bool on_clock(Time t, bool level);
   void on_data(Time t, bool level);
+  // The encoder's bits are taken this long after their rising edges from now on (at the master's
+  // connector: the round trip a delay measurement in the capture showed).
+  void set_clock_to_data(Time t) { params_.clock_to_data = t; }
   // Ends the last frame (no more edges).
   void finish();
 

@@ -208,6 +208,8 @@ class TimingChecker final {
   void end_capture(Time end) { capture_end_ = end; }
   // Clock edges of a capture skipped before its first frame, and the frame its end cut.
   std::uint64_t edges_before_first_frame() const { return decoder_.edges_before_first_frame(); }
+  // At the master's connector, the round trip the capture's last delay measurement showed.
+  std::optional<Time> measured_round_trip() const { return measured_round_trip_; }
   std::optional<std::uint64_t> frame_cut_by_end() const { return frame_cut_by_end_; }
 
   // The run stopped at `end` before the master was done (a limit, or the scenario's max_time): a
@@ -514,6 +516,11 @@ class TimingChecker final {
     bool operator==(const StartBitInFlight&) const = default;
   };
   std::deque<StartBitInFlight> start_bits_in_flight_;
+  // A capture at the master's connector: the round trip its last delay measurement showed (slow
+  // enough to leave no doubt which edge carried the start bit). Later frames' bits are found one
+  // such round trip after their edges, not one assumed (--t-d), which at a fast clock could put
+  // a start bit on the wrong edge and measure t_D against that one.
+  std::optional<Time> measured_round_trip_;
   // Frames found on the wires when no master declares its own (decided at the first FE).
   FrameDecoder decoder_;
   ActivatedSettings settings_;  // word 3 as the wires have set and activated it

@@ -82,6 +82,8 @@ class Replay {
   void schedule() { timer_.start(next_.time + offset_ - kernel_.now()); }
 
   void step() {
+    // The log's decoder takes the encoder's bits where the checker's does (a measured round trip).
+    if (const auto rt = checker_.measured_round_trip()) decoder_.set_clock_to_data(*rt);
     do {
       checker_.raise_resolution(reader_.uncertainty());
       if (next_.signal == clock_) apply(next_);

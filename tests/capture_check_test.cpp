@@ -677,6 +677,45 @@ TEST(CheckCommand, AtTheMastersConnectorTheRoundTripIsJudged) {
   fs::remove(vcd);
 }
 
+// At the master's connector a fast clock leaves no doubt only if the round trip is known: the
+// bundled 8 MHz master on 100 m has t_D near 1.06 us, almost nine periods. Assumed from a wrong
+// cable (10 m: 160 ns), the encoder's bits were looked for at the wrong edges and 20 of its 23
+// frames decoded incomplete, their clocks "too few". The three delay measurements at 200 kHz in
+// the capture show the round trip beyond doubt, and every frame after them is read with it: all
+// 23 decode with a good CRC, and t_D is measured from the edge that carried each start bit (and
+// is judged against the cable given, so here it breaks 10 m's 300 ns).
+TEST(CheckCapture, AtTheMastersConnectorTheMeasuredRoundTripFindsTheStartBitsEdge) {
+  const auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) +
+                                               "/scenarios/bundled/endat22_8mhz_100m_compensated.json");
+  const fs::path vcd = temp("round_trip.vcd");
+  run_to_vcd(s, vcd);
+  std::vector<unsigned> first_starts;
+  for (const double cable : {100.0, 10.0}) {
+    scenarios::CaptureCheckOptions o;
+    o.file = vcd.string();
+    o.clock = "master_clock";
+    o.data = "master_data";
+    o.at = scenarios::CaptureCheckOptions::At::Master;
+    o.cable_m = cable;
+    o.encoder = scenarios::declared_encoder(s.encoder);
+    const auto r = scenarios::check_capture(o);
+    EXPECT_EQ(r.frames_decoded, 23U) << cable;
+    EXPECT_EQ(r.frames_clean, 23U) << cable;
+    const auto row = [&](std::string_view name) {
+      return *std::find_if(r.conformance.begin(), r.conformance.end(), [&](const auto& c) { return c.check == name; });
+    };
+    EXPECT_EQ(row(checker::check::kClockCount).violations, 0U) << cable;
+    EXPECT_EQ(row(checker::check::kDataDelay).judged, 23U) << cable;
+    EXPECT_EQ(row(checker::check::kDataDelay).violations, cable == 10.0 ? 23U : 0U) << cable;
+    // The same edges, whichever cable was given.
+    std::vector<unsigned> starts;
+    for (const auto& f : r.frames) starts.push_back(f.start_bit_clock);
+    if (first_starts.empty()) first_starts = starts;
+    EXPECT_EQ(starts, first_starts) << cable;
+  }
+  fs::remove(vcd);
+}
+
 // An RTL master's own signals: data_out with data_oe, data_in (here unknown while the master
 // drives, to show it is not used then; data_out is 0 while released, to show it is ignored).
 TEST(CheckCommand, AnRtlMastersSplitDataIsJudgedAtItsConnector) {
