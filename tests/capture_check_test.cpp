@@ -716,6 +716,26 @@ TEST(CheckCapture, AtTheMastersConnectorTheMeasuredRoundTripFindsTheStartBitsEdg
   fs::remove(vcd);
 }
 
+// f_c is shown before the oscillator's allowance (f_c_tolerance_ppm, 1000 ppm by default): a
+// master at 2.001 MHz without compensation is outside 2 MHz by 1.001 kHz and passes by that
+// allowance, which the conformance line now names; at 2 MHz it is inside, and nothing is named.
+TEST(CheckCapture, AClockThatPassesOnlyByTheOscillatorAllowanceSaysSo) {
+  for (const auto& [f_c, allowed] : {std::pair{sim::Hertz{2'001'000}, true}, std::pair{sim::Hertz{2'000'000}, false}}) {
+    auto s = test_support::make_scenario(1, f_c, false);
+    s.expect = {};
+    const fs::path vcd = temp("allowance.vcd");
+    run_to_vcd(s, vcd);
+    const auto r = scenarios::check_capture(encoder_pins_of(s, vcd));
+    std::ostringstream summary;
+    scenarios::write_capture_summary(summary, r, false);
+    const std::string text = summary.str();
+    const auto line = text.substr(text.find("    f_c: "), text.find('\n', text.find("    f_c: ")) - text.find("    f_c: "));
+    EXPECT_NE(line.find("3 / 0 / 0  ok; worst"), std::string::npos) << line;
+    EXPECT_EQ(line.find("(within the oscillator allowance, f_c_tolerance_ppm)") != std::string::npos, allowed) << line;
+    fs::remove(vcd);
+  }
+}
+
 // An RTL master's own signals: data_out with data_oe, data_in (here unknown while the master
 // drives, to show it is not used then; data_out is 0 while released, to show it is ignored).
 TEST(CheckCommand, AnRtlMastersSplitDataIsJudgedAtItsConnector) {
