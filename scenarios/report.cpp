@@ -24,7 +24,11 @@ std::string frame_line(const ScenarioResult& r, const master::FrameResult& f) {
                   format_time(f.start) + " " +
                   std::string(protocol::info(f.command).key) + " @ " + sim::format_frequency(f.f_c) + ": " +
                   std::string(master::to_string(f.outcome));
-  if (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError) {
+  // A position and F1 belong to a position answer; an echo or a test value has neither.
+  const bool position = protocol::info(f.command).answer == protocol::AnswerFormat::Position;
+  if (f.outcome == master::FrameOutcome::CrcError && !position)
+    s += ", CRC " + std::to_string(f.crc_received) + " != " + std::to_string(f.crc_expected);
+  if (position && (f.outcome == master::FrameOutcome::Ok || f.outcome == master::FrameOutcome::CrcError)) {
     s += ", position " + std::to_string(f.position);
     if (r.multiturn_bits > 0) {
       const auto [rev, st] = revolution_and_singleturn(r, f.position);

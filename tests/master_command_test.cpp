@@ -461,6 +461,27 @@ std::string summary_of(const scenarios::ScenarioResult& r) {
 
 }  // namespace
 
+// --verbose lists each frame: a position answer with its position and F1, a memory area selection
+// or a parameter read with its outcome alone (it showed "position 0, F1 0", fields it has not).
+TEST(MasterReports, AFrameListsThePositionAndF1OnlyOfAPositionAnswer) {
+  const auto s = scenarios::load_scenario_file(std::string(ENDATSIM_SOURCE_DIR) + "/scenarios/safety/01_error_messages.json");
+  const auto r = scenarios::run_scenario(s);
+  std::ostringstream out;
+  scenarios::write_summary(out, r, true);
+  const std::string text = out.str();
+  std::size_t selections = 0, positions = 0;
+  for (std::size_t at = text.find("\n  #"); at != std::string::npos; at = text.find("\n  #", at + 1)) {
+    const std::string line = text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+    const bool position_answer = line.find(" encoder_send_position_values") != std::string::npos;
+    if (line.find(": ok") == std::string::npos) continue;
+    EXPECT_EQ(line.find(", position ") != std::string::npos, position_answer) << line;
+    EXPECT_EQ(line.find(", F1 ") != std::string::npos, position_answer) << line;
+    (position_answer ? positions : selections) += 1;
+  }
+  EXPECT_GT(positions, 0U);
+  EXPECT_GT(selections, 0U);
+}
+
 TEST(MasterReports, AnAwaitNotBusyWithoutAdditionalData1GivesUpAtOnceAndSaysWhy) {
   const auto r = run_text(R"([{"op": "await_not_busy"}])");
   ASSERT_TRUE(r.finished);
