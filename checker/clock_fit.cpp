@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "endatsim/protocol/timing.hpp"
@@ -34,9 +35,57 @@ std::pair<__int128, __int128> sums_of(const std::vector<Time>& rising, std::size
   return {sy, sxy};
 }
 
+FittedFrequency fit_edges(const std::vector<Time>& rising);
+
+// The rising edges without those of glitches. An edge of the clock has a period on each side, so
+// its neighbours are two periods apart; a glitch's edge splits one period in two, so its
+// neighbours are one period apart. An edge whose neighbours lie within a quarter of the frame's
+// median period of one period apart, and closer to it than for the edges beside it (the clock's
+// edge next to a glitch is one period and the glitch's part apart), is a glitch's. None when no
+// period is shorter than three quarters of the fit's (every steady or jittered clock: no median is
+// then needed).
+std::optional<std::vector<Time>> without_glitches(const std::vector<Time>& rising, const FittedFrequency& fit) {
+  constexpr std::size_t kFirst = protocol::frame_position::edge_index(protocol::frame_position::kFirstSteadyRise);
+  const std::size_t n = rising.size();
+  if (n < kFirst + 4) return std::nullopt;
+  Time shortest = Time::max();
+  for (std::size_t i = kFirst + 1; i < n; ++i) shortest = std::min(shortest, rising[i] - rising[i - 1]);
+  if (__int128{shortest.count()} * 4 * fit.den >= 3 * fit.num) return std::nullopt;
+  std::vector<Time> periods;
+  for (std::size_t i = kFirst + 1; i < n; ++i) periods.push_back(rising[i] - rising[i - 1]);
+  std::nth_element(periods.begin(), periods.begin() + static_cast<std::ptrdiff_t>(periods.size() / 2), periods.end());
+  const Time median = periods[periods.size() / 2];
+  // How far edge i's neighbours are from one period apart (the ends: never a glitch's).
+  const auto off = [&](std::size_t i) {
+    if (i <= kFirst || i + 1 >= n) return Time::max();
+    const Time joined = rising[i + 1] - rising[i - 1];
+    return joined > median ? joined - median : median - joined;
+  };
+  std::vector<Time> kept;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Time d = off(i);
+    const bool glitch = d != Time::max() && d * 4 <= median && d < off(i - 1) && d <= off(i + 1);
+    if (!glitch) kept.push_back(rising[i]);
+  }
+  if (kept.size() == n) return std::nullopt;
+  return kept;
+}
+
 }  // namespace
 
+// A glitch on CLOCK (noise, a master's runt pulse) adds a rising edge that is no period of the
+// clock: fitted with it, a 2 MHz frame came out at 2.07 MHz and was judged as a compensated one.
+// The frame's frequency is fitted without such edges; the pulse-width rows judge the glitch.
 FittedFrequency fit_frequency(const std::vector<Time>& rising) {
+  const FittedFrequency fit = fit_edges(rising);
+  if (fit.num <= 0) return fit;
+  const auto steady = without_glitches(rising, fit);
+  return steady ? fit_edges(*steady) : fit;
+}
+
+namespace {
+
+FittedFrequency fit_edges(const std::vector<Time>& rising) {
   constexpr std::size_t kFirst = protocol::frame_position::edge_index(protocol::frame_position::kFirstSteadyRise);
   const std::int64_t m = std::min<std::int64_t>(static_cast<std::int64_t>(rising.size() - kFirst), kMaxFitEdges);
   if (m <= 0) return {};
@@ -65,6 +114,8 @@ FittedFrequency fit_frequency(const std::vector<Time>& rising) {
   fit.uncertainty_ppm = uncertainty_ppm(fit, m, squares);
   return fit;
 }
+
+}  // namespace
 
 std::int64_t uncertainty_ppm(const FittedFrequency& fit, std::int64_t m, long double squares) {
   if (squares == 0) return 0;

@@ -14,7 +14,8 @@ using sim::Time;
 // The frame's clock frequency from a least-squares fit over its rising edges from RE2 on (the
 // first period contains t_ST), at most kMaxFitEdges of them (a long continuous clock). A steady
 // clock is judged exactly; with jitter the limits widen by three standard errors of the fit,
-// so that a clock whose frequency is right is not flagged for the scatter of its edges.
+// so that a clock whose frequency is right is not flagged for the scatter of its edges. The rising
+// edges of glitches (an edge that splits one period of the median in two) are left out of the fit.
 constexpr std::int64_t kMaxFitEdges = 4096;
 
 struct FittedFrequency {

@@ -46,6 +46,9 @@ void for_each_phase(const std::vector<Time>& rising, const std::vector<Time>& fa
 // datasheet ("see encoder specifications").
 void TimingChecker::check_pulse_widths(const PinFrame& f) {
   if (f.falling.empty()) return;
+  // A lone LOW pulse while the power-on sequence waits for its request is the wake-up pulse, whose
+  // minimum is the power-on row's 125 ns (2.3.3), not t_LO of a transmission's clock.
+  if (f.rising.size() <= 1 && f.falling.size() <= 1 && power_on_.due()) return;
   constexpr std::size_t low_row = protocol::check::row_index(check::kPulseLow);
   constexpr std::size_t high_row = protocol::check::row_index(check::kPulseHigh);
   judge(low_row);

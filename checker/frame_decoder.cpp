@@ -32,6 +32,7 @@ bool FrameDecoder::on_clock(Time t, bool level) {
   resolve(t);
   if (level == clock_level_) return false;
   clock_level_ = level;
+  tail_.reset();  // the clock goes on: the slot after the last rising edge is read at the next one
   if (level) {
     last_rise_ = t;
     if (in_frame_) on_rising(t);
@@ -61,9 +62,17 @@ bool FrameDecoder::on_clock(Time t, bool level) {
 
 void FrameDecoder::on_data(Time t, bool level) {
   resolve(t);
-  if (level == data_level_) return;
-  data_level_ = level;
-  data_.emplace_back(t, level);
+  const Level now{level, false};
+  if (now == data_level_) return;
+  data_level_ = now;
+  data_.emplace_back(t, now);
+}
+
+void FrameDecoder::on_data_unknown(Time t) {
+  resolve(t);
+  if (data_level_.unknown) return;
+  data_level_.unknown = true;
+  data_.emplace_back(t, data_level_);
 }
 
 void FrameDecoder::finish() {
@@ -95,6 +104,7 @@ void FrameDecoder::begin_frame(Time t) {
   received_.clear();
   seen_low_ = false;
   bits_.clear();
+  tail_.reset();
 }
 
 void FrameDecoder::end_frame() {
@@ -107,7 +117,8 @@ void FrameDecoder::end_frame() {
 
 // The master's bits are taken on rising edges at the encoder pins, as the encoder takes them;
 // the encoder's bit of slot k is taken in the middle of its data-valid window, half-way between
-// RE_k and RE_(k+1) plus the encoder's clock-to-data delay.
+// RE_k and RE_(k+1) plus the encoder's clock-to-data delay; after the frame's last rising edge,
+// half its last period after it (a master that gives no pulse after the last bit).
 void FrameDecoder::on_rising(Time t) {
   rising_.push_back(t);
   const auto k = static_cast<unsigned>(rising_.size());
@@ -119,11 +130,14 @@ void FrameDecoder::on_rising(Time t) {
     pending_.insert(at, s);
   };
   insert({t, k, true});
-  if (k >= 2) insert({rising_[k - 2] + (t - rising_[k - 2]) / 2 + params_.clock_to_data, k - 1, false});
+  if (k < 2) return;
+  const Time half = (t - rising_[k - 2]) / 2;
+  insert({rising_[k - 2] + half + params_.clock_to_data, k - 1, false});
+  tail_ = Sample{t + half + params_.clock_to_data, k, false};
 }
 
-bool FrameDecoder::level_at(Time t) const {
-  bool level = base_level_;
+FrameDecoder::Level FrameDecoder::level_at(Time t) const {
+  Level level = base_level_;
   for (const auto& [when, value] : data_) {
     if (when > t) break;
     level = value;
@@ -135,9 +149,17 @@ void FrameDecoder::resolve(Time t) {
   while (!pending_.empty() && pending_.front().due < t) {
     const Sample s = pending_.front();
     pending_.pop_front();
-    const bool bit = level_at(s.due);
-    if (s.master) on_master_bit(s.clock, bit);
-    else on_encoder_bit(s.clock, bit);
+    take(s);
+  }
+  // CLOCK stayed HIGH for t_m after the last rising edge: the frame has ended at the encoder
+  // (2.3.2 recovery time I), and the slot after that edge had no rising edge to read it. The
+  // changes after the edge are still kept (below), so its level is known.
+  // Only an answer still short of its bits takes it: after a complete answer the slot would only
+  // hold the end marker, or the line the encoder lets fall after t_m.
+  if (tail_ && in_frame_ && state_ == State::Answer && clock_level_ && t - last_rise_ >= params_.t_m && tail_->due < t) {
+    const Sample s = *tail_;
+    tail_.reset();
+    take(s);
   }
   // Changes before the earliest sample still due are folded into the level they left. In a frame,
   // the sample of the bit after the last rising edge is inserted only at the next one, and may be
@@ -151,6 +173,31 @@ void FrameDecoder::resolve(Time t) {
     base_level_ = data_.front().second;
     data_.pop_front();
   }
+}
+
+// A bit read from a level a capture showed unknown (x) is counted where the frame uses it. The line
+// floats, and a capture may show x, between the turnaround and the encoder's LOW and after the
+// answer: such bits decide nothing.
+void FrameDecoder::take(const Sample& s) {
+  const Level level = level_at(s.due);
+  const State before = state_;
+  if (s.master) on_master_bit(s.clock, level.high);
+  else on_encoder_bit(s.clock, level.high);
+  if (!level.unknown || !in_frame_) return;
+  bool used = false;
+  switch (before) {
+    case State::Header:
+      used = s.master && s.clock >= position::kFirstModeBit && s.clock <= position::kLastModeBit;
+      break;
+    case State::Payload:
+    case State::Supplement: used = s.master; break;
+    case State::SupplementHunt: used = s.master && state_ == State::Supplement; break;
+    case State::Answer: used = !s.master; break;
+    case State::Hunt:
+    case State::MoreData: used = !s.master && state_ == State::Answer; break;
+    case State::Done: break;
+  }
+  if (used && frame_.unknown_bits++ == 0) frame_.first_unknown_clock = s.clock;
 }
 
 void FrameDecoder::on_master_bit(unsigned clock, bool bit) {
@@ -210,7 +257,7 @@ void FrameDecoder::decode_mode_command() {
 // "Encoder receive reset", as the EIB activates what was written. Only answers the encoder
 // acknowledged with a good CRC count, and a selection lasts until the next.
 void FrameDecoder::follow_parameter_reads() {
-  if (!frame_.command || !frame_.answer_complete || !frame_.crc_ok) return;
+  if (!frame_.command || !frame_.clean()) return;
   const auto address = [](std::uint32_t bits) { return protocol::payload_address(bits); };
   switch (*frame_.command) {
     case MC::SelectionOfMemoryArea:

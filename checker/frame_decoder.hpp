@@ -78,6 +78,12 @@ struct WireFrame {
   unsigned bad_words = 0;  // of all further words, those whose CRC failed
   bool all_crc_ok() const { return crc_ok && bad_words == 0; }
   bool complete = false;                         // every bit the frame needs was clocked
+  // Bits taken while a capture showed DATA unknown (x): read as the level before the x, so the
+  // frame's values and CRC cannot be trusted.
+  unsigned unknown_bits = 0;
+  unsigned first_unknown_clock = 0;              // the slot (or the master's clock) of the first
+  // A complete answer with a good CRC, every bit of it read from a known level.
+  bool clean() const { return answer_complete && crc_ok && unknown_bits == 0; }
   unsigned learnt_position_bits = 0;             // word 13 read (or its write activated) here: the width from the next frame on
 
   // A2 type II: a 2.1 parameter frame whose acknowledgment returns the address sent inverted,
@@ -96,6 +102,8 @@ class FrameDecoder {
   // Levels at the encoder pins, in time order. on_clock returns true when the edge is FE1.
   bool on_clock(Time t, bool level);
   void on_data(Time t, bool level);
+  // A capture shows DATA unknown (x) from `t` until the next on_data().
+  void on_data_unknown(Time t);
   // The encoder's bits are taken this long after their rising edges from now on (at the master's
   // connector: the round trip a delay measurement in the capture showed).
   void set_clock_to_data(Time t) { params_.clock_to_data = t; }
@@ -135,7 +143,13 @@ class FrameDecoder {
   void begin_frame(Time t);
   void end_frame();
   void resolve(Time t);
-  bool level_at(Time t) const;
+  struct Level {
+    bool high = true;
+    bool unknown = false;  // x: `high` is the level before it
+    bool operator==(const Level&) const = default;
+  };
+  Level level_at(Time t) const;
+  void take(const Sample& s);
   void on_rising(Time t);
   void on_master_bit(unsigned clock, bool bit);
   void on_encoder_bit(unsigned clock, bool bit);
@@ -160,11 +174,14 @@ class FrameDecoder {
   WireFrame frame_;
   State state_ = State::Done;
   std::vector<Time> rising_;
-  std::deque<std::pair<Time, bool>> data_;  // DATA changes still needed for sampling
+  std::deque<std::pair<Time, Level>> data_;  // DATA changes still needed for sampling
   static constexpr std::size_t kMaxChangesKept = 4096;
-  bool data_level_ = true;
-  bool base_level_ = true;  // DATA before the first change in data_
+  Level data_level_;
+  Level base_level_;  // DATA before the first change in data_
   std::deque<Sample> pending_;
+  // The slot after the last rising edge, sampled half a period later if no edge follows: a master
+  // that gives no pulse after the last bit samples it so (docs/model.md, clock pulses).
+  std::optional<Sample> tail_;
   std::vector<std::uint8_t> bits_;
   protocol::ReceivedBits received_;  // a 2.1 payload or a 2.2 command supplement
   protocol::SupplementStart supplement_start_;

@@ -33,6 +33,7 @@ void PowerOnSequence::switched_on(Time at) {
   fall_.reset();
   pulses_.clear();
   wake_.reset();
+  rise_after_low_at_on_.reset();
 }
 
 void PowerOnSequence::clock(Time at, bool level) {
@@ -41,7 +42,12 @@ void PowerOnSequence::clock(Time at, bool level) {
     fall_ = at;
     return;
   }
-  if (!fall_) return;  // HIGH from a LOW that began before switching on: no pulse of the sequence
+  if (!fall_) {
+    // HIGH from a LOW that began before switching on: no pulse of the sequence, but t1 ends and
+    // t2 begins here (CLOCK LOW through t1, then HIGH for t2).
+    if (!rise_after_low_at_on_) rise_after_low_at_on_ = at;
+    return;
+  }
   pulses_.push_back({*fall_, at});
   fall_.reset();
   if (pulses_.size() > kPulsesKept) pulses_.pop_front();
@@ -50,6 +56,7 @@ void PowerOnSequence::clock(Time at, bool level) {
 std::optional<Time> PowerOnSequence::last_rise_before(Time t) const {
   for (auto it = pulses_.rbegin(); it != pulses_.rend(); ++it)
     if (it->rise <= t) return it->rise;
+  if (rise_after_low_at_on_ && *rise_after_low_at_on_ <= t) return rise_after_low_at_on_;
   return std::nullopt;
 }
 

@@ -75,6 +75,8 @@ class PowerOnSequence {
   // to be one (its mode bits), so a few are kept and the request's dropped.
   std::deque<Pulse> pulses_;
   std::optional<Wake> wake_;
+  // CLOCK's first rise after switching on from a LOW it had then: the start of t2.
+  std::optional<sim::Time> rise_after_low_at_on_;
 };
 
 }  // namespace endatsim::checker

@@ -553,8 +553,8 @@ void TimingChecker::begin_wire_frame(Time now) {
                                     [](const DecodedDatum& d) { return d.number() == protocol::AdditionalDataNumber::One; });
       const bool data_ok = std::all_of(w.additional_data.begin(), w.additional_data.end(),
                                        [](const DecodedDatum& d) { return d.crc_ok; });
-      if (w.answer_complete && w.crc_ok) settings_.on_frame(*w.command, w.payload, w.supplement);
-      check_busy_time({w.index, w.fe1, w.last_rise, *w.command, w.supplement, w.answer_complete && w.crc_ok && data_ok,
+      if (w.clean()) settings_.on_frame(*w.command, w.payload, w.supplement);
+      check_busy_time({w.index, w.fe1, w.last_rise, *w.command, w.supplement, w.clean() && data_ok,
                        ai1 == w.additional_data.end() ? std::nullopt : std::optional<bool>(ai1->busy()),
                        current_.header.f_c});
     }

@@ -129,7 +129,7 @@ void Bench::on_encoder_data(std::uint64_t level) {
 void Bench::drain_frames() {
   for (auto& f : parts_->at_encoder.take_finished()) {
     ++frames_decoded_;
-    const bool clean = f.answer_complete && f.crc_ok;
+    const bool clean = f.clean();
     if (clean) ++frames_clean_;
     if (clean && f.command && protocol::info(*f.command).answer == protocol::AnswerFormat::Parameter)
       last_parameter_on_wires_ = static_cast<std::uint16_t>(f.fields[static_cast<std::size_t>(protocol::Field::Parameter)]);
@@ -156,7 +156,7 @@ void Bench::report_parameter(std::uint16_t parameter) {
   drain_frames();
   std::optional<std::uint64_t> truth = last_parameter_on_wires_;
   if (const auto* f = parts_->at_encoder.current();
-      f != nullptr && f->answer_complete && f->crc_ok && f->command &&
+      f != nullptr && f->clean() && f->command &&
       protocol::info(*f->command).answer == protocol::AnswerFormat::Parameter)
     truth = f->fields[static_cast<std::size_t>(protocol::Field::Parameter)];
   parameters_.push_back({now(), parameter, truth});

@@ -129,8 +129,10 @@ class Replay {
   void drain() {
     for (auto& f : decoder_.take_finished()) {
       ++result_.frames_decoded;
-      if (f.answer_complete && f.crc_ok) ++result_.frames_clean;
+      if (f.clean()) ++result_.frames_clean;
       result_.words_bad_crc += f.bad_words;
+      if (f.unknown_bits != 0 && result_.data_unknown_bits == 0) result_.data_unknown_first_frame = f.index;
+      result_.data_unknown_bits += f.unknown_bits;
       if (f.learnt_position_bits != 0) {
         result_.position_bits = f.learnt_position_bits;
         result_.position_bits_learnt_at = f.index;
@@ -187,6 +189,7 @@ class Replay {
       master_.data_enable.write(known);
     }
     if (c.signal == data_ && known) decoder_.on_data(now, data_level_ == '1');
+    else if (c.signal == data_) decoder_.on_data_unknown(now);
   }
 
   // CLOCK's first level. A simulator's VCD shows its simulation from the start at time 0, where
@@ -215,6 +218,7 @@ class Replay {
     master_.data_out.write(level == '1');
     master_.data_enable.write(known);
     if (known) decoder_.on_data(kernel_.now(), level == '1');
+    else decoder_.on_data_unknown(kernel_.now());
   }
 
   sim::Kernel& kernel_;
@@ -316,6 +320,9 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   log.finish();
   replay.drain();
   result.violations = checker.violations();
+  // The replay's line has no delays: both of its ends are the one connector the capture recorded.
+  if (o.at == CaptureCheckOptions::At::Master)
+    for (auto& v : result.violations) v.where = line::ObservationPoint::MasterPins;
   result.conformance = checker.conformance();
   result.conclusion = checker.conclusion();
   result.findings_not_kept = checker.findings_not_kept();
@@ -374,6 +381,9 @@ std::string frame_log_line(const checker::WireFrame& f) {
       break;
   }
   out << ", CRC " << (f.crc_ok ? "ok" : "BAD");
+  if (f.unknown_bits != 0)
+    out << " (" << f.unknown_bits << " bit(s) read while DATA was unknown (x), the first on clock " << f.first_unknown_clock
+        << ": not to be trusted)";
   for (const auto& d : f.additional_data)
     out << ", additional data I=" << (d.status & protocol::AdditionalDataStatus::kInformation) << " status " << hex_h(d.status, 2) << " data " << hex_h(d.data, 4)
         << " CRC " << (d.crc_ok ? "ok" : "BAD");
@@ -425,6 +435,9 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
     out << "  CLOCK unknown (x) " << r.clock_unknown << " time(s) after it had a level, first at "
         << sim::format_time(r.clock_unknown_first)
         << ": read as the level before; a master must drive CLOCK at a known level throughout (2.3)\n";
+  if (r.data_unknown_bits != 0)
+    out << "  DATA unknown (x) where " << r.data_unknown_bits << " bit(s) of the frames were read, first in frame #"
+        << r.data_unknown_first_frame << ": read as the level before; those frames are not counted as clean\n";
   if (r.edges_before_first_frame != 0)
     out << "  capture begins inside a frame: " << r.edges_before_first_frame
         << " edges before the first frame not judged (a frame begins once CLOCK has been HIGH for t_m)\n";
@@ -492,6 +505,10 @@ nlohmann::json wire_frames_json(const std::vector<checker::WireFrame>& wire_fram
       if (f.learnt_position_bits != 0) j["learnt_position_bits"] = f.learnt_position_bits;
     }
     if (f.supplement) j["supplement"] = *f.supplement;
+    if (f.unknown_bits != 0) {
+      j["unknown_bits"] = f.unknown_bits;
+      j["first_unknown_clock"] = f.first_unknown_clock;
+    }
     frames.push_back(j);
   }
   return frames;
@@ -524,6 +541,7 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
           {"frames_not_kept", r.frames_decoded - r.frames.size()},
           {"edges_before_first_frame", r.edges_before_first_frame},
           {"clock_unknown", r.clock_unknown},
+          {"data_unknown_bits", r.data_unknown_bits},
           {"frame_cut_by_end", r.frame_cut_by_end ? json(*r.frame_cut_by_end) : json(nullptr)},
           {"cable_m", r.cable_given ? json(r.cable_m) : json(nullptr)},
           {"violations", violations_json(r.violations)}, {"findings_not_kept", r.findings_not_kept},

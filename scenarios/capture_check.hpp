@@ -81,6 +81,8 @@ struct CaptureCheckResult {
   std::uint64_t edges_before_first_frame = 0;         // CLOCK edges of a frame the capture began inside
   std::uint64_t clock_unknown = 0;                    // times CLOCK went unknown (x) after its first level
   sim::Time clock_unknown_first{0};                      // ... the first of them
+  std::uint64_t data_unknown_bits = 0;                // bits of frames read while DATA was unknown (x)
+  std::uint64_t data_unknown_first_frame = 0;         // ... the first frame with one
   std::optional<std::uint64_t> frame_cut_by_end;      // the last frame, if the capture's end cut it
   bool conforms() const;           // no violation of error severity and nothing undecided
   std::size_t undecided() const;   // findings undecided at the capture's resolution

@@ -666,6 +666,9 @@ TEST(CheckCommand, AtTheMastersConnectorTheRoundTripIsJudged) {
   EXPECT_NE(r.out.find("violation t_d x" + std::to_string(t_d_in_run)), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("at the master's connector"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("5 with a complete answer and a good CRC"), std::string::npos) << r.out;
+  // Every finding is placed at the connector recorded (before, each said "encoder pins").
+  EXPECT_NE(r.out.find("(master pins, frame #"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("encoder pins"), std::string::npos) << r.out;
   // Usage: --at master needs the cable; --t-d belongs to it; a bad length.
   EXPECT_EQ(cli("check '" + vcd.string() + "' --clock master_clock --data master_data --at master").status, 2);
   r = cli("check '" + vcd.string() + "'" + encoder_side + " --t-d 400ns");
@@ -891,6 +894,56 @@ TEST(CheckCapture, TheSupplyShowsEachSwitchOnAndPowerOnIsJudgedAfterEach) {
     }
   EXPECT_EQ(judged(r), 2U);
   for (const char* name : {"power_clean.vcd", "power_t3.vcd", "power_dip.vcd"}) fs::remove(temp(name));
+}
+
+// 2.3.3 with CLOCK LOW already before the supply comes up: its rise ends t1 and begins t2, which
+// must last 80 .. 120 ms before the pulse. (Before, a LOW that began before switching on left t2
+// unjudged.)
+TEST(CheckCapture, TwoIsJudgedFromClocksRiseAfterALowThatBeganBeforeSwitchingOn) {
+  const auto t2_findings = [](std::int64_t t2_ns) {
+    PowerCapture c;
+    c.events.emplace_back(1, 'c', '0');
+    c.events.emplace_back(10 * kMs, 'p', '1');
+    c.events.emplace_back(810 * kMs, 'c', '1');
+    c.pulse(810 * kMs + t2_ns, 1000);
+    c.request(810 * kMs + t2_ns + 1000 + 400 * kMs);
+    const auto vcd = c.write("power_t2.vcd");
+    const auto r = check_with_power(vcd);
+    fs::remove(vcd);
+    return std::count_if(r.violations.begin(), r.violations.end(),
+                         [](const auto& v) { return v.check == checker::check::kPowerOn && v.limit == "t2 = 80 .. 120 ms"; });
+  };
+  EXPECT_EQ(t2_findings(100 * kMs), 0);
+  EXPECT_EQ(t2_findings(120 * kMs), 0);
+  EXPECT_EQ(t2_findings(120 * kMs + 1), 1);
+  EXPECT_EQ(t2_findings(200 * kMs), 1);
+  EXPECT_EQ(t2_findings(80 * kMs - 1), 1);
+}
+
+// The wake-up pulse of 2.3.3 needs only to be longer than 125 ns: a pulse of 150 ns passes the
+// power-on row and is no clock pulse of a transmission, so t_LO (200 ns) does not judge it. A lone
+// 150 ns pulse when no power-on sequence is due is judged by t_LO. (Before, the wake-up pulse
+// broke t_LO.)
+TEST(CheckCapture, TheWakeUpPulseIsJudgedByPowerOnNotByTlo) {
+  const auto lo_violations = [](const scenarios::CaptureCheckResult& r) {
+    return std::count_if(r.violations.begin(), r.violations.end(), [](const auto& v) { return v.check == checker::check::kPulseLow; });
+  };
+  PowerCapture c;
+  c.events.emplace_back(10 * kMs, 'p', '1');
+  c.pulse(910 * kMs, 150);
+  c.request(910 * kMs + 150 + 400 * kMs);
+  c.pulse(1400 * kMs, 150);  // long after the sequence: a runt pulse
+  c.request(1400 * kMs + 100'000);
+  const auto vcd = c.write("power_150.vcd");
+  const auto r = check_with_power(vcd);
+  EXPECT_EQ(power_on_findings(r), 0U);
+  ASSERT_EQ(lo_violations(r), 1);
+  for (const auto& v : r.violations)
+    if (v.check == checker::check::kPulseLow) {
+      EXPECT_EQ(v.measured, "150 ns");
+      EXPECT_GT(v.time, sim::ms(1399));
+    }
+  fs::remove(vcd);
 }
 
 // 3.5.6: the start-up routine reads word 13 (8019h: 25 bits) before its first position. A
@@ -1356,6 +1409,148 @@ TEST(CheckCapture, TheStartBitBelongsToTheEdgeWithinHalfAPeriodOfTheDeclaredDela
   const auto early = scenarios::check_capture(o);
   EXPECT_EQ(rows(early, checker::check::kCalculationTime), 3);
   fs::remove(vcd);
+}
+
+// A master that gives no pulse after the last bit (docs/model.md section 5) samples it half a
+// period after the last rising edge, with CLOCK already HIGH: the clock count accepts its 43
+// pulses, and the decoder reads that bit there, so every answer is complete with its CRC, as the
+// run's master read it. (Before, the last bit had no rising edge after it and every frame was
+// "incomplete after 43 clocks".) One pulse fewer still leaves the answer incomplete.
+TEST(CheckCapture, TheLastBitIsReadWithoutAPulseAfterIt) {
+  auto s = test_support::make_scenario(3, sim::MHz(2), false);
+  const fs::path vcd = temp("no_extra_pulse.vcd");
+  for (const bool extra : {true, false}) {
+    s.master.extra_clock_after_last_bit = extra;
+    s.master.position_bits = s.encoder.position_bits;
+    const auto run = run_to_vcd(s, vcd);
+    const auto r = scenarios::check_capture(encoder_pins_of(s, vcd));
+    EXPECT_TRUE(r.conforms()) << extra << "\n" << verdict_line(r.violations);
+    ASSERT_EQ(r.frames.size(), 3U) << extra;
+    EXPECT_EQ(r.frames_clean, 3U) << extra;
+    std::vector<std::uint64_t> read;
+    for (const auto& f : run.frames) read.push_back(f.position);
+    ASSERT_EQ(read.size(), 3U);
+    for (std::size_t i = 0; i < r.frames.size(); ++i) {
+      EXPECT_EQ(r.frames[i].clocks, extra ? 44U : 43U);
+      EXPECT_TRUE(r.frames[i].answer_complete) << extra << " " << i;
+      EXPECT_TRUE(r.frames[i].crc_ok) << extra << " " << i;
+      EXPECT_EQ(r.frames[i].fields[static_cast<std::size_t>(protocol::Field::Position)], read[i]) << extra << " " << i;
+    }
+  }
+  s.master.position_bits = s.encoder.position_bits - 1;  // 42 pulses: the last bit is never clocked out
+  run_to_vcd(s, vcd);
+  const auto short_frames = scenarios::check_capture(encoder_pins_of(s, vcd));
+  EXPECT_EQ(short_frames.frames_clean, 0U);
+  for (const auto& f : short_frames.frames) EXPECT_FALSE(f.answer_complete);
+  fs::remove(vcd);
+}
+
+// DATA unknown (x) in a capture where an answer bit is read: the bit is read as the level before,
+// but the frame is not counted clean and the log, the JSON and the summary say so. (Before, it was
+// read silently.) An x on the floating line before the mode command, where no bit is read, counts
+// for nothing.
+TEST(CheckCapture, AnAnswerBitReadWhileDataIsUnknownIsNamedAndTheFrameNotClean) {
+  const auto s = test_support::make_scenario(3, sim::MHz(2), false);
+  const fs::path vcd = temp("xbit.vcd"), marked = temp("xbit_marked.vcd");
+  run_to_vcd(s, vcd);
+  const auto o = encoder_pins_of(s, vcd);
+  const auto original = scenarios::check_capture(o);
+  ASSERT_EQ(original.frames_clean, 3U);
+  PinChanges changes = encoder_pin_changes(vcd);
+  std::vector<std::vector<std::int64_t>> rises;  // per frame
+  std::int64_t last_rise = -1'000'000'000;
+  char clock = '1';
+  for (const auto& [t, i, v] : changes) {
+    if (i != 0 || v == clock) continue;
+    clock = v;
+    if (v == '0' && t - last_rise > 5'000'000) rises.emplace_back();
+    if (v == '1' && !rises.empty()) rises.back().push_back(t);
+    if (v == '1') last_rise = t;
+  }
+  ASSERT_EQ(rises.size(), 3U);
+  const auto level_at = [&](std::int64_t t) {
+    char level = '1';
+    for (const auto& [when, i, v] : changes)
+      if (i == 1 && when <= t) level = v;
+    return level;
+  };
+  // Frame #1, slot 20 (a position bit): read 250 ns after RE20 plus the encoder's delay.
+  const std::int64_t read = rises[1][19] + o.encoder.output_delay.count() + 250'000;
+  // Frame #0: around RE1, on the line the encoder has released and the master not yet driven.
+  const std::int64_t floating = rises[0][0];
+  const char read_level = level_at(read), floating_level = level_at(floating);
+  for (const auto& [at, level] : {std::pair{read, read_level}, std::pair{floating, floating_level}}) {
+    changes.emplace_back(at - 100'000, 1, 'x');
+    changes.emplace_back(at + 100'000, 1, level);
+  }
+  write_encoder_pins(marked, "1 ps", changes);
+  auto m = o;
+  m.file = marked.string();
+  const auto r = scenarios::check_capture(m);
+  EXPECT_EQ(r.frames_decoded, 3U);
+  EXPECT_EQ(r.frames_clean, 2U);
+  EXPECT_EQ(r.data_unknown_bits, 1U);
+  EXPECT_EQ(r.data_unknown_first_frame, 1U);
+  ASSERT_EQ(r.frames.size(), 3U);
+  EXPECT_EQ(r.frames[0].unknown_bits, 0U);
+  EXPECT_EQ(r.frames[1].unknown_bits, 1U);
+  EXPECT_EQ(r.frames[1].first_unknown_clock, 20U);
+  EXPECT_TRUE(r.frames[1].crc_ok);  // the level before was the bit's own
+  EXPECT_FALSE(r.frames[1].clean());
+  EXPECT_NE(scenarios::frame_log_line(r.frames[1]).find("1 bit(s) read while DATA was unknown (x), the first on clock 20"),
+            std::string::npos)
+      << scenarios::frame_log_line(r.frames[1]);
+  std::ostringstream summary;
+  scenarios::write_capture_summary(summary, r, false);
+  EXPECT_NE(summary.str().find("DATA unknown (x) where 1 bit(s) of the frames were read, first in frame #1"), std::string::npos)
+      << summary.str();
+  const auto j = scenarios::capture_json(r);
+  EXPECT_EQ(j["data_unknown_bits"], 1);
+  EXPECT_EQ(j["frames"][1]["unknown_bits"], 1);
+  EXPECT_FALSE(j["frames"][0].contains("unknown_bits"));
+  fs::remove(vcd);
+  fs::remove(marked);
+}
+
+// One glitch on CLOCK in a 2 MHz frame without compensation: 10 ns LOW, 100 ns after RE20. The
+// pulse-width rows break on it; the frame's clock is still fitted at 2 MHz and judged as a clock
+// without compensation. (Before, its extra rising edge fitted the frame at 2.07 MHz, which moved
+// it to the compensated column: t_ST was then required of its first LOW phase and broken.)
+TEST(CheckCapture, AClockGlitchBreaksThePulseWidthsNotTheFramesFrequency) {
+  const auto s = test_support::make_scenario(3, sim::MHz(2), false);
+  const fs::path vcd = temp("glitch.vcd"), glitched = temp("glitch_marked.vcd");
+  run_to_vcd(s, vcd);
+  const auto o = encoder_pins_of(s, vcd);
+  PinChanges changes = encoder_pin_changes(vcd);
+  std::vector<std::int64_t> frame1;
+  std::int64_t last_rise = -1'000'000'000;
+  char clock = '1';
+  int frames = 0;
+  for (const auto& [t, i, v] : changes) {
+    if (i != 0 || v == clock) continue;
+    clock = v;
+    if (v == '0' && t - last_rise > 5'000'000) ++frames;
+    if (v == '1' && frames == 2) frame1.push_back(t);
+    if (v == '1') last_rise = t;
+  }
+  ASSERT_GT(frame1.size(), 20U);
+  changes.emplace_back(frame1[19] + 100'000, 0, '0');
+  changes.emplace_back(frame1[19] + 110'000, 0, '1');
+  write_encoder_pins(glitched, "1 ps", changes);
+  auto g = o;
+  g.file = glitched.string();
+  const auto r = scenarios::check_capture(g);
+  const auto row = [&](std::string_view name) {
+    return *std::find_if(r.conformance.begin(), r.conformance.end(), [&](const auto& c) { return c.check == name; });
+  };
+  EXPECT_EQ(row(checker::check::kPulseLow).violations, 1U);
+  EXPECT_EQ(row(checker::check::kClockFrequency).violations, 0U);
+  EXPECT_EQ(row(checker::check::kClockFrequency).judged, 3U);
+  for (const auto& w : row(checker::check::kClockFrequency).worst) EXPECT_EQ(w.measured, "2 MHz");
+  EXPECT_EQ(row(checker::check::kStartDelay).judged, 0U);
+  EXPECT_EQ(row(checker::check::kOnOffRatio).judged, 0U);  // judged for compensated clocks only
+  fs::remove(vcd);
+  fs::remove(glitched);
 }
 
 // A continuous clock (2.3.1): every further word is decoded from the wires as the first, its

@@ -174,8 +174,8 @@ def compare_rows(check_json, findings):
 
 
 # Variants of bundled scenarios that break the rows the scenarios themselves keep, so that each row
-# the decoder judges is seen broken at least once: (base scenario, edits, rows the check and the
-# decoder must both break).
+# the decoder judges is seen broken at least once, and that decode frames no bundled scenario has:
+# (base scenario, edits, rows the check and the decoder must both break).
 MUTANTS = [
     ("endat22_8mhz_100m_compensated", {"master.t_st": "1.5 us"}, {"t_st"}),
     ("endat22_8mhz_100m_compensated", {"master.duty_cycle": 0.3}, {"on_off_ratio"}),
@@ -184,6 +184,9 @@ MUTANTS = [
     ("endat21_1mhz_10m", {"master.duty_cycle": 0.85}, {"t_lo"}),
     ("type1_corrupted_mode_command", {"master.error_wait": "25 us"}, {"error_recovery"}),
     ("short_recovery_time_word3", {"master.f_c": "500 kHz"}, {"t_m_short_f_c"}),
+    # No pulse after the last bit: both read it half a period after the last rising edge.
+    ("endat21_1mhz_10m", {"master.extra_clock_after_last_bit": False}, set()),
+    ("endat22_8mhz_100m_compensated", {"master.extra_clock_after_last_bit": False}, set()),
 ]
 
 

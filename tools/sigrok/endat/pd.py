@@ -12,7 +12,8 @@
 ##  - the master's bits are taken on rising edges (the mode command on RE3..RE8, 2.3; a 2.1
 ##    payload on the 24 edges after it, 2.4);
 ##  - the encoder's bit of slot k is taken half-way between RE_k and RE_k+1 plus its
-##    CLOCK-to-DATA delay; the start bit is the first HIGH after a LOW from the turnaround on;
+##    CLOCK-to-DATA delay (after the last rising edge, half the last period after it, once CLOCK
+##    has been HIGH for t_m, for an answer still short of its bits); the start bit is the first HIGH after a LOW from the turnaround on;
 ##  - answers are decoded with the layouts of the tables, the CRC as appendix A4 computes it,
 ##    additional data counted from the command supplements' MRS codes (2.4.2.2) and corrected by
 ##    the level after each CRC (2.3.5); the supplement's start bit is the first HIGH after a LOW,
@@ -166,11 +167,48 @@ def required_start_delay(f_c, cable_m):
     return max(note8, scaled)
 
 
+def without_glitches(rising, period):
+    '''The rising edges without those of glitches, or None when there are none: an edge of the
+    clock has a period on each side, a glitch's edge splits one period in two. An edge whose
+    neighbours lie within a quarter of the median period of one period apart, and closer to it than
+    for the edges beside it, is a glitch's. Only looked for when a period is shorter than three
+    quarters of the fit's.'''
+    n = len(rising)
+    if n < 5:
+        return None
+    periods = [rising[i] - rising[i - 1] for i in range(2, n)]
+    if min(periods) * 4 >= 3 * period:
+        return None
+    median = sorted(periods)[len(periods) // 2]
+
+    def off(i):
+        if i <= 1 or i + 1 >= n:
+            return None
+        return abs(rising[i + 1] - rising[i - 1] - median)
+
+    kept = []
+    for i in range(n):
+        d = off(i)
+        before, after = off(i - 1), off(i + 1)
+        glitch = d is not None and d * 4 <= median and (before is None or d < before) and (after is None or d <= after)
+        if not glitch:
+            kept.append(rising[i])
+    return kept if len(kept) != n else None
+
+
 class Fit:
     '''The frame's clock from a least-squares fit over its rising edges from RE2 on (the first
-    period holds t_ST); limits widen by three standard errors of the fit.'''
+    period holds t_ST), without the edges of glitches; limits widen by three standard errors of
+    the fit.'''
 
     def __init__(self, rising, ps_per_sample):
+        self.fit(rising, ps_per_sample)
+        if self.period is not None:
+            steady = without_glitches(rising, self.period / ps_per_sample)
+            if steady is not None:
+                self.fit(steady, ps_per_sample)
+
+    def fit(self, rising, ps_per_sample):
         self.period = None  # ps
         self.uncertainty_ppm = 0
         m = min(len(rising) - 1, DEFAULTS['fit_max_edges'])
@@ -341,6 +379,7 @@ class Decoder(srd.Decoder):
         self.frames = 0
         self.pending = []      # encoder and master bits still to take: (due, clock, master)
         self.changes = []      # DATA changes still needed for sampling: (sample, level)
+        self.tail = None       # the slot after the last rising edge, read there if no edge follows
         self.base_level = 1    # DATA before the first of them
         self.data_level = 1
         self.clock_level = 1
@@ -464,6 +503,14 @@ class Decoder(srd.Decoder):
                 self.on_master_bit(clock, bit)
             else:
                 self.on_encoder_bit(clock, bit)
+        # CLOCK stayed HIGH for t_m after the last rising edge: the slot after it had no edge to
+        # read it, and an answer still short of its bits takes it there (a master that gives no
+        # pulse after the last bit samples it so).
+        if (self.tail is not None and self.frame is not None and self.state == ANSWER and self.clock_level
+                and t - self.last_rise >= self.t_m and self.tail[0] < t):
+            due, clock, master = self.tail
+            self.tail = None
+            self.on_encoder_bit(clock, self.level_at(due))
         # Changes before the earliest sample still due are folded into the level they left; in
         # a frame, changes after its last rising edge stay until the next one.
         horizon = self.pending[0][0] if self.pending and self.pending[0][0] < t else t
@@ -495,6 +542,7 @@ class Decoder(srd.Decoder):
         if level == self.clock_level:
             return
         self.clock_level = level
+        self.tail = None
         if level:
             self.last_rise = t
             if self.frame is not None:
@@ -523,6 +571,7 @@ class Decoder(srd.Decoder):
         if k >= 2:
             r = f.rising[k - 2]
             self.insert((r + (t - r) / 2 + self.ctd, k - 1, False))
+            self.tail = (t + (t - r) / 2 + self.ctd, k, False)
 
     def frame_over(self, t):
         '''CLOCK has stayed HIGH long enough that the next falling edge begins a frame.'''
@@ -542,6 +591,8 @@ class Decoder(srd.Decoder):
             at = min(at, self.last_rise + 2 * f.longest_high + 1)
         if self.pending:
             at = max(at, self.pending[-1][0] + 1)
+        if self.tail is not None and self.state == ANSWER:
+            at = max(at, self.tail[0] + 1)
         return at
 
     # ---- frames --------------------------------------------------------------------------------
@@ -555,6 +606,7 @@ class Decoder(srd.Decoder):
         self.seen_low = False
         self.bits = []
         self.slots = []
+        self.tail = None
 
     def end_frame(self):
         f = self.frame
