@@ -252,11 +252,23 @@ void add_limit_options(po::options_description& o) {
       "max-records", po::value<std::string>(), "frames, measurements and violations a run may keep (default 50000)");
 }
 
+// What --quiet leaves out, for each command.
+const char* quiet_help(Command c) {
+  switch (c) {
+    case Command::Run: return "print only the scenarios that fail: no progress, shard line or overall verdict";
+    case Command::Sweep: return "print no progress, shard line or point count";
+    case Command::Merge: return "print no summary and no note of partials given without their option";
+    case Command::Validate: return "print nothing for a valid file";
+    case Command::Diagram: return "print no caption";
+    case Command::Check: return "print only the captures that do not conform, and no progress";
+    default: return "accepted; this command prints only what it is asked for";
+  }
+}
+
 // Each command's own options; --help, --version, --quiet everywhere.
 po::options_description options_of(Command c) {
   po::options_description o(std::string("Options"));
-  o.add_options()("help,h", "show this help")("version", "print the version")(
-      "quiet,q", "print less: run only failing scenarios; sweep no progress and no point count");
+  o.add_options()("help,h", "show this help")("version", "print the version")("quiet,q", quiet_help(c));
   switch (c) {
     case Command::Run:
       o.add_options()("verbose,v", "list every frame and expectation")(

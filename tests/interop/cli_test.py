@@ -42,6 +42,14 @@ for command in ("run", "sweep", "merge", "validate", "diagram"):
     check(r.returncode == 0 and r.stdout.startswith("endatsim ") and r.stderr == "", command + " --version", r)
 r = run("--help")
 check(r.returncode == 0 and all(c in r.stdout for c in ("run:", "sweep:", "validate:", "diagram:", "Exit status")), "--help", r)
+# Each command's --quiet says what it leaves out there, not what it does for another command.
+for command in ("run", "sweep", "merge", "validate", "diagram", "check", "checks", "parameters"):
+    r = run(command, "--help")
+    quiet = " ".join(r.stdout[r.stdout.find("-q [ --quiet ]"):].split("\n  -")[0].split())
+    mentions = [other for other in ("scenarios", "sweep", "point", "caption", "capture") if other in quiet]
+    expected = {"run": ["scenarios"], "sweep": ["point"], "merge": [], "validate": [], "diagram": ["caption"],
+                "check": ["capture"], "checks": [], "parameters": []}[command]
+    check(r.returncode == 0 and mentions == expected, command + " --help: --quiet says " + repr(quiet), r)
 
 # Usage errors: stderr, exit 2, nothing on stdout.
 r = run("run", clean, "--grid", "/x=1")
