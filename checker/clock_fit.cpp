@@ -39,35 +39,37 @@ FittedFrequency fit_edges(const std::vector<Time>& rising);
 
 // The rising edges without those of glitches. An edge of the clock has a period on each side, so
 // its neighbours are two periods apart; a glitch's edge splits one period in two, so its
-// neighbours are one period apart. An edge whose neighbours lie within a quarter of the frame's
-// median period of one period apart, and closer to it than for the edges beside it (the clock's
-// edge next to a glitch is one period and the glitch's part apart), is a glitch's. None when no
-// period is shorter than three quarters of the fit's (every steady or jittered clock: no median is
-// then needed).
+// neighbours are one period apart. The edge whose neighbours come nearest to one median period
+// apart, within a quarter of it, is dropped, and again, until none is that near: one at a time,
+// since dropping an edge moves its neighbours' (a glitch in each of two periods in a row leaves
+// the clock's edge between them one period from each). None when no period is shorter than three
+// quarters of the fit's (every steady or jittered clock: no median is then needed).
 std::optional<std::vector<Time>> without_glitches(const std::vector<Time>& rising, const FittedFrequency& fit) {
   constexpr std::size_t kFirst = protocol::frame_position::edge_index(protocol::frame_position::kFirstSteadyRise);
-  const std::size_t n = rising.size();
-  if (n < kFirst + 4) return std::nullopt;
+  if (rising.size() < kFirst + 4) return std::nullopt;
   Time shortest = Time::max();
-  for (std::size_t i = kFirst + 1; i < n; ++i) shortest = std::min(shortest, rising[i] - rising[i - 1]);
+  for (std::size_t i = kFirst + 1; i < rising.size(); ++i) shortest = std::min(shortest, rising[i] - rising[i - 1]);
   if (__int128{shortest.count()} * 4 * fit.den >= 3 * fit.num) return std::nullopt;
   std::vector<Time> periods;
-  for (std::size_t i = kFirst + 1; i < n; ++i) periods.push_back(rising[i] - rising[i - 1]);
+  for (std::size_t i = kFirst + 1; i < rising.size(); ++i) periods.push_back(rising[i] - rising[i - 1]);
   std::nth_element(periods.begin(), periods.begin() + static_cast<std::ptrdiff_t>(periods.size() / 2), periods.end());
   const Time median = periods[periods.size() / 2];
-  // How far edge i's neighbours are from one period apart (the ends: never a glitch's).
-  const auto off = [&](std::size_t i) {
-    if (i <= kFirst || i + 1 >= n) return Time::max();
-    const Time joined = rising[i + 1] - rising[i - 1];
-    return joined > median ? joined - median : median - joined;
-  };
-  std::vector<Time> kept;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Time d = off(i);
-    const bool glitch = d != Time::max() && d * 4 <= median && d < off(i - 1) && d <= off(i + 1);
-    if (!glitch) kept.push_back(rising[i]);
+  std::vector<Time> kept = rising;
+  while (kept.size() >= kFirst + 4) {
+    std::size_t nearest = 0;
+    Time off = Time::max();
+    for (std::size_t i = kFirst + 1; i + 1 < kept.size(); ++i) {
+      const Time joined = kept[i + 1] - kept[i - 1];
+      const Time d = joined > median ? joined - median : median - joined;
+      if (d < off) {
+        off = d;
+        nearest = i;
+      }
+    }
+    if (off * 4 > median) break;
+    kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(nearest));
   }
-  if (kept.size() == n) return std::nullopt;
+  if (kept.size() == rising.size()) return std::nullopt;
   return kept;
 }
 

@@ -46,9 +46,12 @@ void for_each_phase(const std::vector<Time>& rising, const std::vector<Time>& fa
 // datasheet ("see encoder specifications").
 void TimingChecker::check_pulse_widths(const PinFrame& f) {
   if (f.falling.empty()) return;
-  // A lone LOW pulse while the power-on sequence waits for its request is the wake-up pulse, whose
-  // minimum is the power-on row's 125 ns (2.3.3), not t_LO of a transmission's clock.
-  if (f.rising.size() <= 1 && f.falling.size() <= 1 && power_on_.due()) return;
+  // A lone LOW pulse longer than the wake-up pulse's 125 ns while the power-on sequence waits for its
+  // request may be that pulse, judged by the power-on row (2.3.3), not by t_LO of a transmission's
+  // clock. A shorter one is a runt, and t_LO judges it.
+  if (f.rising.size() == 1 && f.falling.size() == 1 && power_on_.due() &&
+      f.rising.front() - f.falling.front() > limit::kPowerOnPulseMin)
+    return;
   constexpr std::size_t low_row = protocol::check::row_index(check::kPulseLow);
   constexpr std::size_t high_row = protocol::check::row_index(check::kPulseHigh);
   judge(low_row);

@@ -28,6 +28,8 @@ const std::string& continuous_low_bits_spec() {
   return text;
 }
 
+std::string if_carried_by(unsigned clock) { return " if RE" + std::to_string(clock) + " carried the start bit"; }
+
 const std::string& t_ac_max_spec() {
   static const std::string text = "2.3.2 t_ac maximum " + sim::format_time(limit::kMemoryAccessMax);
   return text;
@@ -195,12 +197,87 @@ void TimingChecker::first_start_bit() {
   if (start_clock_ == 0) return;
   word_start_clock_ = start_clock_;
   note_start_bit_for_t_d();
-  if (current_.header.payload_bits != 0) {
+  check_start_bit_timing();
+}
+
+// t_ac or t_cal, from the edge that carried the start bit.
+void TimingChecker::check_start_bit_timing() {
+  const bool parameter_frame = current_.header.payload_bits != 0;
+  if (start_edge_unknown(current_.header.compensated) && !start_bit_timing_decided(parameter_frame)) {
+    const Time after_fe1 = current_.rising[position::edge_index(start_clock_)] - current_.fe1;
+    report_start_edge_unknown(parameter_frame ? protocol::check::row_index(check::kMemoryAccess)
+                                              : protocol::check::row_index(check::kCalculationTime),
+                              parameter_frame ? check::kMemoryAccess : check::kCalculationTime,
+                              parameter_frame ? t_ac_max_spec() : t_cal_max_spec(), start_clock_, format_time(after_fe1) + if_carried_by(start_clock_),
+                              kernel_.now(), "start bit");
+    return;
+  }
+  if (parameter_frame) {
     check_memory_access_time();
     return;
   }
   check_calculation_time_minimum();
   check_calculation_time_maximum();
+}
+
+// At the master's connector the encoder's bits come one round trip after the edges that carried
+// them. A capture that measures it (delay measurement frames) or a round trip the user gives
+// places each bit on its edge; one estimated from the cable's length does so only to within the
+// estimate's error, which the spec bounds only by t_D's maximum (2.3.2): more than half the period
+// of a compensated clock. Then t_D, t_cal (t_ac) and the clock count, which hang on that edge, are
+// undecided, never passed or failed on a guess.
+// How far from the edge the estimate puts it the start bit's edge may lie: the real round trip
+// lies between 0 and t_D's maximum (a conforming line), the estimate somewhere in between or above.
+Time TimingChecker::start_edge_uncertainty() const {
+  return std::max(encoder_.output_delay, limit::data_delay_max(cable_length_m()));
+}
+
+unsigned TimingChecker::start_edge_uncertainty_clocks() const {
+  const Time period = sim::period_of(current_.header.f_c);
+  const Time u = start_edge_uncertainty();
+  return static_cast<unsigned>((u + period - Time{1}) / period);
+}
+
+// t_cal (t_ac) with the start bit's edge known only to within start_edge_uncertainty(): decided
+// when every edge within it gives the same result (t_cal's 1 ms maximum almost always is).
+bool TimingChecker::start_bit_timing_decided(bool parameter_frame) const {
+  const Time u = start_edge_uncertainty();
+  const Time carried = current_.rising[position::edge_index(start_clock_)];
+  if (parameter_frame) {
+    const unsigned last_payload = position::kTurnaround - 1 + current_.header.payload_bits;
+    if (start_clock_ <= last_payload) return false;
+    const Time t_ac = carried - current_.rising[position::edge_index(last_payload)];
+    return at_most(t_ac, limit::kMemoryAccessMax + sim::period_of(current_.header.f_c), u).decision != Decision::Undecided;
+  }
+  const unsigned e = start_edge_uncertainty_clocks();
+  const bool minimum = start_clock_ + e < position::kEarliestStartBit || start_clock_ >= position::kEarliestStartBit + e;
+  const Time t_cal = carried - current_.fe1;
+  const bool maximum =
+      at_most(t_cal, limit::kCalculationTimeMax + sim::period_of(current_.header.f_c), u).decision != Decision::Undecided;
+  return minimum && maximum;
+}
+
+bool TimingChecker::start_edge_unknown(bool compensated) const {
+  return compensated && wires_only_ && !params_.round_trip_given && !measured_round_trip_ &&
+         params_.recorded_at == ObservationPoint::MasterPins;
+}
+
+void TimingChecker::report_start_edge_unknown(std::size_t row_index, std::string_view row, const std::string& spec,
+                                              unsigned clock, std::string measured, Time at, std::string_view field) {
+  judge(row_index);
+  report({.check = std::string(row),
+          .spec = spec,
+          .where = ObservationPoint::MasterPins,
+          .time = at,
+          .frame = current_.header.index,
+          .clock = clock,
+          .measured = std::move(measured),
+          .limit = "the edge that carried the start bit",
+          .severity = Severity::Undecided,
+          .message = "the round trip at the master's connector is neither measured in the capture nor given (--t-d): "
+                     "which rising edge carried the start bit is not known to within half a period of this "
+                     "compensated clock"},
+         field);
 }
 
 // The same from the decoder's sampled start bit (captures without driver enables). At the master's
@@ -215,12 +292,7 @@ void TimingChecker::start_bit_from_decoder(unsigned clock) {
                              sim::period_of(current_.header.f_c), measures_delay(current_.header)};
     check_data_delay(s, last_data_rise_ - master_rising_[position::edge_index(clock)]);
   }
-  if (current_.header.payload_bits != 0) {
-    check_memory_access_time();
-    return;
-  }
-  check_calculation_time_minimum();
-  check_calculation_time_maximum();
+  check_start_bit_timing();
 }
 
 // t_cal ends no later than the rising edge that carried the start bit (the encoder answers on the
@@ -359,6 +431,15 @@ void TimingChecker::drop_given_up_start_bits() {
 // edge, both at the master logic; at most 0.2 us + 0.01 us/m x cable length.
 void TimingChecker::check_data_delay(const StartBitInFlight& start, Time t_d) {
   if (!params_.round_trip_observable) return;
+  // t_D is the DATA edge's time after the carrying edge, so an unknown edge leaves it unknown by
+  // whole periods: only a t_D over the bound for the latest edge before the DATA edge is decided.
+  const Time least = start.period > Time::zero() ? t_d % start.period : t_d;
+  if (start_edge_unknown(start.compensated) && !start.measurement &&
+      at_most(least, limit::data_delay_max(cable_length_m()), params_.resolution).decision != Decision::Fail) {
+    report_start_edge_unknown(protocol::check::row_index(check::kDataDelay), check::kDataDelay,
+                              "2.3.2 t_D maximum (0.2 + 0.01 x L) us", start.clock, format_time(t_d) + if_carried_by(start.clock), kernel_.now(), "start bit");
+    return;
+  }
   if (start.measurement) delay_measurements_.measured(start.frame, t_d);
   // Only a capture at the master's connector sees its "encoder pins" one round trip after the edges.
   if (start.measurement && params_.recorded_at == ObservationPoint::MasterPins && t_d < start.period / 2) {
@@ -586,7 +667,6 @@ void TimingChecker::check_clock_count(const PinFrame& f) {
     check_start_bit_polling(f);
     return;
   }
-  judge(protocol::check::row_index(check::kClockCount));
   const bool v22 = f.header.command_type == protocol::EndatVersion::V2_2;
   const bool parameter_frame = f.header.payload_bits != 0;
   // "A continuous clock is only possible with the mode command 'Encoder send position value'"
@@ -594,6 +674,20 @@ void TimingChecker::check_clock_count(const PinFrame& f) {
   const bool bounded = v22 || parameter_frame || !f.header.continuous;
   const unsigned last_bit = start_clock_ + f.header.answer_bits - 1;
   const auto clocks = static_cast<unsigned>(f.rising.size());
+  if (start_edge_unknown(f.header.compensated)) {
+    // With the start bit's edge known to within e clocks, too few or too many pulses for every
+    // edge within them is still decided.
+    const unsigned e = start_edge_uncertainty_clocks();
+    const bool decided = clocks + e < last_bit || (bounded && !f.header.supplement && clocks > last_bit + e + 1);
+    if (!decided) {
+      report_start_edge_unknown(protocol::check::row_index(check::kClockCount), check::kClockCount,
+                                "2.3.1 and 2.4.1 (the number of clock pulses)", clocks,
+                                std::to_string(clocks) + " pulses" + if_carried_by(start_clock_), f.rising.back(),
+                                "end of frame");
+      return;
+    }
+  }
+  judge(protocol::check::row_index(check::kClockCount));
   const std::string spec = "2.3.1 and 2.4.1 (the number of clock pulses)";
   note(check::kClockCount, clocks, last_bit, Bound::AtLeast, Unit::Count);
   if (bounded && !f.header.supplement)

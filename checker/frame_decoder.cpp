@@ -75,7 +75,9 @@ void FrameDecoder::on_data_unknown(Time t) {
   data_.emplace_back(t, data_level_);
 }
 
-void FrameDecoder::finish() {
+void FrameDecoder::finish(Time end) {
+  resolve(end);
+  tail_.reset();
   resolve(Time::max());
   if (in_frame_) end_frame();
 }
@@ -151,12 +153,15 @@ void FrameDecoder::resolve(Time t) {
     pending_.pop_front();
     take(s);
   }
-  // CLOCK stayed HIGH for t_m after the last rising edge: the frame has ended at the encoder
-  // (2.3.2 recovery time I), and the slot after that edge had no rising edge to read it. The
-  // changes after the edge are still kept (below), so its level is known.
-  // Only an answer still short of its bits takes it: after a complete answer the slot would only
-  // hold the end marker, or the line the encoder lets fall after t_m.
-  if (tail_ && in_frame_ && state_ == State::Answer && clock_level_ && t - last_rise_ >= params_.t_m && tail_->due < t) {
+  // CLOCK stayed HIGH after the last rising edge long enough to end the frame (t_m, 2.3.2 recovery
+  // time I; or, once it had every clock, twice its longest HIGH phase: on_clock's rule), and the
+  // slot after that edge had no rising edge to read it. The changes after the edge are still kept
+  // (below), so its level is known. Only an answer still short of its bits takes it: after a
+  // complete answer the slot would only hold the end marker, or the line the encoder lets fall
+  // after t_m.
+  const Time high = t - last_rise_;
+  const bool over = high >= params_.t_m || (frame_.complete && high > 2 * longest_high_);
+  if (tail_ && in_frame_ && state_ == State::Answer && clock_level_ && over && tail_->due < t) {
     const Sample s = *tail_;
     tail_.reset();
     take(s);
@@ -175,12 +180,14 @@ void FrameDecoder::resolve(Time t) {
   }
 }
 
-// A bit read from a level a capture showed unknown (x) is counted where the frame uses it. The line
-// floats, and a capture may show x, between the turnaround and the encoder's LOW and after the
-// answer: such bits decide nothing.
+// A bit read from a level a capture showed unknown (x) is counted where the frame uses it: the
+// master's bits, the answer's, and each slot after the encoder's LOW where the start bit or a
+// further datum may begin. The line floats, and a capture may show x, before the mode command,
+// between the turnaround and the encoder's LOW and after the answer: such bits decide nothing.
 void FrameDecoder::take(const Sample& s) {
   const Level level = level_at(s.due);
   const State before = state_;
+  const bool after_low = seen_low_;
   if (s.master) on_master_bit(s.clock, level.high);
   else on_encoder_bit(s.clock, level.high);
   if (!level.unknown || !in_frame_) return;
@@ -192,9 +199,10 @@ void FrameDecoder::take(const Sample& s) {
     case State::Payload:
     case State::Supplement: used = s.master; break;
     case State::SupplementHunt: used = s.master && state_ == State::Supplement; break;
-    case State::Answer: used = !s.master; break;
-    case State::Hunt:
-    case State::MoreData: used = !s.master && state_ == State::Answer; break;
+    case State::Answer:
+    case State::MoreData: used = !s.master; break;  // a LOW after the data opens a further datum
+    // After the encoder's LOW the start bit may come at any slot: an x read as LOW may hide it.
+    case State::Hunt: used = !s.master && (after_low || state_ == State::Answer); break;
     case State::Done: break;
   }
   if (used && frame_.unknown_bits++ == 0) frame_.first_unknown_clock = s.clock;

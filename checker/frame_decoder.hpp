@@ -107,8 +107,9 @@ class FrameDecoder {
   // The encoder's bits are taken this long after their rising edges from now on (at the master's
   // connector: the round trip a delay measurement in the capture showed).
   void set_clock_to_data(Time t) { params_.clock_to_data = t; }
-  // Ends the last frame (no more edges).
-  void finish();
+  // Ends the last frame (no more edges). A capture that ends at `end` reads the slot after the
+  // last rising edge only if the frame was over by then (CLOCK HIGH for t_m).
+  void finish(Time end = Time::max());
 
   // A capture's window opens at `start`, before the first CLOCK level it shows, and may open
   // inside a frame: from then on a falling edge begins the first frame only once CLOCK has been

@@ -1035,7 +1035,7 @@ void TimingChecker::finish() {
   if (wires_only_) {
     const Time end = std::max(kernel_.now(), capture_end_);
     if (capture_ && in_frame_ && decoder_.cuts_frame(end)) frame_cut_by_end_ = current_.header.index;
-    decoder_.finish();
+    decoder_.finish(capture_ ? end : Time::max());
     if (in_frame_) begin_wire_frame(kernel_.now());  // evaluates the last frame
     in_frame_ = false;
   }

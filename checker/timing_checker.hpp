@@ -154,6 +154,10 @@ struct CheckerParams {
   // A capture shows one connector: the line it is replayed on has two ends without delay
   // between them, and only this one's findings are the capture's (a contention, once).
   std::optional<line::ObservationPoint> recorded_at;
+  // At the master's connector: the round trip the encoder's bits are read with was given (the
+  // user's --t-d), not estimated from the cable. Without it, or a delay measurement in the capture
+  // that shows it, a compensated frame's start bit cannot be placed on the edge that carried it.
+  bool round_trip_given = true;
 };
 
 // The keys of a scenario's "checker" object, one row each (sim/parameter.hpp); the other fields
@@ -355,6 +359,14 @@ class TimingChecker final {
   Time clock_path() const;
   double cable_length_m() const { return params_.cable_length_m.value_or(line_.params().cable_length_m); }
   void check_clock_count(const PinFrame& f);
+  // Which rising edge carried a compensated frame's start bit is not known (round_trip_given).
+  bool start_edge_unknown(bool compensated) const;
+  Time start_edge_uncertainty() const;
+  unsigned start_edge_uncertainty_clocks() const;
+  bool start_bit_timing_decided(bool parameter_frame) const;
+  void report_start_edge_unknown(std::size_t row_index, std::string_view row, const std::string& spec, unsigned clock,
+                                 std::string measured, Time at, std::string_view field);
+  void check_start_bit_timing();
   void check_start_bit_polling(const PinFrame& f);
   struct PollingLimit {
     std::string_view check, spec, symbol;

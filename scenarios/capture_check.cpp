@@ -306,9 +306,11 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   params.max_findings_per_check = kMaxFindingsPerCheck;
   params.recorded_at = o.at == CaptureCheckOptions::At::Master ? line::ObservationPoint::MasterPins
                                                                 : line::ObservationPoint::EncoderPins;
+  params.round_trip_given = o.at != CaptureCheckOptions::At::Master || o.t_d.has_value();
   params.resolution = o.resolution.value_or(reader->uncertainty());
   result.uncertainty = params.resolution;
   result.declared = encoder;
+  result.round_trip_given = params.round_trip_given;
   checker::TimingChecker checker(kernel, line, encoder, {}, params);
   checker::FrameDecoder log(checker::DecoderParams{
       .position_bits = encoder.position_bits, .clock_to_data = encoder.output_delay, .t_m = encoder.t_m});
@@ -317,7 +319,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   checker.end_capture(replay.end());
   checker.finish();
   result.uncertainty = checker.resolution();
-  log.finish();
+  log.finish(replay.end());
   replay.drain();
   result.violations = checker.violations();
   // The replay's line has no delays: both of its ends are the one connector the capture recorded.
@@ -427,8 +429,8 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
   else
     out << "resolution " << sim::format_time(r.uncertainty) << timescale_note(r.timescale)
         << ": limits closer than that to a measured value are undecided";
-  out << "; frames decoded: " << r.frames_decoded << " (" << r.frames_clean
-      << " with a complete answer and a good CRC)\n";
+  out << "; frames decoded: " << r.frames_decoded << " (" << r.frames_clean << " with a complete answer and a good CRC"
+      << (r.data_unknown_bits != 0 ? ", every bit known" : "") << ")\n";
   if (r.words_bad_crc != 0)
     out << "  " << r.words_bad_crc << " further continuous-clock word(s) with a BAD CRC (2.3.1; listed in the log)\n";
   if (r.clock_unknown != 0)
@@ -444,9 +446,17 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
   if (r.frame_cut_by_end)
     out << "  capture ends inside frame #" << *r.frame_cut_by_end
         << ": its clock count and start-bit polling not judged (CLOCK was not HIGH for t_m after its last pulse)\n";
-  if (r.frames_clean == 0)
+  if (r.frames_clean == 0 && r.data_unknown_bits != 0)
+    out << "  no frame was clean: the ones with a complete answer and a good CRC had bits read while DATA was unknown "
+           "(x, above), so position, CRC, additional data and the rows timed from them were not judged\n";
+  else if (r.frames_clean == 0)
     out << "  no frame had a complete answer with a good CRC: position, CRC, additional data and the rows timed "
-           "from them were not judged; are these the right signals, and is --encoder's position width right?\n";
+           "from them were not judged; are these the right signals, and is --encoder's position width right?"
+        << (r.at == CaptureCheckOptions::At::Master && !r.round_trip_given
+                ? " At the master's connector the encoder's bits are looked for one round trip after their edges: "
+                  "without a delay measurement in the capture, give it with --t-d."
+                : "")
+        << "\n";
   out << "  position " << r.position_bits << " bits";
   if (r.position_bits_learnt_at)
     out << ", from word 13 in frame #" << *r.position_bits_learnt_at << " (read there, or written and activated "

@@ -81,6 +81,7 @@ struct CaptureCheckResult {
   std::uint64_t edges_before_first_frame = 0;         // CLOCK edges of a frame the capture began inside
   std::uint64_t clock_unknown = 0;                    // times CLOCK went unknown (x) after its first level
   sim::Time clock_unknown_first{0};                      // ... the first of them
+  bool round_trip_given = true;                        // at the master's connector: --t-d given
   std::uint64_t data_unknown_bits = 0;                // bits of frames read while DATA was unknown (x)
   std::uint64_t data_unknown_first_frame = 0;         // ... the first frame with one
   std::optional<std::uint64_t> frame_cut_by_end;      // the last frame, if the capture's end cut it

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <tuple>
 #include <unistd.h>
 
 #include "endatsim/checker/frame_decoder.hpp"
@@ -175,4 +176,46 @@ TEST(FrameDecoderCapture, EdgesBeforeTheFirstFrameAreCountedAndACutFrameIsTold) 
   checker::FrameDecoder live(p);
   EXPECT_TRUE(live.on_clock(sim::ns(40), false));
   EXPECT_EQ(live.edges_before_first_frame(), 0U);
+}
+
+// A master that gives no pulse after the last bit: the slot after the last rising edge is read
+// once CLOCK has stayed HIGH for t_m, which ends the frame. A capture that ends before that cuts
+// the frame: the slot is not read, and the answer stays incomplete, as the rows that need the
+// frame's end say (before, finish() read it whatever the capture's end).
+TEST(FrameDecoderCapture, TheSlotAfterTheLastEdgeIsReadOnlyOnceTheFrameIsOver) {
+  auto s = test_support::make_scenario(3, sim::MHz(2), false, 1);
+  s.master.extra_clock_after_last_bit = false;
+  const fs::path vcd = fs::temp_directory_path() / ("endatsim_decoder_" + std::to_string(getpid()) + "_tail.vcd");
+  scenarios::RunOptions options;
+  options.vcd_path = vcd.string();
+  scenarios::run_scenario(s, options);
+  const auto file = scenarios::read_vcd_file(vcd.string());
+  fs::remove(vcd);
+  const auto* clock = file.find("endat.encoder_clock");
+  const auto* data = file.find("endat.encoder_data");
+  ASSERT_NE(clock, nullptr);
+  ASSERT_NE(data, nullptr);
+  std::vector<std::tuple<std::int64_t, int, char>> edges;
+  for (const auto& c : clock->changes) edges.emplace_back(c.time * file.timescale_ps, 0, c.value);
+  for (const auto& c : data->changes) edges.emplace_back(c.time * file.timescale_ps, 1, c.value);
+  std::stable_sort(edges.begin(), edges.end());
+  std::int64_t last_rise = 0;
+  for (const auto& [t, wire, value] : edges)
+    if (wire == 0 && value == '1') last_rise = t;
+  const auto p = declared(s);
+  for (const auto& [after, complete] : {std::pair{sim::us(1) + sim::ns(500), false}, std::pair{p.t_m, true}}) {
+    const sim::Time end = sim::Time{last_rise} + after;
+    checker::FrameDecoder decoder(p);
+    for (const auto& [t, wire, value] : edges) {
+      if (sim::Time{t} > end) break;
+      if (wire == 0) decoder.on_clock(sim::Time{t}, value == '1');
+      else decoder.on_data(sim::Time{t}, value == '1');
+    }
+    decoder.finish(end);
+    const auto frames = decoder.take_finished();
+    ASSERT_EQ(frames.size(), 1U);
+    EXPECT_EQ(frames.back().clocks, 43U);
+    EXPECT_EQ(frames.back().answer_complete, complete) << after.count();
+    EXPECT_EQ(frames.back().crc_ok, complete) << after.count();
+  }
 }

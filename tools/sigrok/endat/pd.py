@@ -169,31 +169,23 @@ def required_start_delay(f_c, cable_m):
 
 def without_glitches(rising, period):
     '''The rising edges without those of glitches, or None when there are none: an edge of the
-    clock has a period on each side, a glitch's edge splits one period in two. An edge whose
-    neighbours lie within a quarter of the median period of one period apart, and closer to it than
-    for the edges beside it, is a glitch's. Only looked for when a period is shorter than three
-    quarters of the fit's.'''
-    n = len(rising)
-    if n < 5:
+    clock has a period on each side, a glitch's edge splits one period in two. The edge whose
+    neighbours come nearest to one median period apart, within a quarter of it, is dropped, and
+    again, until none is that near. Only looked for when a period is shorter than three quarters of
+    the fit's.'''
+    if len(rising) < 5:
         return None
-    periods = [rising[i] - rising[i - 1] for i in range(2, n)]
+    periods = [rising[i] - rising[i - 1] for i in range(2, len(rising))]
     if min(periods) * 4 >= 3 * period:
         return None
     median = sorted(periods)[len(periods) // 2]
-
-    def off(i):
-        if i <= 1 or i + 1 >= n:
-            return None
-        return abs(rising[i + 1] - rising[i - 1] - median)
-
-    kept = []
-    for i in range(n):
-        d = off(i)
-        before, after = off(i - 1), off(i + 1)
-        glitch = d is not None and d * 4 <= median and (before is None or d < before) and (after is None or d <= after)
-        if not glitch:
-            kept.append(rising[i])
-    return kept if len(kept) != n else None
+    kept = list(rising)
+    while len(kept) >= 5:
+        off, nearest = min((abs(kept[i + 1] - kept[i - 1] - median), i) for i in range(2, len(kept) - 1))
+        if off * 4 > median:
+            break
+        del kept[nearest]
+    return kept if len(kept) != len(rising) else None
 
 
 class Fit:
@@ -503,11 +495,13 @@ class Decoder(srd.Decoder):
                 self.on_master_bit(clock, bit)
             else:
                 self.on_encoder_bit(clock, bit)
-        # CLOCK stayed HIGH for t_m after the last rising edge: the slot after it had no edge to
-        # read it, and an answer still short of its bits takes it there (a master that gives no
-        # pulse after the last bit samples it so).
+        # CLOCK stayed HIGH after the last rising edge long enough to end the frame: the slot after
+        # it had no edge to read it, and an answer still short of its bits takes it there (a master
+        # that gives no pulse after the last bit samples it so).
+        high = t - self.last_rise
         if (self.tail is not None and self.frame is not None and self.state == ANSWER and self.clock_level
-                and t - self.last_rise >= self.t_m and self.tail[0] < t):
+                and (high >= self.t_m or (self.frame.complete and high > 2 * self.frame.longest_high))
+                and self.tail[0] < t):
             due, clock, master = self.tail
             self.tail = None
             self.on_encoder_bit(clock, self.level_at(due))
