@@ -159,12 +159,13 @@ void FrameDecoder::resolve(Time t) {
   // (below), so its level is known. Only an answer still short of its bits takes it: after a
   // complete answer the slot would only hold the end marker, or the line the encoder lets fall
   // after t_m.
-  const Time high = t - last_rise_;
-  const bool over = high >= params_.t_m || (frame_.complete && high > 2 * longest_high_);
-  if (tail_ && in_frame_ && state_ == State::Answer && clock_level_ && over && tail_->due < t) {
-    const Sample s = *tail_;
-    tail_.reset();
-    take(s);
+  if (tail_ && state_ == State::Answer && in_frame_ && clock_level_ && tail_->due < t) {
+    const Time high = t - last_rise_;
+    if (high >= params_.t_m || (frame_.complete && high > 2 * longest_high_)) {
+      const Sample s = *tail_;
+      tail_.reset();
+      take(s);
+    }
   }
   // Changes before the earliest sample still due are folded into the level they left. In a frame,
   // the sample of the bit after the last rising edge is inserted only at the next one, and may be
