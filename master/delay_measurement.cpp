@@ -98,12 +98,14 @@ const DelayMeasurementResult& DelayMeasurement::finish_round(Time start) {
     const std::int64_t half = params_.counter_phase == CounterPhase::EdgeAligned ? tick.count() * n / 2 : 0;
     r.t_d = Time{(sum * tick.count() + half + n / 2) / n};
   }
-  results_.push_back(std::move(r));
-  return results_.back();
+  ++results_count_;
+  if (results_.size() < keep_) results_.push_back(r);
+  last_ = std::move(r);
+  return *last_;
 }
 
 bool DelayMeasurement::next_round() {
-  if (!results_.empty() && !results_.back().accepted && round_ < params_.max_rounds) {
+  if (last_ && !last_->accepted && round_ < params_.max_rounds) {
     ++round_;
     counts_.clear();
     return true;

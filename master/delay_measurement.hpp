@@ -78,7 +78,12 @@ class DelayMeasurement {
   // After a rejected round: whether another one may run (then it has begun); otherwise the
   // measurement ends.
   bool next_round();
+  // The first keep() verdicts (every one by default: a long run that measures again and again
+  // keeps its memory flat), how many there were, and the last.
   const std::vector<DelayMeasurementResult>& results() const { return results_; }
+  std::uint64_t results_count() const { return results_count_; }
+  const std::optional<DelayMeasurementResult>& last_result() const { return last_; }
+  void keep(std::size_t n) { keep_ = n; }
 
  private:
   DelayMeasurementParams params_;
@@ -91,6 +96,9 @@ class DelayMeasurement {
   bool running_ = false;
   std::optional<std::int64_t> captured_;
   std::vector<DelayMeasurementResult> results_;
+  std::uint64_t results_count_ = 0;
+  std::optional<DelayMeasurementResult> last_;
+  std::size_t keep_ = SIZE_MAX;
   std::deque<Time> recent_starts_;  // of the last params_.count frames recorded
 };
 

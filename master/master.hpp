@@ -70,9 +70,15 @@ class Master : private FrameClient {
   // The first frames recorded (every one unless keep_frames() said fewer): a long run streams
   // its results through MasterObserver::on_result instead of keeping them.
   const std::vector<FrameResult>& frames() const { return frames_.records(); }
-  void keep_frames(std::size_t n) { frames_.keep(n); }
+  void keep_frames(std::size_t n) {
+    frames_.keep(n);
+    delay_.keep(n);
+  }
   std::uint64_t frame_count() const { return frames_.count(); }  // every frame and word recorded
+  // The first measurements kept (keep_frames() bounds them too), how many ran, and the last.
   const std::vector<DelayMeasurementResult>& measurements() const { return delay_.results(); }
+  std::uint64_t measurements_count() const { return delay_.results_count(); }
+  const std::optional<DelayMeasurementResult>& last_measurement() const { return delay_.last_result(); }
   std::optional<Time> t_d() const { return t_d_; }
   std::uint64_t cycle_overruns() const { return pacing_.cycle_overruns(); }
   std::uint64_t busy_timeouts() const { return busy_polling_.timeouts(); }

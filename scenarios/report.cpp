@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <span>
 
 namespace endatsim::scenarios {
 namespace {
@@ -345,7 +346,10 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     first = false;
   }
   out << "), delay-measurement frames: " << r.tally.measurement_frames << "\n";
-  for (const auto& m : r.measurements) {
+  // Three, as of each check's findings (--verbose: every one kept), so that the summary does not
+  // depend on how many were kept.
+  const std::size_t shown = verbose ? r.measurements.size() : std::min<std::size_t>(r.measurements.size(), 3);
+  for (const auto& m : std::span(r.measurements).first(shown)) {
     out << "  t_D measurement (round " << m.rounds << "): ";
     if (m.accepted) out << "accepted, t_D = " << format_time(m.t_d);
     else out << "rejected: " << m.reason;
@@ -353,6 +357,9 @@ void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
     for (auto c : m.counts) out << " " << c;
     out << " x " << format_time(m.counter_period) << "; true round trip " << format_time(r.true_round_trip) << "\n";
   }
+  if (r.measurements_count > shown)
+    out << "  ... " << r.measurements_count - shown << " more t_D measurement(s)"
+        << (verbose && r.measurements_count > r.measurements.size() ? ", counted but not kept (--examples)" : "") << "\n";
   for (const auto& f : verbose ? r.frames : r.tally.failed) out << frame_line(r, f) << "\n";
   if (verbose && r.tally.results > r.frames.size())
     out << "  ... " << r.tally.results - r.frames.size() << " more frames, not kept (--log lists every one)\n";
@@ -498,7 +505,8 @@ nlohmann::json result_json_without_frames(const ScenarioResult& r) {
     else jm["reason"] = m.reason;
     ms.push_back(jm);
   }
-  j["delay_measurements"] = ms;
+  j["delay_measurements"] = ms;  // the first kept
+  if (r.measurements_count > r.measurements.size()) j["delay_measurements_not_kept"] = r.measurements_count - r.measurements.size();
   j["retries"] = r.retries;
   j["remeasurements"] = r.remeasurements;
   j["cycle_overruns"] = r.cycle_overruns;

@@ -60,7 +60,7 @@ void judge_positions(const Scenario& s, ScenarioResult& r) {
 void judge_delay(const Scenario& s, ScenarioResult& r) {
   if (!s.expect.delay_measurement) return;
   const auto& d = *s.expect.delay_measurement;
-  const master::DelayMeasurementResult* last = r.measurements.empty() ? nullptr : &r.measurements.back();
+  const master::DelayMeasurementResult* last = r.last_measurement ? &*r.last_measurement : nullptr;
   if (d.accepted) {
     const bool got = last != nullptr && last->accepted;
     r.expectations.push_back({"delay_measurement.accepted", got == *d.accepted,
@@ -504,6 +504,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.true_round_trip = line.round_trip(scenario.encoder.output_delay);
   r.frames = master.frames();
   r.measurements = master.measurements();
+  r.measurements_count = master.measurements_count();
+  r.last_measurement = master.last_measurement();
   r.encoder_frames = encoder.frames();
   r.violations = checker.violations();
   r.conclusion = checker.conclusion();

@@ -72,7 +72,9 @@ struct ScenarioResult {
   // Every frame counted; the first RunOptions::kept frames kept (all by default).
   FrameTally tally;
   std::vector<master::FrameResult> frames;
-  std::vector<master::DelayMeasurementResult> measurements;
+  std::vector<master::DelayMeasurementResult> measurements;  // the first RunOptions::kept
+  std::uint64_t measurements_count = 0;                       // every one that ran
+  std::optional<master::DelayMeasurementResult> last_measurement;
   std::vector<slave::EncoderFrame> encoder_frames;  // the last ones kept
   std::vector<checker::Violation> violations;        // the first RunOptions::kept of each check
   checker::Conclusion conclusion;                    // the verdicts over every finding, kept or not

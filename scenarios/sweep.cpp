@@ -410,7 +410,8 @@ Sweep run_sweep(const json& base, const std::string& file, const std::vector<Gri
   // sweep's threads, each keeping only the point it loads. The sweep is named after point 0,
   // which a shard without it loads for the name alone (the name is read after they have joined).
   std::string name;
-  if (first != 0 && n != 0) name = load_point(base, file, grid, 0, n).name;
+  const bool holds_point_0 = first == 0 && end > 0;  // an empty shard holds none
+  if (!holds_point_0 && n != 0) name = load_point(base, file, grid, 0, n).name;
   for_each_point(end - first, options.jobs, [&](std::size_t k) {
     const std::size_t i = first + k;
     const Scenario s = load_point(base, file, grid, i, n);

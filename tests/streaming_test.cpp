@@ -94,3 +94,30 @@ TEST(ResultsJsonWriter, ResultsFileOfNoScenarioAndOfAnIncompleteRunIsValidJson) 
 }
 
 }  // namespace
+
+// A master that measures the delay again and again (a careful one on a noisy line) kept every
+// measurement in memory, about 2 KB each: a long run grew without bound. The first
+// RunOptions::kept are kept, every one is counted, and the last (what the expectations judge) is
+// kept apart; the results list the kept ones and count the others.
+TEST(ResultsKept, DelayMeasurementsAreCountedAndTheFirstFewKept) {
+  const auto s = scenarios::load_scenario_text(R"({
+    "name": "remeasure", "seed": 1, "line": { "cable_length_m": 10 },
+    "encoder": { "version": "2.2", "position_bits": 25 },
+    "master": { "f_c": "8 MHz", "t_st": "2 us", "delay_compensation": true },
+    "script": [ { "op": "measure_delay" }, { "op": "measure_delay" }, { "op": "measure_delay" },
+                { "op": "measure_delay" }, { "op": "measure_delay" },
+                { "op": "read_position", "count": 2, "cycle": "100 us" } ],
+    "expect": { "delay_measurement": { "accepted": true } } })", "remeasure.json");
+  const Streamed all = run_streamed(s, SIZE_MAX);
+  const Streamed two = run_streamed(s, 2);
+  EXPECT_EQ(all.result.measurements.size(), 5U);
+  EXPECT_EQ(two.result.measurements.size(), 2U);
+  EXPECT_EQ(two.result.measurements_count, 5U);
+  ASSERT_TRUE(two.result.last_measurement.has_value());
+  EXPECT_EQ(two.result.last_measurement->t_d, all.result.measurements.back().t_d);
+  EXPECT_TRUE(two.result.passed());
+  const auto j = nlohmann::json::parse(two.json)["scenarios"][0];
+  EXPECT_EQ(j["delay_measurements"].size(), 2U);
+  EXPECT_EQ(j["delay_measurements_not_kept"], 3);
+  EXPECT_FALSE(nlohmann::json::parse(all.json)["scenarios"][0].contains("delay_measurements_not_kept"));
+}

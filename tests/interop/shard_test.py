@@ -142,6 +142,19 @@ merged = run("merge", *[path("sweep%d.json" % k) for k in range(1, 6)], "--maxim
 check(merged.returncode == 0 and merged.stdout == whole.stdout, "the merge prints the sweep's count and table", merged)
 for ext in ("csv", "json", "svg"):
     check(same_bytes(path("sweep." + ext), path("sweep_merged." + ext)), "sweep shards merged: .%s identical" % ext)
+# More shards than points: a shard with none still carries the sweep's name (point 0's), so that
+# the partials merge (before, it wrote "" and the merge refused the others).
+small = ["--grid", "/line/cable_length_m=0,50"]
+whole = run("sweep", sweep, *small, "--csv", path("small.csv"), "--json", path("small.json"))
+check(whole.returncode == 0, "the two-point sweep runs", whole)
+shards = [run("sweep", sweep, *small, "--jobs", "1", "--shard", "%d/3" % k, "--json", path("small%d.json" % k))
+          for k in range(1, 4)]
+check(all(r.returncode == 0 for r in shards), "every shard of the two-point sweep runs, one of them empty")
+merged = run("merge", *[path("small%d.json" % k) for k in range(1, 4)], "--csv", path("small_merged.csv"), "--json",
+             path("small_merged.json"))
+check(merged.returncode == 0 and merged.stdout == whole.stdout, "three shards of two points merge", merged)
+for ext in ("csv", "json"):
+    check(same_bytes(path("small." + ext), path("small_merged." + ext)), "an empty shard merged: .%s identical" % ext)
 
 # What a merge refuses, each with exit 2 and a message naming the partial and the reason.
 def refused(what, expected, *args):
