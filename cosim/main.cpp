@@ -67,6 +67,7 @@ int run_bench(int argc, const char* const* argv, const std::function<void(Bench&
   try {
     o = parse(argc, argv);
     bench_file = scenarios::load_scenario_file(o.bench, scenarios::ScenarioKind::Bench);
+    check_outputs(o.bench, o.outputs, o.bench_options.vcd_path, "--");
   } catch (const std::exception& e) {
     std::cerr << "endatsim: " << e.what() << std::endl;
     return scenarios::exit_status::kBadInput;

@@ -114,4 +114,12 @@ int report(const BenchResult& r, const OutputPaths& outputs, bool verbose, std::
   return r.passed() ? exit_status::kPass : exit_status::kFail;
 }
 
+void check_outputs(const std::string& bench, const OutputPaths& outputs, const std::optional<std::string>& vcd,
+                   const std::string& prefix) {
+  std::vector<scenarios::OutputPath> paths;
+  for (const auto& [name, path] : {std::pair{"json", &outputs.json}, {"junit", &outputs.junit}, {"log", &outputs.log}, {"vcd", &vcd}})
+    if (*path) paths.push_back({prefix + name, **path});
+  scenarios::check_output_paths({bench}, "the bench file", paths);
+}
+
 }  // namespace endatsim::cosim

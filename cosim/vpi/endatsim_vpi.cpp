@@ -372,6 +372,15 @@ class Bridge {
   static cosim::BenchOptions options(const Config& config) {
     cosim::BenchOptions o;
     if (config.has("vcd")) o.vcd_path = config.get("vcd");
+    // Before the bench opens its VCD: no output may be the bench file or another output.
+    cosim::OutputPaths outputs;
+    for (auto [key, slot] : {std::pair{"json", &outputs.json}, {"junit", &outputs.junit}, {"log", &outputs.log}})
+      if (config.has(key)) *slot = config.get(key);
+    try {
+      cosim::check_outputs(config.get("bench"), outputs, o.vcd_path, "+endatsim_");
+    } catch (const std::exception& e) {
+      bad_configuration(e.what());
+    }
     if (config.has("seed")) {
       const std::string s = config.get("seed");
       std::uint64_t seed = 0;

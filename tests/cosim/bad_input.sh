@@ -61,6 +61,19 @@ bench="+endatsim_bench=$hdl/bench_8mhz_50m.json"
     +endatsim_data_out=tb_endatsim.data_out +endatsim_data_in=tb_endatsim.data_in_from_line +endatsim_enable_active_low
   expect 2 "+endatsim_json: cannot write '/nonexistent/x.json'" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $bench $pins \
     +endatsim_json=/nonexistent/x.json
+  # Outputs checked before the run as `endatsim run` checks its own: none overwrites the bench or
+  # another output (before, the bench file was replaced by the JUnit XML, or by the VCD).
+  cp "$hdl/bench_8mhz_50m.json" victim.json
+  expect 2 "+endatsim_junit victim.json: that is the bench file" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp $pins \
+    +endatsim_bench=victim.json +endatsim_junit=victim.json
+  expect 2 "+endatsim_json out.json and +endatsim_junit out.json: the same file" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp \
+    $bench $pins +endatsim_json=out.json +endatsim_junit=out.json
+  expect 2 "--vcd victim.json: that is the bench file" "$verilated" victim.json --vcd victim.json
+  expect 2 "--json /nonexistent/x.json: cannot open the file for writing" "$verilated" victim.json --json /nonexistent/x.json
+  if ! cmp -s victim.json "$hdl/bench_8mhz_50m.json"; then
+    echo "FAILED: the bench file was overwritten"
+    failures=$((failures + 1))
+  fi
   expect 2 "unknown plusarg +endatsimjson=x.json (the prefix is +endatsim_)" vvp -n -M "$vpi" -m endatsim_vpi tb.vvp \
     $bench $pins +endatsimjson=x.json
   # A testbench in which nothing happens on the pins still ends at the bench's max_time, failing.
@@ -92,7 +105,7 @@ V
   iverilog -g2012 -s tb_loop -o loop.vvp "$hdl/verilog/endat_master.v" "$hdl/verilog/tb_endatsim.v" loop.v
   expect 0 "PASS hdl_master_8mhz_50m" vvp -n -M "$vpi" -m endatsim_vpi loop.vvp $bench +endatsim_clock=tb_loop.t.endat_clock \
     +endatsim_data_out=tb_loop.dout_w +endatsim_data_enable=tb_loop.t.data_oe +endatsim_data_in=tb_loop.t.data_in_from_line
-  expect 2 "cannot open VCD file '/nonexistent/x.vcd'" "$verilated" "$hdl/bench_8mhz_50m.json" --vcd /nonexistent/x.vcd
+  expect 2 "--vcd /nonexistent/x.vcd: cannot open the file for writing: its directory '/nonexistent' does not exist" "$verilated" "$hdl/bench_8mhz_50m.json" --vcd /nonexistent/x.vcd
   expect 2 "unknown option --jsn" "$verilated" "$hdl/bench_8mhz_50m.json" --jsn x
   expect 2 "no bench file given" "$verilated"
   expect 2 "nope.json: cannot open the file" "$verilated" nope.json
