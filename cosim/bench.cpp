@@ -236,6 +236,8 @@ void Bench::judge(BenchResult& r) const {
   r.expectations.push_back({"ended before max_time", r.simulated < max_time_,
                             r.simulated < max_time_ ? "at " + sim::format_time(r.simulated)
                                                     : "still running at the bench's max_time " + sim::format_time(max_time_)});
+  // As `endatsim check` refuses a capture in which no frame began: nothing was judged.
+  if (r.frames_decoded == 0) r.expectations.push_back({"frames", false, "no frame began at the encoder's connector: nothing was judged"});
   r.expectations.push_back({"pins at known levels", unknown_levels_ == 0,
                             unknown_levels_ == 0 ? "CLOCK and DATA's driver at 0 or 1 throughout"
                                                  : std::to_string(unknown_levels_) + " time(s) unknown (see the notes)"});

@@ -343,6 +343,11 @@ class Bridge {
     // The bench ends with the simulator, and at its max_time at the latest (the simulator was
     // stopped there). GHDL ends a simulation that ran out of events at the end of time: the bench
     // then ends at the last instant it was moved to.
+    // A pin that was unknown from the start and never changed gave the bridge no call to note it.
+    if (!clock_went_unknown_ && !level_of(clock_))
+      bench_.unknown_level("CLOCK is unknown (X or Z) at the end of the simulation");
+    if (!enable_went_unknown_ && data_enable_ != nullptr && !level_of(data_enable_))
+      bench_.unknown_level("DATA's driver enable is unknown (X or Z) at the end of the simulation");
     const std::uint64_t ticks = sim_ticks();
     if (ticks < kEndOfTime) {
       const Time end = std::min(scale_.to_ps(ticks), bench_.max_time());
@@ -464,7 +469,10 @@ class Bridge {
       sync();
       if (h != clock_) return drive_data();
       const auto level = level_of(h);
-      if (!level) return bench_.unknown_level("CLOCK went to an unknown level (X or Z); the last known level was kept");
+      if (!level) {
+        clock_went_unknown_ = true;
+        return bench_.unknown_level("CLOCK went to an unknown level (X or Z); the last known level was kept");
+      }
       if (*level == clock_level_) return;
       clock_level_ = *level;
       bench_.drive(cosim::MasterPin::Clock, *level);
@@ -478,8 +486,10 @@ class Bridge {
     const auto enable = data_enable_ != nullptr ? level_of(data_enable_) : std::optional<bool>(true);
     const bool enabled = enable.has_value() && (data_enable_ == nullptr || *enable != active_low_);
     const auto level = level_of(data_out_);
-    if (!enable && sim_ticks() != 0)
+    if (!enable && sim_ticks() != 0) {
+      enable_went_unknown_ = true;
       bench_.unknown_level("DATA's driver enable went to an unknown level (X or Z): taken as released");
+    }
     if (enabled && !level && sim_ticks() != 0)
       bench_.unknown_level("data_out was unknown (X or Z) while the master drove DATA: taken as released");
     if (level) bench_.drive(cosim::MasterPin::DataOut, *level);
@@ -601,6 +611,8 @@ class Bridge {
   std::vector<std::unique_ptr<Watch>> watches_;
   bool inside_ = false;
   bool finish_requested_ = false;
+  bool clock_went_unknown_ = false;   // noted as it happened: the end need not note it again
+  bool enable_went_unknown_ = false;
   bool handlers_chained_ = false;
   bool running_ = false;  // past the start-of-simulation callback
   std::vector<std::function<void()>> deferred_;

@@ -94,6 +94,16 @@ V
   expect 1 "FAIL pins at known levels: 1 time(s) unknown" \
     vvp -n -M "$vpi" -m endatsim_vpi x_clock.vvp +endatsim_bench=short.json +endatsim_clock=quiet.clk \
     +endatsim_data_out=quiet.dout +endatsim_data_enable=quiet.doe +endatsim_data_in=quiet.din
+  # CLOCK unknown from time 0 and never changed: no call ever came, yet it is no known level; and
+  # with no frame at all nothing was judged (before, both passed and the verdict read "conforms").
+  sed 's/reg clk = 1.b1, dout = 1.b0, doe = 1.b0/reg clk = 1'"'"'bz, dout = 1'"'"'bx, doe = 1'"'"'bx/' quiet.v > z_pins.v
+  iverilog -g2012 -s quiet -o z_pins.vvp z_pins.v
+  expect 1 "FAIL pins at known levels: 2 time(s) unknown" \
+    vvp -n -M "$vpi" -m endatsim_vpi z_pins.vvp +endatsim_bench=short.json +endatsim_clock=quiet.clk \
+    +endatsim_data_out=quiet.dout +endatsim_data_enable=quiet.doe +endatsim_data_in=quiet.din
+  expect 1 "FAIL frames: no frame began at the encoder's connector" \
+    vvp -n -M "$vpi" -m endatsim_vpi z_pins.vvp +endatsim_bench=short.json +endatsim_clock=quiet.clk \
+    +endatsim_data_out=quiet.dout +endatsim_data_enable=quiet.doe +endatsim_data_in=quiet.din
   # A data_out that follows data_in combinationally while released: Icarus carries endatsim's write
   # through at once, back into the bridge, which must finish one call before the next.
   cat > loop.v <<'V'
