@@ -475,15 +475,40 @@ void merge_log(const std::vector<Partial>& shards, std::ostream& out) {
     auto in = open(p.path);
     std::deque<std::string> back;
     std::size_t number = 0;
+    // Each scenario is a "# name (file, seed N)" line, its frames, and "# N frames": a partial
+    // with a scenario or a frame taken out is refused, as a results partial is.
+    std::uint64_t scenarios = 0, frames = 0;
+    const auto count = [&](const std::string& line, std::size_t at) {
+      if (!line.starts_with("# ")) {
+        ++frames;
+        return;
+      }
+      std::uint64_t said = 0;
+      const char* digits = line.data() + 2;
+      const char* end = line.data() + line.size();
+      const auto [after, ec] = std::from_chars(digits, end, said);
+      if (ec == std::errc{} && std::string_view(after, end) == " frames") {
+        if (said != frames)
+          fail(p.path, "line " + std::to_string(at) + " says " + std::to_string(said) + " frames where its scenario lists " +
+                           std::to_string(frames));
+      } else {
+        ++scenarios;
+      }
+      frames = 0;
+    };
     for (std::string line; std::getline(in, line);) {
       stop_if_interrupted(++number);
       back.push_back(std::move(line));
       if (back.size() <= held) continue;
+      count(back.front(), number - held);
       out << back.front() << "\n";
       back.pop_front();
     }
     if (back.size() != held || (held > 1 && !back.front().starts_with("# incomplete: ")))
       fail(p.path, "its last lines are not the \"# incomplete\" lines its mark says");
+    if (scenarios + p.mark.not_run.size() != p.mark.items)
+      fail(p.path, "holds " + std::to_string(scenarios) + " scenarios and " + std::to_string(p.mark.not_run.size()) +
+                       " not run, where its shard has " + std::to_string(p.mark.items));
   }
   const auto v = run_verdict(shards);
   if (!v.incomplete.empty()) TransactionLogWriter::write_incomplete(out, v.incomplete, v.not_run);

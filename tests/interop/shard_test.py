@@ -191,6 +191,21 @@ log = open(path("n3_k2.log")).read()
 with open(path("cut.log"), "w") as f:
     f.write(log[: len(log) - 10])
 refused("a log cut short", "cut short", path("n3_k1.log"), path("cut.log"), path("n3_k3.log"), "--log", path("x.log"))
+# A log with a whole scenario, or one frame line, taken out (before, both merged with exit 0).
+lines = log.splitlines(keepends=True)
+headers = [i for i, line in enumerate(lines) if line.startswith("# ") and not line.rstrip("\n").endswith(" frames")
+           and not line.startswith("# shard")]
+footers = [i for i, line in enumerate(lines) if line.startswith("# ") and line.rstrip("\n").endswith(" frames")]
+check(len(headers) >= 2 and len(footers) >= 2, "the log partial holds two scenarios or more")
+with open(path("torn.log"), "w") as f:
+    f.write("".join(lines[: headers[0]] + lines[footers[0] + 1:]))
+refused("a log missing a scenario", "scenarios and 0 not run, where its shard has", path("n3_k1.log"), path("torn.log"),
+        path("n3_k3.log"), "--log", path("x.log"))
+frame = next(h + 1 for h, f in zip(headers, footers) if f > h + 1)
+with open(path("torn_frame.log"), "w") as f:
+    f.write("".join(lines[:frame] + lines[frame + 1:]))
+refused("a log missing a frame", "frames where its scenario lists", path("n3_k1.log"), path("torn_frame.log"),
+        path("n3_k3.log"), "--log", path("x.log"))
 check(not os.path.exists(path("x.json")) and not os.path.exists(path("x.log")),
       "a refused merge writes nothing and removes what an earlier one left")
 
