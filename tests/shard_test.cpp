@@ -182,11 +182,13 @@ TEST(MergeLog, StopsWhenInterruptedAndWritesNoMore) {
   ShardMark m = sample_mark();
   m.shard = {1, 1};
   m.first = 0;
-  m.items = m.total;
+  m.total = m.items = 1;  // one scenario, whole: merge checks the log's scenarios and frames against the mark
+  m.inputs = {"a.json"};
   m.incomplete.clear();
   m.not_run.clear();
   std::string text = "# a (a.json, seed 1)\n";
   for (int i = 0; i < 10'000; ++i) text += "        " + std::to_string(i) + " ps  #" + std::to_string(i) + "\n";
+  text += "# 10000 frames\n";
   const auto path = temp_file("shard_interrupted.log", text + endatsim::scenarios::text_log_mark(m));
   const auto partial = read_partial(path);
   std::ostringstream out;
