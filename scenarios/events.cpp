@@ -62,10 +62,12 @@ void EventDriver::on_rising_edge(ObservationPoint end, std::uint64_t level) {
     if (rng_() >= threshold) continue;
     line_.invert(line::Wire::Data, end, period_);
     ++random_bit_errors_;
+    ++actions_;
   }
 }
 
 void EventDriver::apply(std::uint64_t index) {
+  ++actions_;
   const Event& e = events_[index];
   if (e.kind >= K::ErrorSources) apply_to_encoder(e);
   else apply_to_line(e, index);
@@ -146,6 +148,7 @@ void EventDriver::apply_to_encoder(const Event& e) {
 }
 
 void EventDriver::end_of(std::uint64_t index) {
+  ++actions_;
   const Event& e = events_[index];
   if (e.kind == K::Stuck) line_.stick(e.wire, e.end, std::nullopt);
   if (e.kind == K::RandomBitErrors) std::erase(random_[side(e.end)], index);

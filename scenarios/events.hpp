@@ -32,6 +32,9 @@ class EventDriver final : public master::MasterObserver {
   // No event is set off by a frame from `frame` on or by a clock edge (events at a time are in
   // the kernel's queue).
   bool quiet_from(std::uint64_t frame) const;
+  // How many times an event has acted so far (applied, ended, its supply or probe back): a frame
+  // recorded while one acted is not the frame before it, even where the event changed nothing.
+  std::uint64_t actions() const { return actions_; }
 
  private:
   struct Armed {
@@ -40,12 +43,19 @@ class EventDriver final : public master::MasterObserver {
   };
   void apply(std::uint64_t index);
   void end_of(std::uint64_t index);
-  void release_probe() { encoder_.set_probe_deflected(false); }
+  void release_probe() {
+    ++actions_;
+    encoder_.set_probe_deflected(false);
+  }
   void power_back() {
+    ++actions_;
     if (master_ != nullptr) master_->encoder_power_interrupted();
   }
   // A run whose encoder has no run-up models neither the first switch-on nor this one (2.3.3).
-  void supply_back() { checker_.on_switched_on(encoder_.params().startup_time > sim::Time::zero()); }
+  void supply_back() {
+    ++actions_;
+    checker_.on_switched_on(encoder_.params().startup_time > sim::Time::zero());
+  }
   void on_master_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::MasterPins, level); }
   void on_encoder_clock(std::uint64_t level) { on_rising_edge(line::ObservationPoint::EncoderPins, level); }
   void on_rising_edge(line::ObservationPoint end, std::uint64_t level);
@@ -63,6 +73,7 @@ class EventDriver final : public master::MasterObserver {
   std::vector<Armed> armed_[2];                 // frame events waiting for their clock edge, per end
   std::vector<std::size_t> random_[2];          // random_bit_errors events in force, per end
   std::uint64_t random_bit_errors_ = 0;
+  std::uint64_t actions_ = 0;
   bool counts_edges_ = false;
 };
 

@@ -100,6 +100,7 @@ bool FrameReplay::replayed(const master::FrameRequest& request) {
   recording_->gap = *gap;
   recording_->contentions = line_.contentions_seen();
   recording_->ignored_edges = encoder_.ignored_clock_edges();
+  recording_->event_actions = events_.actions();
   recording_->vcd_quiet = vcd_ != nullptr && vcd_->quiet();
   if (checker_.replayable()) recording_->checker_start = checker_.snapshot();
   kernel_.record_to(&recording_->tape);
@@ -117,8 +118,10 @@ bool FrameReplay::close_recording() {
   r.encoder_frames = encoder_.take_recorded_frames();
   r.findings = checker_.take_recorded_findings();
   if (r.checker_start && checker_.replayable()) r.checker_end = checker_.snapshot();
-  // One frame at the encoder, read Ok, no contention, no clock edge the encoder did not take (t_R).
+  // One frame at the encoder, read Ok, no contention, no clock edge the encoder did not take (t_R),
+  // no scenario event acting inside it (even one that changed nothing is an event the frame ran).
   const bool clean = line_.contentions_seen() == r.contentions && encoder_.ignored_clock_edges() == r.ignored_edges &&
+                     events_.actions() == r.event_actions &&
                      r.encoder_frames.size() == 1 && !r.frames.empty() && r.frames.back().outcome == master::FrameOutcome::Ok;
   if (!clean) {
     last_ = {};

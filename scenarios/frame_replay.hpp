@@ -75,6 +75,7 @@ struct Recording {
   std::vector<slave::EncoderFrame> encoder_frames;
   std::uint64_t contentions = 0;  // the line's count when the recording began
   std::uint64_t ignored_edges = 0;  // the encoder's count of clock edges it did not take, then
+  std::uint64_t event_actions = 0;  // the scenario events' count of actions, then
   bool vcd_quiet = false;  // the VCD writer had nothing waiting for the end of the time step, then
   bool confirmed = false;         // the recording before it of its kind was the same, moved in time
   std::uint64_t epoch = 0;        // when it was made (FrameReplay::epoch_)

@@ -250,6 +250,22 @@ TEST(FastPathMotion, AMovingAxisPlaysTheFramesBetweenItsStepsAndGivesTheOutputsO
   EXPECT_EQ(expect_same_outputs(quick, "quick axis"), 0U);
 }
 
+// Events that change nothing (no errors set, a slip of no steps) at the same point of two
+// consecutive frames: each recording then holds one event more than its frame runs once the
+// events are over, and the two agree with each other. A frame is recorded only while no event acts
+// in it, so the frames after them play with the kernel events they run.
+TEST(FastPathEvents, EventsThatChangeNothingInConsecutiveFramesKeepTheKernelEventsCounted) {
+  const char* text = R"({"name": "no_op_events", "max_time": "1 s", "line": {"cable_length_m": 10},
+    "encoder": {"version": "2.2", "position_bits": 25}, "master": {"f_c": "1 MHz", "position_bits": 25},
+    "script": [{"op": "read_position", "count": 200, "cycle": "100 us"}],
+    "events": [{"at": "5.0501 ms", "error_sources": {"errors": "0x0000"}},
+               {"at": "5.1501 ms", "error_sources": {"errors": "0x0000"}},
+               {"at": "10.0501 ms", "slip": {"steps": 0}}, {"at": "10.1501 ms", "slip": {"steps": 0}},
+               {"at": "15.0001 ms", "slip": {"steps": 0}}, {"at": "15.2001 ms", "slip": {"steps": 0}}]})";
+  const scenarios::Scenario s = scenarios::load_scenario_text(text, "no_op_events.json");
+  EXPECT_GT(expect_same_outputs(s, s.name), 150U);
+}
+
 // A run that a limit ends ends where the event level ends it: a frame is played only when no
 // limit can be reached inside it.
 TEST(FastPathLimits, ARunEndedByALimitEndsAtTheSameEventWithTheSameOutputs) {
