@@ -122,6 +122,8 @@ class Bench {
   void check_limits();
   void end_early(const std::string& why, int signal = 0);
   std::uint64_t records() const;
+  // The max_time limit, earlier than the bench's own max_time, ended the run at `end`.
+  bool cut_by_time_limit(Time end) const;
   void judge(BenchResult& r) const;
 
   const scenarios::Scenario& bench_;
