@@ -30,6 +30,9 @@ struct WorstPhase {
   }
 };
 
+// The phase of a cut frame that was still going on at the end (WorstPhase::phase).
+constexpr const char* kOpenPhase = "open";
+
 // The phases of a frame: LOW k from FE k to RE k, HIGH k from RE k to FE k+1 (k from 1).
 template <class Visit>
 void for_each_phase(const std::vector<Time>& rising, const std::vector<Time>& falling, Visit visit) {
@@ -74,6 +77,15 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
       long_low.add(noted(at_most(w, *encoder_.t_lo_max, r), long_low_margin), w, k, at, false);
     }
   });
+  // A frame that the end of the run or capture cut with CLOCK LOW: that LOW phase lasted at least
+  // until the end, so it fails a maximum it already exceeds (a master hung mid-frame); shorter, it
+  // is not judged (its length is not known).
+  if (frame_cut_by_end_ == f.header.index && f.falling.size() > f.rising.size() && encoder_.t_lo_max &&
+      (f.falling.size() > 1 || !f.header.compensated)) {
+    const Time w = cut_at_ - f.falling.back();
+    if (at_most(w, *encoder_.t_lo_max, r).decision == Decision::Fail)
+      long_low.add(Decision::Fail, w, static_cast<unsigned>(f.falling.size()), f.falling.back(), false, kOpenPhase);
+  }
   low_margin.note_to(margins_, low_row);
   high_margin.note_to(margins_, high_row);
   long_low_margin.note_to(margins_, low_row, LimitOf::ThisEncoder);
@@ -90,10 +102,11 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
          .time = w.at,
          .frame = f.header.index,
          .clock = w.clock,
-         .measured = format_time(w.width),
+         .measured = (w.phase == kOpenPhase ? ">= " : "") + format_time(w.width),
          .limit = bound,
          .severity = Severity::Error,
-         .message = std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown)",
+         .message = std::string(what) + " (" + std::to_string(w.count) + " pulse(s) in this frame; worst shown" +
+                    (w.phase == kOpenPhase ? ": still LOW where the run or capture ended inside the frame)" : ")"),
          .verdict = verdict});
   };
   const std::string at_least_min = ">= " + format_time(limit::kPulseWidthMin);

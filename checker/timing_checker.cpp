@@ -1030,11 +1030,16 @@ void TimingChecker::begin_capture(Time start, bool at_rest) {
 
 void TimingChecker::finish() {
   frozen_mark_ = settled_frames();  // what finish() reports was all still open
-  if (run_cut_at_ && in_frame_ && (wires_only_ ? decoder_.cuts_frame(*run_cut_at_) : declared_running_))
+  if (run_cut_at_ && in_frame_ && (wires_only_ ? decoder_.cuts_frame(*run_cut_at_) : declared_running_)) {
     frame_cut_by_end_ = current_.header.index;
+    cut_at_ = *run_cut_at_;
+  }
   if (wires_only_) {
     const Time end = std::max(kernel_.now(), capture_end_);
-    if (capture_ && in_frame_ && decoder_.cuts_frame(end)) frame_cut_by_end_ = current_.header.index;
+    if (capture_ && in_frame_ && decoder_.cuts_frame(end)) {
+      frame_cut_by_end_ = current_.header.index;
+      cut_at_ = end;
+    }
     decoder_.finish(capture_ ? end : Time::max());
     if (in_frame_) begin_wire_frame(kernel_.now());  // evaluates the last frame
     in_frame_ = false;

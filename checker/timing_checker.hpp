@@ -558,6 +558,7 @@ class TimingChecker final {
   std::uint64_t sample_judged_frame_ = UINT64_MAX;
   bool capture_ = false;  // begin_capture() was called
   std::optional<std::uint64_t> frame_cut_by_end_;
+  Time cut_at_{0};  // where the run or the capture ended inside frame_cut_by_end_
   std::optional<Time> run_cut_at_;  // end_run_early()
   Time capture_end_{0};
   std::vector<Violation> recorded_;  // findings while the kernel records

@@ -296,6 +296,10 @@ BenchResult Bench::finish() {
   r.conformance = p.checker.conformance();
   r.conclusion = p.checker.conclusion();
   r.notes = notes_;
+  r.frame_cut_by_end = p.checker.frame_cut_by_end();
+  const sim::Signal& clock = p.line.pins(line::ObservationPoint::EncoderPins).clock;
+  r.clock_at_end = clock.read();
+  r.clock_last_change = clock.last_change();
   r.incomplete = incomplete_;
   r.interrupted = interrupted_;
   judge(r);

@@ -66,6 +66,11 @@ struct BenchResult {
   checker::Conclusion conclusion;
   std::vector<scenarios::ExpectationResult> expectations;
   std::vector<std::string> notes;  // what the bridge had to assume (time precision, unknown levels)
+  // The frame the simulation's end cut (CLOCK had not been HIGH for t_m since its last pulse), and
+  // CLOCK's level and last change at the encoder's connector then: a master that hangs mid-frame.
+  std::optional<std::uint64_t> frame_cut_by_end;
+  bool clock_at_end = true;
+  Time clock_last_change{0};
   // Why the run ended before the outside simulator did: a limit reached or a signal; such a
   // result does not pass.
   std::string incomplete;

@@ -27,6 +27,20 @@ std::string testcase(const std::string& name, const std::string& file, const std
          scenarios::xml_escape(file) + "\">\n" + inner + "    </testcase>\n";
 }
 
+nlohmann::json cut_frame_json(const BenchResult& r) {
+  return {{"frame", *r.frame_cut_by_end},
+          {"clock", r.clock_at_end ? 1 : 0},
+          {"clock_since_ps", r.clock_last_change.count()}};
+}
+
+// A frame the simulation's end cut: what was not judged, and how long CLOCK had stood still.
+std::string cut_frame_text(const BenchResult& r) {
+  return "the simulation ended inside frame #" + std::to_string(*r.frame_cut_by_end) +
+         ": its clock count and start-bit polling not judged; CLOCK " + (r.clock_at_end ? "HIGH" : "LOW") +
+         " at the encoder's connector since " + sim::format_time(r.clock_last_change) + " (" +
+         sim::format_time(r.simulated - r.clock_last_change) + " before the end)";
+}
+
 }  // namespace
 
 void write_summary(std::ostream& out, const BenchResult& r, bool verbose) {
@@ -38,6 +52,7 @@ void write_summary(std::ostream& out, const BenchResult& r, bool verbose) {
       << " parameter(s); judged from the wires alone (the master declares nothing)\n";
   for (const auto& n : r.notes) out << "  note: " << n << "\n";
   if (!r.incomplete.empty()) out << "  INCOMPLETE: " << r.incomplete << "\n";
+  if (r.frame_cut_by_end) out << "  " << cut_frame_text(r) << "\n";
   if (verbose)
     for (const auto& f : r.frames) out << "  " << scenarios::frame_log_line(f);
   scenarios::write_violations(out, r.violations, r.conformance, verbose);
@@ -65,6 +80,7 @@ nlohmann::json to_json(const BenchResult& r) {
           {"positions", reported_json(r.positions)},
           {"parameters", reported_json(r.parameters)},
           {"notes", r.notes},
+          {"frame_cut_by_end", r.frame_cut_by_end ? json(cut_frame_json(r)) : json(nullptr)},
           {"violations", scenarios::violations_json(r.violations)},
           {"verdict", scenarios::verdict_json(r.conclusion)},
           {"conformance", scenarios::conformance_json(r.conformance)},

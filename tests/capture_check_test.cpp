@@ -1194,6 +1194,52 @@ TEST(CheckCapture, ACaptureCutInsideFramesAtBothEndsJudgesItsWholeFramesAsTheUnc
   fs::remove(cut);
 }
 
+// A master that hangs mid-frame with CLOCK LOW until the capture ends: the LOW phase still going on
+// fails the encoder's declared t_LO maximum once it has lasted longer, and is not judged while it is
+// shorter or where no maximum is declared (the spec envelope has none: "see encoder
+// specifications").
+TEST(CheckCapture, AClockLowThatOutlastsTheEncodersMaximumUntilTheEndFailsTlo) {
+  const fs::path vcd = temp("hung_low.vcd");
+  const auto write = [&](int end_us) {
+    std::ofstream out(vcd);
+    out << "$timescale 1 ns $end\n$scope module encoder $end\n$var wire 1 c clock $end\n$var wire 1 d data $end\n"
+           "$upscope $end\n$enddefinitions $end\n#0\n1c\n1d\n";
+    for (int i = 0; i < 5; ++i) out << "#" << 50000 + 1000 * i << "\n0c\n#" << 50500 + 1000 * i << "\n1c\n";
+    out << "#55000\n0c\n#" << end_us * 1000 << "\n";  // CLOCK LOW from 55 us to the end
+  };
+  scenarios::CaptureCheckOptions o;
+  o.file = vcd.string();
+  o.clock = "clock";
+  o.data = "data";
+  const auto t_lo = [](const scenarios::CaptureCheckResult& r) {
+    return std::count_if(r.violations.begin(), r.violations.end(),
+                         [](const checker::Violation& v) { return v.check == checker::check::kPulseLow; });
+  };
+  write(555);
+  auto r = scenarios::check_capture(o);
+  ASSERT_TRUE(r.frame_cut_by_end.has_value());
+  EXPECT_EQ(t_lo(r), 0) << "no maximum declared";
+  o.encoder.t_lo_max = sim::us(30);
+  r = scenarios::check_capture(o);
+  ASSERT_EQ(t_lo(r), 1);
+  const auto& v = *std::find_if(r.violations.begin(), r.violations.end(),
+                                [](const checker::Violation& x) { return x.check == checker::check::kPulseLow; });
+  EXPECT_EQ(v.measured, ">= 500 us");
+  EXPECT_EQ(v.time, sim::us(55));
+  EXPECT_EQ(v.verdict, checker::Verdict::ThisEncoder);
+  EXPECT_NE(v.message.find("still LOW where the run or capture ended inside the frame"), std::string::npos) << v.message;
+  o.encoder.t_lo_max = sim::us(500);  // just as long as the end shows: not known to be longer
+  EXPECT_EQ(t_lo(scenarios::check_capture(o)), 0);
+  o.encoder.t_lo_max = sim::us(500) - sim::ns(1);
+  EXPECT_EQ(t_lo(scenarios::check_capture(o)), 1);
+  write(80);  // 25 us LOW at the end, under the 30 us
+  o.encoder.t_lo_max = sim::us(30);
+  r = scenarios::check_capture(o);
+  ASSERT_TRUE(r.frame_cut_by_end.has_value());
+  EXPECT_EQ(t_lo(r), 0);
+  fs::remove(vcd);
+}
+
 namespace {
 
 checker::Violation finding(checker::Severity severity, checker::Verdict verdict) {

@@ -104,6 +104,35 @@ V
   expect 1 "FAIL frames: no frame began at the encoder's connector" \
     vvp -n -M "$vpi" -m endatsim_vpi z_pins.vvp +endatsim_bench=short.json +endatsim_clock=quiet.clk \
     +endatsim_data_out=quiet.dout +endatsim_data_enable=quiet.doe +endatsim_data_in=quiet.din
+  # A master that hangs mid-frame with CLOCK LOW until the testbench's $finish: the cut frame is
+  # named, and with the encoder's t_LO maximum declared the LOW phase that outlasts it fails t_lo
+  # (before, both passed without a word).
+  cat > hung.v <<'V'
+`timescale 1ns / 1ps
+module hung;
+  reg clk = 1'b1, dout = 1'b0, doe = 1'b0, din = 1'b1;
+  integer i;
+  initial begin
+    #50000;
+    for (i = 0; i < 5; i = i + 1) begin clk = 1'b0; #500; clk = 1'b1; #500; end
+    clk = 1'b0;  // and never again
+    #500000 $finish;
+  end
+endmodule
+V
+  iverilog -g2012 -s hung -o hung.vvp hung.v
+  hung_pins="+endatsim_clock=hung.clk +endatsim_data_out=hung.dout +endatsim_data_enable=hung.doe +endatsim_data_in=hung.din"
+  # 1 m of cable and no expectations: the master's undriven mode bits fail floating_data (exit 1).
+  echo '{"name": "hung", "max_time": "1 ms", "line": {"cable_length_m": 1}, "encoder": {"version": "2.2"}}' > hung.json
+  expect 1 "the simulation ended inside frame #0: its clock count and start-bit polling not judged; CLOCK LOW at the encoder's connector since 55.045 us (499.955 us before the end)" \
+    vvp -n -M "$vpi" -m endatsim_vpi hung.vvp +endatsim_bench=hung.json $hung_pins +endatsim_json=hung_out.json
+  if grep -qF "violation t_lo" out.txt; then echo "FAILED: t_lo judged without a declared maximum"; failures=$((failures + 1)); fi
+  if ! python3 -c 'import json, sys; c = json.load(open("hung_out.json"))["frame_cut_by_end"]; sys.exit(0 if c == {"frame": 0, "clock": 0, "clock_since_ps": 55045000} else 1)'; then
+    echo "FAILED: hung_out.json's frame_cut_by_end"; failures=$((failures + 1))
+  fi
+  echo '{"name": "hung", "max_time": "1 ms", "line": {"cable_length_m": 1}, "encoder": {"version": "2.2", "t_lo_max": "30 us"}}' > datasheet.json
+  expect 1 "measured >= 499.955 us, limit <= 30 us (this encoder's t_LO maximum) - CLOCK LOW phase longer than this encoder's datasheet allows (1 pulse(s) in this frame; worst shown: still LOW where the run or capture ended inside the frame)" \
+    vvp -n -M "$vpi" -m endatsim_vpi hung.vvp +endatsim_bench=datasheet.json $hung_pins
   # A data_out that follows data_in combinationally while released: Icarus carries endatsim's write
   # through at once, back into the bridge, which must finish one call before the next.
   cat > loop.v <<'V'
