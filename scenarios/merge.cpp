@@ -7,7 +7,6 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 #include "endatsim/scenarios/interrupt.hpp"
@@ -514,6 +513,37 @@ void merge_log(const std::vector<Partial>& shards, std::ostream& out) {
   if (!v.incomplete.empty()) TransactionLogWriter::write_incomplete(out, v.incomplete, v.not_run);
 }
 
+// A JSON-lines log lists each scenario's frames in a run of records, numbered from 0 without a
+// gap (a continuous clock's words are frames of their own), so each record is the next frame of
+// the scenario before it or frame 0 of the next scenario (two scenarios may share a name): a
+// partial with a frame or a scenario's first frames taken out is refused.
+class FrameSequence {
+ public:
+  explicit FrameSequence(const std::string& path) : path_(path) {}
+  void check(const std::string& record, std::size_t line) {
+    const json j = json::parse(record);
+    const auto scenario = j.find("scenario");
+    const auto frame = j.find("frame");
+    if (scenario == j.end() || !scenario->is_string() || frame == j.end() || !frame->is_number_unsigned())
+      fail(path_, "line " + std::to_string(line) + ": not a frame's record (\"scenario\" and \"frame\")");
+    const auto& name = scenario->get_ref<const std::string&>();
+    const std::uint64_t index = frame->get<std::uint64_t>();
+    const bool next = name == current_ && index == next_;
+    if (!next && index != 0)
+      fail(path_, "line " + std::to_string(line) + ": frame " + std::to_string(index) + " of \"" + name + "\" follows " +
+                      (current_.empty() && next_ == 0 ? std::string("nothing")
+                                                      : "frame " + std::to_string(next_ - 1) + " of \"" + current_ + "\"") +
+                      ": a frame is missing");
+    current_ = name;
+    next_ = index + 1;
+  }
+
+ private:
+  const std::string& path_;
+  std::string current_;
+  std::uint64_t next_ = 0;
+};
+
 void merge_log_json(const std::vector<Partial>& shards, std::ostream& out) {
   for (const auto& p : shards) {
     // Held back: the shard's own "incomplete" record and its mark, which the whole run's end replaces.
@@ -521,12 +551,14 @@ void merge_log_json(const std::vector<Partial>& shards, std::ostream& out) {
     auto in = open(p.path);
     std::size_t number = 0;
     std::deque<std::string> back;
+    FrameSequence frames(p.path);
     for (std::string line; std::getline(in, line);) {
       stop_if_interrupted(number);
       ++number;
       if (!json::accept(line)) fail(p.path, "line " + std::to_string(number) + ": not a JSON record");
       back.push_back(std::move(line));
       if (back.size() <= held) continue;
+      frames.check(back.front(), number - held);
       out << back.front() << "\n";
       back.pop_front();
     }

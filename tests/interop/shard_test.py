@@ -206,6 +206,20 @@ with open(path("torn_frame.log"), "w") as f:
     f.write("".join(lines[:frame] + lines[frame + 1:]))
 refused("a log missing a frame", "frames where its scenario lists", path("n3_k1.log"), path("torn_frame.log"),
         path("n3_k3.log"), "--log", path("x.log"))
+# The JSON lines hold no "# N frames": each record must be the next frame of its scenario or
+# frame 0 of the next one.
+records = open(path("n3_k2.jsonl")).read().splitlines(keepends=True)
+frames_of = [json.loads(r) for r in records[:-1]]  # the last record is the mark
+middle = next(i for i in range(1, len(frames_of) - 1)
+              if frames_of[i - 1]["scenario"] == frames_of[i]["scenario"] == frames_of[i + 1]["scenario"])
+with open(path("torn_frame.jsonl"), "w") as f:
+    f.write("".join(records[:middle] + records[middle + 1:]))
+refused("JSON lines missing a frame", "a frame is missing", path("n3_k1.jsonl"), path("torn_frame.jsonl"),
+        path("n3_k3.jsonl"), "--log-json", path("x.jsonl"))
+with open(path("torn_first.jsonl"), "w") as f:
+    f.write("".join(records[1:]))
+refused("JSON lines missing a scenario's first frame", "follows nothing: a frame is missing", path("n3_k1.jsonl"),
+        path("torn_first.jsonl"), path("n3_k3.jsonl"), "--log-json", path("x.jsonl"))
 check(not os.path.exists(path("x.json")) and not os.path.exists(path("x.log")),
       "a refused merge writes nothing and removes what an earlier one left")
 
