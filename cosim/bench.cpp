@@ -296,6 +296,7 @@ BenchResult Bench::finish() {
   r.conformance = p.checker.conformance();
   r.conclusion = p.checker.conclusion();
   r.notes = notes_;
+  r.events_not_acted = p.events.not_acted();
   r.frame_cut_by_end = p.checker.frame_cut_by_end();
   const sim::Signal& clock = p.line.pins(line::ObservationPoint::EncoderPins).clock;
   r.clock_at_end = clock.read();

@@ -68,6 +68,7 @@ struct BenchResult {
   std::vector<std::string> notes;  // what the bridge had to assume (time precision, unknown levels)
   // The frame the simulation's end cut (CLOCK had not been HIGH for t_m since its last pulse), and
   // CLOCK's level and last change at the encoder's connector then: a master that hangs mid-frame.
+  std::vector<scenarios::EventNotActed> events_not_acted;  // the bench's events the run ended before
   std::optional<std::uint64_t> frame_cut_by_end;
   bool clock_at_end = true;
   Time clock_last_change{0};

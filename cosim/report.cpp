@@ -52,6 +52,7 @@ void write_summary(std::ostream& out, const BenchResult& r, bool verbose) {
       << " parameter(s); judged from the wires alone (the master declares nothing)\n";
   for (const auto& n : r.notes) out << "  note: " << n << "\n";
   if (!r.incomplete.empty()) out << "  INCOMPLETE: " << r.incomplete << "\n";
+  scenarios::write_events_not_acted(out, r.events_not_acted);
   if (r.frame_cut_by_end) out << "  " << cut_frame_text(r) << "\n";
   if (verbose)
     for (const auto& f : r.frames) out << "  " << scenarios::frame_log_line(f);
@@ -80,6 +81,7 @@ nlohmann::json to_json(const BenchResult& r) {
           {"positions", reported_json(r.positions)},
           {"parameters", reported_json(r.parameters)},
           {"notes", r.notes},
+          {"events_not_acted", scenarios::events_not_acted_json(r.events_not_acted)},
           {"frame_cut_by_end", r.frame_cut_by_end ? json(cut_frame_json(r)) : json(nullptr)},
           {"violations", scenarios::violations_json(r.violations)},
           {"verdict", scenarios::verdict_json(r.conclusion)},

@@ -1,5 +1,7 @@
 #include "endatsim/scenarios/events.hpp"
 
+#include "endatsim/scenarios/event_kinds.hpp"
+
 #include <algorithm>
 
 namespace endatsim::scenarios {
@@ -24,7 +26,7 @@ EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& 
                          checker::TimingChecker& checker, const std::vector<Event>& events, std::uint64_t seed,
                          Time bit_period)
     : kernel_(kernel), line_(line), encoder_(encoder), master_(master), checker_(checker), events_(events),
-      period_(bit_period), rng_(seed ^ 0x5EED'FA17'0000'0005ULL) {
+      period_(bit_period), rng_(seed ^ 0x5EED'FA17'0000'0005ULL), acted_(events.size(), false) {
   bool listen[2] = {false, false};
   for (std::size_t i = 0; i < events.size(); ++i) {
     if (events[i].at) kernel.schedule_at(*events[i].at, sim::bind<&EventDriver::apply>(this, i));
@@ -66,8 +68,25 @@ void EventDriver::on_rising_edge(ObservationPoint end, std::uint64_t level) {
   }
 }
 
+std::vector<EventNotActed> EventDriver::not_acted() const {
+  std::vector<EventNotActed> out;
+  for (std::size_t i = 0; i < acted_.size(); ++i) {
+    if (acted_[i]) continue;
+    const Event& e = events_[i];
+    EventNotActed n{i, "", ""};
+    for (const auto& k : event_kinds())
+      if (k.kind == e.kind) n.kind = std::string(k.key);
+    if (e.at) n.when = "at " + sim::format_time(*e.at);
+    else if (e.frame) n.when = "frame " + std::to_string(*e.frame) + (e.clock != 0 ? ", clock " + std::to_string(e.clock) : "");
+    if (e.offset != Time::zero()) n.when += " + " + sim::format_time(e.offset);
+    out.push_back(std::move(n));
+  }
+  return out;
+}
+
 void EventDriver::apply(std::uint64_t index) {
   ++actions_;
+  acted_[index] = true;
   const Event& e = events_[index];
   if (e.kind >= K::ErrorSources) apply_to_encoder(e);
   else apply_to_line(e, index);

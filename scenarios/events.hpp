@@ -35,6 +35,9 @@ class EventDriver final : public master::MasterObserver {
   // How many times an event has acted so far (applied, ended, its supply or probe back): a frame
   // recorded while one acted is not the frame before it, even where the event changed nothing.
   std::uint64_t actions() const { return actions_; }
+  // The events (their indices in the list) that have not acted yet: at the end of a run, those
+  // the run ended before (a time or a frame past its end).
+  std::vector<EventNotActed> not_acted() const;
 
  private:
   struct Armed {
@@ -74,6 +77,7 @@ class EventDriver final : public master::MasterObserver {
   std::vector<std::size_t> random_[2];          // random_bit_errors events in force, per end
   std::uint64_t random_bit_errors_ = 0;
   std::uint64_t actions_ = 0;
+  std::vector<bool> acted_;  // per event
   bool counts_edges_ = false;
 };
 

@@ -325,9 +325,24 @@ void write_master_warnings(std::ostream& out, const ScenarioResult& r) {
         << "no additional data 1, which holds it (D297403 2.5.1); select additional data 1 first\n";
 }
 
+void write_events_not_acted(std::ostream& out, const std::vector<EventNotActed>& events) {
+  constexpr std::size_t kShown = 3;
+  for (std::size_t i = 0; i < events.size() && i < kShown; ++i)
+    out << "  warning: event #" << events[i].index << " (" << events[i].kind << ", " << events[i].when
+        << ") never acted: the run ended before it\n";
+  if (events.size() > kShown) out << "  ... " << events.size() - kShown << " more event(s) never acted\n";
+}
+
+nlohmann::json events_not_acted_json(const std::vector<EventNotActed>& events) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& e : events) out.push_back({{"index", e.index}, {"kind", e.kind}, {"when", e.when}});
+  return out;
+}
+
 void write_summary(std::ostream& out, const ScenarioResult& r, bool verbose) {
   out << (r.passed() ? "PASS " : "FAIL ") << r.name << " (" << r.file << ", seed " << r.seed << ")\n";
   if (!r.incomplete.empty()) out << "  INCOMPLETE: " << r.incomplete << "\n";
+  write_events_not_acted(out, r.events_not_acted);
   // A scenario's free texts go to a terminal: control bytes (an escape sequence, a carriage return
   // that forges a line) are shown escaped, never sent.
   using capture::printable;
@@ -496,6 +511,7 @@ nlohmann::json result_json_without_frames(const ScenarioResult& r) {
   }
   j["simulated_ps"] = r.simulated.count();
   j["events"] = r.events;
+  if (!r.events_not_acted.empty()) j["events_not_acted"] = events_not_acted_json(r.events_not_acted);
   j["true_round_trip_ps"] = r.true_round_trip.count();
   json ms = json::array();
   for (const auto& m : r.measurements) {

@@ -19,6 +19,9 @@ void write_violations(std::ostream& out, const std::vector<checker::Violation>& 
 
 // The violations as the stable JSON format has them; the two verdicts (spec envelope, this encoder).
 nlohmann::json violations_json(const std::vector<checker::Violation>& violations);
+// The events a run ended before: a warning line each (the first three) and a JSON list.
+void write_events_not_acted(std::ostream& out, const std::vector<EventNotActed>& events);
+nlohmann::json events_not_acted_json(const std::vector<EventNotActed>& events);
 nlohmann::json verdict_json(const checker::Conclusion& conclusion);
 // "verdict: conforms to this encoder; outside the spec envelope: ..."; the violations name the
 // envelope-only findings.

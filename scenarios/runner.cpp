@@ -498,6 +498,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const RunOptions& options)
   r.simulated = kernel.now();
   r.events = kernel.events_processed();
   r.frames_replayed = replay ? replay->frames_replayed() : 0;
+  r.events_not_acted = events.not_acted();
   r.finished = master.finished();
   r.incomplete = watch.reason;
   r.interrupted = watch.interrupted;

@@ -60,6 +60,7 @@ struct ScenarioResult {
   Time simulated{0};
   std::uint64_t events = 0;
   std::uint64_t frames_replayed = 0;  // frames played from a recording (frame_replay.hpp); in no output
+  std::vector<EventNotActed> events_not_acted;  // the scenario's events that the run ended before
   bool finished = false;  // the script ran to its end within max_time
   // Not empty when the run was ended early, by a limit of limits.hpp or an interruption: why,
   // where and how to change it. Such a result is incomplete and does not pass.

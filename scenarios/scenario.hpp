@@ -142,6 +142,15 @@ struct Event {
   slave::SensorValues sensors;                                        // sensors
 };
 
+// An event the run ended before: its place in the scenario's list, its kind ("slip") and when it
+// was to act ("at 5 ms", "frame 500", "frame 500, clock 9").
+struct EventNotActed {
+  std::size_t index = 0;
+  std::string kind;
+  std::string when;
+  bool operator==(const EventNotActed&) const = default;
+};
+
 inline Event cable_change(Time at, double length_m, Time delay_per_m) {
   Event e;
   e.at = at;

@@ -12,6 +12,7 @@
 #include "endatsim/cosim/bench.hpp"
 #include "endatsim/cosim/report.hpp"
 #include "endatsim/line/line.hpp"
+#include "endatsim/scenarios/exit_status.hpp"
 #include "endatsim/scenarios/interrupt.hpp"
 #include "endatsim/scenarios/loader.hpp"
 #include "test_support.hpp"
@@ -234,8 +235,23 @@ TEST(CosimBenchLimits, MaxTimeCapsTheBenchsOwnAndABenchAskingForMoreIsRefused) {
   bench.advance_to(us(100));
   EXPECT_TRUE(bench.should_stop());
   const auto r = bench.finish();
-  EXPECT_TRUE(r.incomplete.empty());  // max_time is the bench's end, not a limit's
-  EXPECT_FALSE(r.passed());           // "ended before max_time"
+  // A limit reached, as `endatsim run --max-time` says: incomplete (exit 3), not the bench's own
+  // max_time's failure "ended before max_time".
+  EXPECT_EQ(r.incomplete, "limit max_time reached: 100 us simulated, less than the bench's 1 s (--max-time changes it); "
+                          "the run ended at 100 us");
+  EXPECT_FALSE(r.passed());
+  for (const auto& e : r.expectations) EXPECT_NE(e.name, "ended before max_time");
+  std::ostringstream out, err;
+  EXPECT_EQ(cosim::report(r, {}, false, out, err), scenarios::exit_status::kIncomplete);
+  // The bench's own max_time reached: the failure, complete.
+  cosim::Bench whole(s);
+  whole.advance_to(whole.max_time());
+  const auto own = whole.finish();
+  EXPECT_TRUE(own.incomplete.empty());
+  const auto ended = std::find_if(own.expectations.begin(), own.expectations.end(),
+                                  [](const auto& e) { return e.name == "ended before max_time"; });
+  ASSERT_NE(ended, own.expectations.end());
+  EXPECT_FALSE(ended->passed);
   cosim::BenchOptions few_events;
   few_events.limits.kernel_events = 10;
   std::string text = kBench;
