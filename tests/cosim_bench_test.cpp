@@ -168,6 +168,25 @@ TEST(CosimBench, AFrameIndexedBitFlipHitsThatFrameOnly) {
   EXPECT_TRUE(r.positions[2].matches());
 }
 
+// An event at a frame the master never clocks did nothing: the report names it.
+TEST(CosimBench, AnEventAtAFrameTheMasterNeverBeganIsNamed) {
+  std::string text = kBench;
+  text.replace(text.find("\"expect\""), 0,
+               R"("events": [ { "frame": 1, "clock": 20, "bit_flip": { "wire": "data", "end": "master", "width": "1 us" } },
+                              { "frame": 7, "bit_flip": { "wire": "data", "end": "master", "width": "1 us" } } ], )");
+  const auto s = scenarios::load_scenario_text(text, "bench.json", scenarios::ScenarioKind::Bench);
+  cosim::Bench bench(s);
+  drive(bench, three_reads());
+  const auto r = bench.finish();
+  const std::vector<scenarios::EventNotActed> want{{1, "bit_flip", "frame 7"}};
+  EXPECT_EQ(r.events_not_acted, want);
+  std::ostringstream summary;
+  cosim::write_summary(summary, r, false);
+  EXPECT_NE(summary.str().find("warning: event #1 (bit_flip, frame 7) never acted: the run ended before it"),
+            std::string::npos) << summary.str();
+  EXPECT_EQ(cosim::to_json(r).at("events_not_acted").size(), 1U);
+}
+
 TEST(CosimBench, TheSameBenchAndSeedGiveTheSameReport) {
   const auto s = scenarios::load_scenario_text(kBench, "bench.json", scenarios::ScenarioKind::Bench);
   const auto once = [&] {
