@@ -412,7 +412,7 @@ void require_every_shard(const std::vector<Partial>& shards, const std::string& 
   std::vector<const Partial*> seen(n + 1, nullptr);
   for (const auto& p : shards) {
     auto& slot = seen[p.mark.shard.index];
-    if (slot != nullptr) fail(p.path, "is " + shard_name(p) + "'s " + option + " partial, and so is " + slot->path);
+    if (slot != nullptr) fail(p.path, "is the " + option + " partial of " + shard_name(p) + ", and so is " + slot->path);
     slot = &p;
   }
   std::string missing;

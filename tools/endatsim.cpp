@@ -955,7 +955,7 @@ int merge_sweep_partials(const po::variables_map& vm,
   scenarios::Sweep result;
   load_or_clear_outputs("merge", sweep_outputs(o), [&] {
     const auto& shards = groups.at(scenarios::PartialKind::Sweep);
-    scenarios::require_every_shard(shards, "the sweep's --json");
+    scenarios::require_every_shard(shards, "sweep --json");
     result = scenarios::merge_sweep(shards);
     if (o.maximize) {
       const auto table = scenarios::maximize(result, *o.maximize);

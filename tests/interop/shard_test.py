@@ -166,7 +166,9 @@ k3 = [path("n3_k%d.json" % k) for k in (1, 2, 3)]
 with open(path("x.json"), "w") as f:
     f.write("an earlier merge's results")
 refused("a missing shard", "--json: 1 of 3 shards missing (2)", k3[0], k3[2], "--json", path("x.json"))
-refused("a doubled shard", "is shard 2/3's --json partial, and so is", k3[0], k3[1], k3[1], k3[2], "--json", path("x.json"))
+refused("a doubled sweep shard", "small2.json: is the sweep --json partial of shard 2/3, and so is",
+        *[path("small%d.json" % k) for k in (1, 2, 2, 3)], "--csv", path("x.csv"))
+refused("a doubled shard", "is the --json partial of shard 2/3, and so is", k3[0], k3[1], k3[1], k3[2], "--json", path("x.json"))
 refused("shards of different splits", "one of 7 shards, not of 3", k3[0], path("n7_k2.json"), "--json", path("x.json"))
 run("run", *few, "--shard", "2/3", "--json", path("other2.json"))
 refused("another run's partials", "ran other scenario files", k3[0], path("other2.json"), k3[2], "--json", path("x.json"))
