@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
@@ -17,6 +18,14 @@ namespace endatsim::scenarios {
 namespace {
 
 using sim::Time;
+
+// The cable's one-way delay, by which the master's enable recorded at its own connector reaches
+// the encoder's (the line's own delay per metre).
+Time master_enable_delay(const CaptureCheckOptions& o) {
+  line::LineParams cable;
+  cable.cable_length_m = o.cable_m.value_or(0);
+  return cable.cable_delay();
+}
 
 // The capture's changes, one at a time at their recorded times, onto the pins of a line
 // without delays: CLOCK from the master; DATA from the encoder while its recorded enable is on,
@@ -62,6 +71,7 @@ class Replay {
     if (o.master_data_enable) {
       master_enable_ = capture::find_signal(reader, *o.master_data_enable);
       wanted.push_back(*master_enable_);
+      if (o.master_enable_at_master) master_enable_delay_ = master_enable_delay(o);
     }
     if (o.power) {
       power_ = capture::find_signal(reader, *o.power);
@@ -170,10 +180,34 @@ class Replay {
       apply_split(c);
       return;
     }
-    const auto on = [&](char v) { return v != 'x' && ((v == '1') != active_low_); };
-    if (c.signal == data_) data_level_ = c.value;
-    else if (master_enable_ && c.signal == *master_enable_) master_on_ = on(c.value);
-    else encoder_on_ = on(c.value);
+    if (c.signal == data_) {
+      data_level_ = c.value;
+    } else if (master_enable_ && c.signal == *master_enable_) {
+      if (master_enable_delay_ != Time::zero()) {  // recorded at the master's connector: it arrives later
+        master_enable_in_flight_.push_back(c.value);
+        kernel_.schedule(master_enable_delay_, sim::bind<&Replay::master_enable_arrives>(this));
+        return;
+      }
+      master_on_ = on(c.value);
+    } else {
+      encoder_on_ = on(c.value);
+    }
+    drive_data();
+    if (c.signal == data_ && data_level_ != 'x') decoder_.on_data(now, data_level_ == '1');
+    else if (c.signal == data_) decoder_.on_data_unknown(now);
+  }
+
+  bool on(char v) const { return v != 'x' && ((v == '1') != active_low_); }
+
+  // The master's enable, recorded at its own connector, one cable delay later at the encoder's.
+  void master_enable_arrives() {
+    master_on_ = on(master_enable_in_flight_.front());
+    master_enable_in_flight_.pop_front();
+    drive_data();
+  }
+
+  // DATA's level and who drives it, onto the line.
+  void drive_data() {
     const bool known = data_level_ != 'x';
     const bool encoder_drives = enable_ && encoder_on_;
     encoder_.data_out.write(data_level_ == '1');
@@ -188,8 +222,6 @@ class Replay {
       encoder_.data_enable.write(false);
       master_.data_enable.write(known);
     }
-    if (c.signal == data_ && known) decoder_.on_data(now, data_level_ == '1');
-    else if (c.signal == data_) decoder_.on_data_unknown(now);
   }
 
   // CLOCK's first level. A simulator's VCD shows its simulation from the start at time 0, where
@@ -245,6 +277,8 @@ class Replay {
   char in_level_ = '1';
   char out_level_ = '1';
   bool master_on_ = false;
+  Time master_enable_delay_{0};
+  std::deque<char> master_enable_in_flight_;
   capture::Change next_;
   std::vector<capture::Change> held_;  // this instant's changes other than CLOCK's
   bool clock_written_ = true;          // the level last written to CLOCK
@@ -291,6 +325,7 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   checker::EncoderDeclaration encoder = o.encoder;
   result.at = o.at;
   result.both_enables = params.master_enable_observable;
+  if (result.both_enables && o.master_enable_at_master) result.master_enable_delay = master_enable_delay(o);
   if (o.at == CaptureCheckOptions::At::Master) {
     if (!o.cable_m) throw capture::CaptureError(o.file + ": a capture at the master's connector needs the cable's length");
     if (o.data_enable && !o.data_out)
@@ -471,7 +506,10 @@ void write_capture_summary(std::ostream& out, const CaptureCheckResult& r, bool 
   out << "  judged from the wires at the " << (r.at == CaptureCheckOptions::At::Master ? "master's" : "encoder's")
       << " connector; rows that need the master's declaration (sampling window, t_D used, measurement frames) are not "
          "observable in a capture\n";
-  if (r.both_enables && r.cable_m > 0)
+  if (r.master_enable_delay)
+    out << "  the master's DATA enable, recorded at its connector, judged " << sim::format_time(*r.master_enable_delay)
+        << " later at the encoder's (the cable's one-way delay)\n";
+  else if (r.both_enables && r.cable_m > 0)
     out << "  both DATA enables are judged as at the " << (r.at == CaptureCheckOptions::At::Master ? "master's" : "encoder's")
         << " connector: an enable recorded at the other end is off by the cable's delay, and floating_data or "
            "bus_contention around a turnaround may come from that rather than from the drivers\n";
@@ -553,6 +591,7 @@ nlohmann::json capture_json(const CaptureCheckResult& r) {
           {"clock_unknown", r.clock_unknown},
           {"data_unknown_bits", r.data_unknown_bits},
           {"frame_cut_by_end", r.frame_cut_by_end ? json(*r.frame_cut_by_end) : json(nullptr)},
+          {"master_enable_delay_ps", r.master_enable_delay ? json(r.master_enable_delay->count()) : json(nullptr)},
           {"cable_m", r.cable_given ? json(r.cable_m) : json(nullptr)},
           {"violations", violations_json(r.violations)}, {"findings_not_kept", r.findings_not_kept},
           {"verdict", verdict_json(r.conclusion)},

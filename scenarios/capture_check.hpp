@@ -32,6 +32,9 @@ struct CaptureCheckOptions {
   // drivers on at once is a bus contention). Taken at the same instants as the encoder's: the
   // cable's one-way delay between the two ends is not added (docs/analyzer.md).
   std::optional<std::string> master_data_enable;
+  // It was recorded at the master's connector (a master's own enable, endatsim's
+  // master_data_driver_enable): it is moved by the cable's one-way delay onto the encoder's.
+  bool master_enable_at_master = false;
   // An RTL master's split DATA: `data` is then its data_in, this its data_out and `data_enable`
   // its data_oe (at the master's connector).
   std::optional<std::string> data_out;
@@ -84,7 +87,8 @@ struct CaptureCheckResult {
   bool round_trip_given = true;                        // at the master's connector: --t-d given
   std::uint64_t data_unknown_bits = 0;                // bits of frames read while DATA was unknown (x)
   std::uint64_t data_unknown_first_frame = 0;         // ... the first frame with one
-  std::optional<std::uint64_t> frame_cut_by_end;      // the last frame, if the capture's end cut it
+  std::optional<std::uint64_t> frame_cut_by_end;
+  std::optional<sim::Time> master_enable_delay;  // how far the master's enable was moved (master_enable_at_master)      // the last frame, if the capture's end cut it
   bool conforms() const;           // no violation of error severity and nothing undecided
   std::size_t undecided() const;   // findings undecided at the capture's resolution
 };

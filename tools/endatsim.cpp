@@ -78,7 +78,8 @@ const char* const kChecksUsage = "usage: endatsim checks [--json | --python]\n";
 const char* const kParametersUsage = "usage: endatsim parameters [--schema]\n";
 const char* const kCheckUsage =
     "usage: endatsim check FILE... --clock NAME (--data NAME | --data-out NAME --data-in NAME)\n"
-    "                      [--data-enable NAME [--master-data-enable NAME] [--enable-active-low]] [--power NAME]\n"
+    "                      [--data-enable NAME [--master-data-enable NAME [--master-data-enable-at encoder|master]]\n"
+    "                      [--enable-active-low]] [--power NAME]\n"
     "                      [--encoder PROFILE|SCENARIO.json] [--clock-to-data TIME] [--t-st-reduced-for-cable]\n"
     "                      [--at encoder|master] [--cable LENGTH] [--t-d TIME] [--resolution TIME]\n"
     "                      [--json PATH] [--junit PATH] [--log PATH] [--verbose|--quiet]\n";
@@ -201,7 +202,8 @@ const char* const kCheckHelp =
     "levels at the encoder's connector (signals by full name or an unambiguous suffix; a wrong\n"
     "name lists the candidates); --data-enable is the encoder's DATA driver enable, if recorded\n"
     "(without it t_z, t_OE and floating data are not observable); --master-data-enable the\n"
-    "master's, taken at the same instants (with both, a bus contention shows). Frames are found\n"
+    "master's, taken at the same instants (with both, a bus contention shows), or one cable delay\n"
+    "later with --master-data-enable-at master (recorded at the master's connector). Frames are found\n"
     "and decoded on the wires (mode command, payload, start bit, answer, CRC, additional data,\n"
     "command supplement); --encoder takes the encoder's declared position width, t_m and t_R\n"
     "from a profile or a scenario (default: the model's encoder), --clock-to-data its delay from\n"
@@ -319,6 +321,9 @@ po::options_description options_of(Command c) {
           "data-enable", po::value<std::string>(), "the encoder's DATA driver enable, if recorded")(
           "master-data-enable", po::value<std::string>(),
           "the master's DATA driver enable, if recorded too (with --data-enable: bus contention)")(
+          "master-data-enable-at", po::value<std::string>(),
+          "where the master's enable was recorded: encoder (default: as the capture shows it) or master (moved by "
+          "the cable's one-way delay, --cable)")(
           "enable-active-low", "the enable is LOW while the encoder drives")(
           "power", po::value<std::string>(), "the encoder's supply, HIGH while powered, if recorded")(
           "encoder", po::value<std::string>(), "the declared encoder: a profile or a scenario (JSON)")(
@@ -1217,6 +1222,17 @@ int check_command(const po::variables_map& vm) {
                  "--data-enable: both drivers' enables show a contention\n";
     return kBadInput;
   }
+  if (const auto at = string_option(vm, "master-data-enable-at")) {
+    if (*at != "encoder" && *at != "master") {
+      std::cerr << "endatsim check: --master-data-enable-at must be 'encoder' or 'master', got '" << *at << "'\n";
+      return kBadInput;
+    }
+    if (!o.master_data_enable) {
+      std::cerr << "endatsim check: --master-data-enable-at says where --master-data-enable was recorded: give that too\n";
+      return kBadInput;
+    }
+    o.master_enable_at_master = *at == "master";
+  }
   if (o.enable_active_low && !o.data_enable) {
     std::cerr << "endatsim check: --enable-active-low needs --data-enable NAME\n";
     return kBadInput;
@@ -1266,6 +1282,11 @@ int check_command(const po::variables_map& vm) {
   if (!check_duration(vm, "t-d", sim::us(100), o.t_d)) return kBadInput;
   if (o.t_d && o.at != scenarios::CaptureCheckOptions::At::Master) {
     std::cerr << "endatsim check: --t-d is the round trip at the master's connector: it needs --at master\n";
+    return kBadInput;
+  }
+  if (o.master_enable_at_master && !o.cable_m) {
+    std::cerr << "endatsim check: --master-data-enable-at master needs --cable LENGTH (the enable reaches the encoder's "
+                 "connector one cable delay later)\n";
     return kBadInput;
   }
   if (o.at == scenarios::CaptureCheckOptions::At::Master && !o.cable_m) {
