@@ -84,7 +84,7 @@ int run_bench(int argc, const char* const* argv, const std::function<void(Bench&
 
 }  // namespace
 
-int run_main(int argc, const char* const* argv, const std::function<void(Bench&)>& drive) {
+int run_bench_program(int argc, const char* const* argv, const std::function<void(Bench&)>& drive) {
   scenarios::CheckedStdout out(argc > 0 ? argv[0] : "endatsim");
   return out.finish(run_bench(argc, argv, drive));
 }

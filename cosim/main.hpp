@@ -7,9 +7,19 @@
 #include <functional>
 
 #include "endatsim/cosim/bench.hpp"
+#include "endatsim/scenarios/bundled_profiles.hpp"
 
 namespace endatsim::cosim {
 
-int run_main(int argc, const char* const* argv, const std::function<void(Bench&)>& drive);
+int run_bench_program(int argc, const char* const* argv, const std::function<void(Bench&)>& drive);
+
+// Inline, so that a program built against the installed package finds that package's profiles
+// (ENDATSIM_PACKAGE_PROFILES_DIR, from its CMake config) wherever it was installed.
+inline int run_main(int argc, const char* const* argv, const std::function<void(Bench&)>& drive) {
+#ifdef ENDATSIM_PACKAGE_PROFILES_DIR
+  scenarios::set_package_profiles_dir(ENDATSIM_PACKAGE_PROFILES_DIR);
+#endif
+  return run_bench_program(argc, argv, drive);
+}
 
 }  // namespace endatsim::cosim

@@ -36,7 +36,14 @@ std::vector<fs::path> own_files() {
   return files;
 }
 
+fs::path& package_profiles_dir() {
+  static fs::path dir;
+  return dir;
+}
+
 }  // namespace
+
+void set_package_profiles_dir(std::filesystem::path dir) { package_profiles_dir() = std::move(dir); }
 
 fs::path bundled_profiles_dir() {
   std::error_code ec;
@@ -54,10 +61,13 @@ fs::path bundled_profiles_dir() {
     }
     looked += (looked.empty() ? "" : ", ") + file.parent_path().string();
   }
+  const fs::path& package = package_profiles_dir();
+  if (!package.empty() && fs::is_directory(package, ec)) return package;
   if (fs::is_directory(ENDATSIM_INSTALLED_PROFILES_DIR, ec)) return ENDATSIM_INSTALLED_PROFILES_DIR;
   throw std::runtime_error("the bundled profiles are not found: no " + kBeside.string() + " in or above " +
                            (looked.empty() ? std::string("the program's folder") : looked) + ", nor in " +
-                           ENDATSIM_INSTALLED_PROFILES_DIR + "; set ENDATSIM_PROFILES to the folder that holds them");
+                           (package.empty() ? std::string() : package.string() + " or ") + ENDATSIM_INSTALLED_PROFILES_DIR +
+                           "; set ENDATSIM_PROFILES to the folder that holds them");
 }
 
 std::vector<std::string> bundled_profile_names() {

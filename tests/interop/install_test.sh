@@ -53,4 +53,10 @@ if command -v verilator >/dev/null; then
     >"$work/vl-configure.log" || { cat "$work/vl-configure.log" >&2; exit 1; }
   cmake --build "$work/vl" -j 2 >"$work/vl-build.log" 2>&1 || { cat "$work/vl-build.log" >&2; exit 1; }
   "$work/vl/endat_master_verilated" "$source/examples/hdl/bench_8mhz_50m.json"
+  # A bench with a bundled profile: the program, built against a package installed elsewhere than
+  # the prefix its libraries were built for, finds that package's profiles.
+  sed 's/"encoder": {/"encoder": { "profile": "rotary_singleturn_25bit",/' "$source/examples/hdl/bench_8mhz_50m.json" \
+    > "$work/profile_bench.json"
+  ( cd "$work" && env -u ENDATSIM_PROFILES "$work/vl/endat_master_verilated" "$work/profile_bench.json" ) \
+    || { echo "FAIL: a Verilated master built against the package does not find its bundled profiles" >&2; exit 1; }
 fi
