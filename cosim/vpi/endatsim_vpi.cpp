@@ -322,6 +322,8 @@ class Bridge {
       drive_data();
     });
     at_max_time();
+    poll_interval_ = scale_.to_ticks_ceil(kPollFirst);
+    poll();
     running_ = true;
   }
 
@@ -447,6 +449,7 @@ class Bridge {
     // running simulation.
     if (running_ && !handlers_chained_) endatsim::scenarios::install_chained_interrupt_handlers();
     handlers_chained_ = running_;
+    ++calls_;
     inside_ = true;
     work();
     for (std::size_t i = 0; i < deferred_.size(); ++i) {
@@ -570,6 +573,25 @@ class Bridge {
     if (!wakeups_.insert(at).second) return;
     after(at - now, &Bridge::on_wakeup);
   }
+  // A design that never moves the watched pins (a master held in reset while its system clock
+  // runs) never calls the bridge, and GHDL's own SIGINT handler does not stop it: a look now and
+  // then, in simulated time, notices SIGINT, SIGTERM and the limits. The look comes sooner while
+  // the pins are busy and twice as late each time nothing called between two looks. It keeps the
+  // simulation no longer alive than the callback at max_time does.
+  static constexpr Time kPollFirst = endatsim::sim::us(1);
+  static constexpr Time kPollLongest = endatsim::sim::ms(1);
+  void poll() { after(std::max<std::uint64_t>(poll_interval_, 1), &Bridge::on_poll); }
+  static PLI_INT32 on_poll(p_cb_data cb) {
+    auto* self = reinterpret_cast<Bridge*>(cb->user_data);
+    const bool quiet = self->calls_ == self->calls_at_poll_;
+    self->poll_interval_ = quiet ? std::min(2 * self->poll_interval_, self->scale_.to_ticks_ceil(kPollLongest))
+                                 : self->scale_.to_ticks_ceil(kPollFirst);
+    self->enter([self] { self->sync(); });
+    self->calls_at_poll_ = self->calls_;
+    if (!self->finish_requested_) self->poll();
+    return 0;
+  }
+
   // A callback `delay` ticks from now.
   void after(std::uint64_t delay, PLI_INT32 (*routine)(p_cb_data)) {
     s_cb_data cb{};
@@ -610,6 +632,9 @@ class Bridge {
   std::set<std::uint64_t> wakeups_;
   std::vector<std::unique_ptr<Watch>> watches_;
   bool inside_ = false;
+  std::uint64_t calls_ = 0;          // calls from the simulator (enter), for the polls
+  std::uint64_t calls_at_poll_ = 0;  // calls_ after the last poll
+  std::uint64_t poll_interval_ = 1;  // in ticks
   bool finish_requested_ = false;
   bool clock_went_unknown_ = false;   // noted as it happened: the end need not note it again
   bool enable_went_unknown_ = false;

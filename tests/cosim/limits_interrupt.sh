@@ -87,6 +87,40 @@ V
     kill -INT $pid
     wait $pid || status=$?
     check $status 130 "interrupted by SIGINT" ghdl.json
+    # A design whose watched pins never move (a master held in reset while another clock runs)
+    # never calls the bridge, and GHDL's own SIGINT handler does not stop it: the bridge's look
+    # now and then in simulated time does (before, it ran on until killed).
+    cat > quiet.vhd <<'V'
+library ieee;
+use ieee.std_logic_1164.all;
+entity quiet is
+end entity;
+architecture sim of quiet is
+  signal clk : std_logic := '1';
+  signal other : std_logic := '0';
+  signal dout, doe : std_logic := '0';
+  signal din : std_logic := '1';
+begin
+  other <= not other after 10 ns;
+end architecture;
+V
+    ghdl -a --std=08 quiet.vhd && ghdl -e --std=08 quiet
+    for signal in INT TERM; do
+      status=0
+      ghdl -r --std=08 quiet --vpi="$vpi/endatsim_vpi_ghdl.so" +endatsim_bench=long.json +endatsim_clock=quiet.clk \
+        +endatsim_data_out=quiet.dout +endatsim_data_enable=quiet.doe +endatsim_data_in=quiet.din \
+        +endatsim_json=quiet_$signal.json > out.txt 2>&1 &
+      pid=$!
+      sleep 1
+      kill -$signal $pid
+      # Stopped within 10 s, or killed and failed.
+      for _ in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do kill -0 $pid 2>/dev/null || break; sleep 0.5; done
+      if kill -0 $pid 2>/dev/null; then kill -9 $pid; fail "GHDL with quiet pins still runs 10 s after SIG$signal"; fi
+      wait $pid || status=$?
+      want=130
+      [ $signal = TERM ] && want=143
+      check $status $want "interrupted by SIG$signal" quiet_$signal.json
+    done
   fi
   status=0
   "$verilated" "$hdl/bench_8mhz_50m.json" --max-kernel-events 2000 --json verilated.json > out.txt 2>&1 || status=$?
