@@ -80,7 +80,9 @@ void TimingChecker::check_pulse_widths(const PinFrame& f) {
   // A frame that the end of the run or capture cut with CLOCK LOW: that LOW phase lasted at least
   // until the end, so it fails a maximum it already exceeds (a master hung mid-frame); shorter, it
   // is not judged (its length is not known).
-  if (frame_cut_by_end_ == f.header.index && f.falling.size() > f.rising.size() && encoder_.t_lo_max &&
+  // A lone LOW while the power-on sequence waits may be its wake-up pulse, as above.
+  const bool wake_up = f.falling.size() == 1 && power_on_.due();
+  if (frame_cut_by_end_ == f.header.index && f.falling.size() > f.rising.size() && encoder_.t_lo_max && !wake_up &&
       (f.falling.size() > 1 || !f.header.compensated)) {
     const Time w = cut_at_ - f.falling.back();
     if (at_most(w, *encoder_.t_lo_max, r).decision == Decision::Fail)

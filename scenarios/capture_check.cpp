@@ -24,6 +24,7 @@ using sim::Time;
 Time master_enable_delay(const CaptureCheckOptions& o) {
   line::LineParams cable;
   cable.cable_length_m = o.cable_m.value_or(0);
+  if (o.cable_delay_per_m) cable.cable_delay_per_m = *o.cable_delay_per_m;
   return cable.cable_delay();
 }
 
@@ -325,6 +326,8 @@ CaptureCheckResult check_capture(const CaptureCheckOptions& o) {
   checker::EncoderDeclaration encoder = o.encoder;
   result.at = o.at;
   result.both_enables = params.master_enable_observable;
+  if (o.master_enable_at_master && !o.cable_m)
+    throw capture::CaptureError(o.file + ": the master's enable recorded at its connector needs the cable's length");
   if (result.both_enables && o.master_enable_at_master) result.master_enable_delay = master_enable_delay(o);
   if (o.at == CaptureCheckOptions::At::Master) {
     if (!o.cable_m) throw capture::CaptureError(o.file + ": a capture at the master's connector needs the cable's length");

@@ -22,6 +22,7 @@ struct CaptureCheckOptions {
   // come after its own delay, and t_D is not observable.
   enum class At : std::uint8_t { Encoder, Master } at = At::Encoder;
   std::optional<double> cable_m;   // the cable's length: t_D's bound, t_ST, f_c over 100 m
+  std::optional<sim::Time> cable_delay_per_m;  // its delay per metre (default the line's 5 ns/m)
   std::optional<sim::Time> t_d;    // at the master: the round trip (default: the encoder's
                                    // delay + twice the cable at 5 ns/m)
   std::string file;
@@ -87,8 +88,8 @@ struct CaptureCheckResult {
   bool round_trip_given = true;                        // at the master's connector: --t-d given
   std::uint64_t data_unknown_bits = 0;                // bits of frames read while DATA was unknown (x)
   std::uint64_t data_unknown_first_frame = 0;         // ... the first frame with one
-  std::optional<std::uint64_t> frame_cut_by_end;
-  std::optional<sim::Time> master_enable_delay;  // how far the master's enable was moved (master_enable_at_master)      // the last frame, if the capture's end cut it
+  std::optional<std::uint64_t> frame_cut_by_end;      // the last frame, if the capture's end cut it
+  std::optional<sim::Time> master_enable_delay;  // how far the master's enable was moved (master_enable_at_master)
   bool conforms() const;           // no violation of error severity and nothing undecided
   std::size_t undecided() const;   // findings undecided at the capture's resolution
 };

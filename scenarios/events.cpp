@@ -29,7 +29,7 @@ EventDriver::EventDriver(sim::Kernel& kernel, line::Line& line, slave::Encoder& 
       period_(bit_period), rng_(seed ^ 0x5EED'FA17'0000'0005ULL), acted_(events.size(), false) {
   bool listen[2] = {false, false};
   for (std::size_t i = 0; i < events.size(); ++i) {
-    if (events[i].at) kernel.schedule_at(*events[i].at, sim::bind<&EventDriver::apply>(this, i));
+    if (events[i].at) kernel.schedule_at(*events[i].at + events[i].offset, sim::bind<&EventDriver::apply>(this, i));
     if (counts_clock_edges(events[i])) listen[side(edge_end(events[i]))] = true;
   }
   if (listen[0]) line.pins(ObservationPoint::MasterPins).clock.on_change(sim::bind<&EventDriver::on_master_clock>(this));

@@ -360,25 +360,28 @@ TEST(FaultEvents, AnEventTheRunEndsBeforeIsNamedInTheSummaryAndTheJson) {
   s.events.push_back(at_frame(2, 0, K::Slip));  // acts
   s.events.push_back(at_frame(500, 0, K::Slip));
   s.events.push_back(at_frame(9, 200, K::Slip));  // a frame of 10 clocks has no 200th
-  s.events.push_back(at(sim::ms(900), K::Slip));  // after max_time
+  s.events.push_back(at(sim::ms(499), K::Slip));  // its offset puts it after max_time
+  s.events.push_back(at(sim::ms(499), K::Slip));  // and this one at max_time itself, where it acts
   s.max_time = sim::ms(500);
   for (auto& e : s.events) e.steps = 1;
-  s.events.back().offset = sim::us(3);
+  s.events[3].offset = sim::ms(1) + sim::ps(1);
+  s.events[4].offset = sim::ms(1);
   const auto r = scenarios::run_scenario(s);
   ASSERT_TRUE(r.finished);
   EXPECT_EQ(r.simulated, sim::ms(500));
   const std::vector<scenarios::EventNotActed> want{
-      {1, "slip", "frame 500"}, {2, "slip", "frame 9, clock 200"}, {3, "slip", "at 900 ms + 3 us"}};
+      {1, "slip", "frame 500"}, {2, "slip", "frame 9, clock 200"}, {3, "slip", "at 499 ms + 1.000000001 ms"}};
   EXPECT_EQ(r.events_not_acted, want);
   std::ostringstream summary;
   scenarios::write_summary(summary, r, false);
   EXPECT_NE(summary.str().find("  warning: event #1 (slip, frame 500) never acted: the run ended before it\n"),
             std::string::npos) << summary.str();
-  EXPECT_NE(summary.str().find("  warning: event #3 (slip, at 900 ms + 3 us) never acted"), std::string::npos) << summary.str();
+  EXPECT_NE(summary.str().find("  warning: event #3 (slip, at 499 ms + 1.000000001 ms) never acted"), std::string::npos)
+      << summary.str();
   EXPECT_EQ(summary.str().find("event #0"), std::string::npos) << summary.str();
   const auto j = scenarios::to_json(r);
   ASSERT_EQ(j.at("events_not_acted").size(), 3U);
-  EXPECT_EQ(j["events_not_acted"][2]["when"], "at 900 ms + 3 us");
+  EXPECT_EQ(j["events_not_acted"][2]["when"], "at 499 ms + 1.000000001 ms");
   // Every event acted: no key, no line.
   s.events.resize(1);
   const auto all = scenarios::run_scenario(s);

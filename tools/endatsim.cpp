@@ -1146,6 +1146,7 @@ int diagram_command(const po::variables_map& vm) {
 struct EncoderFile {
   checker::EncoderDeclaration encoder;
   std::optional<double> cable;
+  std::optional<sim::Time> cable_delay_per_m;
   std::optional<checker::CheckerParams> checker;
 };
 
@@ -1159,14 +1160,14 @@ EncoderFile encoder_declaration_file(const std::string& path) {
     const auto s = scenarios::load_scenario_file(path, bench ? scenarios::ScenarioKind::Bench : scenarios::ScenarioKind::Run);
     auto d = scenarios::declared_encoder(s.encoder);
     d.output_delay = s.line.encoder.receiver_delay + s.encoder.output_delay + s.line.encoder.driver_delay;
-    return {d, s.line.cable_length_m, s.checker};
+    return {d, s.line.cable_length_m, s.line.cable_delay_per_m, s.checker};
   }
   slave::EncoderParams p;
   slave::load_profile(path).apply(p);
   const line::LineParams lp;
   auto d = scenarios::declared_encoder(p);
   d.output_delay = lp.encoder.receiver_delay + p.output_delay + lp.encoder.driver_delay;
-  return {d, std::nullopt, std::nullopt};
+  return {d, std::nullopt, std::nullopt, std::nullopt};
 }
 
 // A duration option of `check` within 0 .. max; a message and false when it is not one.
@@ -1248,6 +1249,7 @@ int check_command(const po::variables_map& vm) {
     auto declared = encoder_declaration_file(*e);
     o.encoder = declared.encoder;
     scenario_cable = declared.cable;
+    o.cable_delay_per_m = declared.cable_delay_per_m;
     if (declared.checker) o.checker = *declared.checker;
   }
   std::optional<sim::Time> clock_to_data;
