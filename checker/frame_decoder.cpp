@@ -68,10 +68,11 @@ void FrameDecoder::on_data(Time t, bool level) {
   data_.emplace_back(t, now);
 }
 
-void FrameDecoder::on_data_unknown(Time t) {
+void FrameDecoder::on_data_unknown(Time t, bool driven) {
   resolve(t);
-  if (data_level_.unknown) return;
+  if (data_level_.unknown && data_level_.driven == driven) return;
   data_level_.unknown = true;
+  data_level_.driven = driven;
   data_.emplace_back(t, data_level_);
 }
 
@@ -182,9 +183,10 @@ void FrameDecoder::resolve(Time t) {
 }
 
 // A bit read from a level a capture showed unknown (x) is counted where the frame uses it: the
-// master's bits, the answer's, and each slot after the encoder's LOW where the start bit or a
-// further datum may begin. The line floats, and a capture may show x, before the mode command,
-// between the turnaround and the encoder's LOW and after the answer: such bits decide nothing.
+// master's bits, the answer's, and each slot after the encoder's LOW, or while a recorded enable
+// says the encoder drives, where the start bit or a further datum may begin. The line floats, and
+// a capture may show x, before the mode command, between the turnaround and the encoder's LOW and
+// after the answer: such bits, on a line no driver holds, decide nothing.
 void FrameDecoder::take(const Sample& s) {
   const Level level = level_at(s.due);
   const State before = state_;
@@ -202,8 +204,9 @@ void FrameDecoder::take(const Sample& s) {
     case State::SupplementHunt: used = s.master && state_ == State::Supplement; break;
     case State::Answer:
     case State::MoreData: used = !s.master; break;  // a LOW after the data opens a further datum
-    // After the encoder's LOW the start bit may come at any slot: an x read as LOW may hide it.
-    case State::Hunt: used = !s.master && (after_low || state_ == State::Answer); break;
+    // After the encoder's LOW, or while its driver is recorded on, the start bit may come at any
+    // slot: an x read as the level before may hide it.
+    case State::Hunt: used = !s.master && (after_low || level.driven || state_ == State::Answer); break;
     case State::Done: break;
   }
   if (used && frame_.unknown_bits++ == 0) frame_.first_unknown_clock = s.clock;

@@ -103,7 +103,9 @@ class FrameDecoder {
   bool on_clock(Time t, bool level);
   void on_data(Time t, bool level);
   // A capture shows DATA unknown (x) from `t` until the next on_data().
-  void on_data_unknown(Time t);
+  // DATA unknown (x) from `t`; `driven`: while the encoder's driver is recorded on (a driven x can
+  // hide the start bit; an x on a released line decides nothing).
+  void on_data_unknown(Time t, bool driven = false);
   // The encoder's bits are taken this long after their rising edges from now on (at the master's
   // connector: the round trip a delay measurement in the capture showed).
   void set_clock_to_data(Time t) { params_.clock_to_data = t; }
@@ -147,6 +149,7 @@ class FrameDecoder {
   struct Level {
     bool high = true;
     bool unknown = false;  // x: `high` is the level before it
+    bool driven = false;   // an x while the encoder's driver was recorded on
     bool operator==(const Level&) const = default;
   };
   Level level_at(Time t) const;

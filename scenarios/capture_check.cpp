@@ -194,8 +194,9 @@ class Replay {
       encoder_on_ = on(c.value);
     }
     drive_data();
+    // An x is the encoder's own (driven) while its recorded enable is on, whichever changed last.
     if (c.signal == data_ && data_level_ != 'x') decoder_.on_data(now, data_level_ == '1');
-    else if (c.signal == data_) decoder_.on_data_unknown(now);
+    else if (data_level_ == 'x') decoder_.on_data_unknown(now, enable_ && encoder_on_);
   }
 
   bool on(char v) const { return v != 'x' && ((v == '1') != active_low_); }

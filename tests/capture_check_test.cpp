@@ -1687,6 +1687,47 @@ TEST(CheckCapture, AnAnswerBitReadWhileDataIsUnknownIsNamedAndTheFrameNotClean) 
   fs::remove(marked);
 }
 
+// DATA unknown (x) from the moment the encoder's recorded enable turns its driver on until after
+// the start bit: the x hides the encoder's LOW as well as the start bit. With the enable recorded,
+// the slots read in it count (the driver is on: the level is the encoder's, unknown); without
+// it, an x before any LOW is taken for the released line, as before, and decides nothing.
+TEST(CheckCapture, AnXWhileTheEncodersDriverIsOnCountsWhereTheStartBitMayBe) {
+  const fs::path vcd = temp("xdriven.vcd"), marked = temp("xdriven_marked.vcd");
+  auto [o, changes] = three_reads_at_2mhz(vcd);
+  const auto rises = rises_per_frame(changes);
+  ASSERT_EQ(rises.size(), 3U);
+  std::int64_t driver_on = -1;
+  for (const auto& [t, i, v] : changes)
+    if (i == 2 && v == '1' && t > rises[2][0]) {
+      driver_on = t;
+      break;
+    }
+  ASSERT_GT(driver_on, 0);
+  const std::int64_t hide_to = rises[2][11] + o.encoder.output_delay.count() + 400'000;
+  char after = '1';
+  for (const auto& [t, i, v] : changes)
+    if (i == 1 && t <= hide_to) after = v;
+  std::erase_if(changes, [&](const auto& c) { return std::get<1>(c) == 1 && std::get<0>(c) >= driver_on && std::get<0>(c) <= hide_to; });
+  changes.emplace_back(driver_on, 1, 'x');
+  changes.emplace_back(hide_to, 1, after);
+  std::sort(changes.begin(), changes.end());
+  write_encoder_pins(marked, "1 ps", changes);
+  auto m = o;
+  m.file = marked.string();
+  const auto with_enable = scenarios::check_capture(m);
+  ASSERT_EQ(with_enable.frames.size(), 3U);
+  EXPECT_EQ(with_enable.frames[0].unknown_bits + with_enable.frames[1].unknown_bits, 0U);
+  EXPECT_GE(with_enable.frames[2].unknown_bits, 1U);
+  EXPECT_FALSE(with_enable.frames[2].clean());
+  EXPECT_EQ(with_enable.data_unknown_first_frame, 2U);
+  m.data_enable.reset();
+  const auto without = scenarios::check_capture(m);
+  ASSERT_EQ(without.frames.size(), 3U);
+  EXPECT_EQ(without.frames[2].unknown_bits, 0U);
+  fs::remove(vcd);
+  fs::remove(marked);
+}
+
 // One glitch on CLOCK in a 2 MHz frame without compensation: 10 ns LOW, 100 ns after RE20. The
 // pulse-width rows break on it; the frame's clock is still fitted at 2 MHz and judged as a clock
 // without compensation. (Before, its extra rising edge fitted the frame at 2.07 MHz, which moved
