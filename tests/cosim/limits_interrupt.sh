@@ -65,17 +65,23 @@ icarus() { vvp -n -M "$vpi" -m endatsim_vpi busy.vvp +endatsim_bench=long.json $
     grep -qF '<error type="incomplete"' $signal.xml || fail "$signal.xml does not say incomplete"
   done
   if command -v ghdl > /dev/null && [ -f "$vpi/endatsim_vpi_ghdl.so" ]; then
+    # CLOCK running; with -gclocked=false CLOCK still and another clock running instead.
     cat > busy.vhd <<'V'
 library ieee;
 use ieee.std_logic_1164.all;
 entity busy is
+  generic (clocked : boolean := true);
 end entity;
 architecture sim of busy is
   signal clk : std_logic := '1';
+  signal other : std_logic := '0';
   signal dout, doe : std_logic := '0';
   signal din : std_logic := '1';
 begin
-  clk <= not clk after 500 ns;
+  running : if clocked generate
+    clk <= not clk after 500 ns;
+  end generate;
+  other <= not other after 10 ns;
 end architecture;
 V
     ghdl -a --std=08 busy.vhd && ghdl -e --std=08 busy
@@ -90,25 +96,9 @@ V
     # A design whose watched pins never move (a master held in reset while another clock runs)
     # never calls the bridge, and GHDL's own SIGINT handler does not stop it: the bridge's look
     # now and then in simulated time does (before, it ran on until killed).
-    cat > quiet.vhd <<'V'
-library ieee;
-use ieee.std_logic_1164.all;
-entity quiet is
-end entity;
-architecture sim of quiet is
-  signal clk : std_logic := '1';
-  signal other : std_logic := '0';
-  signal dout, doe : std_logic := '0';
-  signal din : std_logic := '1';
-begin
-  other <= not other after 10 ns;
-end architecture;
-V
-    ghdl -a --std=08 quiet.vhd && ghdl -e --std=08 quiet
     for signal in INT TERM; do
       status=0
-      ghdl -r --std=08 quiet --vpi="$vpi/endatsim_vpi_ghdl.so" +endatsim_bench=long.json +endatsim_clock=quiet.clk \
-        +endatsim_data_out=quiet.dout +endatsim_data_enable=quiet.doe +endatsim_data_in=quiet.din \
+      ghdl -r --std=08 busy -gclocked=false --vpi="$vpi/endatsim_vpi_ghdl.so" +endatsim_bench=long.json $pins \
         +endatsim_json=quiet_$signal.json > out.txt 2>&1 &
       pid=$!
       sleep 1
