@@ -1472,6 +1472,17 @@ std::pair<scenarios::CaptureCheckOptions, PinChanges> three_reads_at_2mhz(const 
   return {encoder_pins_of(s, vcd), encoder_pin_changes(vcd)};
 }
 
+// DATA unknown (x) from `from` to `to` in a capture's changes, then the level it had at `to`.
+void hide_data(PinChanges& changes, std::int64_t from, std::int64_t to) {
+  char after = '1';
+  for (const auto& [t, i, v] : changes)
+    if (i == 1 && t <= to) after = v;
+  std::erase_if(changes, [&](const auto& c) { return std::get<1>(c) == 1 && std::get<0>(c) >= from && std::get<0>(c) <= to; });
+  changes.emplace_back(from, 1, 'x');
+  changes.emplace_back(to, 1, after);
+  std::sort(changes.begin(), changes.end());
+}
+
 void to_femtoseconds(const fs::path& from, const fs::path& to, int nth, std::int64_t shift_fs) {
   auto changes = encoder_pin_changes(from);
   for (auto& [t, i, v] : changes) t *= 1000;  // fs
@@ -1649,11 +1660,7 @@ TEST(CheckCapture, AnAnswerBitReadWhileDataIsUnknownIsNamedAndTheFrameNotClean) 
   // Frame #2: x over the slots of RE10 .. RE12, where the start bit (RE11) rises after the
   // encoder's LOW: read as that LOW, it hides the start bit, and counts.
   const std::int64_t delay = o.encoder.output_delay.count();
-  const std::int64_t hide_from = rises[2][9] + delay + 100'000, hide_to = rises[2][11] + delay + 400'000;
-  const char after_hiding = level_at(hide_to);
-  std::erase_if(changes, [&](const auto& c) { return std::get<1>(c) == 1 && std::get<0>(c) >= hide_from && std::get<0>(c) <= hide_to; });
-  changes.emplace_back(hide_from, 1, 'x');
-  changes.emplace_back(hide_to, 1, after_hiding);
+  hide_data(changes, rises[2][9] + delay + 100'000, rises[2][11] + delay + 400'000);
   write_encoder_pins(marked, "1 ps", changes);
   auto m = o;
   m.file = marked.string();
@@ -1703,14 +1710,7 @@ TEST(CheckCapture, AnXWhileTheEncodersDriverIsOnCountsWhereTheStartBitMayBe) {
       break;
     }
   ASSERT_GT(driver_on, 0);
-  const std::int64_t hide_to = rises[2][11] + o.encoder.output_delay.count() + 400'000;
-  char after = '1';
-  for (const auto& [t, i, v] : changes)
-    if (i == 1 && t <= hide_to) after = v;
-  std::erase_if(changes, [&](const auto& c) { return std::get<1>(c) == 1 && std::get<0>(c) >= driver_on && std::get<0>(c) <= hide_to; });
-  changes.emplace_back(driver_on, 1, 'x');
-  changes.emplace_back(hide_to, 1, after);
-  std::sort(changes.begin(), changes.end());
+  hide_data(changes, driver_on, rises[2][11] + o.encoder.output_delay.count() + 400'000);
   write_encoder_pins(marked, "1 ps", changes);
   auto m = o;
   m.file = marked.string();
